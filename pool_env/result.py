@@ -1,0 +1,144 @@
+"""Shot results: plain data plus exact positions at any time."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+from pool_env.kernels.timeline import positions_at as _positions_at
+
+EventKind = Literal["pocket", "ball", "cushion", "stop"]
+
+#: Event kind codes of the compiled loop, in tie-breaking order.
+KIND_NAMES: tuple[EventKind, ...] = ("pocket", "ball", "cushion", "stop")
+
+
+@dataclass(frozen=True, slots=True)
+class Event:
+    """One event of a shot.
+
+    Attributes:
+        time: Seconds since the shot began.
+        kind: ``"ball"`` (impact of balls ``i`` and ``j``, ``i < j``), ``"cushion"`` (ball
+            ``i`` hits rail ``j``: 0 is ``x = R``, 1 ``x = L - R``, 2 ``y = R``, 3
+            ``y = W - R``), ``"pocket"`` (ball ``i`` captured by pocket ``j``) or ``"stop"``
+            (ball ``i`` comes to rest; ``j = -1``).
+        i: The ball.
+        j: The other ball, the rail, the pocket, or -1.
+    """
+
+    time: float
+    kind: EventKind
+    i: int
+    j: int
+
+
+class ShotResult:
+    """The outcome of :func:`pool_env.simulate`: final state, events, exact trajectories.
+
+    Attributes:
+        positions: ``(N, 2)`` final positions; a potted ball keeps its capture point.
+        pocketed: ``(N,)`` ints: -1 on the table, ``k`` captured by pocket ``k``.
+        duration: Seconds until everything rests.
+        n_events: Number of events.
+        hit_event_cap: True if the shot reached ``max_events``; every ball was then stopped
+            where it was at that instant.
+        first_contact: ``(i, j)`` of the first ball-ball impact, or ``None``.
+        event_times, event_kinds, event_i, event_j: The events as arrays (kinds are codes
+            into :data:`KIND_NAMES`).
+    """
+
+    __slots__ = (
+        "_deceleration",
+        "_seg_ball",
+        "_seg_potted",
+        "_seg_state",
+        "_seg_t",
+        "duration",
+        "event_i",
+        "event_j",
+        "event_kinds",
+        "event_times",
+        "first_contact",
+        "hit_event_cap",
+        "n_events",
+        "pocketed",
+        "positions",
+    )
+
+    def __init__(self, raw: tuple, deceleration: float) -> None:
+        (
+            self.positions,
+            self.pocketed,
+            n_events,
+            duration,
+            capped,
+            first_i,
+            first_j,
+            self.event_times,
+            self.event_kinds,
+            self.event_i,
+            self.event_j,
+            self._seg_ball,
+            self._seg_t,
+            self._seg_state,
+            self._seg_potted,
+        ) = raw
+        self.n_events = int(n_events)
+        self.duration = float(duration)
+        self.hit_event_cap = bool(capped)
+        self.first_contact = (int(first_i), int(first_j)) if first_i >= 0 else None
+        self._deceleration = deceleration
+
+    @property
+    def events(self) -> list[Event]:
+        """The events in chronological order (built on access)."""
+        return [
+            Event(float(t), KIND_NAMES[k], int(i), int(j))
+            for t, k, i, j in zip(
+                self.event_times, self.event_kinds, self.event_i, self.event_j, strict=True
+            )
+        ]
+
+    @property
+    def n_balls(self) -> int:
+        """Number of balls in the scene."""
+        return int(self.positions.shape[0])
+
+    def _check_time(self, t: float) -> float:
+        t = float(t)
+        if not (0.0 <= t <= self.duration):
+            raise ValueError(f"t must lie in [0, duration={self.duration}], got {t!r}")
+        return t
+
+    def positions_at(self, t: float) -> NDArray[np.float64]:
+        """Exact ``(N, 2)`` positions at time ``t`` in ``[0, duration]``.
+
+        A ball potted by then sits at its capture point (see :meth:`pocketed_at`).
+
+        Raises:
+            ValueError: If ``t`` lies outside ``[0, duration]`` or is not a number.
+        """
+        out, _ = _positions_at(
+            self._seg_ball, self._seg_t, self._seg_state, self._seg_potted,
+            self.n_balls, self._check_time(t), self._deceleration,
+        )
+        return out
+
+    def pocketed_at(self, t: float) -> NDArray[np.bool_]:
+        """``(N,)`` booleans: which balls are potted by time ``t``."""
+        _, potted = _positions_at(
+            self._seg_ball, self._seg_t, self._seg_state, self._seg_potted,
+            self.n_balls, self._check_time(t), self._deceleration,
+        )
+        return potted
+
+    def __repr__(self) -> str:
+        potted = [int(i) for i in np.flatnonzero(self.pocketed >= 0)]
+        return (
+            f"ShotResult(n_balls={self.n_balls}, n_events={self.n_events}, "
+            f"duration={self.duration:.4f}, potted={potted}, hit_event_cap={self.hit_event_cap})"
+        )

@@ -1,0 +1,193 @@
+"""The table: frozen, validated geometry and physics parameters, and its pockets.
+
+Frame: the origin is one corner of the playing surface at the cushion noses; x runs along the
+length, y along the width. A ball centre lives in ``[R, L - R] x [R, W - R]``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from numpy.typing import NDArray
+
+#: WPA equipment specification: corner pocket mouth 4.5-4.625 in, side pocket mouth
+#: 5-5.125 in, measured between the points where the cushion noses end. We take the
+#: narrow end of each range.
+CORNER_MOUTH = 4.5 * 0.0254
+SIDE_MOUTH = 5.0 * 0.0254
+
+PocketSpec = Literal["standard", "none"] | Sequence[Sequence[float]] | NDArray[np.float64]
+
+# Indices into Table.params, the flat array the compiled kernels read.
+P_LENGTH, P_WIDTH, P_RADIUS, P_DECEL, P_E_BALL, P_E_CUSHION = range(6)
+
+
+def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray[np.float64]:
+    """Capture circles of a regulation 6-pocket table.
+
+    The rails run the full length, so a pocket is a capture circle that catches a ball whose
+    centre reaches the rail line (``R`` from the cushion nose) inside the pocket mouth:
+
+    * Corner pockets: the cushion noses are cut at 45 degrees, so a mouth of width ``w``
+      ends ``w / sqrt(2)`` from the corner along each rail. The circle is centred on the
+      corner of the nose rectangle with radius ``sqrt(R^2 + (w / sqrt(2))^2)``: a ball
+      rolling along a rail (centre at ``R`` from the nose) is captured exactly when it
+      reaches the mouth.
+    * Side pockets: centred at the middle of each long rail, ``R`` behind the nose line
+      (where a dropping ball sits), with radius ``sqrt((2R)^2 + (w / 2)^2)`` so that again a
+      ball along the rail is captured exactly inside the mouth of width ``w``.
+
+    Args:
+        length: Table length ``L`` (m).
+        width: Table width ``W`` (m).
+        ball_radius: Ball radius ``R`` (m).
+
+    Returns:
+        A ``(6, 3)`` array of ``(x, y, radius)``, ordered: bottom-left, bottom-middle,
+        bottom-right, top-left, top-middle, top-right.
+    """
+    r = ball_radius
+    corner_r = math.hypot(r, CORNER_MOUTH / math.sqrt(2.0))
+    side_r = math.hypot(2.0 * r, SIDE_MOUTH / 2.0)
+    return np.array(
+        [
+            (0.0, 0.0, corner_r),
+            (length / 2.0, -r, side_r),
+            (length, 0.0, corner_r),
+            (0.0, width, corner_r),
+            (length / 2.0, width + r, side_r),
+            (length, width, corner_r),
+        ],
+        dtype=np.float64,
+    )
+
+
+def _check_positive(name: str, value: float) -> float:
+    value = float(value)
+    if not math.isfinite(value) or value <= 0.0:
+        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+    return value
+
+
+def _check_restitution(name: str, value: float) -> float:
+    value = float(value)
+    if not (0.0 <= value <= 1.0):  # also rejects NaN
+        raise ValueError(f"{name} must lie in [0, 1], got {value!r}")
+    return value
+
+
+@dataclass(frozen=True, eq=False)
+class Table:
+    """A pool table: geometry, ball properties and the rolling/impact model parameters.
+
+    All values are SI units. The defaults describe a 9-ft table.
+
+    Args:
+        length: Playing length ``L`` between the cushion noses (m).
+        width: Playing width ``W`` between the cushion noses (m).
+        ball_radius: Radius ``R`` of every ball (m).
+        ball_mass: Default ball mass (kg); ``simulate`` accepts per-ball masses.
+        mu_roll: Coefficient of rolling resistance; balls decelerate at ``mu_roll * g``.
+        g: Gravitational acceleration (m/s^2).
+        e_ball: Ball-ball coefficient of restitution, in [0, 1].
+        e_cushion: Ball-cushion coefficient of restitution, in [0, 1].
+        pockets: ``"standard"`` (6 regulation pockets), ``"none"`` (a carom table), or a
+            sequence of ``(x, y, radius)`` capture circles.
+
+    Raises:
+        ValueError: On a non-positive or non-finite size, mass, radius, ``mu_roll`` or
+            ``g``; a restitution outside [0, 1]; a table too small for one ball; or an
+            unknown or malformed pocket specification.
+    """
+
+    length: float = 2.54
+    width: float = 1.27
+    ball_radius: float = 0.028575
+    ball_mass: float = 0.17
+    mu_roll: float = 0.01
+    g: float = 9.81
+    e_ball: float = 0.95
+    e_cushion: float = 0.85
+    pockets: NDArray[np.float64] = field(default="standard")  # type: ignore[assignment]
+    params: NDArray[np.float64] = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        setter = object.__setattr__  # frozen dataclass: set validated values once
+        for name in ("length", "width", "ball_radius", "ball_mass", "mu_roll", "g"):
+            setter(self, name, _check_positive(name, getattr(self, name)))
+        for name in ("e_ball", "e_cushion"):
+            setter(self, name, _check_restitution(name, getattr(self, name)))
+        if min(self.length, self.width) <= 2.0 * self.ball_radius:
+            raise ValueError(
+                f"a {self.length} x {self.width} m table cannot hold a ball of radius "
+                f"{self.ball_radius} m"
+            )
+        pockets = self._parse_pockets(self.pockets)
+        pockets.setflags(write=False)
+        setter(self, "pockets", pockets)
+        params = np.array(
+            [
+                self.length,
+                self.width,
+                self.ball_radius,
+                self.mu_roll * self.g,
+                self.e_ball,
+                self.e_cushion,
+            ],
+            dtype=np.float64,
+        )
+        params.setflags(write=False)
+        setter(self, "params", params)
+
+    def _parse_pockets(self, spec: object) -> NDArray[np.float64]:
+        if isinstance(spec, str):
+            if spec == "standard":
+                return standard_pockets(self.length, self.width, self.ball_radius)
+            if spec == "none":
+                return np.zeros((0, 3), dtype=np.float64)
+            raise ValueError(
+                f"unknown pocket specification {spec!r}: use 'standard', 'none' or a "
+                "sequence of (x, y, radius)"
+            )
+        try:
+            arr = np.array(spec, dtype=np.float64)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"pockets must be a sequence of (x, y, radius): {exc}") from None
+        if arr.size == 0:
+            return np.zeros((0, 3), dtype=np.float64)
+        if arr.ndim != 2 or arr.shape[1] != 3:
+            raise ValueError(f"pockets must have shape (K, 3) of (x, y, radius), got {arr.shape}")
+        if not np.all(np.isfinite(arr)):
+            raise ValueError("pocket coordinates and radii must be finite")
+        if np.any(arr[:, 2] <= 0.0):
+            raise ValueError("every pocket radius must be positive")
+        return np.ascontiguousarray(arr)
+
+    @property
+    def deceleration(self) -> float:
+        """Rolling deceleration ``mu_roll * g`` (m/s^2)."""
+        return self.mu_roll * self.g
+
+    @property
+    def n_pockets(self) -> int:
+        """Number of pockets (0 on a carom table)."""
+        return int(self.pockets.shape[0])
+
+    def stop_distance(self, speed: float) -> float:
+        """Distance a free ball rolls from ``speed`` to rest: ``v^2 / (2 mu g)``."""
+        return speed * speed / (2.0 * self.deceleration)
+
+    def stop_time(self, speed: float) -> float:
+        """Time a free ball takes to roll from ``speed`` to rest: ``v / (mu g)``."""
+        return speed / self.deceleration
+
+    def __repr__(self) -> str:
+        return (
+            f"Table(length={self.length}, width={self.width}, ball_radius={self.ball_radius}, "
+            f"ball_mass={self.ball_mass}, mu_roll={self.mu_roll}, g={self.g}, "
+            f"e_ball={self.e_ball}, e_cushion={self.e_cushion}, pockets=<{self.n_pockets}>)"
+        )
