@@ -44,6 +44,7 @@ class ShotResult:
         pocketed: ``(N,)`` ints: -1 on the table, ``k`` captured by pocket ``k``.
         duration: Seconds until everything rests.
         n_events: Number of events.
+        recorded: Whether events and trajectories were kept (``simulate(record=...)``).
         hit_event_cap: True if the shot reached ``max_events``; every ball was then stopped
             where it was at that instant.
         first_contact: ``(i, j)`` of the first ball-ball impact, or ``None``.
@@ -57,6 +58,7 @@ class ShotResult:
         "_seg_potted",
         "_seg_state",
         "_seg_t",
+        "recorded",
         "duration",
         "event_i",
         "event_j",
@@ -69,7 +71,7 @@ class ShotResult:
         "positions",
     )
 
-    def __init__(self, raw: tuple, deceleration: float) -> None:
+    def __init__(self, raw: tuple, deceleration: float, recorded: bool = True) -> None:
         (
             self.positions,
             self.pocketed,
@@ -92,10 +94,11 @@ class ShotResult:
         self.hit_event_cap = bool(capped)
         self.first_contact = (int(first_i), int(first_j)) if first_i >= 0 else None
         self._deceleration = deceleration
+        self.recorded = recorded
 
     @property
     def events(self) -> list[Event]:
-        """The events in chronological order (built on access)."""
+        """The events in chronological order (built on access; empty if not recorded)."""
         return [
             Event(float(t), KIND_NAMES[k], int(i), int(j))
             for t, k, i, j in zip(
@@ -109,6 +112,8 @@ class ShotResult:
         return int(self.positions.shape[0])
 
     def _check_time(self, t: float) -> float:
+        if not self.recorded:
+            raise ValueError("this shot was simulated with record=False: no trajectories kept")
         t = float(t)
         if not (0.0 <= t <= self.duration):
             raise ValueError(f"t must lie in [0, duration={self.duration}], got {t!r}")

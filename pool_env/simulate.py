@@ -70,6 +70,7 @@ def simulate(
     velocities: ArrayLike,
     masses: ArrayLike | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    record: bool = True,
 ) -> ShotResult:
     """Simulate balls on ``table`` from the given state until everything rests.
 
@@ -81,6 +82,8 @@ def simulate(
         masses: ``(N,)`` masses (kg); defaults to ``table.ball_mass`` for every ball.
         max_events: Event cap; a shot that reaches it stops every ball where it is and
             sets ``hit_event_cap``.
+        record: Keep the event list and the trajectories (for ``events`` and
+            ``positions_at``). Training loops that only need the final state pass False.
 
     Returns:
         The :class:`~pool_env.result.ShotResult`.
@@ -100,8 +103,8 @@ def simulate(
     code, i, j = loop.validate(pos, vel, mass, table.params, table.pockets)
     if code != loop.OK:
         _raise_invalid(code, i, j, pos, table)
-    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, int(max_events), True)
-    return ShotResult(raw, table.deceleration)
+    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, int(max_events), bool(record))
+    return ShotResult(raw, table.deceleration, bool(record))
 
 
 def shoot(
@@ -112,6 +115,7 @@ def shoot(
     cue: int = 0,
     masses: ArrayLike | Sequence[float] | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    record: bool = True,
 ) -> ShotResult:
     """Strike ball ``cue`` at ``speed`` (m/s) along ``angle`` (radians from +x); others rest.
 
@@ -123,6 +127,7 @@ def shoot(
         cue: Index of the struck ball.
         masses: Optional per-ball masses.
         max_events: Event cap.
+        record: Keep events and trajectories (see :func:`simulate`).
 
     Returns:
         The :class:`~pool_env.result.ShotResult`.
@@ -144,4 +149,4 @@ def shoot(
     vel = np.zeros((n, 2))
     vel[cue, 0] = speed * math.cos(angle)
     vel[cue, 1] = speed * math.sin(angle)
-    return simulate(table, pos, vel, masses, max_events)
+    return simulate(table, pos, vel, masses, max_events, record)
