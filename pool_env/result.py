@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.kernels.timeline import positions_at as _positions_at
+from pool_env.kernels.timeline import positions_at_many as _positions_at_many
 
 EventKind = Literal["pocket", "ball", "cushion", "stop"]
 
@@ -132,6 +133,34 @@ class ShotResult:
             self.n_balls, self._check_time(t), self._deceleration,
         )
         return out
+
+    def positions_at_many(self, times: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
+        """Positions ``(T, N, 2)`` and potted flags ``(T, N)`` at each of ``times``.
+
+        One compiled call for many frames (animations, invariant checks).
+
+        Raises:
+            ValueError: If a time lies outside ``[0, duration]``.
+        """
+        times = np.ascontiguousarray(times, dtype=np.float64).reshape(-1)
+        if not self.recorded:
+            self._check_time(0.0)
+        if times.size and not (times.min() >= 0.0 and times.max() <= self.duration):
+            raise ValueError(f"times must lie in [0, duration={self.duration}]")
+        return _positions_at_many(
+            self._seg_ball, self._seg_t, self._seg_state, self._seg_potted,
+            self.n_balls, times, self._deceleration,
+        )
+
+    @property
+    def segments(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        """The trajectory log ``(ball, t, state, potted)``, chronological.
+
+        Row ``r`` says ball ``ball[r]`` is re-anchored at time ``t[r]`` with
+        ``state[r] = (x, y, vx, vy)`` (``potted[r]``: captured there). From an anchor a ball
+        decelerates along its velocity until it rests. Empty if not recorded.
+        """
+        return self._seg_ball, self._seg_t, self._seg_state, self._seg_potted
 
     def pocketed_at(self, t: float) -> NDArray[np.bool_]:
         """``(N,)`` booleans: which balls are potted by time ``t``."""

@@ -35,7 +35,7 @@ from pool_env.kernels.predict import (
     predict_own,
     predict_pair,
 )
-from pool_env.kernels.resolve import V_REST, ball_ball, cushion
+from pool_env.kernels.resolve import V_REST, ZENO_WINDOW, ball_ball, cushion
 from pool_env.kernels.roots import INF
 
 # Tolerance of input validation: rounding in a rack or a position read back from a result
@@ -162,6 +162,8 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         for j in range(i + 1, n):
             pair[i, j] = predict_pair(st, status, i, j, 0.0, params, own, caps)
     pocketed = np.full(n, -1, dtype=np.int64)
+    pair_last = np.full((n, n), -INF, dtype=np.float64)  # time of each pair's last impact
+    pair_repeats = np.zeros((n, n), dtype=np.int64)  # impacts in a row within ZENO_WINDOW
 
     ev_t = np.empty(16 if record else 0, dtype=np.float64)
     ev_kind = np.empty(16 if record else 0, dtype=np.int8)
@@ -244,7 +246,12 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         else:
             if first_i < 0:
                 first_i, first_j = bi, bj
-            ball_ball(st, status, masses, bi, bj, now, params)
+            if now - pair_last[bi, bj] <= ZENO_WINDOW:
+                pair_repeats[bi, bj] += 1
+            else:
+                pair_repeats[bi, bj] = 1
+            pair_last[bi, bj] = now
+            ball_ball(st, status, masses, bi, bj, now, params, pair_repeats[bi, bj])
             predict_own(st, status, bi, params, pockets, own, caps)
             predict_own(st, status, bj, params, pockets, own, caps)
             _repredict_pairs(st, status, bi, now, params, own, caps, pair)

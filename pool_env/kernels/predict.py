@@ -197,17 +197,17 @@ def _both_moving(st, status, i, j, t_a, t_b, radius, a):
         g0 = d0x * d0x + d0y * d0y - four_r2
         dw = d0x * wx + d0y * wy
         tol = APPROACH_RTOL * math.sqrt(d0x * d0x + d0y * d0y) * scale
+        if dw >= -tol:
+            return INF  # separating, or closing within rounding of zero
         if g0 <= 0.0:
-            return t_a if dw < -tol else INF
-        if dw >= 0.0:
-            return INF
+            return t_a
         w2 = wx * wx + wy * wy
         disc = dw * dw - w2 * g0
         if disc < 0.0:
             return INF
         tau = g0 / (-dw + math.sqrt(disc))
         return t_a + tau if tau <= span else INF
-    tau = first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, span, scale)
+    tau = first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, span, scale, a)
     return t_a + tau if tau < INF else INF
 
 

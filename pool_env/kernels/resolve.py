@@ -18,13 +18,18 @@ It also finds angles with ``atan(vy / vx)``, which loses the quadrant; vectors a
 
 Cushions (seed: "bumpers"): ``v_n -> -e_cushion v_n`` on the rail's normal component.
 
-Zeno rules (documented in the package README): an impact whose normal approach speed is
-below ``V_ZENO`` is perfectly inelastic along the normal (``e = 0``), which ends the
-geometric cascades of inelastic collapse (a ball wedged against a rail, chains of touching
-balls). Two balls left touching with no normal relative speed whose relative deceleration
-presses them together would re-collide endlessly; they stick, leaving with their common
-centre-of-mass velocity (momentum conserved, energy lost). A ball slower than ``V_REST`` after
-an impact is at rest (it would stop within 1e-8 s and 5e-18 m anyway).
+Zeno rules (documented in the package README):
+
+* An impact whose normal approach speed is below ``V_ZENO`` is perfectly inelastic along the
+  normal (``e = 0``).
+* Two balls stick, leaving with their common centre-of-mass velocity (momentum conserved,
+  energy lost), when an inelastic impact leaves them touching with their relative
+  deceleration pressing them together (they would re-collide endlessly); when an inelastic
+  impact repeats within ``ZENO_WINDOW`` (a cascade through a cluster of touching balls);
+  or when any impact repeats ``ZENO_REPEATS`` times in a row that closely (a ball wedged
+  between a ball and a rail, inelastic collapse).
+* A ball slower than ``V_REST`` after an impact is at rest (it would stop within 1e-8 s and
+  5e-18 m anyway).
 """
 
 from __future__ import annotations
@@ -36,6 +41,11 @@ from pool_env.kernels.motion import set_anchor, state_at
 
 V_ZENO = 1e-6  # m/s
 V_REST = 1e-9  # m/s
+# Impacts of one pair closer together than this are one contact repeating (a cascade of
+# sequential impulses through touching balls, or a ball wedged against a rail).
+ZENO_WINDOW = 1e-9  # s
+# A pair that repeats this often within ZENO_WINDOW of each impact sticks, whatever its e.
+ZENO_REPEATS = 16
 
 
 @kernel
@@ -61,8 +71,12 @@ def _pressed_together(dx, dy, vxi, vyi, vxj, vyj, a):
 
 
 @kernel
-def ball_ball(st, status, masses, i, j, t, params):
-    """Resolve an impact between balls ``i`` and ``j`` at time ``t`` and re-anchor both."""
+def ball_ball(st, status, masses, i, j, t, params, repeats):
+    """Resolve an impact between balls ``i`` and ``j`` at time ``t`` and re-anchor both.
+
+    ``repeats`` counts this pair's impacts in a row, each within ``ZENO_WINDOW`` of the
+    last (1 for an isolated impact).
+    """
     a, e = params[3], params[4]
     xi, yi, vxi, vyi = state_at(st, status, i, t, a)
     xj, yj, vxj, vyj = state_at(st, status, j, t, a)
@@ -88,7 +102,11 @@ def ball_ball(st, status, masses, i, j, t, params):
     vyi += (ui_new - ui) * ny
     vxj += (uj_new - uj) * nx
     vyj += (uj_new - uj) * ny
-    if e_eff == 0.0 and _pressed_together(dx, dy, vxi, vyi, vxj, vyj, a):
+    # Sticking ends inelastic cascades: with e = 0, sequential impulses through a cluster of
+    # touching balls converge only geometrically, and slowly, towards common normal speeds.
+    if repeats >= ZENO_REPEATS or (
+        e_eff == 0.0 and (repeats >= 2 or _pressed_together(dx, dy, vxi, vyi, vxj, vyj, a))
+    ):
         vx = (mi * vxi + mj * vxj) / total
         vy = (mi * vyi + mj * vyj) / total
         vxi, vyi, vxj, vyj = vx, vy, vx, vy

@@ -97,7 +97,7 @@ def _polish(mode, lo, hi, f_lo, d0x, d0y, wx, wy, cx, cy, four_r2):
 
 
 @kernel
-def first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, t_end, speed_scale):
+def first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, t_end, speed_scale, accel):
     """First ``t`` in ``[0, t_end]`` where the gap closes while the balls approach.
 
     Args:
@@ -107,6 +107,7 @@ def first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, t_end, speed_scale):
         four_r2: ``(2R)^2``.
         t_end: End of the window in which this motion is valid.
         speed_scale: Sum of the two speeds, for the approach tolerance at contact.
+        accel: The rolling deceleration, the scale of the rounding in ``c``.
 
     Returns:
         The event time, or ``inf`` when none.
@@ -138,11 +139,16 @@ def first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, t_end, speed_scale):
     crit[nc] = t_end
     nc += 1
 
-    # Contact rule at t = 0.
+    # Contact rule at t = 0. A closing rate within rounding of zero (|D'| <= tol) is not an
+    # approach: such a pair was just resolved, and firing again would repeat it forever.
+    dist0 = math.sqrt(d0x * d0x + d0y * d0y)
+    tol = APPROACH_RTOL * 2.0 * dist0 * speed_scale
     g0, dg0, hc0 = gap_terms(0.0, d0x, d0y, wx, wy, cx, cy, four_r2)
     if g0 <= 0.0:
-        tol = APPROACH_RTOL * 2.0 * math.sqrt(d0x * d0x + d0y * d0y) * speed_scale
-        if dg0 < -tol or (dg0 <= tol and hc0 < 0.0):
+        # Pressed together (D' ~ 0 and D'' < 0) counts only beyond the rounding of D'':
+        # c comes from two unit vectors, each rounded, so its noise scales with accel.
+        curv_tol = APPROACH_RTOL * (wx * wx + wy * wy + 2.0 * dist0 * accel)
+        if dg0 < -tol or (dg0 <= tol and hc0 < -curv_tol):
             return 0.0
         first_piece = 1  # separating (or rounding-level): the first monotone piece holds no event
     else:
@@ -156,8 +162,8 @@ def first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, t_end, speed_scale):
         g_a, _, _ = gap_terms(a, d0x, d0y, wx, wy, cx, cy, four_r2)
         g_b, _, _ = gap_terms(b, d0x, d0y, wx, wy, cx, cy, four_r2)
         _, dg_mid, _ = gap_terms(0.5 * (a + b), d0x, d0y, wx, wy, cx, cy, four_r2)
-        if dg_mid >= 0.0:
-            continue  # separating piece
+        if dg_mid >= -tol:
+            continue  # separating, or closing at a rate within rounding of zero
         if g_a <= 0.0:
             return a  # approach starts while touching (a is a farthest-approach point)
         if g_b <= 0.0:
@@ -192,8 +198,8 @@ def ray_circle_entry(px, py, ux, uy, qx, qy, radius2, capture_inside):
         if b < -APPROACH_RTOL * math.sqrt(dx * dx + dy * dy):
             return 0.0
         return INF
-    if b >= 0.0:
-        return INF  # outside and moving away from (or tangent to) the centre
+    if b >= 0.0 or (not capture_inside and b >= -APPROACH_RTOL * math.sqrt(dx * dx + dy * dy)):
+        return INF  # moving away, tangent, or (a ball) closing within rounding of zero
     disc = b * b - cc
     if disc < 0.0:
         return INF

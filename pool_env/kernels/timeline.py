@@ -40,3 +40,15 @@ def positions_at(seg_ball, seg_t, seg_state, seg_potted, n_balls, t, a):
         out[i, 0] = x
         out[i, 1] = y
     return out, potted
+
+
+@kernel
+def positions_at_many(seg_ball, seg_t, seg_state, seg_potted, n_balls, times, a):
+    """Positions ``(T, N, 2)`` and potted flags ``(T, N)`` at each of ``times``."""
+    out = np.empty((times.shape[0], n_balls, 2), dtype=np.float64)
+    potted = np.empty((times.shape[0], n_balls), dtype=np.bool_)
+    for k in range(times.shape[0]):
+        pos, pot = positions_at(seg_ball, seg_t, seg_state, seg_potted, n_balls, times[k], a)
+        out[k] = pos
+        potted[k] = pot
+    return out, potted

@@ -1,0 +1,158 @@
+"""Invariant checks on a recorded shot, shared by the tests and the fuzz benchmark.
+
+The named invariants of the design notes:
+
+* **G** (geometry): no two balls on the table overlap by more than ``tol`` at any event, at
+  rest, or at sampled instants between events; every ball stays inside the rails.
+* **P** (momentum): each ball-ball impact conserves the pair's momentum.
+* **E** (energy): kinetic energy never increases, across impacts or in between.
+* **T** (termination): the shot ends at rest without reaching the event cap.
+
+Each check returns a list of human-readable violations (empty when it holds).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from pool_env.result import ShotResult
+from pool_env.table import Table
+
+GEOMETRY_TOL = 1e-9  # m
+MOMENTUM_RTOL = 1e-12
+ENERGY_RTOL = 1e-12
+
+# Segment rows each event kind appends to the trajectory log (pocket, ball, cushion, stop).
+_ROWS_PER_KIND = (1, 2, 1, 0)
+
+
+def _velocity(state: NDArray[np.float64], t0: float, t: float, decel: float) -> NDArray:
+    """Velocity at ``t`` of a ball anchored at ``t0`` with ``state = (x, y, vx, vy)``."""
+    v = state[2:4]
+    speed = float(np.hypot(v[0], v[1]))
+    if speed == 0.0:
+        return np.zeros(2)
+    remaining = max(speed - decel * (t - t0), 0.0)
+    return v * (remaining / speed)
+
+
+def impacts(result: ShotResult) -> list[tuple[int, float, int, int, NDArray, NDArray]]:
+    """Each ball-ball impact with the pair's velocities just before and just after.
+
+    Returns:
+        Tuples ``(event_index, time, i, j, before (2, 2), after (2, 2))``.
+    """
+    ball, seg_t, state, _ = result.segments
+    latest = {int(b): r for r, b in enumerate(ball[: result.n_balls])}
+    row = result.n_balls
+    out = []
+    decel = result._deceleration
+    for k, (t, kind, i, j) in enumerate(
+        zip(result.event_times, result.event_kinds, result.event_i, result.event_j, strict=True)
+    ):
+        n_rows = _ROWS_PER_KIND[kind]
+        if kind == 1:
+            before = np.array(
+                [_velocity(state[latest[b]], seg_t[latest[b]], t, decel) for b in (i, j)]
+            )
+            after = np.array([state[row, 2:4], state[row + 1, 2:4]])
+            out.append((k, float(t), int(i), int(j), before, after))
+        for r in range(row, row + n_rows):
+            latest[int(ball[r])] = r
+        row += n_rows
+    return out
+
+
+def check_momentum(result: ShotResult, masses: ArrayLike) -> list[str]:
+    """P: every ball-ball impact conserves the pair's momentum."""
+    m = np.asarray(masses, dtype=np.float64)
+    problems = []
+    for k, t, i, j, before, after in impacts(result):
+        p0 = m[i] * before[0] + m[j] * before[1]
+        p1 = m[i] * after[0] + m[j] * after[1]
+        scale = m[i] * np.abs(before[0]).sum() + m[j] * np.abs(before[1]).sum() + 1e-300
+        if np.abs(p1 - p0).max() > MOMENTUM_RTOL * scale:
+            problems.append(f"P: impact {k} (t={t}, balls {i},{j}) momentum {p0} -> {p1}")
+    return problems
+
+
+def _kinetic_energy_at(result: ShotResult, masses: NDArray, times: NDArray) -> NDArray:
+    ball, seg_t, state, _ = result.segments
+    decel = result._deceleration
+    energy = np.zeros(times.shape[0])
+    for n, t in enumerate(times):
+        latest: dict[int, int] = {}
+        for r in range(seg_t.shape[0]):
+            if seg_t[r] > t:
+                break
+            latest[int(ball[r])] = r
+        for b, r in latest.items():
+            v = _velocity(state[r], seg_t[r], t, decel)
+            energy[n] += 0.5 * masses[b] * float(v @ v)
+    return energy
+
+
+def check_energy(result: ShotResult, masses: ArrayLike) -> list[str]:
+    """E: kinetic energy, taken just after each event, never increases."""
+    m = np.asarray(masses, dtype=np.float64)
+    times = np.concatenate([[0.0], result.event_times])
+    energy = _kinetic_energy_at(result, m, times)
+    rises = np.flatnonzero(np.diff(energy) > ENERGY_RTOL * max(energy[0], 1e-300))
+    return [
+        f"E: kinetic energy rises from {energy[k]} to {energy[k + 1]} at t={times[k + 1]}"
+        for k in rises
+    ]
+
+
+def check_geometry(
+    table: Table, result: ShotResult, samples: int = 2000, tol: float = GEOMETRY_TOL
+) -> list[str]:
+    """G: no overlap beyond ``tol`` and nothing outside the rails.
+
+    Checked at every event time, at rest, and at ``samples`` evenly spaced instants.
+    """
+    times = np.unique(
+        np.concatenate(
+            [[0.0, result.duration], result.event_times, np.linspace(0, result.duration, samples)]
+        )
+    )
+    pos, potted = result.positions_at_many(times)
+    r = table.ball_radius
+    problems = []
+    on = ~potted
+    x, y = pos[..., 0], pos[..., 1]
+    outside = on & (
+        (x < r - tol) | (x > table.length - r + tol) | (y < r - tol) | (y > table.width - r + tol)
+    )
+    for k, b in zip(*np.nonzero(outside), strict=True):
+        problems.append(f"G: ball {b} outside the rails at t={times[k]}: {pos[k, b].tolist()}")
+    n = result.n_balls
+    if n > 1:
+        iu, ju = np.triu_indices(n, 1)
+        dist = np.hypot(*(pos[:, ju] - pos[:, iu]).transpose(2, 0, 1))
+        both_on = on[:, iu] & on[:, ju]
+        bad = both_on & (dist < 2 * r - tol)
+        for k, p in zip(*np.nonzero(bad), strict=True):
+            problems.append(
+                f"G: balls {iu[p]},{ju[p]} overlap by {2 * r - dist[k, p]:.3g} m at t={times[k]}"
+            )
+    return problems[:20]
+
+
+def check_termination(result: ShotResult) -> list[str]:
+    """T: the shot came to rest without hitting the event cap."""
+    return ["T: the shot hit the event cap"] if result.hit_event_cap else []
+
+
+def check_shot(
+    table: Table, result: ShotResult, masses: ArrayLike | None = None, samples: int = 2000
+) -> list[str]:
+    """All of G, P, E and T for one recorded shot."""
+    m = np.full(result.n_balls, table.ball_mass) if masses is None else np.asarray(masses)
+    return (
+        check_termination(result)
+        + check_geometry(table, result, samples)
+        + check_momentum(result, m)
+        + check_energy(result, m)
+    )
