@@ -1,0 +1,1 @@
+"""Speed-against-error benchmarks (not part of the installed package)."""

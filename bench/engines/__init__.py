@@ -1,0 +1,1 @@
+"""Engines compared by the speed-against-error benchmark."""
