@@ -151,8 +151,10 @@ def encode_observations(positions, on_table, length, width):
         for j in range(n):
             if on_table[k, j]:
                 # Clamp: a ball on a rail may sit 1e-9 m outside it after rounding.
-                out[k, 3 * j] = min(max(positions[k, j, 0] * (2.0 / length) - 1.0, -1.0), 1.0)
-                out[k, 3 * j + 1] = min(max(positions[k, j, 1] * (2.0 / width) - 1.0, -1.0), 1.0)
+                x = (2.0 * positions[k, j, 0] - length) / length  # exact 0 on the centre line
+                out[k, 3 * j] = min(max(x, -1.0), 1.0)
+                y = (2.0 * positions[k, j, 1] - width) / width
+                out[k, 3 * j + 1] = min(max(y, -1.0), 1.0)
                 out[k, 3 * j + 2] = 1.0
     return out
 

@@ -296,10 +296,33 @@ def _free(
     return ok
 
 
-def make_sampler(
-    scene: SceneSpec, table: Table, n_balls: int | None
-) -> tuple[Callable[[np.random.Generator], NDArray[np.float64]], int]:
-    """Turn a scene specification into a sampler ``rng -> (N, 2)`` and its object-ball count.
+class SceneSampler:
+    """A picklable sampler ``rng -> (N, 2)`` for one scene on one table.
+
+    Args:
+        scene: A name from :data:`SCENES`, a fixed ``(N, 2)`` layout (cue first), or a
+            callable ``(table, rng) -> (N, 2)``.
+        table: The table.
+        n_objects: Number of object balls.
+    """
+
+    def __init__(self, scene: SceneSpec, table: Table, n_objects: int) -> None:
+        self.scene = scene
+        self.table = table
+        self.n_objects = n_objects
+
+    def __call__(self, rng: np.random.Generator) -> NDArray[np.float64]:
+        """Draw a layout (a fresh array: a fixed layout is copied)."""
+        scene = self.scene
+        if isinstance(scene, str):
+            return sample_scene(scene, self.table, self.n_objects, rng)
+        if callable(scene):
+            return check_layout(self.table, scene(self.table, rng), self.n_objects + 1)
+        return np.array(scene, dtype=np.float64)
+
+
+def make_sampler(scene: SceneSpec, table: Table, n_balls: int | None) -> tuple[SceneSampler, int]:
+    """Turn a scene specification into a sampler and its number of object balls.
 
     A named scene is laid out once here (with a fixed seed), so that a scene that does not
     fit fails when the environment is made, not at its first reset.
@@ -323,26 +346,17 @@ def make_sampler(
             sample_scene(scene, table, n, np.random.default_rng(0))
         except ValueError as exc:
             raise ValueError(f"scene={scene!r}, n_balls={n}: {exc}") from None
-        return (lambda rng: sample_scene(scene, table, n, rng)), n
-    if callable(scene):
-        try:
+        return SceneSampler(scene, table, n), n
+    try:
+        if callable(scene):
             n = check_layout(table, scene(table, np.random.default_rng(0))).shape[0] - 1
-        except ValueError as exc:
-            raise ValueError(f"scene (callable): {exc}") from None
-
-        def sample(rng: np.random.Generator) -> NDArray[np.float64]:
-            return check_layout(table, scene(table, rng), n + 1)
-
-    else:
-        try:
-            fixed = check_layout(table, scene)
-        except ValueError as exc:
-            raise ValueError(f"scene (layout): {exc}") from None
-        n = fixed.shape[0] - 1
-
-        def sample(rng: np.random.Generator) -> NDArray[np.float64]:
-            return fixed.copy()
-
+        else:
+            scene = check_layout(table, scene)
+            scene.setflags(write=False)
+            n = scene.shape[0] - 1
+    except ValueError as exc:
+        kind = "callable" if callable(scene) else "layout"
+        raise ValueError(f"scene ({kind}): {exc}") from None
     if n_balls is not None and n_balls != n:
         raise ValueError(f"n_balls={n_balls} does not match the scene's {n} object balls")
-    return sample, n
+    return SceneSampler(scene, table, n), n

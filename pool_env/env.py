@@ -1,0 +1,516 @@
+"""PoolEnv: the Gymnasium environment. One step is one shot, simulated exactly to rest.
+
+The class holds state and glue only: the action decoding, observation encoding and reward
+are the pure functions of :mod:`pool_env.mdp`, the layouts those of :mod:`pool_env.scenes`,
+so that a batched environment can reuse them.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, ClassVar
+
+import gymnasium as gym
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from pool_env import scenes
+from pool_env.mdp import (
+    AIM_MODES,
+    DEFAULT_AIM_RANGE,
+    DEFAULT_SPEED_RANGE,
+    AimMode,
+    aim_angles,
+    check_action,
+    decode_actions,
+    encode_observations,
+    pocket_potentials,
+    shot_rewards,
+)
+from pool_env.result import ShotResult
+from pool_env.simulate import shoot
+from pool_env.table import Table
+
+
+class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
+    r"""Pool: pot the object balls, one shot per step, on an exact event-based table simulator.
+
+    ## Description
+
+    A cue ball and ``n`` object balls lie on a pool table (a 9-ft table with six pockets by
+    default). Each step is one shot: the action is decoded to a direction and a speed, the
+    cue ball is struck, and the simulator runs the shot exactly to rest (rolling resistance,
+    ball-ball and cushion impacts, pockets as capture circles; no spin). The goal is to pot
+    every object ball. Ball ``0`` is the cue ball; object balls are numbered ``1..n``.
+
+    ## Action Space
+
+    ``Box(-1, 1, (2,), float32)``, each component mapped linearly onto a range:
+
+    | Num | Action | -1 maps to | +1 maps to | default range |
+    |-----|--------|------------|------------|---------------|
+    | 0   | aim    | ``aim_range[0]`` | ``aim_range[1]`` | by ``aim``, below |
+    | 1   | speed  | ``speed_range[0]`` | ``speed_range[1]`` | 0.5 .. 10 m/s |
+
+    The speed is the cue ball's, from a soft touch (it rolls ~1.3 m) to a hard break. The
+    aim depends on ``aim``:
+
+    * ``"relative"`` (default): radians, counter-clockwise, from the line joining the cue
+      ball to the nearest object ball on the table; default +-10 degrees. Action 0 hits
+      that ball full. This makes learning far easier than absolute aim.
+    * ``"cut"``: where the cue ball meets the nearest object ball, as the offset of its path
+      from that ball's centre in ball diameters; default -1 .. 1 (0 is a full hit, +-1 a
+      grazing one; +1 passes on the counter-clockwise side). The object ball then leaves
+      at ``asin(offset)`` from the cue ball's line whatever the distance, which makes the
+      best action a smooth function of the layout (the easiest mode to learn).
+    * ``"absolute"``: radians from the table's +x axis (its length); default +-pi.
+
+    Out-of-range actions (infinities included) are clipped to ``[-1, 1]``. An action with a
+    NaN raises ``ValueError`` and changes nothing. With ``noise=(sigma_angle, sigma_speed)``
+    Gaussian execution noise (radians, m/s; from ``self.np_random``) is added to the shot's
+    direction and speed (the speed is then clipped at 0).
+
+    ## Observation Space
+
+    ``Box(-1, 1, (3 (n + 1),), float32)``: for each ball, in the fixed order cue, 1, ..., n:
+
+    | Num       | Observation                     | Min | Max | potted ball |
+    |-----------|---------------------------------|-----|-----|-------------|
+    | 3 k       | ball k: x scaled, 2 x / L - 1    | -1  | 1   | 0           |
+    | 3 k + 1   | ball k: y scaled, 2 y / W - 1    | -1  | 1   | 0           |
+    | 3 k + 2   | ball k on the table (1) or not (0) | 0 | 1   | 0           |
+
+    ``L``, ``W`` are the table's length and width; the origin is a corner of the playing
+    surface. Exact positions in metres are ``env.unwrapped.positions``.
+
+    ## Rewards
+
+    ``reward_pot`` (+1) for each object ball the shot pots and ``reward_scratch`` (-1) when the
+    cue ball is potted (a scratch: the cue ball is put back on the head spot, or the free
+    point nearest to it). Optional shaping, off by default: ``reward_no_contact`` when the
+    cue ball touches no ball, and ``reward_shaping`` times the change of the potential
+    ``-sum(distance of each object ball to its nearest pocket) / table diagonal`` (potential
+    based, so it does not change which policies are optimal for an undiscounted return).
+
+    ## Starting State
+
+    Set by ``scene`` (see :mod:`pool_env.scenes`): ``"one_ball"`` (cue and one object ball
+    uniformly at random), ``"random"`` (cue and ``n_balls`` object balls uniformly at random,
+    3 by default), ``"nine_ball"`` / ``"eight_ball"`` (the rack on the foot spot, the cue
+    ball anywhere in the kitchen: the first shot is the break), a fixed ``(N, 2)`` layout, or
+    a callable ``(table, np_random) -> (N, 2)``. Random layouts never overlap and keep out of
+    the pockets. ``reset(options={"positions": ..., "on_table": ...})`` starts one episode
+    from a given layout (``on_table`` optional; the cue ball must be on the table).
+
+    ## Episode End
+
+    1. Termination: every object ball is potted (``info["is_success"]``).
+    2. Termination, with ``end_on_miss=True``: the shot pots no object ball, or scratches
+       (the turn passes).
+    3. Truncation: ``max_episode_steps`` of the registered id (``TimeLimit``), or
+       ``max_shots`` shots when given (the raw environment's own limit).
+
+    ## Info
+
+    ``potted`` (tuple of object balls potted by the shot), ``scratch`` (bool),
+    ``first_contact`` (first ball the cue ball hit, -1 for none), ``n_events`` (simulator
+    events), ``hit_event_cap`` (bool), ``angle`` and ``speed`` (the executed shot, radians
+    from +x and m/s), ``is_success`` (the table is cleared). ``reset`` returns ``{}``.
+
+    ## Arguments
+
+    | Parameter | Type | Default | Description |
+    |---|---|---|---|
+    | ``table`` | Table, dict or None | ``Table()`` | the table, or ``Table`` keyword arguments |
+    | ``scene`` | str, array or callable | ``"random"`` | starting layout (above) |
+    | ``n_balls`` | int or None | scene's | object balls (``"random"``: 1..15, default 3) |
+    | ``aim`` | str | ``"relative"`` | ``"relative"``, ``"cut"`` or ``"absolute"`` |
+    | ``aim_range`` | (float, float) | by ``aim`` | what action[0] = -1 and +1 map to |
+    | ``speed_range`` | (float, float) | (0.5, 10.0) | m/s for action -1 and +1 |
+    | ``noise`` | (float, float) or None | None | execution noise sigmas (rad, m/s) |
+    | ``end_on_miss`` | bool | False | a shot that pots nothing ends the episode |
+    | ``max_shots`` | int or None | None | truncate the raw env after this many shots |
+    | ``reward_pot`` | float | 1.0 | per object ball potted |
+    | ``reward_scratch`` | float | -1.0 | when the cue ball is potted |
+    | ``reward_no_contact`` | float | 0.0 | when the cue ball hits no ball |
+    | ``reward_shaping`` | float | 0.0 | weight of the pocket-distance potential |
+    | ``render_mode`` | str or None | None | ``"rgb_array"`` or ``"human"`` |
+    | ``render_width`` | int | 800 | frame width in pixels |
+
+    Registered ids (``import pool_env``): ``pool_env/Pool-v0`` (these defaults, 50 shots),
+    ``pool_env/OneBall-v0`` (``scene="one_ball"``, ``end_on_miss=True``: one shot per
+    episode unless it pots), ``pool_env/NineBall-v0`` (break, 50 shots) and
+    ``pool_env/EightBall-v0`` (break, 80 shots).
+
+    ## Rendering
+
+    ``"rgb_array"``: ``render()`` returns an ``(H, W, 3)`` uint8 top-down frame: the balls at
+    rest, with the paths of the last shot drawn as trails, so ``RecordVideo`` shows each
+    shot as one frame (``render_fps`` is 2: half a second per shot). ``"human"``: a pygame
+    window (``pip install "pool_env[render]"``) that animates each shot. With a render mode,
+    shots keep their trajectories: ``shot_frames()`` samples the last shot for an animation
+    and ``save_shot(path)`` writes it as GIF or MP4.
+
+    ## Version History
+
+    * v0: Initial version.
+    """
+
+    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["human", "rgb_array"], "render_fps": 2}
+
+    def __init__(
+        self,
+        table: Table | dict[str, Any] | None = None,
+        scene: scenes.SceneSpec = "random",
+        n_balls: int | None = None,
+        aim: AimMode = "relative",
+        aim_range: tuple[float, float] | None = None,
+        speed_range: tuple[float, float] = DEFAULT_SPEED_RANGE,
+        noise: tuple[float, float] | None = None,
+        end_on_miss: bool = False,
+        max_shots: int | None = None,
+        reward_pot: float = 1.0,
+        reward_scratch: float = -1.0,
+        reward_no_contact: float = 0.0,
+        reward_shaping: float = 0.0,
+        render_mode: str | None = None,
+        render_width: int = 800,
+    ) -> None:
+        self.table = _parse_table(table)
+        if aim not in AIM_MODES:
+            raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {aim!r}")
+        self.aim: AimMode = aim
+        self._aim_code = AIM_MODES.index(aim)
+        self.aim_range = _parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
+        self.speed_range = _parse_range("speed_range", speed_range, 0.0)
+        self.noise = _parse_noise(noise)
+        self.end_on_miss = _parse_bool("end_on_miss", end_on_miss)
+        self.max_shots = _parse_count("max_shots", max_shots)
+        self.reward_weights = tuple(
+            _parse_float(name, value)
+            for name, value in (
+                ("reward_pot", reward_pot),
+                ("reward_scratch", reward_scratch),
+                ("reward_no_contact", reward_no_contact),
+                ("reward_shaping", reward_shaping),
+            )
+        )
+        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
+            modes = self.metadata["render_modes"]
+            raise ValueError(f"render_mode must be one of {modes} or None, got {render_mode!r}")
+        self.render_mode = render_mode
+        self.render_width = _parse_count("render_width", render_width) or 800
+        self._sample, self.n_object_balls = scenes.make_sampler(scene, self.table, n_balls)
+
+        n = self.n_object_balls + 1
+        self.observation_space = gym.spaces.Box(-1.0, 1.0, (3 * n,), np.float32)
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (2,), np.float32)
+        self.cue = 0
+        self._record = render_mode is not None  # trajectories only when something draws them
+        self._diagonal = math.hypot(self.table.length, self.table.width)
+        self._positions: NDArray[np.float64] | None = None
+        self._on_table = np.ones(n, dtype=bool)
+        self._rows = np.arange(n)  # balls on the table, cue first: the rows the simulator sees
+        self._shots = 0
+        self._last_shot: ShotResult | None = None
+        self._shot_rows = self._rows
+        self._renderer: Any = None
+        self._window: Any = None
+
+    # -- Gymnasium API --------------------------------------------------------------------
+
+    def reset(
+        self, *, seed: int | None = None, options: dict[str, Any] | None = None
+    ) -> tuple[NDArray[np.float32], dict[str, Any]]:
+        """Start an episode: a new layout from the scene, or ``options["positions"]``."""
+        super().reset(seed=seed)
+        n = self.n_object_balls + 1
+        on_table = np.ones(n, dtype=bool)
+        if options:
+            unknown = set(options) - {"positions", "on_table"}
+            if unknown:
+                raise ValueError(
+                    f"unknown reset options {sorted(unknown)}: use 'positions', 'on_table'"
+                )
+        if options and "positions" in options:
+            positions = np.array(options["positions"], dtype=np.float64)
+            if positions.shape != (n, 2):
+                raise ValueError(
+                    f"options['positions'] must have shape ({n}, 2), got {positions.shape}"
+                )
+            if options.get("on_table") is not None:
+                on_table = np.array(options["on_table"], dtype=bool)
+                if on_table.shape != (n,) or not on_table[0]:
+                    raise ValueError(
+                        f"options['on_table'] must be ({n},) booleans with the cue (0) True"
+                    )
+            scenes.check_layout(self.table, positions[on_table])
+        elif options and "on_table" in options:
+            raise ValueError("options['on_table'] needs options['positions']")
+        else:
+            positions = self._sample(self.np_random)
+        self._set_state(positions, on_table)
+        self._shots = 0
+        self._last_shot = None
+        if self.render_mode == "human":
+            self.render()
+        return self._observation(), {}
+
+    def step(
+        self, action: ArrayLike
+    ) -> tuple[NDArray[np.float32], float, bool, bool, dict[str, Any]]:
+        """Play one shot to rest; see the class docstring for the action, reward and end."""
+        positions = self._positions
+        if positions is None:
+            raise RuntimeError("call reset() before step()")
+        lo, hi = self.aim_range
+        params, speeds = decode_actions(check_action(action)[None], lo, hi, *self.speed_range)
+        on_table, radius = self._on_table[None], self.table.ball_radius
+        angle = float(
+            aim_angles(params, positions[None], on_table, self.cue, self._aim_code, radius)[0]
+        )
+        speed = float(speeds[0])
+        if self.noise is not None:
+            angle += self.noise[0] * float(self.np_random.standard_normal())
+            speed = max(0.0, speed + self.noise[1] * float(self.np_random.standard_normal()))
+
+        rows = self._rows
+        all_on = rows.shape[0] == positions.shape[0]
+        shaping = self.reward_weights[3] != 0.0
+        phi_before = self._potential() if shaping else 0.0
+        result = shoot(
+            self.table, positions if all_on else positions[rows], angle, speed, record=self._record
+        )
+        # The state never aliases an array that a ShotResult (or a caller) may hold.
+        if all_on:
+            new = result.positions  # a fresh array from the simulator
+        else:
+            new = positions.copy()
+            new[rows] = result.positions
+        self._last_shot, self._shot_rows = result, rows
+        self._shots += 1
+
+        sunk = result.pocketed >= 0
+        potted: tuple[int, ...] = ()
+        scratch = False
+        if sunk.any():
+            balls = rows[sunk]
+            on_table = self._on_table = self._on_table.copy()
+            on_table[balls] = False
+            scratch = bool(balls[0] == self.cue)
+            potted = tuple(int(b) for b in balls[1:]) if scratch else tuple(int(b) for b in balls)
+            if scratch:  # back on the head spot, or the free point nearest to it
+                if new is result.positions:
+                    new = new.copy()
+                new[self.cue] = scenes.free_spot(self.table, new, on_table)
+                on_table[self.cue] = True
+            self._rows = on_table.nonzero()[0]
+        self._positions = new
+        contact = result.first_contact
+        first = -1 if contact is None else int(rows[contact[1] if contact[0] == 0 else contact[0]])
+        phi_change = self._potential() - phi_before if shaping else 0.0
+        reward = float(
+            shot_rewards(len(potted), scratch, first < 0, phi_change, self.reward_weights)
+        )
+
+        cleared = not self._on_table[1:].any()
+        terminated = cleared or (self.end_on_miss and (not potted or scratch))
+        truncated = self.max_shots is not None and self._shots >= self.max_shots
+        info = {
+            "potted": potted,
+            "scratch": scratch,
+            "first_contact": first,
+            "n_events": result.n_events,
+            "hit_event_cap": result.hit_event_cap,
+            "angle": angle,
+            "speed": speed,
+            "is_success": cleared,
+        }
+        if self.render_mode == "human":
+            self.render()
+        return self._observation(), reward, terminated, truncated, info
+
+    # -- state ----------------------------------------------------------------------------
+
+    def _set_state(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> None:
+        self._positions = np.ascontiguousarray(positions, dtype=np.float64)
+        self._on_table = on_table
+        self._rows = on_table.nonzero()[0]
+
+    def _observation(self) -> NDArray[np.float32]:
+        table = self.table
+        return encode_observations(
+            self._positions[None], self._on_table[None], table.length, table.width
+        )[0]
+
+    def _potential(self) -> float:
+        pos, on = self._positions[None], self._on_table[None]
+        return float(pocket_potentials(pos, on, self.table.pockets, self._diagonal)[0])
+
+    @property
+    def positions(self) -> NDArray[np.float64]:
+        """``(N, 2)`` ball centres in metres, cue first (a potted ball: where it was captured)."""
+        if self._positions is None:
+            raise RuntimeError("call reset() first")
+        return self._positions.copy()
+
+    @property
+    def on_table(self) -> NDArray[np.bool_]:
+        """``(N,)`` booleans: which balls are on the table, cue first."""
+        return self._on_table.copy()
+
+    @property
+    def shots(self) -> int:
+        """Shots played in this episode."""
+        return self._shots
+
+    @property
+    def last_shot(self) -> ShotResult | None:
+        """The :class:`~pool_env.result.ShotResult` of the last step (rows: ``last_shot_balls``)."""
+        return self._last_shot
+
+    @property
+    def last_shot_balls(self) -> NDArray[np.int64]:
+        """Ball numbers of the rows of :attr:`last_shot` (the balls that were on the table)."""
+        return self._shot_rows.copy()
+
+    # -- rendering ------------------------------------------------------------------------
+
+    def _get_renderer(self) -> Any:
+        if self._renderer is None:
+            from pool_env.render import Renderer
+
+            self._renderer = Renderer(self.table, self.render_width)
+        return self._renderer
+
+    def _frame(self) -> NDArray[np.uint8]:
+        renderer = self._get_renderer()
+        trails = None
+        if self._last_shot is not None and self._last_shot.recorded:
+            trails = renderer.trails(self._last_shot, self._shot_rows)
+        return renderer.frame(self.positions, self._on_table, trails=trails)
+
+    def render(self) -> NDArray[np.uint8] | None:
+        """``rgb_array``: the current frame with the last shot's trails; ``human``: animate it."""
+        if self.render_mode is None:
+            gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array'")
+            return None
+        if self.render_mode == "rgb_array":
+            return self._frame()
+        from pool_env.render import Window
+
+        if self._window is None:
+            renderer = self._get_renderer()
+            self._window = Window(renderer.size, "pool_env")
+        if self._last_shot is not None and self._last_shot.recorded:
+            self._window.play(self.shot_frames(), fps=30)
+        self._window.show(self._frame())
+        return None
+
+    def shot_frames(
+        self, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0
+    ) -> list[NDArray[np.uint8]]:
+        """Frames of the last shot sampled from its exact trajectories.
+
+        Args:
+            fps: Frames per second of playback.
+            speed: Playback speed (1 is real time).
+            max_seconds: Longer shots are sped up to fit in this playback time.
+
+        Returns:
+            Frames from the strike until everything rests (the last frame shows a scratched
+            cue ball in the pocket; :meth:`render` shows it re-spotted).
+
+        Raises:
+            ValueError: Without a render mode (no trajectories were kept) or before a shot.
+        """
+        from pool_env.render import shot_frames
+
+        shot = self._last_shot
+        if shot is None or not shot.recorded:
+            raise ValueError("no recorded shot: create the env with a render_mode and step() first")
+        return shot_frames(self._get_renderer(), shot, self._shot_rows, fps, speed, max_seconds)
+
+    def save_shot(
+        self, path: str, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0
+    ) -> None:
+        """Write the animation of the last shot to ``path`` (``.gif`` or ``.mp4``)."""
+        from pool_env.render import save_animation
+
+        save_animation(self.shot_frames(fps, speed, max_seconds), path, fps)
+
+    def close(self) -> None:
+        """Close the window, if any."""
+        if self._window is not None:
+            self._window.close()
+            self._window = None
+
+    def __getstate__(self) -> dict[str, Any]:
+        state = self.__dict__.copy()
+        state["_window"] = None  # a window belongs to this process; the renderer is rebuilt
+        state["_renderer"] = None
+        return state
+
+
+# -- argument checks: each error names the argument -----------------------------------------
+
+
+def _parse_table(table: Table | dict[str, Any] | None) -> Table:
+    if table is None:
+        return Table()
+    if isinstance(table, Table):
+        return table
+    if isinstance(table, dict):
+        try:
+            return Table(**table)
+        except TypeError as exc:
+            raise ValueError(f"table: {exc}") from None
+    raise ValueError(
+        f"table must be a pool_env.Table, a dict of Table arguments or None, got {table!r}"
+    )
+
+
+def _parse_float(name: str, value: object) -> float:
+    try:
+        out = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(out):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return out
+
+
+def _parse_range(name: str, value: object, minimum: float | None) -> tuple[float, float]:
+    try:
+        low, high = (_parse_float(name, v) for v in value)  # type: ignore[union-attr]
+    except (TypeError, ValueError) as exc:
+        raise ValueError(
+            f"{name} must be a pair (low, high) of finite numbers, got {value!r}"
+        ) from exc
+    if not low <= high or (minimum is not None and low < minimum):
+        floor = "" if minimum is None else f" and low >= {minimum}"
+        raise ValueError(f"{name} must have low <= high{floor}, got {value!r}")
+    return low, high
+
+
+def _parse_noise(value: object) -> tuple[float, float] | None:
+    if value is None:
+        return None
+    sigma = _parse_range("noise", value, None)
+    if min(sigma) < 0.0:
+        raise ValueError(f"noise sigmas must be >= 0, got {value!r}")
+    return None if sigma == (0.0, 0.0) else (float(value[0]), float(value[1]))  # type: ignore[index]
+
+
+def _parse_bool(name: str, value: object) -> bool:
+    if not isinstance(value, bool | np.bool_):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def _parse_count(name: str, value: object) -> int | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
+        raise ValueError(f"{name} must be a positive integer or None, got {value!r}")
+    return int(value)

@@ -1,0 +1,33 @@
+"""Gymnasium registration of the pool environments (idempotent: safe to call again)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+
+ENTRY_POINT = "pool_env.env:PoolEnv"
+
+#: id -> (make() keyword arguments, max_episode_steps).
+ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {
+    # The configurable one: 3 random object balls by default; every argument via make().
+    "pool_env/Pool-v0": ({}, 50),
+    # One shot per episode (a miss ends it, a pot clears the table): a clean contextual
+    # bandit whose success rate is the pot rate. end_on_miss=False makes it multi-shot.
+    "pool_env/OneBall-v0": ({"scene": "one_ball", "end_on_miss": True}, 10),
+    # Break, then keep shooting until the table is clear: 50 shots is ~5 a ball.
+    "pool_env/NineBall-v0": ({"scene": "nine_ball"}, 50),
+    "pool_env/EightBall-v0": ({"scene": "eight_ball"}, 80),
+}
+
+
+def register_envs() -> None:
+    """Register every id of :data:`ENV_IDS` that is not registered yet."""
+    for env_id, (kwargs, max_steps) in ENV_IDS.items():
+        if env_id not in gym.registry:
+            gym.register(
+                id=env_id,
+                entry_point=ENTRY_POINT,
+                kwargs=kwargs,
+                max_episode_steps=max_steps,
+            )

@@ -1,0 +1,194 @@
+"""Rendering: frames that show the balls where they are, shot animations, files, windows."""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+from pool_env import PoolEnv, Table
+from pool_env.render import BALL_COLOURS, Renderer, Window, save_animation, shot_frames
+
+TABLE = Table()
+LAYOUT = np.array([[0.6, 0.6], [0.3, 0.3], [1.9, 0.9], [1.2, 0.3]])  # ball 1 in front of a corner
+
+
+def _pixel(renderer: Renderer, frame: np.ndarray, xy: np.ndarray) -> np.ndarray:
+    col, row = renderer.to_pixels(np.asarray(xy, dtype=float))
+    return frame[int(row), int(col)].astype(int)
+
+
+def _rgb_env(**kwargs: object) -> PoolEnv:
+    return PoolEnv(scene=LAYOUT, aim="absolute", render_mode="rgb_array", **kwargs)  # type: ignore[arg-type]
+
+
+def test_rgb_array_frame_draws_each_ball_where_it_is() -> None:
+    env = _rgb_env()
+    env.reset(seed=0)
+    frame = env.render()
+    assert frame.dtype == np.uint8
+    assert frame.ndim == 3
+    assert frame.shape[2] == 3
+    assert frame.shape[0] % 16 == 0  # video codecs want multiples of 16
+    assert frame.shape[1] == 800
+    renderer = env._get_renderer()
+    cue = _pixel(renderer, frame, LAYOUT[0])
+    assert cue.min() > 180  # white
+    # Ball 2 is blue, ball 3 red: sample the coloured ring between the number disc and the rim.
+    ring = np.array([0.75 * TABLE.ball_radius, 0.0])
+    blue = _pixel(renderer, frame, LAYOUT[2] + ring)
+    red = _pixel(renderer, frame, LAYOUT[3] + ring)
+    assert blue[2] > blue[0] + 60
+    assert red[0] > red[2] + 60
+    empty = np.array([1.5, 0.9])
+    assert np.array_equal(
+        _pixel(renderer, frame, empty), _pixel(renderer, renderer.background, empty)
+    )
+
+
+def test_a_potted_ball_disappears_and_the_shot_leaves_trails() -> None:
+    env = _rgb_env()
+    env.reset(seed=0)
+    before = env.render()
+    env.step(np.array([-0.75, -0.8]))  # ball 1 straight into the corner
+    after = env.render()
+    renderer = env._get_renderer()
+    assert not env.on_table[1]
+    background = renderer.background
+    col, row = renderer.to_pixels(LAYOUT[1])
+    # Where ball 1 stood there is now only its own (yellow) trail over the cloth.
+    assert not np.array_equal(after[int(row), int(col)], before[int(row), int(col)])
+    clean = renderer.frame(env.positions, env.on_table)
+    assert (after != clean).any(axis=2).sum() > 100  # the trails
+    assert np.array_equal(clean[:4], background[:4])  # the rail band is untouched
+
+
+def test_frames_are_deterministic() -> None:
+    frames = []
+    for _ in range(2):
+        env = gym.make("pool_env/NineBall-v0", render_mode="rgb_array")
+        env.reset(seed=4)
+        env.step(np.array([0.0, 0.7]))
+        frames.append(env.render())
+    np.testing.assert_array_equal(*frames)
+
+
+def test_shot_animation_runs_from_the_strike_to_rest() -> None:
+    env = _rgb_env()
+    env.reset(seed=0)
+    env.step(np.array([-0.75, -0.8]))
+    shot, balls = env.last_shot, env.last_shot_balls
+    frames = env.shot_frames(fps=20, max_seconds=3.0)
+    assert len(frames) == max(2, int(np.ceil(min(shot.duration, 3.0) * 20)) + 1)
+    renderer = env._get_renderer()
+    np.testing.assert_array_equal(frames[0], renderer.frame(LAYOUT, np.ones(4, bool), balls))
+    np.testing.assert_array_equal(
+        frames[-1], renderer.frame(shot.positions, shot.pocketed < 0, balls)
+    )
+    assert len(shot_frames(renderer, shot, balls, fps=10, speed=4.0)) < len(frames)
+
+
+def test_shot_frames_need_a_recorded_shot() -> None:
+    env = PoolEnv()
+    env.reset(seed=0)
+    env.step(np.array([0.0, 0.0]))
+    with pytest.raises(ValueError, match="render_mode"):
+        env.shot_frames()
+    with pytest.raises(ValueError, match="record=False"):
+        shot_frames(Renderer(TABLE), env.last_shot, env.last_shot_balls)
+
+
+def test_save_shot_as_gif(tmp_path: object) -> None:
+    import imageio.v3 as iio
+
+    env = _rgb_env(render_width=320)
+    env.reset(seed=0)
+    env.step(np.array([-0.75, -0.8]))
+    path = tmp_path / "shot.gif"  # type: ignore[operator]
+    env.save_shot(str(path), fps=10, max_seconds=2.0)
+    gif = iio.imread(path)
+    assert gif.shape[0] == len(env.shot_frames(fps=10, max_seconds=2.0))
+    with pytest.raises(ValueError, match=r"\.gif or \.mp4"):
+        save_animation([gif[0]], tmp_path / "shot.avi")  # type: ignore[operator]
+
+
+@pytest.mark.skipif(
+    importlib.util.find_spec("imageio_ffmpeg") is None, reason="needs imageio-ffmpeg"
+)
+def test_save_shot_as_mp4(tmp_path: object) -> None:
+    env = _rgb_env(render_width=320)
+    env.reset(seed=0)
+    env.step(np.array([-0.75, -0.8]))
+    path = tmp_path / "shot.mp4"  # type: ignore[operator]
+    env.save_shot(str(path), fps=10, max_seconds=1.0)
+    assert path.stat().st_size > 1000
+
+
+def test_human_mode_opens_a_window_and_animates(monkeypatch: pytest.MonkeyPatch) -> None:
+    pytest.importorskip("pygame")
+    monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")  # headless CI
+    env = gym.make("pool_env/OneBall-v0", render_mode="human")
+    env.reset(seed=0)
+    raw = env.unwrapped
+    assert raw._window is not None
+    played: list[int] = []
+    monkeypatch.setattr(raw._window, "play", lambda frames, fps=30: played.append(len(frames)))
+    assert env.step(np.array([0.0, -0.9], np.float32))[0].shape == (6,)
+    assert env.render() is None
+    assert played
+    assert played[0] >= 2
+    env.close()
+    assert raw._window is None
+
+
+def test_human_mode_without_pygame_names_the_extra(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "pygame", None)  # import pygame -> ImportError
+    with pytest.raises(gym.error.DependencyNotInstalled, match=r"pool_env\[render\]"):
+        Window((64, 32))
+    env = PoolEnv(render_mode="human")  # the window opens lazily, at the first render
+    with pytest.raises(gym.error.DependencyNotInstalled, match=r"pool_env\[render\]"):
+        env.reset(seed=0)
+
+
+def test_render_without_a_mode_warns_and_returns_none() -> None:
+    env = PoolEnv()
+    env.reset(seed=0)
+    with pytest.warns(UserWarning, match="render_mode"):
+        assert env.render() is None
+
+
+@pytest.mark.skipif(importlib.util.find_spec("moviepy") is None, reason="needs moviepy")
+def test_record_video_writes_one_trail_frame_per_shot(tmp_path: object) -> None:
+    from gymnasium.wrappers import RecordVideo
+
+    env = gym.make(
+        "pool_env/Pool-v0", render_mode="rgb_array", render_width=320, max_episode_steps=5
+    )
+    folder = tmp_path / "videos"  # type: ignore[operator]
+    env = RecordVideo(env, str(folder), episode_trigger=lambda episode: True, disable_logger=True)
+    env.reset(seed=0)
+    done = False
+    steps = 0
+    while not done:
+        *_, terminated, truncated, _ = env.step(env.action_space.sample())
+        steps += 1
+        done = terminated or truncated
+    assert len(env.recorded_frames) == steps + 1  # the layout, then each shot with its trails
+    env.close()
+    videos = list(folder.glob("*.mp4"))
+    assert len(videos) == 1
+    assert videos[0].stat().st_size > 1000
+
+
+def test_ball_colours_cover_the_set() -> None:
+    assert BALL_COLOURS.shape == (9, 3)
+    renderer = Renderer(TABLE, 640)
+    positions = np.array([[0.2 + 0.13 * k, 0.6] for k in range(16)])
+    frame = renderer.frame(positions, np.ones(16, bool))
+    # Stripes 9-15 show white above and below their colour band; solids do not.
+    for k in (3, 11):
+        top = _pixel(renderer, frame, positions[k] + np.array([0.0, 0.8 * TABLE.ball_radius]))
+        assert (top.min() > 180) == (k > 8)
