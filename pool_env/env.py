@@ -211,6 +211,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._positions: NDArray[np.float64] | None = None
         self._on_table = np.ones(n, dtype=bool)
         self._rows = np.arange(n)  # balls on the table, cue first: the rows the simulator sees
+        self._n_left = n - 1
         self._shots = 0
         self._last_shot: ShotResult | None = None
         self._shot_rows = self._rows
@@ -290,15 +291,17 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._last_shot, self._shot_rows = result, rows
         self._shots += 1
 
-        sunk = result.pocketed >= 0
+        # Plain lists: for a handful of balls they beat numpy's per-call overhead.
+        pocketed = result.pocketed.tolist()
         potted: tuple[int, ...] = ()
         scratch = False
-        if sunk.any():
-            balls = rows[sunk]
+        if max(pocketed) >= 0:
+            balls = [b for b, k in zip(rows.tolist(), pocketed, strict=True) if k >= 0]
             on_table = self._on_table = self._on_table.copy()
             on_table[balls] = False
-            scratch = bool(balls[0] == self.cue)
-            potted = tuple(int(b) for b in balls[1:]) if scratch else tuple(int(b) for b in balls)
+            scratch = balls[0] == self.cue
+            potted = tuple(balls[1:] if scratch else balls)
+            self._n_left -= len(potted)
             if scratch:  # back on the head spot, or the free point nearest to it
                 if new is result.positions:
                     new = new.copy()
@@ -313,7 +316,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             shot_rewards(len(potted), scratch, first < 0, phi_change, self.reward_weights)
         )
 
-        cleared = not self._on_table[1:].any()
+        cleared = self._n_left == 0
         terminated = cleared or (self.end_on_miss and (not potted or scratch))
         truncated = self.max_shots is not None and self._shots >= self.max_shots
         info = {
@@ -336,6 +339,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._positions = np.ascontiguousarray(positions, dtype=np.float64)
         self._on_table = on_table
         self._rows = on_table.nonzero()[0]
+        self._n_left = len(self._rows) - 1  # object balls on the table
 
     def _observation(self) -> NDArray[np.float32]:
         table = self.table

@@ -204,10 +204,23 @@ class Renderer:
         img = self.background.copy()
         for number, line in trails or ():
             self._polyline(img, line, number)
+            self._ring(img, line[0], number)  # where the ball started
         numbers = np.arange(len(positions)) if numbers is None else numbers
         for k in np.flatnonzero(on_table):
             self._ball(img, positions[k], int(numbers[k]))
         return img
+
+    def _ring(self, img: Frame, centre: NDArray[np.float64], number: int) -> None:
+        """Blend a thin ball-sized circle outline at ``centre`` (m), half transparent."""
+        (cx, cy), rp = self.to_pixels(centre), self.ball_px
+        r0, r1 = max(int(cy - rp - 2), 0), min(int(cy + rp + 3), img.shape[0])
+        c0, c1 = max(int(cx - rp - 2), 0), min(int(cx + rp + 3), img.shape[1])
+        yy, xx = np.mgrid[r0:r1, c0:c1]
+        d = np.hypot(xx + 0.5 - cx, yy + 0.5 - cy)
+        alpha = (0.55 * np.clip(1.0 - np.abs(d - rp + 0.5), 0.0, 1.0))[..., None]
+        colour = BALL_COLOURS[(number - 1) % 8 + 1] if number > 0 else BALL_COLOURS[0]
+        patch = img[r0:r1, c0:c1]
+        patch[:] = (patch * (1.0 - alpha) + colour * alpha).astype(np.uint8)
 
     def _polyline(self, img: Frame, line: NDArray[np.float64], number: int) -> None:
         """Blend a 2 px line along ``line`` (m) in the ball's colour, half transparent."""

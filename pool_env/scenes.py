@@ -21,6 +21,7 @@ is the area behind the head string (``x <= L / 4``), where the cue ball is place
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 
@@ -139,7 +140,7 @@ def sample_uniform(
     """
     r = table.ball_radius
     x0, x1, y0, y1 = box if box is not None else (r, table.length - r, r, table.width - r)
-    pockets = [(px, py, (pr + CLEARANCE) ** 2) for px, py, pr in table.pockets.tolist()]
+    pockets = _capture_circles(table)
     min_d2 = (2.0 * r + CLEARANCE) ** 2
     balls = [] if placed is None else [(x, y) for x, y in np.asarray(placed).tolist()]
     n_fixed = len(balls)
@@ -163,6 +164,12 @@ def sample_uniform(
                 "use fewer balls, smaller balls or a larger table"
             )
     return np.array(balls[n_fixed:], dtype=np.float64).reshape(n, 2)
+
+
+@functools.lru_cache(maxsize=64)
+def _capture_circles(table: Table) -> list[tuple[float, float, float]]:
+    """``(x, y, (radius + clearance)^2)`` of each pocket, as floats (tables are immutable)."""
+    return [(px, py, (pr + CLEARANCE) ** 2) for px, py, pr in table.pockets.tolist()]
 
 
 def _clear(
@@ -241,15 +248,14 @@ def free_spot(
     Raises:
         ValueError: If the table has no free point at all.
     """
-    target = head_spot(table) if target is None else np.asarray(target, dtype=np.float64)
-    balls = np.asarray(positions, dtype=np.float64)[np.asarray(occupied, dtype=bool)]
+    target = head_spot(table) if target is None else np.array(target, dtype=np.float64)
+    balls = positions[occupied]
     reach = 2.0 * table.ball_radius + CLEARANCE
-    pockets = [(px, py, (pr + CLEARANCE) ** 2) for px, py, pr in table.pockets.tolist()]
     tx, ty = target.tolist()
     r = table.ball_radius
     inside = r <= tx <= table.length - r and r <= ty <= table.width - r
-    if inside and _clear(tx, ty, pockets, balls.tolist(), reach * reach):
-        return target.copy()  # the usual case, without building candidates
+    if inside and _clear(tx, ty, _capture_circles(table), balls.tolist(), reach * reach):
+        return target  # the usual case, without building candidates
     cands = [target[None, :]]
     if balls.shape[0]:
         d = target - balls
