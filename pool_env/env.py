@@ -14,15 +14,14 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env import scenes
+from pool_env import checks, scenes
 from pool_env.mdp import (
     AIM_MODES,
     DEFAULT_AIM_RANGE,
     DEFAULT_SPEED_RANGE,
     AimMode,
-    aim_angles,
     check_action,
-    decode_actions,
+    decode_shots,
     encode_observations,
     pocket_potentials,
     shot_rewards,
@@ -151,6 +150,21 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     shots keep their trajectories: ``shot_frames()`` samples the last shot for an animation
     and ``save_shot(path)`` writes it as GIF or MP4.
 
+    ## Attributes
+
+    Of the unwrapped environment (``env.unwrapped``), for agents and tools:
+    ``table`` (the :class:`~pool_env.table.Table`), ``positions`` (``(N, 2)`` ball centres in
+    metres, cue first; a copy), ``on_table`` (``(N,)`` booleans), ``cue`` (0), ``aim``,
+    ``aim_range``, ``speed_range``, ``noise``, ``n_object_balls``, ``end_on_miss``,
+    ``max_shots``, ``reward_weights`` (pot, scratch, no contact, shaping), ``shots`` (this
+    episode), ``last_shot`` (the :class:`~pool_env.result.ShotResult`, rows in the order of
+    ``last_shot_balls``).
+
+    Physics note: rolling resistance is low (``mu_roll = 0.01``: a ball at 3 m/s rolls 46 m
+    if nothing stops it) and pockets capture any ball whose centre enters them, so a hard
+    shot sends the cue ball around the table until it drops: a random policy scratches on
+    about half its shots, and good play uses moderate speeds.
+
     ## Version History
 
     * v0: Initial version.
@@ -176,18 +190,18 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         render_mode: str | None = None,
         render_width: int = 800,
     ) -> None:
-        self.table = _parse_table(table)
+        self.table = checks.parse_table(table)
         if aim not in AIM_MODES:
             raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {aim!r}")
         self.aim: AimMode = aim
         self._aim_code = AIM_MODES.index(aim)
-        self.aim_range = _parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
-        self.speed_range = _parse_range("speed_range", speed_range, 0.0)
-        self.noise = _parse_noise(noise)
-        self.end_on_miss = _parse_bool("end_on_miss", end_on_miss)
-        self.max_shots = _parse_count("max_shots", max_shots)
+        self.aim_range = checks.parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
+        self.speed_range = checks.parse_range("speed_range", speed_range, 0.0)
+        self.noise = checks.parse_noise(noise)
+        self.end_on_miss = checks.parse_bool("end_on_miss", end_on_miss)
+        self.max_shots = checks.parse_count("max_shots", max_shots)
         self.reward_weights = tuple(
-            _parse_float(name, value)
+            checks.parse_float(name, value)
             for name, value in (
                 ("reward_pot", reward_pot),
                 ("reward_scratch", reward_scratch),
@@ -199,7 +213,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             modes = self.metadata["render_modes"]
             raise ValueError(f"render_mode must be one of {modes} or None, got {render_mode!r}")
         self.render_mode = render_mode
-        self.render_width = _parse_count("render_width", render_width) or 800
+        self.render_width = checks.parse_count("render_width", render_width) or 800
         self._sample, self.n_object_balls = scenes.make_sampler(scene, self.table, n_balls)
 
         n = self.n_object_balls + 1
@@ -264,13 +278,17 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         positions = self._positions
         if positions is None:
             raise RuntimeError("call reset() before step()")
-        lo, hi = self.aim_range
-        params, speeds = decode_actions(check_action(action)[None], lo, hi, *self.speed_range)
-        on_table, radius = self._on_table[None], self.table.ball_radius
-        angle = float(
-            aim_angles(params, positions[None], on_table, self.cue, self._aim_code, radius)[0]
+        angles, speeds = decode_shots(
+            check_action(action)[None],
+            positions[None],
+            self._on_table[None],
+            self.cue,
+            self._aim_code,
+            self.table.ball_radius,
+            self.aim_range,
+            self.speed_range,
         )
-        speed = float(speeds[0])
+        angle, speed = float(angles[0]), float(speeds[0])
         if self.noise is not None:
             angle += self.noise[0] * float(self.np_random.standard_normal())
             speed = max(0.0, speed + self.noise[1] * float(self.np_random.standard_normal()))
@@ -454,67 +472,3 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         state["_window"] = None  # a window belongs to this process; the renderer is rebuilt
         state["_renderer"] = None
         return state
-
-
-# -- argument checks: each error names the argument -----------------------------------------
-
-
-def _parse_table(table: Table | dict[str, Any] | None) -> Table:
-    if table is None:
-        return Table()
-    if isinstance(table, Table):
-        return table
-    if isinstance(table, dict):
-        try:
-            return Table(**table)
-        except TypeError as exc:
-            raise ValueError(f"table: {exc}") from None
-    raise ValueError(
-        f"table must be a pool_env.Table, a dict of Table arguments or None, got {table!r}"
-    )
-
-
-def _parse_float(name: str, value: object) -> float:
-    try:
-        out = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(out):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return out
-
-
-def _parse_range(name: str, value: object, minimum: float | None) -> tuple[float, float]:
-    try:
-        low, high = (_parse_float(name, v) for v in value)  # type: ignore[union-attr]
-    except (TypeError, ValueError) as exc:
-        raise ValueError(
-            f"{name} must be a pair (low, high) of finite numbers, got {value!r}"
-        ) from exc
-    if not low <= high or (minimum is not None and low < minimum):
-        floor = "" if minimum is None else f" and low >= {minimum}"
-        raise ValueError(f"{name} must have low <= high{floor}, got {value!r}")
-    return low, high
-
-
-def _parse_noise(value: object) -> tuple[float, float] | None:
-    if value is None:
-        return None
-    sigma = _parse_range("noise", value, None)
-    if min(sigma) < 0.0:
-        raise ValueError(f"noise sigmas must be >= 0, got {value!r}")
-    return None if sigma == (0.0, 0.0) else (float(value[0]), float(value[1]))  # type: ignore[index]
-
-
-def _parse_bool(name: str, value: object) -> bool:
-    if not isinstance(value, bool | np.bool_):
-        raise ValueError(f"{name} must be True or False, got {value!r}")
-    return bool(value)
-
-
-def _parse_count(name: str, value: object) -> int | None:
-    if value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
-        raise ValueError(f"{name} must be a positive integer or None, got {value!r}")
-    return int(value)

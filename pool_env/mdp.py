@@ -131,6 +131,29 @@ def aim_angles(params, positions, on_table, cue, mode, ball_radius):
 
 
 @kernel
+def decode_shots(actions, positions, on_table, cue, mode, ball_radius, aim_range, speed_range):
+    """:func:`decode_actions` then :func:`aim_angles`, in one call: actions to shots.
+
+    Args:
+        actions: ``(B, 2)`` actions.
+        positions: ``(B, N, 2)`` ball centres.
+        on_table: ``(B, N)`` which balls are on the table.
+        cue: Index of the cue ball.
+        mode: Index of the aim mode in :data:`AIM_MODES`.
+        ball_radius: ``R`` (m).
+        aim_range: ``(low, high)`` that action 0 maps to.
+        speed_range: ``(low, high)`` speeds (m/s) that action 1 maps to.
+
+    Returns:
+        ``(angles, speeds)``: directions (radians from +x) and speeds (m/s), each ``(B,)``.
+    """
+    aims, speeds = decode_actions(
+        actions, aim_range[0], aim_range[1], speed_range[0], speed_range[1]
+    )
+    return aim_angles(aims, positions, on_table, cue, mode, ball_radius), speeds
+
+
+@kernel
 def encode_observations(positions, on_table, length, width):
     """Observation: per ball ``(x, y, on_table)``, ``x`` and ``y`` scaled to ``[-1, 1]``.
 

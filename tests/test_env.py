@@ -146,15 +146,15 @@ def test_reward_options_no_contact_and_shaping() -> None:
 
 
 def test_noise_perturbs_the_shot_reproducibly() -> None:
-    clean, noisy = _env(aim="absolute"), _env(aim="absolute", noise=(0.01, 0.1))
+    clean, noisy = _env(aim="absolute"), _env(aim="absolute", noise=(0.02, 0.01))
     angles = []
-    for env in (clean, noisy, _env(aim="absolute", noise=(0.01, 0.1))):
+    for env in (clean, noisy, _env(aim="absolute", noise=(0.02, 0.01))):
         env.reset(seed=5)
         angles.append(env.step(np.array([0.2, 0.0]))[4]["angle"])
     assert angles[0] == pytest.approx(0.2 * math.pi)
     assert angles[1] != angles[0]
     assert angles[1] == angles[2]
-    assert abs(angles[1] - angles[0]) < 0.06
+    assert abs(angles[1] - angles[0]) < 0.1
 
 
 def test_nan_action_raises_and_changes_nothing() -> None:
@@ -202,6 +202,7 @@ def test_bad_action_shape_raises() -> None:
         ({"speed_range": (-1.0, 2.0)}, "speed_range"),
         ({"speed_range": (1.0,)}, "speed_range"),
         ({"noise": (-0.1, 0.0)}, "noise"),
+        ({"noise": (0.1,)}, "noise"),
         ({"end_on_miss": "yes"}, "end_on_miss"),
         ({"max_shots": 0}, "max_shots"),
         ({"reward_pot": "a lot"}, "reward_pot"),

@@ -13,6 +13,7 @@ from pool_env.mdp import (
     aim_angles,
     check_action,
     decode_actions,
+    decode_shots,
     encode_observations,
     pocket_potentials,
     shot_rewards,
@@ -160,3 +161,15 @@ def test_shot_rewards_scalars_and_arrays() -> None:
         np.array([0, 1]), np.array([False, True]), np.array([True, False]), np.zeros(2), w
     )
     np.testing.assert_allclose(out, [-0.25, 0.0])
+
+
+def test_decode_shots_is_decode_then_aim() -> None:
+    rng = np.random.default_rng(2)
+    actions = rng.uniform(-1.2, 1.2, (6, 2))
+    pos = rng.uniform(0.1, 1.2, (6, 3, 2))
+    on = np.ones((6, 3), bool)
+    for mode in range(3):
+        angles, speeds = decode_shots(actions, pos, on, 0, mode, R, (-0.3, 0.5), (0.5, 9.0))
+        aims, expected_speeds = decode_actions(actions, -0.3, 0.5, 0.5, 9.0)
+        np.testing.assert_array_equal(angles, aim_angles(aims, pos, on, 0, mode, R))
+        np.testing.assert_array_equal(speeds, expected_speeds)
