@@ -49,7 +49,8 @@ def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray
     vel = np.zeros((n, 2))
     movers = [0] if rng.random() < 0.8 else list(range(n))
     for i in movers:
-        speed = float(10 ** rng.uniform(-6, np.log10(15)))
+        # Mostly playing speeds, and a tail down to 1e-6 m/s.
+        speed = float(rng.uniform(0.1, 15) if rng.random() < 0.8 else 10 ** rng.uniform(-6, -1))
         phi = rng.uniform(0, 2 * np.pi) if kind else rng.normal(0, 0.01)
         vel[i] = speed * np.array([np.cos(phi), np.sin(phi)])
     masses = rng.uniform(0.1, 0.3, n) if rng.random() < 0.3 else np.full(n, table.ball_mass)

@@ -51,6 +51,8 @@ class ShotResult:
         first_contact: ``(i, j)`` of the first ball-ball impact, or ``None``.
         event_times, event_kinds, event_i, event_j: The events as arrays (kinds are codes
             into :data:`KIND_NAMES`).
+        event_first_segment: For each event, the first row it wrote in :attr:`segments`
+            (the rows up to the next event's are the balls it re-anchored).
     """
 
     __slots__ = (
@@ -64,6 +66,7 @@ class ShotResult:
         "event_i",
         "event_j",
         "event_kinds",
+        "event_first_segment",
         "event_times",
         "first_contact",
         "hit_event_cap",
@@ -85,6 +88,7 @@ class ShotResult:
             self.event_kinds,
             self.event_i,
             self.event_j,
+            self.event_first_segment,
             self._seg_ball,
             self._seg_t,
             self._seg_state,

@@ -35,7 +35,7 @@ from pool_env.kernels.predict import (
     predict_own,
     predict_pair,
 )
-from pool_env.kernels.resolve import V_REST, ZENO_WINDOW, ball_ball, cushion
+from pool_env.kernels.resolve import V_REST, ZENO_WINDOW, ball_ball, cushion, stick_cluster
 from pool_env.kernels.roots import INF
 
 # Tolerance of input validation: rounding in a rack or a position read back from a result
@@ -141,9 +141,10 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
 
     Returns:
         ``(final_positions, pocketed, n_events, duration, capped, first_i, first_j,
-        ev_t, ev_kind, ev_i, ev_j, seg_ball, seg_t, seg_state, seg_potted)`` where the
-        ``ev_*`` arrays list events chronologically and each segment row anchors a ball's
-        trajectory from ``seg_t`` on (``seg_state`` holds x, y, vx, vy).
+        ev_t, ev_kind, ev_i, ev_j, ev_seg, seg_ball, seg_t, seg_state, seg_potted)`` where
+        the ``ev_*`` arrays list events chronologically (``ev_seg``: the first segment row
+        each event wrote) and each segment row anchors a ball's trajectory from ``seg_t`` on
+        (``seg_state`` holds x, y, vx, vy).
     """
     n = positions.shape[0]
     a = params[3]
@@ -169,6 +170,7 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     ev_kind = np.empty(16 if record else 0, dtype=np.int8)
     ev_i = np.empty(16 if record else 0, dtype=np.int64)
     ev_j = np.empty(16 if record else 0, dtype=np.int64)
+    ev_seg = np.empty(16 if record else 0, dtype=np.int64)  # first segment row of each event
     n_seg = n if record else 0
     seg_cap = max(2 * n, 16) if record else 0
     seg_ball = np.empty(seg_cap, dtype=np.int64)
@@ -189,7 +191,7 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     capped = False
     first_i = -1
     first_j = -1
-    changed = np.empty(2, dtype=np.int64)
+    changed = np.empty(n, dtype=np.int64)  # balls re-anchored by the current event
     while True:
         bt, bkind, bi, bj = INF, 99, n, n
         for i in range(n):
@@ -215,6 +217,8 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
             ev_kind = _grow(ev_kind, n_ev)
             ev_i = _grow(ev_i, n_ev)
             ev_j = _grow(ev_j, n_ev)
+            ev_seg = _grow(ev_seg, n_ev)
+            ev_seg[n_ev] = n_seg
             ev_t[n_ev] = now
             ev_kind[n_ev] = bkind
             ev_i[n_ev] = bi
@@ -251,14 +255,16 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
             else:
                 pair_repeats[bi, bj] = 1
             pair_last[bi, bj] = now
-            ball_ball(st, status, masses, bi, bj, now, params, pair_repeats[bi, bj])
-            predict_own(st, status, bi, params, pockets, own, caps)
-            predict_own(st, status, bj, params, pockets, own, caps)
-            _repredict_pairs(st, status, bi, now, params, own, caps, pair)
-            _repredict_pairs(st, status, bj, now, params, own, caps, pair)
-            changed[0] = bi
-            changed[1] = bj
-            n_changed = 2
+            if ball_ball(st, status, masses, bi, bj, now, params, pair_repeats[bi, bj]):
+                n_changed = stick_cluster(st, status, masses, bi, now, params, changed)
+            else:
+                changed[0] = bi
+                changed[1] = bj
+                n_changed = 2
+            for c in range(n_changed):
+                predict_own(st, status, changed[c], params, pockets, own, caps)
+            for c in range(n_changed):
+                _repredict_pairs(st, status, changed[c], now, params, own, caps, pair)
         if record:
             for c in range(n_changed):
                 seg_ball = _grow(seg_ball, n_seg)
@@ -285,5 +291,6 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         final[i, 1] = st[i, PY]
     return (final, pocketed, n_ev, now, capped, first_i, first_j,
             ev_t[:n_ev].copy(), ev_kind[:n_ev].copy(), ev_i[:n_ev].copy(), ev_j[:n_ev].copy(),
+            ev_seg[:n_ev].copy(),
             seg_ball[:n_seg].copy(), seg_t[:n_seg].copy(), seg_state[:n_seg].copy(),
             seg_potted[:n_seg].copy())

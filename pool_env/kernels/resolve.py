@@ -22,8 +22,8 @@ Zeno rules (documented in the package README):
 
 * An impact whose normal approach speed is below ``V_ZENO`` is perfectly inelastic along the
   normal (``e = 0``).
-* Two balls stick, leaving with their common centre-of-mass velocity (momentum conserved,
-  energy lost), when an inelastic impact leaves them touching with their relative
+* Two balls stick, leaving with their common centre-of-mass velocity together with every
+  ball touching them (momentum conserved, energy lost), when an inelastic impact leaves them touching with their relative
   deceleration pressing them together (they would re-collide endlessly); when an inelastic
   impact repeats within ``ZENO_WINDOW`` (a cascade through a cluster of touching balls);
   or when any impact repeats ``ZENO_REPEATS`` times in a row that closely (a ball wedged
@@ -36,8 +36,10 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from pool_env.kernels._jit import kernel
-from pool_env.kernels.motion import set_anchor, state_at
+from pool_env.kernels.motion import POTTED, set_anchor, state_at
 
 V_ZENO = 1e-6  # m/s
 V_REST = 1e-9  # m/s
@@ -46,6 +48,8 @@ V_REST = 1e-9  # m/s
 ZENO_WINDOW = 1e-9  # s
 # A pair that repeats this often within ZENO_WINDOW of each impact sticks, whatever its e.
 ZENO_REPEATS = 16
+# Balls whose centres are within 2R + CONTACT_TOL touch, for sticking clusters.
+CONTACT_TOL = 1e-9  # m
 
 
 @kernel
@@ -76,6 +80,9 @@ def ball_ball(st, status, masses, i, j, t, params, repeats):
 
     ``repeats`` counts this pair's impacts in a row, each within ``ZENO_WINDOW`` of the
     last (1 for an isolated impact).
+
+    Returns:
+        Whether the pair must stick (see :func:`stick_cluster`).
     """
     a, e = params[3], params[4]
     xi, yi, vxi, vyi = state_at(st, status, i, t, a)
@@ -85,7 +92,7 @@ def ball_ball(st, status, masses, i, j, t, params, repeats):
     if dist == 0.0:  # coincident centres cannot pass validation; keep the state unchanged
         set_anchor(st, status, i, t, xi, yi, vxi, vyi, a, V_REST)
         set_anchor(st, status, j, t, xj, yj, vxj, vyj, a, V_REST)
-        return
+        return False
     nx, ny = dx / dist, dy / dist
     ui = vxi * nx + vyi * ny
     uj = vxj * nx + vyj * ny
@@ -102,16 +109,62 @@ def ball_ball(st, status, masses, i, j, t, params, repeats):
     vyi += (ui_new - ui) * ny
     vxj += (uj_new - uj) * nx
     vyj += (uj_new - uj) * ny
-    # Sticking ends inelastic cascades: with e = 0, sequential impulses through a cluster of
-    # touching balls converge only geometrically, and slowly, towards common normal speeds.
-    if repeats >= ZENO_REPEATS or (
-        e_eff == 0.0 and (repeats >= 2 or _pressed_together(dx, dy, vxi, vyi, vxj, vyj, a))
-    ):
-        vx = (mi * vxi + mj * vxj) / total
-        vy = (mi * vyi + mj * vyj) / total
-        vxi, vyi, vxj, vyj = vx, vy, vx, vy
     set_anchor(st, status, i, t, xi, yi, vxi, vyi, a, V_REST)
     set_anchor(st, status, j, t, xj, yj, vxj, vyj, a, V_REST)
+    # Sticking ends inelastic cascades: with e = 0, sequential impulses through a cluster of
+    # touching balls converge only geometrically, and slowly, towards common normal speeds.
+    return repeats >= ZENO_REPEATS or (
+        e_eff == 0.0 and (repeats >= 2 or _pressed_together(dx, dy, vxi, vyi, vxj, vyj, a))
+    )
+
+
+@kernel
+def stick_cluster(st, status, masses, i, t, params, changed):
+    """Give ball ``i`` and every ball touching it, transitively, their common velocity.
+
+    Touching means centres within ``2R + CONTACT_TOL``. The cluster leaves as one lump with
+    its centre-of-mass velocity: momentum is conserved and kinetic energy can only drop.
+
+    Returns:
+        How many balls changed; their indices are written to ``changed``.
+    """
+    a, radius = params[3], params[2]
+    n = st.shape[0]
+    reach2 = (2.0 * radius + CONTACT_TOL) ** 2
+    xs = np.empty(n)
+    ys = np.empty(n)
+    in_cluster = np.zeros(n, dtype=np.bool_)
+    for k in range(n):
+        xs[k], ys[k], _, _ = state_at(st, status, k, t, a)
+    in_cluster[i] = True
+    changed[0] = i
+    size = 1
+    head = 0
+    while head < size:  # breadth-first over the contact graph
+        k = changed[head]
+        head += 1
+        for m in range(n):
+            if in_cluster[m] or status[m] == POTTED:
+                continue
+            dx, dy = xs[m] - xs[k], ys[m] - ys[k]
+            if dx * dx + dy * dy <= reach2:
+                in_cluster[m] = True
+                changed[size] = m
+                size += 1
+    px = 0.0
+    py = 0.0
+    total = 0.0
+    for c in range(size):
+        k = changed[c]
+        _, _, vx, vy = state_at(st, status, k, t, a)
+        px += masses[k] * vx
+        py += masses[k] * vy
+        total += masses[k]
+    vx, vy = px / total, py / total
+    for c in range(size):
+        k = changed[c]
+        set_anchor(st, status, k, t, xs[k], ys[k], vx, vy, a, V_REST)
+    return size
 
 
 @kernel
