@@ -214,6 +214,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             raise ValueError(f"render_mode must be one of {modes} or None, got {render_mode!r}")
         self.render_mode = render_mode
         self.render_width = checks.parse_count("render_width", render_width) or 800
+        if self.render_width < 64:
+            raise ValueError(f"render_width must be at least 64 pixels, got {render_width!r}")
         self._sample, self.n_object_balls = scenes.make_sampler(scene, self.table, n_balls)
 
         n = self.n_object_balls + 1

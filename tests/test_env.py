@@ -209,6 +209,7 @@ def test_bad_action_shape_raises() -> None:
         ({"reward_scratch": math.nan}, "reward_scratch"),
         ({"render_mode": "ascii"}, "render_mode"),
         ({"render_width": -5}, "render_width"),
+        ({"render_width": 10}, "render_width"),
         ({"table": "big"}, "table"),
         ({"table": {"lenght": 3.0}}, "table"),
         ({"scene": "snooker"}, "scene"),

@@ -1,0 +1,149 @@
+"""Environment speed: steps per second of every registered id, through make() and raw.
+
+A random policy (uniform actions in [-1, 1], drawn before timing so that the policy costs
+nothing) plays each id; episodes reset as a training loop would, and resets count in the
+time. Each configuration runs several repeats with different seeds; the table shows the
+median and the range. A fresh process's first step (imports, numba cache load, first
+shot) is timed too, since every ``SubprocVecEnv`` worker pays it.
+
+Run: ``python bench/env_speed.py`` (writes ``results/env_speed.md``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+
+import pool_env  # noqa: F401  (registers the ids)
+from pool_env.registration import ENV_IDS
+
+STEPS = {
+    "pool_env/Pool-v0": 20_000,
+    "pool_env/OneBall-v0": 40_000,
+    "pool_env/NineBall-v0": 10_000,
+    "pool_env/EightBall-v0": 6_000,
+}
+TARGETS = {"pool_env/OneBall-v0": 20_000, "pool_env/NineBall-v0": 3_000}
+
+
+def run(env: gym.Env, steps: int, seed: int) -> tuple[float, float]:
+    """Play ``steps`` random shots; return (steps per second, mean simulator events)."""
+    actions = np.random.default_rng(seed).uniform(-1.0, 1.0, (steps, 2)).astype(np.float32)
+    env.reset(seed=seed)
+    events = 0
+    start = time.perf_counter()
+    for action in actions:
+        _, _, terminated, truncated, info = env.step(action)
+        events += info["n_events"]
+        if terminated or truncated:
+            env.reset()
+    elapsed = time.perf_counter() - start
+    return steps / elapsed, events / steps
+
+
+def first_step_seconds(env_id: str) -> float:
+    """Wall time of a fresh process: import, make, reset and one step (warm disk cache)."""
+    code = (
+        "import time; t = time.perf_counter(); import gymnasium as gym, pool_env;"
+        f"env = gym.make({env_id!r}); env.reset(seed=0); env.step(env.action_space.sample());"
+        "print(time.perf_counter() - t)"
+    )
+    out = subprocess.run([sys.executable, "-c", code], check=True, capture_output=True, text=True)
+    return float(out.stdout.strip().splitlines()[-1])
+
+
+def cpu_name() -> str:
+    """The CPU model, from /proc/cpuinfo where there is one."""
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
+def main() -> None:
+    """Measure every id and write the table."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeats", type=int, default=5)
+    parser.add_argument("--scale", type=float, default=1.0, help="multiply the step counts")
+    parser.add_argument(
+        "--out", default=str(Path(__file__).parent.parent / "results" / "env_speed.md")
+    )
+    args = parser.parse_args()
+
+    rows = []
+    for env_id in ENV_IDS:
+        steps = max(100, int(STEPS.get(env_id, 5_000) * args.scale))
+        made, raw = gym.make(env_id), gym.make(env_id).unwrapped
+        run(made, 200, 999)  # warm up: load compiled kernels, first allocations
+        run(raw, 200, 999)
+        # Alternate make/raw runs, so that load from other processes hits both alike.
+        samples: dict[str, list[tuple[float, float]]] = {"make": [], "raw": []}
+        for seed in range(args.repeats):
+            samples["make"].append(run(made, steps, seed))
+            samples["raw"].append(run(raw, steps, seed))
+        results = {}
+        for name, pairs in samples.items():
+            rates = [rate for rate, _ in pairs]
+            events = statistics.mean(ev for _, ev in pairs)
+            results[name] = (statistics.median(rates), min(rates), max(rates), events)
+        first = first_step_seconds(env_id)
+        rows.append((env_id, steps, results, first))
+        m, r = results["make"], results["raw"]
+        print(
+            f"{env_id:24s} make {m[0]:9,.0f}/s  raw {r[0]:9,.0f}/s  "
+            f"({1e6 / m[0]:6.1f} us/step, {m[3]:5.1f} events/shot, first step {first:.2f} s)"
+        )
+
+    lines = [
+        "# Environment speed",
+        "",
+        "Steps per second of a random policy (uniform actions in [-1, 1], drawn before timing),",
+        "resets included, median of "
+        f"{args.repeats} seeds (range in brackets). `make`: `gymnasium.make(id)` with its",
+        "wrappers (TimeLimit, OrderEnforcing, PassiveEnvChecker); `raw`: `.unwrapped`.",
+        "First step: a fresh process importing, making, resetting and stepping once (warm",
+        "numba disk cache), as every `SubprocVecEnv` worker does.",
+        "",
+        "| id | steps/s via make | steps/s raw | us/step (make) | events/shot | target "
+        "| first step |",
+        "|---|---|---|---|---|---|---|",
+    ]
+    for env_id, _, res, first in rows:
+        m, r = res["make"], res["raw"]
+        target = TARGETS.get(env_id)
+        verdict = (
+            "" if target is None else f">= {target:,}: {'met' if m[0] >= target else 'MISSED'}"
+        )
+        lines.append(
+            f"| `{env_id}` | {m[0]:,.0f} [{m[1]:,.0f}-{m[2]:,.0f}] | {r[0]:,.0f} "
+            f"[{r[1]:,.0f}-{r[2]:,.0f}] | {1e6 / m[0]:.1f} | {m[3]:.1f} | {verdict} "
+            f"| {first:.2f} s |"
+        )
+    lines += [
+        "",
+        f"Machine: {cpu_name()}, {os.cpu_count()} cores, one process; load average "
+        f"{os.getloadavg()[0]:.1f} at the end (other processes share the machine). Python "
+        f"{platform.python_version()}, numpy {np.__version__}, gymnasium {gym.__version__}.",
+        "",
+        f"Command: `python bench/env_speed.py --repeats {args.repeats}`",
+        "",
+    ]
+    Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+    Path(args.out).write_text("\n".join(lines))
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
