@@ -84,8 +84,10 @@ def main() -> None:
             failures.append(f"shot {shot}: {problems[:3]}")
             print(failures[-1], flush=True)
         if (shot + 1) % 5000 == 0:
-            print(f"{shot + 1} shots, {len(failures)} with violations, "
-                  f"{time.time() - started:.0f} s", flush=True)
+            print(
+                f"{shot + 1} shots, {len(failures)} with violations, {time.time() - started:.0f} s",
+                flush=True,
+            )
     ev = np.array(events)
     report = [
         "# Fuzz: invariants over random scenes and shots",

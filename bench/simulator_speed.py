@@ -143,8 +143,7 @@ def main() -> None:
         "two-ball shot, ~80 ms per 9-ball break, ~150 ms per 16-ball break); its physics adds",
         "sliding and spin. `bench/speed_vs_error.py` compares the engines in one run.",
         "",
-        "Fresh process, `python -c` spawn to first 9-ball break done (median of "
-        f"{args.cold}):",
+        f"Fresh process, `python -c` spawn to first 9-ball break done (median of {args.cold}):",
         "",
         f"- empty compile cache: {np.median(empty):.2f} s (target <= 20 s)",
         f"- warm compile cache: {np.median(warm):.2f} s (target <= 1.5 s)",

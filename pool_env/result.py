@@ -61,18 +61,18 @@ class ShotResult:
         "_seg_potted",
         "_seg_state",
         "_seg_t",
-        "recorded",
         "duration",
+        "event_first_segment",
         "event_i",
         "event_j",
         "event_kinds",
-        "event_first_segment",
         "event_times",
         "first_contact",
         "hit_event_cap",
         "n_events",
         "pocketed",
         "positions",
+        "recorded",
     )
 
     def __init__(self, raw: tuple, deceleration: float, recorded: bool = True) -> None:
@@ -133,8 +133,13 @@ class ShotResult:
             ValueError: If ``t`` lies outside ``[0, duration]`` or is not a number.
         """
         out, _ = _positions_at(
-            self._seg_ball, self._seg_t, self._seg_state, self._seg_potted,
-            self.n_balls, self._check_time(t), self._deceleration,
+            self._seg_ball,
+            self._seg_t,
+            self._seg_state,
+            self._seg_potted,
+            self.n_balls,
+            self._check_time(t),
+            self._deceleration,
         )
         return out
 
@@ -152,8 +157,13 @@ class ShotResult:
         if times.size and not (times.min() >= 0.0 and times.max() <= self.duration):
             raise ValueError(f"times must lie in [0, duration={self.duration}]")
         return _positions_at_many(
-            self._seg_ball, self._seg_t, self._seg_state, self._seg_potted,
-            self.n_balls, times, self._deceleration,
+            self._seg_ball,
+            self._seg_t,
+            self._seg_state,
+            self._seg_potted,
+            self.n_balls,
+            times,
+            self._deceleration,
         )
 
     @property
@@ -169,8 +179,13 @@ class ShotResult:
     def pocketed_at(self, t: float) -> NDArray[np.bool_]:
         """``(N,)`` booleans: which balls are potted by time ``t``."""
         _, potted = _positions_at(
-            self._seg_ball, self._seg_t, self._seg_state, self._seg_potted,
-            self.n_balls, self._check_time(t), self._deceleration,
+            self._seg_ball,
+            self._seg_t,
+            self._seg_state,
+            self._seg_potted,
+            self.n_balls,
+            self._check_time(t),
+            self._deceleration,
         )
         return potted
 

@@ -55,7 +55,9 @@ def _raise_invalid(code: int, i: int, j: int, positions: NDArray[np.float64], ta
             f"[{r}, {table.length - r}] x [{r}, {table.width - r}]"
         )
     if code == loop.IN_POCKET:
-        raise ValueError(f"ball {i} at {positions[i].tolist()} is inside pocket {j}'s capture circle")
+        raise ValueError(
+            f"ball {i} at {positions[i].tolist()} is inside pocket {j}'s capture circle"
+        )
     if code == loop.OVERLAP:
         d = float(np.hypot(*(positions[j] - positions[i])))
         raise ValueError(
@@ -98,7 +100,11 @@ def simulate(
     n = pos.shape[0]
     vel = _as_points("velocities", velocities, n)
     mass = _as_masses(table, masses, n)
-    if isinstance(max_events, bool) or not isinstance(max_events, int | np.integer) or max_events < 0:
+    if (
+        isinstance(max_events, bool)
+        or not isinstance(max_events, int | np.integer)
+        or max_events < 0
+    ):
         raise ValueError(f"max_events must be a non-negative integer, got {max_events!r}")
     code, i, j = loop.validate(pos, vel, mass, table.params, table.pockets)
     if code != loop.OK:

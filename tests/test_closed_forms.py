@@ -79,12 +79,14 @@ def test_oblique_impact_matches_line_of_centres(offset_fraction: float, e: float
         s = float(np.hypot(*vel))
         return p if s == 0 else p + vel / s * s * s / (2 * table.deceleration)
 
-    np.testing.assert_allclose(result.positions[0], rest(np.array([x_c, a_pos[1]]), va_after), atol=1e-12)
+    np.testing.assert_allclose(
+        result.positions[0], rest(np.array([x_c, a_pos[1]]), va_after), atol=1e-12
+    )
     np.testing.assert_allclose(result.positions[1], rest(b_pos, vb_after), atol=1e-12)
 
 
 def test_seed_misprint_would_pass_through() -> None:
-    """e = 1, equal masses, head-on: the corrected formula exchanges velocities.
+    """E = 1, equal masses, head-on: the corrected formula exchanges velocities.
 
     The seed's printed sign would leave the striker's velocity unchanged (pass-through).
     """
@@ -137,9 +139,7 @@ def test_45_degrees_into_a_square_corner(corner) -> None:
     """Both rails are hit; the ball comes straight back, whatever the order of the two hits."""
     table = Table(e_cushion=1.0, pockets="none")
     r = table.ball_radius
-    target = np.array(
-        [table.length - r if corner[0] else r, table.width - r if corner[1] else r]
-    )
+    target = np.array([table.length - r if corner[0] else r, table.width - r if corner[1] else r])
     start = target + np.array([-0.3 if corner[0] else 0.3, -0.3 if corner[1] else 0.3])
     direction = target - start
     angle = math.atan2(direction[1], direction[0])
@@ -166,7 +166,7 @@ def test_straight_pot_into_every_pocket(table: Table, k: int) -> None:
 @pytest.mark.parametrize("side", [-1.0, 1.0])
 def test_just_missing_a_side_pocket(table: Table, side: float) -> None:
     """Rolling parallel to the rail past the side pocket: captured iff within its circle."""
-    px, py, radius = table.pockets[1]
+    _, py, radius = table.pockets[1]
     lane = py + radius + side * 1e-9  # centre line 1 nm outside (+) or inside (-) the circle
     result = shoot(table, [[0.6, lane]], 0.0, 3.0)
     assert (result.pocketed[0] == 1) == (side < 0)

@@ -48,7 +48,7 @@ def test_concurrent_cold_starts_share_one_cache(tmp_path: Path) -> None:
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
     procs = [_run(env) for _ in range(3)]
     outputs = [p.communicate(timeout=600) for p in procs]
-    for proc, (out, err) in zip(procs, outputs, strict=True):
+    for proc, (_, err) in zip(procs, outputs, strict=True):
         assert proc.returncode == 0, err
     digests = {out.splitlines()[0] for out, _ in outputs}
     assert len(digests) == 1
@@ -89,8 +89,12 @@ def test_read_only_install_falls_back_to_memory() -> None:
         env |= {"PYTHONPATH": str(root), "HOME": "/nonexistent"}
         code = (UNWRITABLE if os.geteuid() == 0 else "") + SHOT
         proc = subprocess.Popen(
-            [sys.executable, "-c", code], env=env, cwd="/", text=True,
-            stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+            [sys.executable, "-c", code],
+            env=env,
+            cwd="/",
+            text=True,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
         )
         out, err = proc.communicate(timeout=600)
         assert proc.returncode == 0, err

@@ -151,7 +151,9 @@ def test_rolling_exactly_along_a_rail(carom: Table) -> None:
     """G, C: centre on the rail line, parallel to it: no cushion event."""
     result = shoot(carom, [[0.5, R]], 0.0, 0.6)
     assert [e.kind for e in result.events] == ["stop"]
-    np.testing.assert_allclose(result.positions[0], stop_point(carom, [0.5, R], 0.6, 0.0), atol=1e-14)
+    np.testing.assert_allclose(
+        result.positions[0], stop_point(carom, [0.5, R], 0.6, 0.0), atol=1e-14
+    )
 
 
 @pytest.mark.parametrize("tilt", [1e-12, 1e-9, -1e-12])
@@ -246,8 +248,10 @@ def test_events_1e15_s_apart(t_hit: float) -> None:
     dt = 1e-15
     travel2 = speed * (t_hit + dt) - 0.5 * a * (t_hit + dt) ** 2
     positions = [
-        [0.2, 0.3], [0.2 + travel + 2 * R, 0.3],
-        [0.2, 0.9], [0.2 + travel2 + 2 * R, 0.9],
+        [0.2, 0.3],
+        [0.2 + travel + 2 * R, 0.3],
+        [0.2, 0.9],
+        [0.2 + travel2 + 2 * R, 0.9],
     ]
     velocities = [[speed, 0.0], [0.0, 0.0], [speed, 0.0], [0.0, 0.0]]
     result = simulate(table, positions, velocities)
@@ -267,7 +271,7 @@ def test_unequal_masses_momentum_and_energy() -> None:
     result = shoot(table, [[0.8, 0.6], [1.1, 0.6]], 0.0, 0.3, masses=masses)
     assert_invariants(table, result, masses)
     v_hit = speed_after(table, 0.3, 0.3 - 2 * R)
-    ua, ub = normal_velocities(0.3, 0.1, v_hit, 0.0, 0.7)
+    _, ub = normal_velocities(0.3, 0.1, v_hit, 0.0, 0.7)
     np.testing.assert_allclose(
         result.positions[1][0], 1.1 + ub**2 / (2 * table.deceleration), atol=1e-12
     )

@@ -19,9 +19,7 @@ tables = st.builds(
     e_cushion=st.sampled_from([1.0, 0.85, 0.5, 0.0]),
     pockets=st.sampled_from(["standard", "none"]),
 )
-speeds = st.one_of(
-    st.floats(0.05, 15.0), st.floats(1e-6, 0.05), st.sampled_from([1e-6, 15.0])
-)
+speeds = st.one_of(st.floats(0.05, 15.0), st.floats(1e-6, 0.05), st.sampled_from([1e-6, 15.0]))
 angles = st.floats(-math.pi, math.pi)
 
 

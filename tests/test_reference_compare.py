@@ -76,9 +76,7 @@ def test_matches_reference(scene) -> None:
     ours = simulate(table, pos, vel, masses)
     ref = reference_simulate(table, pos, vel, masses, max_events=400)
     assert ours.pocketed.tolist() == ref.pocketed
-    assert [(k, i, j) for _, k, i, j in ref.events] == [
-        (e.kind, e.i, e.j) for e in ours.events
-    ]
+    assert [(k, i, j) for _, k, i, j in ref.events] == [(e.kind, e.i, e.j) for e in ours.events]
     with mp.workdps(50):
         error = max(
             float(mp.sqrt((mp.mpf(float(x)) - rx) ** 2 + (mp.mpf(float(y)) - ry) ** 2))

@@ -22,8 +22,18 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env.kernels._jit import kernel
-from pool_env.kernels.motion import MOVING, NCOL, POTTED, PX, PY, VX, VY, rest_point
-from pool_env.kernels.motion import set_anchor, state_at
+from pool_env.kernels.motion import (
+    MOVING,
+    NCOL,
+    POTTED,
+    PX,
+    PY,
+    VX,
+    VY,
+    rest_point,
+    set_anchor,
+    state_at,
+)
 from pool_env.kernels.predict import (
     BALL,
     CUSHION,
@@ -152,8 +162,18 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     status = np.zeros(n, dtype=np.int8)
     for i in range(n):
         # No rest threshold on the cue: any positive speed moves the ball.
-        set_anchor(st, status, i, 0.0, positions[i, 0], positions[i, 1],
-                   velocities[i, 0], velocities[i, 1], a, 0.0)
+        set_anchor(
+            st,
+            status,
+            i,
+            0.0,
+            positions[i, 0],
+            positions[i, 1],
+            velocities[i, 0],
+            velocities[i, 1],
+            a,
+            0.0,
+        )
     own = np.empty((n, 4), dtype=np.float64)
     caps = np.empty((n, 4), dtype=np.float64)
     for i in range(n):
@@ -271,7 +291,9 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
                 seg_t = _grow(seg_t, n_seg)
                 seg_state = _grow(seg_state, n_seg)
                 seg_potted = _grow(seg_potted, n_seg)
-                _log_segment(seg_ball, seg_t, seg_state, seg_potted, n_seg, changed[c], now, st, status)
+                _log_segment(
+                    seg_ball, seg_t, seg_state, seg_potted, n_seg, changed[c], now, st, status
+                )
                 n_seg += 1
     if capped:
         for i in range(n):
@@ -289,8 +311,21 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     for i in range(n):
         final[i, 0] = st[i, PX]
         final[i, 1] = st[i, PY]
-    return (final, pocketed, n_ev, now, capped, first_i, first_j,
-            ev_t[:n_ev].copy(), ev_kind[:n_ev].copy(), ev_i[:n_ev].copy(), ev_j[:n_ev].copy(),
-            ev_seg[:n_ev].copy(),
-            seg_ball[:n_seg].copy(), seg_t[:n_seg].copy(), seg_state[:n_seg].copy(),
-            seg_potted[:n_seg].copy())
+    return (
+        final,
+        pocketed,
+        n_ev,
+        now,
+        capped,
+        first_i,
+        first_j,
+        ev_t[:n_ev].copy(),
+        ev_kind[:n_ev].copy(),
+        ev_i[:n_ev].copy(),
+        ev_j[:n_ev].copy(),
+        ev_seg[:n_ev].copy(),
+        seg_ball[:n_seg].copy(),
+        seg_t[:n_seg].copy(),
+        seg_state[:n_seg].copy(),
+        seg_potted[:n_seg].copy(),
+    )

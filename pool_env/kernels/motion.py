@@ -29,7 +29,7 @@ REST, MOVING, POTTED = 0, 1, 2
 
 
 @kernel
-def set_anchor(st, status, i, t, x, y, vx, vy, a, v_rest):  # noqa: D417
+def set_anchor(st, status, i, t, x, y, vx, vy, a, v_rest):
     """Anchor ball ``i`` at time ``t`` with position ``(x, y)`` and velocity ``(vx, vy)``.
 
     A speed below ``v_rest`` counts as rest: such a ball would stop within ``v_rest / a``

@@ -23,10 +23,10 @@ Zeno rules (documented in the package README):
 * An impact whose normal approach speed is below ``V_ZENO`` is perfectly inelastic along the
   normal (``e = 0``).
 * Two balls stick, leaving with their common centre-of-mass velocity together with every
-  ball touching them (momentum conserved, energy lost), when an inelastic impact leaves them touching with their relative
-  deceleration pressing them together (they would re-collide endlessly); when an inelastic
-  impact repeats within ``ZENO_WINDOW`` (a cascade through a cluster of touching balls);
-  or when any impact repeats ``ZENO_REPEATS`` times in a row that closely (a ball wedged
+  ball touching them (momentum conserved, energy lost), when an inelastic impact leaves
+  them touching with their relative deceleration pressing them together (they would
+  re-collide endlessly); when an inelastic impact repeats within ``ZENO_WINDOW`` (a
+  cascade through a cluster of touching balls); or when any impact repeats ``ZENO_REPEATS`` times in a row that closely (a ball wedged
   between a ball and a rail, inelastic collapse).
 * A ball slower than ``V_REST`` after an impact is at rest (it would stop within 1e-8 s and
   5e-18 m anyway).
@@ -182,4 +182,3 @@ def cushion(st, status, i, rail, t, params):
         if into:
             vy = -e * vy if abs(vy) >= V_ZENO else 0.0
     set_anchor(st, status, i, t, x, y, vx, vy, a, V_REST)
-
