@@ -26,8 +26,9 @@ Zeno rules (documented in the package README):
   ball touching them (momentum conserved, energy lost), when an inelastic impact leaves
   them touching with their relative deceleration pressing them together (they would
   re-collide endlessly); when an inelastic impact repeats within ``ZENO_WINDOW`` (a
-  cascade through a cluster of touching balls); or when any impact repeats ``ZENO_REPEATS`` times in a row that closely (a ball wedged
-  between a ball and a rail, inelastic collapse).
+  cascade through a cluster of touching balls); or when any impact repeats
+  ``ZENO_REPEATS`` times in a row that closely (a ball wedged between a ball and a rail,
+  inelastic collapse).
 * A ball slower than ``V_REST`` after an impact is at rest (it would stop within 1e-8 s and
   5e-18 m anyway).
 """
