@@ -50,7 +50,7 @@ def _timed(fn: Any, repeats: int) -> tuple[float, Any]:
 
 def run_ours(scenes: list[Scene], repeats: int, record: bool) -> Run:
     """Our simulator; ``record=False`` is the training-loop call (final state only)."""
-    label = "this simulator" + ("" if not record else " (record=True)")
+    label = f"this simulator (record={record})"
     run = Run(label, "ours", None)
     for k, s in enumerate(scenes):
         t, _ = _timed(

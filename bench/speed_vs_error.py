@@ -25,7 +25,7 @@ from bench import sections
 from bench.engines.fixed_step import simulate_fixed_step
 from bench.engines.pooltool_engine import run_pooltool
 from bench.errors import ReferenceCache
-from bench.report import Metrics, fmt_time, machine, metrics, plot, shots_table
+from bench.report import Metrics, machine, metrics, notes, plot, shots_table, targets
 from bench.runners import Run, run_fixed, run_ours, run_pooltool_suite, run_pymunk
 from bench.scenes import break_suite, shot_suite
 
@@ -118,59 +118,6 @@ def _suite_runs(
     return runs
 
 
-def _targets(rows: list[Metrics], brows: list[Metrics]) -> list[str]:
-    ours = next(m for m in rows if m.engine == "ours")
-    ours_b = next(m for m in brows if m.engine == "ours")
-    lines = []
-    dominated = [
-        m.method
-        for m in rows
-        if m.engine != "ours"
-        and m.t_med < ours.t_med
-        and (m.pos[0] < ours.pos[0] or m.pos[1] < ours.pos[1])
-    ]
-    faster_b = [m.method for m in brows if m.engine != "ours" and m.t_med < ours_b.t_med]
-    lines.append(
-        f"- Pareto front, shots: {'MET' if not dominated else 'NOT MET'} - "
-        + (
-            "no other method is both faster and more accurate (median or p95 final-position error)."
-            if not dominated
-            else f"faster and more accurate: {', '.join(dominated)}."
-        )
-    )
-    lines.append(
-        f"- Pareto front, breaks: {'MET' if not faster_b else 'NOT MET'} - "
-        + (
-            "no other method is faster (accuracy is not claimed on breaks)."
-            if not faster_b
-            else f"faster: {', '.join(faster_b)}."
-        )
-    )
-    sub_mm = [m for m in rows if m.engine == "fixed-step" and m.pos[0] < 1e-3]
-    slower = [m for m in sub_mm if m.t_med <= ours.t_med]
-    detail = ", ".join(
-        f"dt={m.dt:g}: error {m.pos[0] * 1e3:.3g} mm, {m.ratio:.3g}x our time" for m in sub_mm
-    )
-    lines.append(
-        f"- Faster than the fixed-step integrator at every dt with median error under "
-        f"1 mm: {'MET' if sub_mm and not slower else 'NOT MET'} ({detail or 'no dt'})."
-    )
-    for label, rs, o in (("shots", rows, ours), ("breaks", brows, ours_b)):
-        pt = next((m for m in rs if m.engine == "pooltool"), None)
-        if pt is None:
-            lines.append(
-                f"- >= 300x faster than pooltool ({label}): NOT CHECKED (pooltool did not run)."
-            )
-        else:
-            ratio = pt.t_med / o.t_med
-            lines.append(
-                f"- >= 300x faster than pooltool ({label}): "
-                f"{'MET' if ratio >= 300 else 'NOT MET'} ({ratio:.0f}x: "
-                f"{fmt_time(pt.t_med)} against {fmt_time(o.t_med)} median)."
-            )
-    return lines
-
-
 def main(argv: list[str] | None = None) -> int:
     """Run the benchmark and write the report; returns the exit status."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
@@ -238,6 +185,7 @@ def main(argv: list[str] | None = None) -> int:
         brefs,
         chaos,
         hard,
+        notes(runs, refs),
         time.perf_counter() - t_start,
         cache,
     )
@@ -258,6 +206,7 @@ def _render(
     brefs: list,
     chaos: list[str],
     hard: list[str],
+    note_lines: list[str],
     seconds: float,
     cache: ReferenceCache,
 ) -> str:
@@ -287,7 +236,7 @@ def _render(
         "",
         "## Targets",
         "",
-        *_targets(rows, brows),
+        *targets(rows, brows),
         "",
         "## Non-chaotic shots (1-3 collisions)",
         "",
@@ -308,6 +257,8 @@ def _render(
         "error: its row is there for speed on the same layouts.",
         "",
         "![time per shot against error](speed_vs_error.png)",
+        "",
+        *note_lines,
         "",
         "## Breaks (chaotic)",
         "",
@@ -339,6 +290,12 @@ def _render(
         "jaws and spin physics (marked `(spin)` in the error table).",
         "",
         *hard,
+        "",
+        "On the touching 16-ball rack every engine, this simulator included, ends metres from "
+        "the reference: the rack's contacts follow each other a few 1e-18 s apart, below "
+        "float64's time resolution at t ~ 0.5 s (1e-16 s), so float64 takes them in its fixed "
+        "tie order while the reference resolves their true order (see the perturbation "
+        "table). The invariants still hold; the break is a different, equally valid one.",
         "",
         "## Compile and start-up costs (not in the times above)",
         "",
