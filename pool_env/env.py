@@ -52,17 +52,23 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     | 1   | speed  | ``speed_range[0]`` | ``speed_range[1]`` | 0.5 .. 10 m/s |
 
     The speed is the cue ball's, from a soft touch (it rolls ~1.3 m) to a hard break. The
-    aim depends on ``aim``:
+    aim is relative to the nearest object ball on the table, or absolute, by ``aim``:
 
-    * ``"relative"`` (default): radians, counter-clockwise, from the line joining the cue
-      ball to the nearest object ball on the table; default +-10 degrees. Action 0 hits
-      that ball full. This makes learning far easier than absolute aim.
-    * ``"cut"``: where the cue ball meets the nearest object ball, as the offset of its path
-      from that ball's centre in ball diameters; default -1 .. 1 (0 is a full hit, +-1 a
-      grazing one; +1 passes on the counter-clockwise side). The object ball then leaves
-      at ``asin(offset)`` from the cue ball's line whatever the distance, which makes the
-      best action a smooth function of the layout (the easiest mode to learn).
+    * ``"cut"`` (default): where the cue ball meets the nearest object ball, as the offset
+      of its path from that ball's centre in ball diameters; default -1 .. 1 (0 is a full
+      hit, +-1 a grazing one; +1 passes on the counter-clockwise side). The object ball
+      leaves at ``asin(offset)`` from the cue ball's line whatever the distance, so the
+      best action is a smooth function of the layout, and every action in (-1, 1) hits the
+      ball (unless another ball is in the way).
+    * ``"relative"``: radians, counter-clockwise, from the line joining the cue ball to the
+      nearest object ball; default +-10 degrees. Action 0 hits that ball full too, but the
+      angle a cut needs shrinks with the distance (``~2R sin(cut) / d``), so the best
+      action is a steep function of the layout.
     * ``"absolute"``: radians from the table's +x axis (its length); default +-pi.
+
+    Why ``cut`` is the default: PPO (SB3 defaults but ``gamma=0``, 8 envs, 200k steps, two
+    seeds) on ``OneBall-v0`` pots 71% of its shots (64% without a scratch) with ``cut`` aim,
+    and 10-11% with ``relative``.
 
     Out-of-range actions (infinities included) are clipped to ``[-1, 1]``. An action with a
     NaN raises ``ValueError`` and changes nothing. With ``noise=(sigma_angle, sigma_speed)``
@@ -123,7 +129,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     | ``table`` | Table, dict or None | ``Table()`` | the table, or ``Table`` keyword arguments |
     | ``scene`` | str, array or callable | ``"random"`` | starting layout (above) |
     | ``n_balls`` | int or None | scene's | object balls (``"random"``: 1..15, default 3) |
-    | ``aim`` | str | ``"relative"`` | ``"relative"``, ``"cut"`` or ``"absolute"`` |
+    | ``aim`` | str | ``"cut"`` | ``"cut"``, ``"relative"`` or ``"absolute"`` |
     | ``aim_range`` | (float, float) | by ``aim`` | what action[0] = -1 and +1 map to |
     | ``speed_range`` | (float, float) | (0.5, 10.0) | m/s for action -1 and +1 |
     | ``noise`` | (float, float) or None | None | execution noise sigmas (rad, m/s) |
@@ -177,7 +183,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         table: Table | dict[str, Any] | None = None,
         scene: scenes.SceneSpec = "random",
         n_balls: int | None = None,
-        aim: AimMode = "relative",
+        aim: AimMode = "cut",
         aim_range: tuple[float, float] | None = None,
         speed_range: tuple[float, float] = DEFAULT_SPEED_RANGE,
         noise: tuple[float, float] | None = None,

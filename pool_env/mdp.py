@@ -28,11 +28,11 @@ AIM_MODES: tuple[str, ...] = ("absolute", "relative", "cut")
 #:   random one-ball layouts 95% of ghost-ball pots need under 7 degrees, and the pottable
 #:   layouts drop only from 83% to 81% against an unlimited cone, while a random angle pots
 #:   1.5 times as often as with +-20 degrees.
-#: * ``cut``: where the cue ball meets the nearest object ball, as its offset from a full hit
-#:   in units of a ball diameter ``2R``: 0 is a full hit, +-1 a grazing one. The object ball
-#:   leaves at ``asin(offset)`` from the cue ball's line, whatever the distance: every cut
-#:   is in range and equally fine-grained, and a random action pots 2-3 times as often as
-#:   with ``relative``.
+#: * ``cut`` (the environment's default): where the cue ball meets the nearest object ball,
+#:   as its offset from a full hit in units of a ball diameter ``2R``: 0 is a full hit, +-1
+#:   a grazing one. The object ball leaves at ``asin(offset)`` from the cue ball's line,
+#:   whatever the distance: every cut is in range and equally fine-grained, and at a fixed
+#:   speed a random action pots 2-3 times as often as with ``relative``.
 DEFAULT_AIM_RANGE: dict[str, tuple[float, float]] = {
     "absolute": (-math.pi, math.pi),
     "relative": (-math.radians(10.0), math.radians(10.0)),

@@ -93,13 +93,14 @@ def test_a_pot_and_a_scratch_in_one_shot_add_up() -> None:
     assert not terminated
 
 
-def test_relative_aim_zero_hits_the_nearest_object_ball_full() -> None:
+def test_aim_zero_hits_the_nearest_object_ball_full() -> None:
     layout = np.array([[1.0, 0.6], [1.6, 0.9], [1.3, 0.5], [0.5, 0.2]])  # ball 2 is nearest
-    env = _env(scene=layout)
-    env.reset(seed=0)
-    *_, info = env.step(np.array([0.0, -0.9]))
-    assert info["first_contact"] == 2
-    assert info["angle"] == pytest.approx(math.atan2(-0.1, 0.3))
+    for aim in ("relative", "cut"):
+        env = _env(scene=layout, aim=aim)
+        env.reset(seed=0)
+        *_, info = env.step(np.array([0.0, -0.9]))
+        assert info["first_contact"] == 2
+        assert info["angle"] == pytest.approx(math.atan2(-0.1, 0.3))
 
 
 def test_end_on_miss_ends_the_episode_on_a_shot_that_pots_nothing() -> None:
@@ -337,8 +338,8 @@ def test_unwrapped_exposes_what_agents_need() -> None:
     assert isinstance(raw, PoolEnv)
     assert isinstance(raw.table, Table)
     assert raw.cue == 0
-    assert raw.aim == "relative"
-    assert raw.aim_range == pytest.approx((-math.radians(10), math.radians(10)))
+    assert raw.aim == "cut"
+    assert raw.aim_range == (-1.0, 1.0)
     assert raw.speed_range == (0.5, 10.0)
     assert raw.n_object_balls == 1
     assert raw.positions.shape == (2, 2)
