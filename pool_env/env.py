@@ -144,8 +144,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     Registered ids (``import pool_env``): ``pool_env/Pool-v0`` (these defaults, 50 shots),
     ``pool_env/OneBall-v0`` (``scene="one_ball"``, ``end_on_miss=True``: one shot per
-    episode unless it pots), ``pool_env/NineBall-v0`` (break, 50 shots) and
-    ``pool_env/EightBall-v0`` (break, 80 shots).
+    episode, since a pot clears the table and a miss ends the turn; 10 shots with
+    ``end_on_miss=False``), ``pool_env/NineBall-v0`` (break, 50 shots) and
+    ``pool_env/EightBall-v0`` (break, 80 shots). In ``SubprocVecEnv`` workers use the id
+    ``"pool_env:pool_env/OneBall-v0"`` (or import ``pool_env`` in the main script), so that
+    each worker imports the package that registers the ids.
 
     ## Rendering
 
