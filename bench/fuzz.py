@@ -83,7 +83,7 @@ def main() -> None:
         if problems:
             failures.append(f"shot {shot}: {problems[:3]}")
             print(failures[-1], flush=True)
-        if (shot + 1) % 5000 == 0:
+        if (shot + 1) % 10000 == 0:
             print(
                 f"{shot + 1} shots, {len(failures)} with violations, {time.time() - started:.0f} s",
                 flush=True,
