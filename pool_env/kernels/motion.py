@@ -16,8 +16,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-
 from pool_env.kernels._jit import kernel
 
 # Columns of the (N, NCOL) ball-state array.
@@ -97,20 +95,3 @@ def arc_time(speed, s, a):
     if den <= 0.0:
         return 0.0
     return 2.0 * s / den
-
-
-@kernel
-def kinetic_energy(st, status, masses, t, a):
-    """Total kinetic energy of the balls on the table at time ``t`` (J)."""
-    total = 0.0
-    for i in range(st.shape[0]):
-        if status[i] == MOVING:
-            _, _, vx, vy = state_at(st, status, i, t, a)
-            total += 0.5 * masses[i] * (vx * vx + vy * vy)
-    return total
-
-
-@kernel
-def new_state(n):
-    """Allocate an ``(n, NCOL)`` state array and an ``(n,)`` status array."""
-    return np.zeros((n, NCOL), dtype=np.float64), np.zeros(n, dtype=np.int8)

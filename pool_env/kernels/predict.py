@@ -42,7 +42,7 @@ from pool_env.kernels.roots import APPROACH_RTOL, INF, first_contact, ray_circle
 # Event kinds, in the order that breaks ties between simultaneous events.
 POCKET, BALL, CUSHION, STOP = 0, 1, 2, 3
 
-# Columns of the (N, 5) per-ball "own event" array.
+# Columns of the (N, 4) per-ball "own event" array.
 EV_T, EV_KIND, EV_ARG, EV_END = 0, 1, 2, 3
 # Columns of the (N, 4) capsule array: the segment a ball sweeps until its trajectory changes.
 CAP_AX, CAP_AY, CAP_BX, CAP_BY = 0, 1, 2, 3
