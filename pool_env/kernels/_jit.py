@@ -1,16 +1,27 @@
-"""One place for the numba options of every compiled kernel.
+"""One place for the numba options of every compiled kernel, and for where they are cached.
 
 Kernels are cached on disk so a fresh process (every ``SubprocVecEnv`` worker) loads machine
-code instead of compiling. numba refuses ``cache=True`` when it finds no writable cache
-location (a read-only install with no writable user cache); we then compile in memory
-instead of failing. numba writes cache files through a temporary file and an atomic rename,
-so several processes compiling at once neither crash nor corrupt the cache.
+code instead of compiling. numba keys a cached function on its own file's time stamp only,
+not on the files of the functions it calls: after an edit of ``resolve.py``, the cached
+event loop of ``loop.py`` would still hold the old impact code. So the cache lives in a
+folder named after a hash of every source file of the package: any change of the package
+starts a fresh cache.
+
+The folder is the first writable of: ``$NUMBA_CACHE_DIR/pool_env-<hash>`` (if that variable
+is set), the package's ``__pycache__/numba-<hash>``, and ``~/.cache/pool_env/numba-<hash>``.
+With none writable (a read-only install and home), kernels compile in memory, with a
+warning. numba writes cache files through a temporary file and an atomic rename, so several
+processes compiling at once neither crash nor corrupt the cache.
 """
 
 from __future__ import annotations
 
+import hashlib
+import os
+import tempfile
 import warnings
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any, TypeVar
 
 import numba
@@ -21,7 +32,67 @@ F = TypeVar("F", bound=Callable[..., Any])
 # of the stable root formulas. error_model="numpy" removes Python's zero-division checks.
 _OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": False}
 
+_PACKAGE = Path(__file__).resolve().parents[1]
+
+
+def _source_hash() -> str:
+    """A short hash of every Python source file of the package, names and contents."""
+    digest = hashlib.sha256()
+    for path in sorted(_PACKAGE.rglob("*.py")):
+        digest.update(path.relative_to(_PACKAGE).as_posix().encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def _writable(folder: Path) -> bool:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=folder).close()
+    except OSError:
+        return False
+    return True
+
+
+def _cache_folder() -> Path | None:
+    """The first writable cache folder for this version of the sources, or None."""
+    tag = _source_hash()
+    candidates = []
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        candidates.append(Path(os.environ["NUMBA_CACHE_DIR"]) / f"pool_env-{tag}")
+    candidates.append(_PACKAGE / "__pycache__" / f"numba-{tag}")
+    candidates.append(Path.home() / ".cache" / "pool_env" / f"numba-{tag}")
+    for folder in candidates:
+        if _writable(folder):
+            return folder
+    return None
+
+
+CACHE_FOLDER = _cache_folder()
 _warned = False
+
+
+def _compile(fn: F, options: dict[str, Any]) -> F:
+    global _warned
+    if CACHE_FOLDER is not None:
+        # numba picks a function's cache location when it is decorated, from
+        # numba.config.CACHE_DIR first: point it at our folder for that moment only.
+        saved = numba.config.CACHE_DIR
+        numba.config.CACHE_DIR = str(CACHE_FOLDER)
+        try:
+            return numba.njit(cache=True, **options)(fn)  # type: ignore[no-any-return]
+        except RuntimeError:  # numba found the folder unwritable after all
+            pass
+        finally:
+            numba.config.CACHE_DIR = saved
+    if not _warned:
+        warnings.warn(
+            "pool_env: no writable numba cache location; compiling in memory. Set "
+            "NUMBA_CACHE_DIR to a writable folder to keep compiled code.",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+        _warned = True
+    return numba.njit(cache=False, **options)(fn)  # type: ignore[no-any-return]
 
 
 def kernel(fn: F) -> F:
@@ -33,24 +104,9 @@ def kernel(fn: F) -> F:
     Returns:
         The numba dispatcher (typed as the original function).
     """
-    global _warned
-    try:
-        return numba.njit(cache=True, **_OPTIONS)(fn)  # type: ignore[no-any-return]
-    except RuntimeError as exc:  # "cannot cache function ...: no locator available"
-        if not _warned:
-            warnings.warn(
-                f"pool_env: no writable numba cache location ({exc}); compiling in memory. "
-                "Set NUMBA_CACHE_DIR to a writable folder to keep compiled code.",
-                RuntimeWarning,
-                stacklevel=2,
-            )
-            _warned = True
-        return numba.njit(cache=False, **_OPTIONS)(fn)  # type: ignore[no-any-return]
+    return _compile(fn, _OPTIONS)
 
 
 def parallel_kernel(fn: F) -> F:
     """Like :func:`kernel` but with ``parallel=True`` (for ``prange`` loops over tables)."""
-    try:
-        return numba.njit(cache=True, parallel=True, **_OPTIONS)(fn)  # type: ignore[no-any-return]
-    except RuntimeError:
-        return numba.njit(cache=False, parallel=True, **_OPTIONS)(fn)  # type: ignore[no-any-return]
+    return _compile(fn, {**_OPTIONS, "parallel": True})

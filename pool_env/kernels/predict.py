@@ -76,19 +76,26 @@ def predict_own(st, status, i, params, pockets, own, caps):
     best_kind = STOP
     best_arg = -1
     # Rails (ball-centre lines). At or beyond a rail and moving out: hit now (s = 0), so
-    # rounding can never carry a ball through a rail. Ties keep the lower rail index.
+    # rounding can never carry a ball through a rail; but a normal direction within
+    # rounding of zero is no approach (a ball left rolling along the rail by an impact),
+    # and it could not carry the ball more than ~1e-12 m past the line. Ties keep the
+    # lower rail index.
     if ux != 0.0:
         rail = 1 if ux > 0.0 else 0
         line = length - radius if ux > 0.0 else radius
-        s = max((line - x) / ux, 0.0)
-        if s < best_s or (s == best_s and best_kind > CUSHION):
-            best_s, best_kind, best_arg = s, CUSHION, rail
+        s = (line - x) / ux
+        if s > 0.0 or abs(ux) > APPROACH_RTOL:
+            s = max(s, 0.0)
+            if s < best_s or (s == best_s and best_kind > CUSHION):
+                best_s, best_kind, best_arg = s, CUSHION, rail
     if uy != 0.0:
         rail = 3 if uy > 0.0 else 2
         line = width - radius if uy > 0.0 else radius
-        s = max((line - y) / uy, 0.0)
-        if s < best_s or (s == best_s and best_kind > CUSHION):
-            best_s, best_kind, best_arg = s, CUSHION, rail
+        s = (line - y) / uy
+        if s > 0.0 or abs(uy) > APPROACH_RTOL:
+            s = max(s, 0.0)
+            if s < best_s or (s == best_s and best_kind > CUSHION):
+                best_s, best_kind, best_arg = s, CUSHION, rail
     for k in range(pockets.shape[0]):
         r = pockets[k, 2]
         s = ray_circle_entry(x, y, ux, uy, pockets[k, 0], pockets[k, 1], r * r, True)

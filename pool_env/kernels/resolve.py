@@ -20,10 +20,11 @@ Cushions (seed: "bumpers"): ``v_n -> -e_cushion v_n`` on the rail's normal compo
 
 Zeno rules (documented in the package README):
 
-* An impact whose normal approach speed is below ``V_ZENO`` is perfectly inelastic along the
-  normal (``e = 0``).
+* An impact that repeats within ``ZENO_WINDOW`` with a normal approach speed below
+  ``V_ZENO`` is perfectly inelastic along the normal (``e = 0``).
 * Two balls stick, leaving with their common centre-of-mass velocity together with every
-  ball touching them (momentum conserved, energy lost), when an inelastic impact leaves
+  ball touching them (momentum conserved, energy lost; a rail that the lump touches takes
+  a velocity component into it slower than ``V_ZENO``), when an inelastic impact leaves
   them touching with their relative deceleration pressing them together (they would
   re-collide endlessly); when an inelastic impact repeats within ``ZENO_WINDOW`` (a
   cascade through a cluster of touching balls); or when any impact repeats
@@ -46,7 +47,7 @@ V_ZENO = 1e-6  # m/s
 V_REST = 1e-9  # m/s
 # Impacts of one pair closer together than this are one contact repeating (a cascade of
 # sequential impulses through touching balls, or a ball wedged against a rail).
-ZENO_WINDOW = 1e-9  # s
+ZENO_WINDOW = 1e-6  # s
 # A pair that repeats this often within ZENO_WINDOW of each impact sticks, whatever its e.
 ZENO_REPEATS = 16
 # Balls whose centres are within 2R + CONTACT_TOL touch, for sticking clusters.
@@ -98,11 +99,12 @@ def ball_ball(st, status, masses, i, j, t, params, repeats):
     ui = vxi * nx + vyi * ny
     uj = vxj * nx + vyj * ny
     mi, mj = masses[i], masses[j]
-    # Below V_ZENO (which includes a rounding-level approach at a touching contact found
-    # by the compression test of the predictor) the impact is perfectly inelastic: the normal
-    # components become their common centre-of-mass value, which never adds energy.
+    # A repeated impact slower than V_ZENO, and a contact found by the predictor's
+    # compression test (approach within rounding of zero), are perfectly inelastic: the
+    # normal components become their common centre-of-mass value, which never adds energy.
+    # An isolated slow impact keeps e: the model is exact wherever no cascade needs ending.
     approach = ui - uj
-    e_eff = e if approach >= V_ZENO else 0.0
+    e_eff = e if approach >= V_ZENO or (approach > 0.0 and repeats < 2) else 0.0
     total = mi + mj
     ui_new = (mi * ui + mj * uj + mj * e_eff * (uj - ui)) / total
     uj_new = (mi * ui + mj * uj + mi * e_eff * (ui - uj)) / total
@@ -124,7 +126,9 @@ def stick_cluster(st, status, masses, i, t, params, changed):
     """Give ball ``i`` and every ball touching it, transitively, their common velocity.
 
     Touching means centres within ``2R + CONTACT_TOL``. The cluster leaves as one lump with
-    its centre-of-mass velocity: momentum is conserved and kinetic energy can only drop.
+    its centre-of-mass velocity, less any component slower than ``V_ZENO`` into a rail that
+    one of its balls touches (the rail's impulse): momentum is conserved but for that
+    impulse, and kinetic energy can only drop.
 
     Returns:
         How many balls changed; their indices are written to ``changed``.
@@ -162,6 +166,22 @@ def stick_cluster(st, status, masses, i, t, params, changed):
         py += masses[k] * vy
         total += masses[k]
     vx, vy = px / total, py / total
+    # A lump that presses into a rail it touches slower than V_ZENO stops pressing (the
+    # rail takes that momentum). Otherwise it would bounce off the rail and re-stick,
+    # shedding its normal momentum only geometrically, forever at one instant.
+    length, width = params[0], params[1]
+    for c in range(size):
+        k = changed[c]
+        if abs(vx) < V_ZENO and (
+            (xs[k] <= radius + CONTACT_TOL and vx < 0.0)
+            or (xs[k] >= length - radius - CONTACT_TOL and vx > 0.0)
+        ):
+            vx = 0.0
+        if abs(vy) < V_ZENO and (
+            (ys[k] <= radius + CONTACT_TOL and vy < 0.0)
+            or (ys[k] >= width - radius - CONTACT_TOL and vy > 0.0)
+        ):
+            vy = 0.0
     for c in range(size):
         k = changed[c]
         set_anchor(st, status, k, t, xs[k], ys[k], vx, vy, a, V_REST)
@@ -177,9 +197,9 @@ def cushion(st, status, i, rail, t, params):
     if rail < 2:
         into = vx > 0.0 if rail == 1 else vx < 0.0
         if into:
-            vx = -e * vx if abs(vx) >= V_ZENO else 0.0
+            vx = -e * vx
     else:
         into = vy > 0.0 if rail == 3 else vy < 0.0
         if into:
-            vy = -e * vy if abs(vy) >= V_ZENO else 0.0
+            vy = -e * vy
     set_anchor(st, status, i, t, x, y, vx, vy, a, V_REST)
