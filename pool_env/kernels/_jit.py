@@ -4,8 +4,8 @@ Kernels are cached on disk so a fresh process (every ``SubprocVecEnv`` worker) l
 code instead of compiling. numba keys a cached function on its own file's time stamp only,
 not on the files of the functions it calls: after an edit of ``resolve.py``, the cached
 event loop of ``loop.py`` would still hold the old impact code. So the cache lives in a
-folder named after a hash of every source file of the package: any change of the package
-starts a fresh cache.
+folder named after a hash of every module that holds compiled code: any change of one of
+them starts a fresh cache.
 
 The folder is the first writable of: ``$NUMBA_CACHE_DIR/pool_env-<hash>`` (if that variable
 is set), the package's ``__pycache__/numba-<hash>``, and ``~/.cache/pool_env/numba-<hash>``.
@@ -36,11 +36,16 @@ _PACKAGE = Path(__file__).resolve().parents[1]
 
 
 def _source_hash() -> str:
-    """A short hash of every Python source file of the package, names and contents."""
+    """A short hash of the modules with compiled code (names and contents).
+
+    That is every module in ``kernels/`` and every other one that compiles with this one.
+    """
     digest = hashlib.sha256()
     for path in sorted(_PACKAGE.rglob("*.py")):
-        digest.update(path.relative_to(_PACKAGE).as_posix().encode())
-        digest.update(path.read_bytes())
+        source = path.read_bytes()
+        if path.parent.name == "kernels" or b"kernels._jit import" in source:
+            digest.update(path.relative_to(_PACKAGE).as_posix().encode())
+            digest.update(source)
     return digest.hexdigest()[:16]
 
 
