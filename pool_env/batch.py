@@ -6,6 +6,9 @@ Results equal one :func:`pool_env.shoot` per table, bit for bit.
 
 from __future__ import annotations
 
+import itertools
+import os
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
@@ -97,3 +100,76 @@ def simulate_batch(
         except ValueError as exc:
             raise ValueError(f"table {b}: {exc}") from None
     return BatchResult(final, pocketed, n_events, capped, first)
+
+
+_pool: tuple[int, int, ThreadPoolExecutor] | None = None  # (owner pid, workers, pool)
+
+
+def available_cpus() -> int:
+    """CPUs this process may run on (its affinity mask where the OS has one)."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+def _thread_pool(workers: int) -> ThreadPoolExecutor:
+    global _pool
+    # A forked child inherits the pool object but not its threads: make a new one there.
+    if _pool is None or _pool[0] != os.getpid() or _pool[1] < workers:
+        if _pool is not None and _pool[0] == os.getpid():
+            _pool[2].shutdown(wait=False)
+        _pool = (os.getpid(), workers, ThreadPoolExecutor(workers, thread_name_prefix="pool_env"))
+    return _pool[2]
+
+
+def simulate_batch_threads(
+    table: Table,
+    positions: NDArray[np.float64],
+    velocities: NDArray[np.float64],
+    active: NDArray[np.bool_],
+    threads: int | None = None,
+    max_events: int = DEFAULT_MAX_EVENTS,
+) -> BatchResult:
+    """:func:`simulate_batch` split into one serial batch per thread, results joined.
+
+    The serial kernel releases the GIL, so Python threads run the parts side by side. Unlike
+    numba's ``prange`` (whose default OpenMP layer spin-waits), idle threads sleep: on a
+    machine shared with other busy processes this stays faster than one thread, where the
+    ``prange`` path was measured 2-3 times slower. Results equal the serial call bit for bit.
+
+    Args:
+        table: The table.
+        positions: ``(B, N, 2)`` float64 ball centres.
+        velocities: ``(B, N, 2)`` float64 initial velocities.
+        active: ``(B, N)`` which balls are on each table.
+        threads: Parts to split into (default: :func:`available_cpus`).
+        max_events: Event cap per table.
+
+    Returns:
+        The joined :class:`BatchResult`.
+
+    Raises:
+        ValueError: As :func:`simulate_batch`, naming the table by its index in the batch.
+    """
+    n = positions.shape[0]
+    parts = min(threads or available_cpus(), n)
+    if parts <= 1:
+        return simulate_batch(table, positions, velocities, active=active, max_events=max_events)
+    edges = np.linspace(0, n, parts + 1).astype(np.int64).tolist()
+
+    def part(lo: int, hi: int) -> BatchResult:
+        try:
+            return simulate_batch(
+                table, positions[lo:hi], velocities[lo:hi], active=active[lo:hi],
+                max_events=max_events, parallel=False,
+            )  # fmt: skip
+        except ValueError as exc:
+            first, rest = str(exc).split(":", 1)  # "table k: ..." counted from lo
+            raise ValueError(f"table {lo + int(first.split()[-1])}:{rest}") from None
+
+    futures = [_thread_pool(parts).submit(part, lo, hi) for lo, hi in itertools.pairwise(edges)]
+    results = [f.result() for f in futures]
+    return BatchResult(
+        *(np.concatenate([getattr(r, f) for r in results]) for f in BatchResult.__slots__)
+    )

@@ -8,6 +8,10 @@ import gymnasium as gym
 
 ENTRY_POINT = "pool_env.env:PoolEnv"
 
+#: ``gymnasium.make_vec(id, num_envs=n)`` builds this batched env (one compiled call per
+#: step for all tables); ``vectorization_mode="sync"`` / ``"async"`` still wrap PoolEnvs.
+VECTOR_ENTRY_POINT = "pool_env.vector:PoolVectorEnv"
+
 #: id -> (make() keyword arguments, max_episode_steps).
 ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {
     # The configurable one: 3 random object balls by default; every argument via make().
@@ -28,6 +32,7 @@ def register_envs() -> None:
             gym.register(
                 id=env_id,
                 entry_point=ENTRY_POINT,
+                vector_entry_point=VECTOR_ENTRY_POINT,
                 kwargs=kwargs,
                 max_episode_steps=max_steps,
             )
