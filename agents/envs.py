@@ -1,0 +1,59 @@
+"""Making environments for training and evaluation: one id, keyword arguments, a wrapper.
+
+A run's environment is data: ``env_id``, ``env_kwargs`` (``gymnasium.make`` keyword
+arguments) and ``wrapper`` (a name from :data:`WRAPPERS` or ``None``), so that the same
+environment is rebuilt for evaluation from a saved config.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+import gymnasium as gym
+
+import pool_env  # noqa: F401  (registers the ids)
+from agents.features import PocketFeatures
+
+#: Observation wrappers by name (``wrapper:`` in ``hyperparams.yml``).
+WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {"pocket_features": PocketFeatures}
+
+
+def worker_id(env_id: str) -> str:
+    """The id to make in a subprocess: ``"pool_env:pool_env/X"`` imports the package first."""
+    if ":" in env_id or not env_id.startswith("pool_env/"):
+        return env_id
+    return f"pool_env:{env_id}"
+
+
+def make_env(
+    env_id: str,
+    env_kwargs: dict[str, Any] | None = None,
+    wrapper: str | None = None,
+) -> gym.Env:
+    """``gymnasium.make(env_id, **env_kwargs)`` with the named wrapper applied.
+
+    Raises:
+        ValueError: On an unknown wrapper name.
+    """
+    env = gym.make(worker_id(env_id), **(env_kwargs or {}))
+    if wrapper:
+        if wrapper not in WRAPPERS:
+            raise ValueError(f"unknown wrapper {wrapper!r}: use one of {sorted(WRAPPERS)}")
+        env = WRAPPERS[wrapper](env)
+    return env
+
+
+class EnvFactory:
+    """A picklable ``() -> gym.Env`` for vectorized envs (subprocess workers rebuild it)."""
+
+    def __init__(
+        self, env_id: str, env_kwargs: dict[str, Any] | None = None, wrapper: str | None = None
+    ) -> None:
+        self.env_id = env_id
+        self.env_kwargs = dict(env_kwargs or {})
+        self.wrapper = wrapper
+
+    def __call__(self) -> gym.Env:
+        """A new environment."""
+        return make_env(self.env_id, self.env_kwargs, self.wrapper)

@@ -1,0 +1,192 @@
+"""Evaluate agents on a pool environment: pots per shot, clean pots, scratches, clears, reward.
+
+Usage::
+
+    python -m agents.evaluate --env pool_env/OneBall-v0 --agent random ghost --episodes 1000
+    python -m agents.evaluate --env pool_env/OneBall-v0 --agent models/ppo_oneball.zip
+
+Episode ``k`` is reset with seed ``seed + k``, so every agent sees the same layouts. A model
+``.zip`` is loaded with the SB3 algorithm its name or saved config names; its environment
+settings (``env_kwargs``, ``wrapper``) come from a ``config.yaml`` next to it, or from a
+sidecar ``<name>_config.yaml``.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+from typing import Any
+
+from agents.envs import make_env
+from agents.ghost_ball import GhostBallAgent
+from agents.metrics import EpisodeLog, Estimate
+from agents.random_agent import ConstantAgent, RandomAgent
+
+#: Statistics printed, with their labels; rates are shown as percentages.
+COLUMNS: tuple[tuple[str, str, bool], ...] = (
+    ("pots_per_shot", "pots/shot", True),
+    ("clean_pot_rate", "clean pots/shot", True),
+    ("scratch_rate", "scratch/shot", True),
+    ("clear_rate", "clear rate", True),
+    ("pots_per_turn", "pots/turn", False),
+    ("episode_reward", "episode reward", False),
+)
+
+
+def run_episodes(
+    agent: Any, env: Any, episodes: int, seed: int, deterministic: bool = True
+) -> EpisodeLog:
+    """Play ``episodes`` episodes (episode ``k`` reset with ``seed + k``) and count.
+
+    Args:
+        agent: Anything with SB3's ``predict(obs, state, episode_start, deterministic)``.
+        env: A Gymnasium ``PoolEnv`` (wrapped or not).
+        episodes: Number of episodes.
+        seed: Seed of the first episode.
+        deterministic: Passed to ``predict``.
+
+    Returns:
+        The per-episode counts.
+    """
+    log = EpisodeLog()
+    for k in range(episodes):
+        obs, _ = env.reset(seed=seed + k)
+        shots = pots = clean = scratches = turns = 0
+        reward, first_turn = 0.0, True
+        while True:
+            action, _ = agent.predict(obs, deterministic=deterministic)
+            obs, r, terminated, truncated, info = env.step(action)
+            n_pot, scratch = len(info["potted"]), bool(info["scratch"])
+            shots, pots, reward = shots + 1, pots + n_pot, reward + float(r)
+            clean += n_pot > 0 and not scratch
+            scratches += scratch
+            turn_over = n_pot == 0 or scratch
+            if turn_over:
+                turns += 1
+                first_turn = False
+            if terminated or truncated:
+                turns += not turn_over  # the last turn ends with the episode
+                break
+        cleared = bool(info.get("is_success", False))
+        log.shots.append(shots)
+        log.pots.append(pots)
+        log.clean.append(clean)
+        log.scratches.append(scratches)
+        log.turns.append(turns)
+        log.rewards.append(reward)
+        log.cleared.append(cleared)
+        log.run_out.append(cleared and first_turn)
+    return log
+
+
+def model_config(path: str | Path) -> dict[str, Any]:
+    """The saved run config of a model: ``config.yaml`` beside it or ``<stem>_config.yaml``."""
+    import yaml  # pyyaml comes with the train extra
+
+    path = Path(path)
+    for candidate in (path.with_name(f"{path.stem}_config.yaml"), path.parent / "config.yaml"):
+        if candidate.is_file():
+            return yaml.safe_load(candidate.read_text()) or {}
+    return {}
+
+
+def load_model(path: str | Path, algo: str | None = None) -> Any:
+    """Load an SB3 model; the algorithm from ``algo``, the saved config, or the file name."""
+    from agents.train_lib import ALGOS  # SB3 only when a model is loaded
+
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no model file {path}")
+    algo = algo or model_config(path).get("algo")
+    if algo is None:
+        algo = next((name for name in ALGOS if name in path.name.lower()), None)
+    if algo is None:
+        raise ValueError(f"cannot tell the algorithm of {path}: pass algo= (one of {list(ALGOS)})")
+    return ALGOS[algo].load(str(path), device="cpu")
+
+
+def make_agent(name: str, env: Any, seed: int = 0) -> Any:
+    """``"random"``, ``"ghost"``, ``"const[:a0,a1]"`` or an SB3 ``.zip`` path, playing ``env``."""
+    if name == "random":
+        return RandomAgent(env, seed=seed)
+    if name == "ghost":
+        return GhostBallAgent(env, seed=seed)
+    if name.startswith("const"):  # "const" (full hit, hardest) or "const:a0,a1"
+        _, _, values = name.partition(":")
+        action = tuple(float(v) for v in values.split(",")) if values else (0.0, 1.0)
+        return ConstantAgent(env, action)
+    if name.endswith(".zip"):
+        return load_model(name)
+    raise ValueError(
+        f"unknown agent {name!r}: use 'random', 'ghost', 'const[:a0,a1]' or a model .zip path"
+    )
+
+
+def evaluate_agent(
+    name: str,
+    env_id: str,
+    episodes: int,
+    seed: int,
+    env_kwargs: dict[str, Any] | None = None,
+    wrapper: str | None = None,
+    agent: Any = None,
+) -> dict[str, Estimate]:
+    """Evaluate one agent (by name, or ``agent`` given) and return its summary.
+
+    For a model path, ``env_kwargs`` and ``wrapper`` default to the model's saved config.
+    """
+    if agent is None and name.endswith(".zip") and env_kwargs is None and wrapper is None:
+        config = model_config(name)
+        env_kwargs, wrapper = config.get("env_kwargs"), config.get("wrapper")
+    env = make_env(env_id, env_kwargs, wrapper)
+    try:
+        agent = agent if agent is not None else make_agent(name, env, seed)
+        return run_episodes(agent, env, episodes, seed).summary()
+    finally:
+        env.close()
+
+
+def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
+    """A markdown table: one row per agent, each statistic with its 95% interval."""
+    head = "| agent | " + " | ".join(label for _, label, _ in COLUMNS) + " |"
+    lines = [head, "|" + "---|" * (len(COLUMNS) + 1)]
+    for agent, stats in rows.items():
+        cells = [stats[key].as_percent() if pct else str(stats[key]) for key, _, pct in COLUMNS]
+        lines.append(f"| {agent} | " + " | ".join(cells) + " |")
+    lines.append("")
+    lines.append(f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets.")
+    return "\n".join(lines)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command-line entry point."""
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--env", default="pool_env/OneBall-v0", help="registered env id")
+    parser.add_argument(
+        "--agent",
+        nargs="+",
+        default=["random", "ghost"],
+        help="random, ghost, const[:a0,a1] or a model .zip",
+    )
+    parser.add_argument("--episodes", type=int, default=1000)
+    parser.add_argument("--seed", type=int, default=10_000)
+    parser.add_argument("--aim", default=None, help="override the env's aim mode")
+    parser.add_argument("--out", default=None, help="also write the table to this file")
+    args = parser.parse_args(argv)
+    if args.episodes < 1:
+        parser.error("--episodes must be >= 1")
+    kwargs = {"aim": args.aim} if args.aim else None
+    rows = {}
+    for name in args.agent:
+        rows[name] = evaluate_agent(name, args.env, args.episodes, args.seed, env_kwargs=kwargs)
+    table = format_table(rows, args.episodes)
+    print(f"{args.env}, seed {args.seed}")
+    print(table)
+    if args.out:
+        Path(args.out).write_text(f"# Evaluation on {args.env}\n\n{table}\n")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,62 @@
+"""PocketFeatures: the raw observation plus the pockets as seen along the aim line.
+
+The environment's default action aims relative to the line from the cue ball to the nearest
+object ball (its ``cut`` offset). The raw observation gives absolute coordinates, so a
+policy must learn rotations and ``atan2`` before it can relate the line to a pocket. This
+wrapper appends, in the frame of that line, where each pocket lies from the object ball
+(``cos``, ``sin`` of its bearing and its distance), plus the cue-to-ball distance: what a
+player looks at. It computes nothing the observation does not determine, and it does not
+solve the shot: which pocket, how thin and how hard are still learned.
+"""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+from numpy.typing import NDArray
+
+from agents.aiming import nearest_object_ball
+
+
+class PocketFeatures(gym.ObservationWrapper):
+    """Append ``1 + 3 K`` features (``K`` pockets) to a ``PoolEnv`` observation.
+
+    Features, all in ``[-1, 1]``: the cue-to-reference-ball distance over the table
+    diagonal, then per pocket ``cos`` and ``sin`` of the bearing from the reference ball to
+    the pocket, measured from the cue-to-ball direction, and that distance over the diagonal.
+    The reference ball is the env's aim reference, the nearest object ball; with none left
+    the features are 0.
+
+    Args:
+        env: A (wrapped) ``PoolEnv``.
+    """
+
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env)
+        table = env.unwrapped.table
+        self._pockets = np.asarray(table.pockets[:, :2], dtype=np.float64)
+        self._diagonal = math.hypot(table.length, table.width)
+        raw = env.observation_space.shape[0]
+        n = raw + 1 + 3 * self._pockets.shape[0]
+        self.observation_space = gym.spaces.Box(-1.0, 1.0, (n,), np.float32)
+
+    def observation(self, observation: NDArray[np.float32]) -> NDArray[np.float32]:
+        """The raw observation followed by the pocket features."""
+        env = self.env.unwrapped
+        return np.concatenate([observation, self.features(env.positions, env.on_table)])
+
+    def features(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
+        """The appended features for one layout (cue first)."""
+        out = np.zeros(1 + 3 * self._pockets.shape[0], dtype=np.float32)
+        j, dist, base = nearest_object_ball(positions, on_table)
+        if j < 0:
+            return out
+        out[0] = dist / self._diagonal
+        w = self._pockets - positions[j]
+        bearing = np.arctan2(w[:, 1], w[:, 0]) - base
+        out[1::3] = np.cos(bearing)
+        out[2::3] = np.sin(bearing)
+        out[3::3] = np.hypot(w[:, 0], w[:, 1]) / self._diagonal
+        return np.clip(out, -1.0, 1.0)

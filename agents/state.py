@@ -1,0 +1,164 @@
+"""What a baseline agent knows about its environment: the table, the action decoding, the layout.
+
+Baselines are built from an environment (a Gymnasium env, wrapped or not, or an SB3
+``VecEnv``) and then called like an SB3 model, with observations only. The observation holds
+the layout in float32 (about 0.1 um on a 9-ft table), which is plenty to aim, but touching
+balls (a rack) decode as overlapping and chaotic shots (a break) amplify the rounding. So when
+the environment's exact state matches the observation it is used; otherwise the layout is
+decoded from the observation.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from pool_env import Table
+from pool_env.mdp import encode_observations
+
+Layout = tuple[NDArray[np.float64], NDArray[np.bool_]]
+
+
+@dataclass(frozen=True)
+class EnvSpec:
+    """The static facts of an environment that a planner needs.
+
+    Attributes:
+        table: The table.
+        aim: Aim mode (``"cut"``, ``"relative"`` or ``"absolute"``).
+        aim_range: What action[0] = -1 and +1 map to.
+        speed_range: Speeds (m/s) that action[1] = -1 and +1 map to.
+        noise: Execution noise sigmas (rad, m/s) or ``None``.
+        n_balls: Balls in the layout, cue included.
+    """
+
+    table: Table
+    aim: str
+    aim_range: tuple[float, float]
+    speed_range: tuple[float, float]
+    noise: tuple[float, float] | None
+    n_balls: int
+
+
+def is_vec_env(env: Any) -> bool:
+    """Whether ``env`` is an SB3 ``VecEnv`` (duck-typed: SB3 is an optional dependency)."""
+    return hasattr(env, "num_envs") and hasattr(env, "get_attr") and hasattr(env, "env_method")
+
+
+def env_spec(env: Any) -> EnvSpec:
+    """Read the :class:`EnvSpec` of a (wrapped) ``PoolEnv`` or of an SB3 ``VecEnv`` of them."""
+    names = ("table", "aim", "aim_range", "speed_range", "noise", "n_object_balls")
+    if is_vec_env(env):
+        values = [env.get_attr(name, indices=[0])[0] for name in names]
+    else:
+        unwrapped = env.unwrapped
+        values = [getattr(unwrapped, name) for name in names]
+    table, aim, aim_range, speed_range, noise, n_obj = values
+    return EnvSpec(
+        table=table,
+        aim=str(aim),
+        aim_range=(float(aim_range[0]), float(aim_range[1])),
+        speed_range=(float(speed_range[0]), float(speed_range[1])),
+        noise=None if noise is None else (float(noise[0]), float(noise[1])),
+        n_balls=int(n_obj) + 1,
+    )
+
+
+def decode_observation(obs: NDArray[np.floating], table: Table) -> Layout:
+    """Invert :func:`pool_env.mdp.encode_observations` for one observation (float32 precision).
+
+    Balls that decode closer than ``2R`` (touching in the real layout) are pushed apart along
+    their line of centres, so that the simulator accepts the layout.
+    """
+    per_ball = np.asarray(obs, dtype=np.float64).reshape(-1, 3)
+    on_table = per_ball[:, 2] > 0.5
+    positions = np.empty((per_ball.shape[0], 2))
+    positions[:, 0] = (per_ball[:, 0] + 1.0) * table.length / 2.0
+    positions[:, 1] = (per_ball[:, 1] + 1.0) * table.width / 2.0
+    r = table.ball_radius
+    positions[:, 0] = np.clip(positions[:, 0], r, table.length - r)
+    positions[:, 1] = np.clip(positions[:, 1], r, table.width - r)
+    _separate(positions, on_table, 2.0 * r * (1.0 + 1e-9))
+    return positions, on_table
+
+
+def _separate(positions: NDArray[np.float64], on_table: NDArray[np.bool_], reach: float) -> None:
+    """Push overlapping balls apart in place, a few sweeps (rounding-sized overlaps only)."""
+    rows = on_table.nonzero()[0]
+    for _ in range(8):
+        moved = False
+        for a_i, a in enumerate(rows):
+            for b in rows[a_i + 1 :]:
+                d = positions[b] - positions[a]
+                dist = float(np.hypot(d[0], d[1]))
+                if 0.0 < dist < reach:
+                    push = (reach - dist) / 2.0 * d / dist
+                    positions[a] -= push
+                    positions[b] += push
+                    moved = True
+        if not moved:
+            return
+
+
+class LayoutSource:
+    """Turns a batch of observations into exact layouts, from the environment when it can.
+
+    Args:
+        env: The environment the agent plays (``gym.Env`` or SB3 ``VecEnv``), or ``None``
+            to always decode observations.
+        table: The table (to decode and to check observations).
+    """
+
+    def __init__(self, env: Any, table: Table) -> None:
+        self.env = env
+        self.table = table
+
+    def layouts(self, obs: NDArray[np.floating]) -> list[Layout]:
+        """One ``(positions, on_table)`` per row of the ``(B, D)`` observations."""
+        exact = self._exact(obs.shape[0])
+        out = []
+        for k in range(obs.shape[0]):
+            if exact is not None and self._matches(obs[k], *exact[k]):
+                out.append((exact[k][0].copy(), exact[k][1].copy()))
+            else:
+                out.append(decode_observation(obs[k], self.table))
+        return out
+
+    def _exact(self, batch: int) -> list[Layout] | None:
+        env = self.env
+        if env is None:
+            return None
+        try:
+            if is_vec_env(env):
+                if env.num_envs != batch:
+                    return None
+                pos, on = env.get_attr("positions"), env.get_attr("on_table")
+                return list(zip(pos, on, strict=True))
+            if batch != 1:
+                return None
+            unwrapped = env.unwrapped
+            return [(unwrapped.positions, unwrapped.on_table)]
+        except (RuntimeError, AttributeError):  # not reset yet, or not a PoolEnv
+            return None
+
+    def _matches(
+        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> bool:
+        if positions.shape[0] * 3 != obs.shape[0]:
+            return False
+        t = self.table
+        expected = encode_observations(positions[None], on[None], t.length, t.width)[0]
+        return bool(np.array_equal(expected, np.asarray(obs, dtype=np.float32)))
+
+
+def batch_obs(observation: Any) -> tuple[NDArray[np.floating], bool]:
+    """``(B, D)`` observations and whether the input was a single unbatched one."""
+    obs = np.asarray(observation)
+    if obs.ndim == 1:
+        return obs[None, :], True
+    if obs.ndim != 2:
+        raise ValueError(f"observations must have shape (D,) or (B, D), got {obs.shape}")
+    return obs, False

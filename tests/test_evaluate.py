@@ -1,0 +1,92 @@
+"""Evaluation: statistics, confidence intervals, the command line, loading a saved model."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import pool_env  # noqa: F401
+from agents.evaluate import evaluate_agent, load_model, main, run_episodes
+from agents.metrics import mean_ci, ratio_ci, wilson
+from agents.random_agent import ConstantAgent
+
+ONE = "pool_env/OneBall-v0"
+
+
+def test_wilson_interval_known_values() -> None:
+    est = wilson(50, 100)
+    assert est.value == 0.5
+    assert est.low == pytest.approx(0.4038, abs=1e-4)
+    assert est.high == pytest.approx(0.5962, abs=1e-4)
+    zero = wilson(0, 20)
+    assert zero.low == 0.0 and 0.0 < zero.high < 0.2
+
+
+def test_ratio_ci_is_wilson_for_one_shot_episodes() -> None:
+    pots = np.array([1, 0, 1, 1, 0, 1])
+    assert ratio_ci(pots, np.ones(6)) == wilson(4, 6)
+
+
+def test_ratio_ci_clusters_by_episode() -> None:
+    pots, shots = np.array([3.0, 0.0, 5.0, 1.0]), np.array([4.0, 2.0, 5.0, 3.0])
+    est = ratio_ci(pots, shots)
+    assert est.value == pytest.approx(9 / 14)
+    assert est.low < est.value < est.high
+    m = mean_ci(np.array([1.0, 2.0, 3.0]))
+    assert m.value == 2.0 and m.high - m.value == pytest.approx(1.96 / math.sqrt(3), 1e-3)
+
+
+def test_run_episodes_counts_shots_pots_and_scratches() -> None:
+    env = gym.make(ONE)
+    log = run_episodes(ConstantAgent(env, (0.0, 1.0)), env, 50, seed=0)
+    assert log.shots == [1] * 50  # OneBall: one shot per episode
+    assert all(c <= p for c, p in zip(log.clean, log.pots, strict=True))
+    for pots, clean, scratch, reward in zip(
+        log.pots, log.clean, log.scratches, log.rewards, strict=True
+    ):
+        assert reward == pots - scratch
+        assert clean == (pots > 0 and not scratch)
+    stats = log.summary()
+    assert stats["pots_per_turn"].value == stats["pots_per_shot"].value
+
+
+def test_multi_shot_episodes_count_turns() -> None:
+    env = gym.make("pool_env/Pool-v0", n_balls=2, max_shots=5)
+    log = run_episodes(ConstantAgent(env, (0.0, -0.5)), env, 5, seed=0)
+    for shots, turns in zip(log.shots, log.turns, strict=True):
+        assert 1 <= turns <= shots <= 5
+
+
+def test_cli_prints_a_table(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
+    out = tmp_path / "eval.md"
+    argv = ["--env", ONE, "--agent", "random", "ghost", "--episodes", "30", "--seed", "5"]
+    assert main([*argv, "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    assert "| random |" in text and "| ghost |" in text and "pots/shot" in text
+    assert "| ghost |" in out.read_text()
+
+
+def test_saved_model_loads_and_evaluates(tmp_path: Path) -> None:
+    from stable_baselines3 import PPO
+
+    env = gym.make(ONE)
+    model = PPO("MlpPolicy", env, n_steps=64, batch_size=32, n_epochs=1, gamma=0.0, seed=0)
+    model.learn(64)
+    path = tmp_path / "ppo_tiny.zip"
+    model.save(path)
+    loaded = load_model(path)
+    assert isinstance(loaded, PPO)
+    stats = evaluate_agent(str(path), ONE, 20, seed=0)
+    assert 0.0 <= stats["pots_per_shot"].value <= 1.0
+    assert main(["--env", ONE, "--agent", str(path), "--episodes", "10"]) == 0
+
+
+def test_unknown_agent_is_a_clear_error() -> None:
+    with pytest.raises(ValueError, match="unknown agent"):
+        evaluate_agent("nonsense", ONE, 1, seed=0)
+    with pytest.raises(FileNotFoundError):
+        load_model("missing_ppo.zip")
