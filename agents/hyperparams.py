@@ -1,0 +1,99 @@
+"""Hyperparameters as data: ``hyperparams.yml`` keyed by env id, then algorithm.
+
+As in rl-baselines3-zoo, but parsed without ``eval``: learning-rate schedules are written
+``"lin_3e-4"`` (linear decay to 0), activation functions by name, and every other value is
+plain YAML. Keys that configure the run rather than the algorithm are split off
+(:data:`RUN_KEYS`). An env id without an entry uses the ``default`` entry.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+#: The hyperparameter file shipped with the package.
+DEFAULT_PATH = Path(__file__).with_name("hyperparams.yml")
+
+#: Keys of an entry that configure the run, not the SB3 algorithm's constructor.
+RUN_KEYS = (
+    "n_timesteps",
+    "n_envs",
+    "policy",
+    "env_kwargs",
+    "wrapper",
+    "eval_freq",
+    "eval_episodes",
+)
+
+#: Activation functions by name (``policy_kwargs.activation_fn``).
+ACTIVATIONS = ("tanh", "relu", "elu", "leaky_relu", "silu")
+
+
+def load(env_id: str, algo: str, path: str | Path | None = None) -> dict[str, Any]:
+    """The entry for ``env_id`` and ``algo`` (or the ``default`` entry), as plain data.
+
+    Raises:
+        KeyError: If neither the id nor ``default`` has an entry for ``algo``.
+    """
+    data = yaml.safe_load(Path(path or DEFAULT_PATH).read_text()) or {}
+    for key in (env_id, "default"):
+        if algo in (data.get(key) or {}):
+            return copy.deepcopy(data[key][algo])
+    raise KeyError(f"no hyperparameters for {algo!r} under {env_id!r} or 'default' in {path}")
+
+
+def split(entry: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
+    """``(run settings, algorithm keyword arguments)`` of an entry."""
+    run = {k: entry[k] for k in RUN_KEYS if k in entry}
+    algo = {k: v for k, v in entry.items() if k not in RUN_KEYS}
+    return run, algo
+
+
+def linear_schedule(initial: float) -> Callable[[float], float]:
+    """SB3 schedule: ``initial`` at the start, falling linearly to 0 at the end."""
+
+    def schedule(progress_remaining: float) -> float:
+        return progress_remaining * initial
+
+    return schedule
+
+
+def to_sb3(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """Turn the data form of algorithm arguments into SB3 objects (schedules, activations).
+
+    Raises:
+        ValueError: On an unknown schedule or activation name.
+    """
+    import torch  # only when an algorithm is built
+
+    out = copy.deepcopy(kwargs)
+    for key in ("learning_rate", "clip_range"):
+        value = out.get(key)
+        if isinstance(value, str):
+            try:  # YAML 1.1 reads "1e-3" (no dot) as a string
+                out[key] = float(value)
+                continue
+            except ValueError:
+                pass
+            kind, _, number = value.partition("_")
+            if kind != "lin" or not number:
+                raise ValueError(f"{key}: unknown schedule {value!r}: use a number or 'lin_<x>'")
+            out[key] = linear_schedule(float(number))
+    policy_kwargs = out.get("policy_kwargs")
+    if policy_kwargs and isinstance(policy_kwargs.get("activation_fn"), str):
+        name = policy_kwargs["activation_fn"]
+        classes = {
+            "tanh": torch.nn.Tanh,
+            "relu": torch.nn.ReLU,
+            "elu": torch.nn.ELU,
+            "leaky_relu": torch.nn.LeakyReLU,
+            "silu": torch.nn.SiLU,
+        }
+        if name not in classes:
+            raise ValueError(f"unknown activation_fn {name!r}: use one of {ACTIVATIONS}")
+        policy_kwargs["activation_fn"] = classes[name]
+    return out

@@ -1,0 +1,54 @@
+"""Learning-curve plot of a run: pot rate over training, with the baselines for scale."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only: no display on a training machine
+import matplotlib.pyplot as plt
+
+from agents.metrics import Estimate
+
+
+def learning_curve(
+    path: str | Path,
+    history: list[tuple[int, float, dict[str, Estimate]]],
+    final: dict[str, dict[str, Estimate]],
+    config: Any,
+) -> None:
+    """Write a PNG: pots per shot and clean pots per shot (95% bands) against steps.
+
+    Args:
+        path: Output PNG.
+        history: ``(timesteps, seconds, summary)`` of each periodic evaluation.
+        final: Final evaluation rows by agent (``random`` and ``ghost`` drawn as lines).
+        config: The run's config (title).
+    """
+    fig, ax = plt.subplots(figsize=(7, 4.2), dpi=110)
+    steps = [h[0] for h in history]
+    for key, label, color in (
+        ("pots_per_shot", "pots per shot", "tab:blue"),
+        ("clean_pot_rate", "clean pots per shot (no scratch)", "tab:green"),
+        ("scratch_rate", "scratches per shot", "tab:red"),
+    ):
+        if not history:
+            break
+        est = [h[2][key] for h in history]
+        ax.plot(steps, [e.value for e in est], marker="o", ms=3, color=color, label=label)
+        ax.fill_between(steps, [e.low for e in est], [e.high for e in est], color=color, alpha=0.15)
+    for name, style in (("random", ":"), ("ghost", "--")):
+        if name in final:
+            value = final[name]["pots_per_shot"].value
+            ax.axhline(value, color="gray", ls=style, lw=1, label=f"{name}: {value:.0%} pots")
+    ax.set_xlabel("environment steps")
+    ax.set_ylabel("rate (periodic evaluation)")
+    ax.set_ylim(0.0, 1.05)
+    ax.set_title(f"{config.algo.upper()} on {config.env_id} (seed {config.seed})")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)

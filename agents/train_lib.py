@@ -1,0 +1,280 @@
+"""Training on Stable-Baselines3: vectorized envs, periodic evaluation, a folder per run.
+
+:func:`train` is everything ``train.py`` does: it resolves the hyperparameters of
+``hyperparams.yml`` for the env id and algorithm, builds the vectorized environment, trains
+with SB3's progress bar and tensorboard logging, evaluates every ``eval_freq`` steps (pot
+rate, clean pots, scratches on fixed seeds), and writes into its run folder: ``config.yaml``,
+``command.txt``, ``model.zip``, ``evaluation.md`` / ``evaluation.json`` (the model next to
+the random and ghost-ball baselines, same seeds), ``curve.csv`` and ``learning_curve.png``.
+"""
+
+from __future__ import annotations
+
+import json
+import shlex
+import sys
+import time
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+from typing import Any
+
+import yaml
+from stable_baselines3 import A2C, PPO, SAC, TD3
+from stable_baselines3.common.base_class import BaseAlgorithm
+from stable_baselines3.common.callbacks import BaseCallback
+from stable_baselines3.common.env_util import make_vec_env
+from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecEnv, VecMonitor
+
+from agents import hyperparams
+from agents.envs import EnvFactory, make_env
+from agents.evaluate import evaluate_agent, format_table, run_episodes
+from agents.metrics import Estimate
+
+#: Algorithms by the name used in ``hyperparams.yml`` and on the command line.
+ALGOS: dict[str, type[BaseAlgorithm]] = {"ppo": PPO, "sac": SAC, "a2c": A2C, "td3": TD3}
+
+#: Vectorized environment kinds (``--vec``).
+VEC_KINDS = ("dummy", "subproc", "native")
+
+#: Seeds of the periodic evaluation and of the final one: apart from each other, so that
+#: nothing is tuned on the final numbers, and from the training envs' own streams.
+EVAL_SEED = 20_000
+FINAL_SEED = 10_000
+
+
+@dataclass
+class TrainConfig:
+    """Everything that defines a run (saved as the run's ``config.yaml``).
+
+    Attributes:
+        env_id: Registered environment id.
+        algo: Key of :data:`ALGOS`.
+        seed: Seed of the algorithm and of the training envs.
+        n_timesteps: Environment steps to train for.
+        n_envs: Parallel environments.
+        vec: One of :data:`VEC_KINDS`.
+        threads: Torch threads.
+        eval_freq: Environment steps between evaluations (0: none during training).
+        eval_episodes: Episodes per periodic evaluation.
+        final_episodes: Episodes of the final evaluation (model and baselines).
+        baselines: Evaluate random and ghost-ball next to the model at the end.
+        progress_bar: Show SB3's progress bar.
+        policy: SB3 policy name.
+        env_kwargs: ``gymnasium.make`` keyword arguments.
+        wrapper: Observation wrapper name (see :mod:`agents.envs`), or ``None``.
+        algo_kwargs: Algorithm keyword arguments in their data form (``hyperparams.yml``).
+    """
+
+    env_id: str = "pool_env/OneBall-v0"
+    algo: str = "ppo"
+    seed: int = 0
+    n_timesteps: int = 100_000
+    n_envs: int = 8
+    vec: str = "dummy"
+    threads: int = 1
+    eval_freq: int = 50_000
+    eval_episodes: int = 500
+    final_episodes: int = 1000
+    baselines: bool = True
+    progress_bar: bool = True
+    policy: str = "MlpPolicy"
+    env_kwargs: dict[str, Any] = field(default_factory=dict)
+    wrapper: str | None = None
+    algo_kwargs: dict[str, Any] = field(default_factory=dict)
+
+
+def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = None) -> VecEnv:
+    """The training ``VecEnv`` of ``config`` (episode statistics monitored).
+
+    Raises:
+        ValueError: On an unknown kind, or a wrapper with the native kind.
+        ImportError: For ``native`` when ``agents.native_vec`` is not installed.
+    """
+    n = n_envs or config.n_envs
+    seed = config.seed if seed is None else seed
+    if config.vec == "native":
+        if config.wrapper:
+            raise ValueError("--vec native does not apply observation wrappers; use dummy")
+        try:
+            from agents.native_vec import make_native_vec_env
+        except ImportError as exc:
+            raise ImportError(
+                "--vec native needs agents/native_vec.py (make_native_vec_env), which is not "
+                f"available here ({exc}); use --vec dummy or --vec subproc"
+            ) from exc
+        return VecMonitor(make_native_vec_env(config.env_id, n, seed, config.env_kwargs or None))
+    if config.vec not in VEC_KINDS:
+        raise ValueError(f"--vec must be one of {VEC_KINDS}, got {config.vec!r}")
+    factory = EnvFactory(config.env_id, config.env_kwargs, config.wrapper)
+    cls = SubprocVecEnv if config.vec == "subproc" else DummyVecEnv
+    return make_vec_env(factory, n_envs=n, seed=seed, vec_env_cls=cls)
+
+
+class PeriodicEval(BaseCallback):
+    """Evaluate the model every ``eval_freq`` steps on fixed seeds; log and keep the curve.
+
+    Args:
+        config: The run's config (which env to build).
+        history: List the results are appended to: ``(timesteps, seconds, summary)``.
+    """
+
+    def __init__(self, config: TrainConfig, history: list[tuple[int, float, dict]]) -> None:
+        super().__init__()
+        self.config = config
+        self.history = history
+        self.env = make_env(config.env_id, config.env_kwargs, config.wrapper)
+        self.next_eval = 0
+        self.start = time.perf_counter()
+
+    def _evaluate(self) -> None:
+        summary = run_episodes(self.model, self.env, self.config.eval_episodes, EVAL_SEED).summary()
+        self.history.append((self.num_timesteps, time.perf_counter() - self.start, summary))
+        for key in ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward"):
+            self.logger.record(f"eval/{key}", summary[key].value)
+        self.logger.dump(self.num_timesteps)
+        if not self.config.progress_bar:  # a log line instead of the bar
+            print(
+                f"{self.num_timesteps:>9,} steps {self.history[-1][1]:6.0f} s  pots/shot "
+                f"{summary['pots_per_shot']}  clean {summary['clean_pot_rate']}  "
+                f"scratch {summary['scratch_rate']}",
+                flush=True,
+            )
+
+    def _on_training_start(self) -> None:
+        self._evaluate()  # the untrained policy: the curve's first point
+        self.next_eval = self.num_timesteps + self.config.eval_freq
+
+    def _on_step(self) -> bool:
+        if self.num_timesteps >= self.next_eval:
+            self._evaluate()
+            self.next_eval += self.config.eval_freq
+        return True
+
+    def _on_training_end(self) -> None:
+        if not self.history or self.history[-1][0] != self.num_timesteps:
+            self._evaluate()
+        self.env.close()
+
+
+def resolve_config(
+    env_id: str, algo: str, overrides: dict[str, Any], path: str | Path | None = None
+) -> TrainConfig:
+    """Merge ``hyperparams.yml`` (for ``env_id``/``algo``) with command-line overrides.
+
+    ``overrides`` holds :class:`TrainConfig` fields (``None`` values are ignored) and an
+    optional ``algo_kwargs`` dict merged over the file's.
+    """
+    if algo not in ALGOS:
+        raise ValueError(f"unknown algorithm {algo!r}: use one of {list(ALGOS)}")
+    run, algo_kwargs = hyperparams.split(hyperparams.load(env_id, algo, path))
+    algo_kwargs.update(overrides.pop("algo_kwargs", None) or {})
+    fields = {**run, **{k: v for k, v in overrides.items() if v is not None}}
+    return TrainConfig(env_id=env_id, algo=algo, algo_kwargs=algo_kwargs, **fields)
+
+
+def run_folder(root: str | Path, config: TrainConfig) -> Path:
+    """A new folder ``root/<env>/<algo>_s<seed>_<steps>_<time>`` for one run."""
+    env_name = config.env_id.split("/")[-1]
+    stamp = time.strftime("%Y%m%d-%H%M%S")
+    base = Path(root) / env_name / f"{config.algo}_s{config.seed}_{_steps(config.n_timesteps)}"
+    path = Path(f"{base}_{stamp}")
+    k = 1
+    while path.exists():  # two runs in the same second
+        path, k = Path(f"{base}_{stamp}-{k}"), k + 1
+    path.mkdir(parents=True)
+    return path
+
+
+def _steps(n: int) -> str:
+    return f"{n // 1_000_000}M" if n % 1_000_000 == 0 else f"{n // 1000}k" if n >= 1000 else str(n)
+
+
+def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -> Path:
+    """Train, evaluate and write a run folder; return its path.
+
+    Args:
+        config: The run (see :func:`resolve_config`).
+        root: Parent folder of run folders.
+        quiet: Print nothing but the final table.
+
+    Returns:
+        The run folder.
+    """
+    import torch
+
+    torch.set_num_threads(config.threads)  # small MLPs: one thread beats two (measured)
+    t0 = time.perf_counter()
+    out = run_folder(root, config)
+    (out / "config.yaml").write_text(yaml.safe_dump(asdict(config), sort_keys=False))
+    (out / "command.txt").write_text(shlex.join([sys.executable, *sys.argv]) + "\n")
+
+    env = make_vec(config)
+    model = ALGOS[config.algo](
+        config.policy,
+        env,
+        seed=config.seed,
+        device="cpu",
+        verbose=0,
+        tensorboard_log=str(out / "tb"),
+        **hyperparams.to_sb3(config.algo_kwargs),
+    )
+    history: list[tuple[int, float, dict]] = []
+    callback = PeriodicEval(config, history) if config.eval_freq > 0 else None
+    t_train = time.perf_counter()
+    model.learn(config.n_timesteps, callback=callback, progress_bar=config.progress_bar)
+    train_seconds = time.perf_counter() - t_train
+    env.close()
+    model.save(out / "model.zip")
+
+    rows = _final_evaluation(config, model)
+    from agents.plots import learning_curve  # matplotlib only now
+
+    _write_curve(out, history)
+    learning_curve(out / "learning_curve.png", history, rows, config)
+    total = time.perf_counter() - t0
+    table = format_table(rows, config.final_episodes)
+    report = {
+        "env_id": config.env_id,
+        "algo": config.algo,
+        "n_timesteps": config.n_timesteps,
+        "train_seconds": round(train_seconds, 1),
+        "total_seconds": round(total, 1),
+        "final_seed": FINAL_SEED,
+        "episodes": config.final_episodes,
+        "results": {agent: _as_dict(stats) for agent, stats in rows.items()},
+    }
+    (out / "evaluation.json").write_text(json.dumps(report, indent=2) + "\n")
+    (out / "evaluation.md").write_text(
+        f"# {config.algo.upper()} on {config.env_id}, {config.n_timesteps:,} steps\n\n"
+        f"Command: `{(out / 'command.txt').read_text().strip()}`\n\n{table}\n\n"
+        f"Training {train_seconds:.0f} s, total {total:.0f} s.\n"
+    )
+    print(f"\n{config.algo.upper()} on {config.env_id} after {config.n_timesteps:,} steps")
+    print(table)
+    if not quiet:
+        print(f"\nTraining took {train_seconds:.0f} s ({total:.0f} s in all). Run folder: {out}")
+    return out
+
+
+def _final_evaluation(config: TrainConfig, model: BaseAlgorithm) -> dict[str, dict]:
+    """The model and (optionally) both baselines on the same final seeds."""
+    n, kw, wrap = config.final_episodes, config.env_kwargs, config.wrapper
+    name = f"{config.algo} (this run)"
+    rows = {name: evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, wrap, agent=model)}
+    if config.baselines:  # baselines read the raw observation: no wrapper, same layouts
+        for name in ("random", "const", "ghost"):
+            rows[name] = evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, None)
+    return rows
+
+
+def _as_dict(stats: dict[str, Estimate]) -> dict[str, list[float]]:
+    return {key: [est.value, est.low, est.high] for key, est in stats.items()}
+
+
+def _write_curve(out: Path, history: list[tuple[int, float, dict]]) -> None:
+    keys = ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward")
+    lines = ["timesteps,seconds," + ",".join(keys)]
+    for steps, seconds, summary in history:
+        values = ",".join(f"{summary[k].value:.4f}" for k in keys)
+        lines.append(f"{steps},{seconds:.1f},{values}")
+    (out / "curve.csv").write_text("\n".join(lines) + "\n")

@@ -1,0 +1,88 @@
+"""train.py end to end on a tiny budget, hyperparameter parsing, vectorized env kinds."""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+import train
+from agents import hyperparams
+from agents.evaluate import evaluate_agent
+from agents.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
+
+TINY = [
+    "--timesteps", "512", "--n-envs", "2", "--eval-freq", "256", "--eval-episodes", "10",
+    "--final-episodes", "20", "--no-progress",
+]  # fmt: skip
+
+
+def test_train_py_writes_a_complete_run_folder(tmp_path: Path) -> None:
+    assert (
+        train.main([*TINY, "--runs", str(tmp_path), "--set", "n_steps=128", "batch_size=64"]) == 0
+    )
+    (run,) = (tmp_path / "OneBall-v0").iterdir()
+    for name in ("config.yaml", "command.txt", "model.zip", "evaluation.md", "evaluation.json",
+                 "curve.csv", "learning_curve.png"):  # fmt: skip
+        assert (run / name).is_file(), name
+    assert any((run / "tb").rglob("events.out.tfevents.*"))
+    config = yaml.safe_load((run / "config.yaml").read_text())
+    assert config["algo"] == "ppo" and config["n_timesteps"] == 512
+    assert config["algo_kwargs"]["n_steps"] == 128
+    report = json.loads((run / "evaluation.json").read_text())
+    assert set(report["results"]) == {"ppo (this run)", "random", "const", "ghost"}
+    assert report["results"]["ghost"]["pots_per_shot"][0] >= 0.9
+    assert len((run / "curve.csv").read_text().splitlines()) >= 3  # header, start, end
+    stats = evaluate_agent(str(run / "model.zip"), "pool_env/OneBall-v0", 10, seed=0)
+    assert 0.0 <= stats["pots_per_shot"].value <= 1.0
+
+
+def test_sac_runs(tmp_path: Path) -> None:
+    argv = [*TINY, "--algo", "sac", "--runs", str(tmp_path), "--no-baselines", "--eval-freq", "0"]
+    assert train.main([*argv, "--set", "learning_starts=64", "gradient_steps=1"]) == 0
+    (run,) = (tmp_path / "OneBall-v0").iterdir()
+    assert (run / "model.zip").is_file()
+
+
+def test_subproc_vec_env_steps() -> None:
+    config = TrainConfig(n_envs=2, vec="subproc")
+    env = make_vec(config)
+    try:
+        env.reset()
+        obs, _, dones, _ = env.step(env.action_space.sample()[None].repeat(2, 0))
+        assert obs.shape == (2, 6) and dones.all()  # OneBall: one shot per episode
+    finally:
+        env.close()
+
+
+def test_native_vec_missing_is_a_clear_error(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(sys.modules, "agents.native_vec", None)  # as if not installed
+    with pytest.raises(ImportError, match="native_vec"):
+        make_vec(TrainConfig(n_envs=2, vec="native"))
+
+
+def test_every_hyperparameter_entry_resolves() -> None:
+    data = yaml.safe_load(hyperparams.DEFAULT_PATH.read_text())
+    for env_id, entries in data.items():
+        for algo, entry in entries.items():
+            assert algo in ALGOS
+            run, kwargs = hyperparams.split(entry)
+            hyperparams.to_sb3(kwargs)
+            env = "pool_env/OneBall-v0" if env_id == "default" else env_id
+            assert resolve_config(env, algo, {}).n_timesteps == run["n_timesteps"]
+
+
+def test_schedules_and_bad_values() -> None:
+    kwargs = hyperparams.to_sb3({"learning_rate": "lin_1e-3", "policy_kwargs": {
+        "activation_fn": "relu"}})  # fmt: skip
+    assert kwargs["learning_rate"](1.0) == pytest.approx(1e-3)
+    assert kwargs["learning_rate"](0.5) == pytest.approx(5e-4)
+    with pytest.raises(ValueError, match="schedule"):
+        hyperparams.to_sb3({"learning_rate": "exp_1e-3"})
+    with pytest.raises(ValueError, match="activation"):
+        hyperparams.to_sb3({"policy_kwargs": {"activation_fn": "nope"}})
+    with pytest.raises(SystemExit):
+        train.main(["--set", "novalue"])
