@@ -13,6 +13,15 @@ from pool_env.kernels.timeline import positions_at_many as _positions_at_many
 
 EventKind = Literal["pocket", "ball", "cushion", "stop"]
 
+# Shared read-only empty logs of unrecorded results (no allocation per shot).
+_EMPTY_F = np.empty(0, dtype=np.float64)
+_EMPTY_I = np.empty(0, dtype=np.int64)
+_EMPTY_KIND = np.empty(0, dtype=np.int8)
+_EMPTY_STATE = np.empty((0, 4), dtype=np.float64)
+_EMPTY_BOOL = np.empty(0, dtype=np.bool_)
+for _array in (_EMPTY_F, _EMPTY_I, _EMPTY_KIND, _EMPTY_STATE, _EMPTY_BOOL):
+    _array.setflags(write=False)
+
 #: Event kind codes of the compiled loop, in tie-breaking order.
 KIND_NAMES: tuple[EventKind, ...] = ("pocket", "ball", "cushion", "stop")
 
@@ -100,6 +109,35 @@ class ShotResult:
         self.first_contact = (int(first_i), int(first_j)) if first_i >= 0 else None
         self._deceleration = deceleration
         self.recorded = recorded
+
+    @classmethod
+    def unrecorded(
+        cls,
+        final: NDArray[np.float64],
+        pocketed: NDArray[np.int64],
+        meta: NDArray[np.int64],
+        duration: float,
+        deceleration: float,
+    ) -> ShotResult:
+        """A result without events or trajectories (``simulate(record=False)``).
+
+        ``meta`` is ``(code, i, j, n_events, capped, first_i, first_j)`` from the kernel.
+        """
+        self = cls.__new__(cls)  # attribute by attribute: this runs once per training step
+        self.positions = final
+        self.pocketed = pocketed
+        self.n_events, capped, first_i, first_j = meta[3:7].tolist()
+        self.duration = duration
+        self.hit_event_cap = bool(capped)
+        self.first_contact = (first_i, first_j) if first_i >= 0 else None
+        self.event_times = self._seg_t = _EMPTY_F
+        self.event_kinds = _EMPTY_KIND
+        self.event_i = self.event_j = self.event_first_segment = self._seg_ball = _EMPTY_I
+        self._seg_state = _EMPTY_STATE
+        self._seg_potted = _EMPTY_BOOL
+        self._deceleration = deceleration
+        self.recorded = False
+        return self
 
     @property
     def events(self) -> list[Event]:

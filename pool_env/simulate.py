@@ -29,9 +29,14 @@ def _as_points(name: str, value: ArrayLike, n: int | None) -> NDArray[np.float64
     return arr
 
 
-def _as_masses(table: Table, masses: ArrayLike | None, n: int) -> NDArray[np.float64]:
+# Masses left to the kernels: every ball weighs the table's ball_mass.
+_TABLE_MASSES = np.empty(0, dtype=np.float64)
+_TABLE_MASSES.setflags(write=False)
+
+
+def _as_masses(masses: ArrayLike | None, n: int) -> NDArray[np.float64]:
     if masses is None:
-        return np.full(n, table.ball_mass)
+        return _TABLE_MASSES
     try:
         arr = np.ascontiguousarray(masses, dtype=np.float64)
     except (TypeError, ValueError) as exc:
@@ -94,23 +99,46 @@ def simulate(
         ValueError: On malformed, non-finite or out-of-table input, overlapping balls, a
             non-positive mass, or a bad ``max_events``. Inputs are never modified.
     """
+    pos = _as_points("positions", positions, None)
+    return _run(
+        table, pos, _as_points("velocities", velocities, pos.shape[0]), masses, max_events, record
+    )
+
+
+def _run(
+    table: Table,
+    pos: NDArray[np.float64],
+    vel: NDArray[np.float64],
+    masses: ArrayLike | None,
+    max_events: int,
+    record: bool,
+) -> ShotResult:
+    """:func:`simulate` once ``pos`` and ``vel`` are float64 arrays of matching shapes."""
     if not isinstance(table, Table):
         raise ValueError(f"table must be a pool_env.Table, got {type(table).__name__}")
-    pos = _as_points("positions", positions, None)
     n = pos.shape[0]
-    vel = _as_points("velocities", velocities, n)
-    mass = _as_masses(table, masses, n)
-    if (
-        isinstance(max_events, bool)
-        or not isinstance(max_events, int | np.integer)
-        or max_events < 0
+    mass = _as_masses(masses, n)
+    if type(max_events) is not int and (
+        isinstance(max_events, bool) or not isinstance(max_events, np.integer)
     ):
         raise ValueError(f"max_events must be a non-negative integer, got {max_events!r}")
+    if max_events < 0:
+        raise ValueError(f"max_events must be a non-negative integer, got {max_events!r}")
+    if not record:  # one compiled call: validation and the loop, final state only
+        final = np.empty((n, 2))
+        pocketed = np.empty(n, dtype=np.int64)
+        meta = np.empty(7, dtype=np.int64)
+        duration = loop.shoot_final(
+            pos, vel, mass, table.params, table.pockets, int(max_events), final, pocketed, meta
+        )
+        if meta[0] != loop.OK:
+            _raise_invalid(int(meta[0]), int(meta[1]), int(meta[2]), pos, table)
+        return ShotResult.unrecorded(final, pocketed, meta, duration, table.deceleration)
     code, i, j = loop.validate(pos, vel, mass, table.params, table.pockets)
     if code != loop.OK:
         _raise_invalid(code, i, j, pos, table)
-    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, int(max_events), bool(record))
-    return ShotResult(raw, table.deceleration, bool(record))
+    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, int(max_events), True)
+    return ShotResult(raw, table.deceleration, True)
 
 
 def shoot(
@@ -145,14 +173,13 @@ def shoot(
     pos = _as_points("positions", positions, None)
     angle = float(angle)
     speed = float(speed)
-    if not math.isfinite(angle):
+    if angle - angle != 0.0:  # inf or NaN
         raise ValueError(f"angle must be finite, got {angle!r}")
     if not (math.isfinite(speed) and speed >= 0.0):
         raise ValueError(f"speed must be a non-negative finite number, got {speed!r}")
     n = pos.shape[0]
-    if isinstance(cue, bool) or not isinstance(cue, int | np.integer) or not (0 <= cue < n):
+    if (type(cue) is not int and not isinstance(cue, np.integer)) or not (0 <= cue < n):
         raise ValueError(f"cue must be a ball index in [0, {n}), got {cue!r}")
     vel = np.zeros((n, 2))
-    vel[cue, 0] = speed * math.cos(angle)
-    vel[cue, 1] = speed * math.sin(angle)
-    return simulate(table, pos, vel, masses, max_events, record)
+    vel[cue] = (speed * math.cos(angle), speed * math.sin(angle))
+    return _run(table, pos, vel, masses, max_events, record)

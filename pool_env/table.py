@@ -23,7 +23,7 @@ SIDE_MOUTH = 5.0 * 0.0254
 PocketSpec = Literal["standard", "none"] | Sequence[Sequence[float]] | NDArray[np.float64]
 
 # Indices into Table.params, the flat array the compiled kernels read.
-P_LENGTH, P_WIDTH, P_RADIUS, P_DECEL, P_E_BALL, P_E_CUSHION = range(6)
+P_LENGTH, P_WIDTH, P_RADIUS, P_DECEL, P_E_BALL, P_E_CUSHION, P_MASS = range(7)
 
 
 def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray[np.float64]:
@@ -137,6 +137,7 @@ class Table:
                 self.mu_roll * self.g,
                 self.e_ball,
                 self.e_cushion,
+                self.ball_mass,
             ],
             dtype=np.float64,
         )

@@ -66,7 +66,7 @@ def validate(positions, velocities, masses, params, pockets):
             return BAD_POSITION, i, -1
         if not (np.isfinite(velocities[i, 0]) and np.isfinite(velocities[i, 1])):
             return BAD_VELOCITY, i, -1
-        if not (masses[i] > 0.0 and np.isfinite(masses[i])):
+        if masses.shape[0] and not (masses[i] > 0.0 and np.isfinite(masses[i])):
             return BAD_MASS, i, -1
     for i in range(n):
         x, y = positions[i, 0], positions[i, 1]
@@ -143,7 +143,7 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     Args:
         positions: ``(N, 2)`` ball centres (validated).
         velocities: ``(N, 2)`` initial velocities.
-        masses: ``(N,)`` masses.
+        masses: ``(N,)`` masses, or an empty array for the table's ball mass.
         params: The table's flat parameter array (``Table.params``).
         pockets: ``(K, 3)`` capture circles.
         max_events: Event cap.
@@ -158,6 +158,8 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     """
     n = positions.shape[0]
     a = params[3]
+    if masses.shape[0] == 0:
+        masses = np.full(n, params[6])
     st = np.zeros((n, NCOL), dtype=np.float64)
     status = np.zeros(n, dtype=np.int8)
     for i in range(n):
@@ -329,3 +331,32 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         seg_state[:n_seg].copy(),
         seg_potted[:n_seg].copy(),
     )
+
+
+@kernel
+def shoot_final(positions, velocities, masses, params, pockets, max_events, final, pocketed, meta):
+    """Validate and simulate one shot in a single call, writing only the final state.
+
+    The lean path for training loops: no event log, and nothing allocated for Python (each
+    array handed back to Python costs a Python object).
+
+    Args:
+        positions, velocities, masses, params, pockets, max_events: As for :func:`run_shot`.
+        final: ``(N, 2)`` output: final positions.
+        pocketed: ``(N,)`` output: pockets (-1 on the table).
+        meta: ``(7,)`` output: ``(code, i, j, n_events, capped, first_i, first_j)``, where
+            ``code`` is the validation code (``OK``, or the problem with balls ``i, j``,
+            and then nothing is simulated).
+
+    Returns:
+        The shot's duration (s).
+    """
+    code, i, j = validate(positions, velocities, masses, params, pockets)
+    meta[0], meta[1], meta[2] = code, i, j
+    if code != OK:
+        return 0.0
+    out = run_shot(positions, velocities, masses, params, pockets, max_events, False)
+    final[:] = out[0]
+    pocketed[:] = out[1]
+    meta[3], meta[4], meta[5], meta[6] = out[2], out[4], out[5], out[6]
+    return out[3]
