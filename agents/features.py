@@ -4,8 +4,10 @@ The environment's default action aims relative to the line from the cue ball to 
 object ball (its ``cut`` offset). The raw observation gives absolute coordinates, so a
 policy must learn rotations and ``atan2`` before it can relate the line to a pocket. This
 wrapper appends, in the frame of that line, where each pocket lies from the object ball
-(``cos``, ``sin`` of its bearing and its distance), plus the cue-to-ball distance: what a
-player looks at. It computes nothing the observation does not determine, and it does not
+(``cos``, ``sin`` of its bearing and its distance), sorted from the straightest pocket to
+the thinnest cut, plus the cue-to-ball distance: what a player looks at. Sorting makes
+"cut towards the first pocket" a smooth function of the observation, where a fixed pocket
+order asks the network to learn an argmax. It computes nothing the observation does not determine, and it does not
 solve the shot: which pocket, how thin and how hard are still learned.
 """
 
@@ -25,7 +27,8 @@ class PocketFeatures(gym.ObservationWrapper):
 
     Features, all in ``[-1, 1]``: the cue-to-reference-ball distance over the table
     diagonal, then per pocket ``cos`` and ``sin`` of the bearing from the reference ball to
-    the pocket, measured from the cue-to-ball direction, and that distance over the diagonal.
+    the pocket, measured from the cue-to-ball direction, and that distance over the diagonal,
+    pockets sorted by decreasing ``cos`` (straightest first).
     The reference ball is the env's aim reference, the nearest object ball; with none left
     the features are 0.
 
@@ -56,7 +59,8 @@ class PocketFeatures(gym.ObservationWrapper):
         out[0] = dist / self._diagonal
         w = self._pockets - positions[j]
         bearing = np.arctan2(w[:, 1], w[:, 0]) - base
-        out[1::3] = np.cos(bearing)
-        out[2::3] = np.sin(bearing)
-        out[3::3] = np.hypot(w[:, 0], w[:, 1]) / self._diagonal
+        order = np.argsort(-np.cos(bearing), kind="stable")  # straightest pocket first
+        out[1::3] = np.cos(bearing[order])
+        out[2::3] = np.sin(bearing[order])
+        out[3::3] = np.hypot(w[order, 0], w[order, 1]) / self._diagonal
         return np.clip(out, -1.0, 1.0)
