@@ -31,9 +31,12 @@ def _one_table(b, positions, velocities, masses, active, params, pockets, max_ev
     """Validate and simulate table ``b``, writing into the output arrays ``out``."""
     final, pocketed, n_events, capped, first, error = out
     index = np.flatnonzero(active[b])
-    pos = np.ascontiguousarray(positions[b][index])
-    vel = np.ascontiguousarray(velocities[b][index])
-    mass = np.ascontiguousarray(masses[b][index])
+    if index.shape[0] == positions.shape[1]:  # every ball in play: views, no gathers
+        pos, vel, mass = positions[b], velocities[b], masses[b]
+    else:
+        pos = np.ascontiguousarray(positions[b][index])
+        vel = np.ascontiguousarray(velocities[b][index])
+        mass = np.ascontiguousarray(masses[b][index])
     code, i, j = validate(pos, vel, mass, params, pockets)
     if code != OK:
         error[b, 0] = code
