@@ -5,8 +5,18 @@
 Training (``agents.train_lib``, ``train.py``) needs the ``train`` extra (SB3, torch).
 """
 
-from agents.evaluate import evaluate_agent, run_episodes
-from agents.ghost_ball import GhostBallAgent
-from agents.random_agent import RandomAgent
+from typing import Any
 
-__all__ = ["GhostBallAgent", "RandomAgent", "evaluate_agent", "run_episodes"]
+from agents.ghost_ball import GhostBallAgent
+from agents.random_agent import ConstantAgent, RandomAgent
+
+__all__ = ["ConstantAgent", "GhostBallAgent", "RandomAgent", "evaluate_agent", "run_episodes"]
+
+
+def __getattr__(name: str) -> Any:
+    # Lazy, so that ``python -m agents.evaluate`` does not import its own module twice.
+    if name in ("evaluate_agent", "run_episodes"):
+        from agents import evaluate
+
+        return getattr(evaluate, name)
+    raise AttributeError(f"module 'agents' has no attribute {name!r}")

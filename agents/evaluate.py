@@ -29,7 +29,9 @@ COLUMNS: tuple[tuple[str, str, bool], ...] = (
     ("clean_pot_rate", "clean pots/shot", True),
     ("scratch_rate", "scratch/shot", True),
     ("clear_rate", "clear rate", True),
+    ("run_out_rate", "run-out rate", True),
     ("pots_per_turn", "pots/turn", False),
+    ("shots_per_episode", "shots/episode", False),
     ("episode_reward", "episode reward", False),
 )
 
@@ -149,13 +151,23 @@ def evaluate_agent(
 
 def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
     """A markdown table: one row per agent, each statistic with its 95% interval."""
+    # Pots per shot is a rate only while no shot pots two balls (a break can pot several).
+    multi = any(stats["pots_per_shot"].high > 1.0 for stats in rows.values())
     head = "| agent | " + " | ".join(label for _, label, _ in COLUMNS) + " |"
     lines = [head, "|" + "---|" * (len(COLUMNS) + 1)]
     for agent, stats in rows.items():
-        cells = [stats[key].as_percent() if pct else str(stats[key]) for key, _, pct in COLUMNS]
+        cells = [
+            stats[key].as_percent()
+            if pct and not (multi and key == "pots_per_shot")
+            else str(stats[key])
+            for key, _, pct in COLUMNS
+        ]
         lines.append(f"| {agent} | " + " | ".join(cells) + " |")
     lines.append("")
-    lines.append(f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets.")
+    lines.append(
+        f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets. Clean pot: "
+        "a shot that pots without scratching. Run-out: cleared in the first turn."
+    )
     return "\n".join(lines)
 
 
@@ -172,16 +184,27 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=10_000)
     parser.add_argument("--aim", default=None, help="override the env's aim mode")
+    parser.add_argument(
+        "--env-kwargs",
+        default=None,
+        help='gymnasium.make kwargs as YAML, e.g. "{noise: [0.003, 0.05]}"',
+    )
     parser.add_argument("--out", default=None, help="also write the table to this file")
     args = parser.parse_args(argv)
     if args.episodes < 1:
         parser.error("--episodes must be >= 1")
-    kwargs = {"aim": args.aim} if args.aim else None
+    import yaml
+
+    kwargs = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
+    if not isinstance(kwargs, dict):
+        parser.error("--env-kwargs must be a YAML mapping")
+    if args.aim:
+        kwargs["aim"] = args.aim
     rows = {}
     for name in args.agent:
-        rows[name] = evaluate_agent(name, args.env, args.episodes, args.seed, env_kwargs=kwargs)
+        rows[name] = evaluate_agent(name, args.env, args.episodes, args.seed, kwargs or None)
     table = format_table(rows, args.episodes)
-    print(f"{args.env}, seed {args.seed}")
+    print(f"{args.env} {kwargs or ''}, seeds {args.seed}..{args.seed + args.episodes - 1}")
     print(table)
     if args.out:
         Path(args.out).write_text(f"# Evaluation on {args.env}\n\n{table}\n")

@@ -60,10 +60,16 @@ def mean_ci(values: NDArray[np.floating], z: float = Z95) -> Estimate:
     return Estimate(m, m - half, m + half)
 
 
-def ratio_ci(num: NDArray[np.floating], den: NDArray[np.floating], z: float = Z95) -> Estimate:
+def ratio_ci(
+    num: NDArray[np.floating],
+    den: NDArray[np.floating],
+    z: float = Z95,
+    bounds: tuple[float, float] | None = None,
+) -> Estimate:
     """``sum(num) / sum(den)`` over episodes, interval clustered by episode (delta method).
 
     With every ``den == 1`` and ``num`` in {0, 1} this is a plain proportion: Wilson.
+    ``bounds`` clips the interval (a rate stays in [0, 1]).
     """
     a = np.asarray(num, dtype=np.float64)
     b = np.asarray(den, dtype=np.float64)
@@ -77,7 +83,10 @@ def ratio_ci(num: NDArray[np.floating], den: NDArray[np.floating], z: float = Z9
         return Estimate(r, -math.inf, math.inf)
     resid = a - r * b
     se = math.sqrt(float(resid @ resid) / (n * (n - 1))) / float(b.mean())
-    return Estimate(r, r - z * se, r + z * se)
+    low, high = r - z * se, r + z * se
+    if bounds is not None:
+        low, high = max(low, bounds[0]), min(high, bounds[1])
+    return Estimate(r, low, high)
 
 
 @dataclass
@@ -110,8 +119,8 @@ class EpisodeLog:
         n = len(self.shots)
         return {
             "pots_per_shot": ratio_ci(np.array(self.pots), shots),
-            "clean_pot_rate": ratio_ci(np.array(self.clean), shots),
-            "scratch_rate": ratio_ci(np.array(self.scratches), shots),
+            "clean_pot_rate": ratio_ci(np.array(self.clean), shots, bounds=(0.0, 1.0)),
+            "scratch_rate": ratio_ci(np.array(self.scratches), shots, bounds=(0.0, 1.0)),
             "pots_per_turn": ratio_ci(np.array(self.pots), np.array(self.turns)),
             "clear_rate": wilson(float(sum(self.cleared)), n),
             "run_out_rate": wilson(float(sum(self.run_out)), n),
