@@ -94,8 +94,9 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     ## Arguments
 
     ``num_envs`` (tables), ``max_episode_steps`` (``TimeLimit``'s; ``make_vec`` passes the
-    id's), ``autoreset_mode``, ``parallel`` (simulate the tables on numba's threads: ``None``
-    decides by batch size, see :func:`pool_env.batch.simulate_batch`), and every
+    id's), ``autoreset_mode``, ``parallel`` (split each batch of shots over the CPUs, one
+    Python thread each running the GIL-free compiled loop,
+    :func:`pool_env.batch.simulate_batch_threads`; ``None``: from 64 tables on), and every
     ``PoolEnv`` argument (``scene``, ``aim``, ``noise``, ``end_on_miss``, ...).
     ``reset(options=...)`` takes ``positions`` (``(N, 2)`` for every table reset, or
     ``(num_envs, N, 2)``) with an optional ``on_table``, and ``reset_mask``.
