@@ -54,6 +54,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--no-baselines", action="store_true", help="skip random/ghost at the end")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--aim", help="env aim mode override (cut, relative, absolute)")
+    p.add_argument(
+        "--env-kwargs", help='gymnasium.make kwargs as YAML, e.g. "{noise: [0.003, 0.05]}"'
+    )
     p.add_argument("--wrapper", help="observation wrapper: pocket_features, or none")
     p.add_argument("--hyperparams", help="YAML file (default: agents/hyperparams.yml)")
     p.add_argument("--runs", default="runs", help="parent folder of run folders")
@@ -83,8 +86,12 @@ def main(argv: list[str] | None = None) -> int:
         "algo_kwargs": algo_kwargs,
     }
     config = resolve_config(args.env, args.algo, overrides, args.hyperparams)
+    extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
+    if not isinstance(extra, dict):
+        parser.error("--env-kwargs must be a YAML mapping")
     if args.aim:
-        config.env_kwargs = {**config.env_kwargs, "aim": args.aim}
+        extra["aim"] = args.aim
+    config.env_kwargs = {**config.env_kwargs, **extra}
     if args.wrapper:
         config.wrapper = None if args.wrapper == "none" else args.wrapper
     train(config, root=args.runs)

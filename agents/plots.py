@@ -39,16 +39,21 @@ def learning_curve(
         est = [h[2][key] for h in history]
         ax.plot(steps, [e.value for e in est], marker="o", ms=3, color=color, label=label)
         ax.fill_between(steps, [e.low for e in est], [e.high for e in est], color=color, alpha=0.15)
-    for name, style in (("random", ":"), ("ghost", "--")):
+    for name, label, style in (
+        ("random", "random", ":"),
+        ("const", "full hit, hardest (const)", "-."),
+        ("ghost", "ghost-ball", "--"),
+    ):
         if name in final:
             value = final[name]["pots_per_shot"].value
-            ax.axhline(value, color="gray", ls=style, lw=1, label=f"{name}: {value:.0%} pots")
+            ax.axhline(value, color="gray", ls=style, lw=1, label=f"{label}: {value:.0%} pots")
     ax.set_xlabel("environment steps")
     ax.set_ylabel("rate (periodic evaluation)")
     ax.set_ylim(0.0, 1.05)
     ax.set_title(f"{config.algo.upper()} on {config.env_id} (seed {config.seed})")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(fontsize=8, loc="lower right")
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
