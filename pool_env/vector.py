@@ -163,7 +163,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self._n_left = np.zeros(b, dtype=np.int64)
         self._shots = np.zeros(b, dtype=np.int64)
         self._done = np.zeros(b, dtype=np.bool_)  # finished, awaiting its (auto)reset
-        self._started = False
+        self._unset = np.ones(b, dtype=np.bool_)  # never reset: no layout yet
         self._all = np.arange(b)
         self._rngs: list[np.random.Generator | None] = [None] * b
         self._rng_seeds: list[int | None] = [None] * b
@@ -222,7 +222,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
             if seeds[i] is not None or self._rngs[i] is None:
                 self._seed_table(i, seeds[i])
         self._reset_tables(tables, options)
-        self._started = True
+        self._unset[tables] = False
         return self._observations(), {}
 
     def step(
@@ -231,8 +231,11 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         NDArray[np.float32], NDArray[np.float64], NDArray[np.bool_], NDArray[np.bool_], dict
     ]:
         """One shot on every table (or an autoreset); see the class docstring."""
-        if not self._started:
-            raise RuntimeError("call reset() before step()")
+        if self._unset.any():
+            raise RuntimeError(
+                f"call reset() before step(): tables {np.flatnonzero(self._unset).tolist()} "
+                "were never reset"
+            )
         acts = as_actions(actions, self.num_envs)
         mode = self.autoreset_mode
         resetting = self._done.copy() if mode == AutoresetMode.NEXT_STEP else None

@@ -194,6 +194,9 @@ def test_bad_input_raises_and_changes_nothing() -> None:
     env = PoolVectorEnv(2)
     with pytest.raises(RuntimeError, match="reset"):
         env.step(np.zeros((2, 2)))
+    env.reset(seed=0, options={"reset_mask": np.array([True, False])})
+    with pytest.raises(RuntimeError, match=r"tables \[1\] were never reset"):
+        env.step(np.zeros((2, 2)))
     env.reset(seed=0)
     before = env.positions
     with pytest.raises(ValueError, match="table 1 contains NaN"):
