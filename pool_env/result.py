@@ -170,16 +170,7 @@ class ShotResult:
         Raises:
             ValueError: If ``t`` lies outside ``[0, duration]`` or is not a number.
         """
-        out, _ = _positions_at(
-            self._seg_ball,
-            self._seg_t,
-            self._seg_state,
-            self._seg_potted,
-            self.n_balls,
-            self._check_time(t),
-            self._deceleration,
-        )
-        return out
+        return self._frame(t)[0]
 
     def positions_at_many(self, times: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
         """Positions ``(T, N, 2)`` and potted flags ``(T, N)`` at each of ``times``.
@@ -194,15 +185,7 @@ class ShotResult:
             self._check_time(0.0)
         if times.size and not (times.min() >= 0.0 and times.max() <= self.duration):
             raise ValueError(f"times must lie in [0, duration={self.duration}]")
-        return _positions_at_many(
-            self._seg_ball,
-            self._seg_t,
-            self._seg_state,
-            self._seg_potted,
-            self.n_balls,
-            times,
-            self._deceleration,
-        )
+        return _positions_at_many(*self.segments, self.n_balls, times, self._deceleration)
 
     @property
     def segments(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
@@ -216,16 +199,11 @@ class ShotResult:
 
     def pocketed_at(self, t: float) -> NDArray[np.bool_]:
         """``(N,)`` booleans: which balls are potted by time ``t``."""
-        _, potted = _positions_at(
-            self._seg_ball,
-            self._seg_t,
-            self._seg_state,
-            self._seg_potted,
-            self.n_balls,
-            self._check_time(t),
-            self._deceleration,
-        )
-        return potted
+        return self._frame(t)[1]
+
+    def _frame(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        """Positions and potted flags at ``t`` (checked against ``[0, duration]``)."""
+        return _positions_at(*self.segments, self.n_balls, self._check_time(t), self._deceleration)
 
     def __repr__(self) -> str:
         potted = [int(i) for i in np.flatnonzero(self.pocketed >= 0)]
