@@ -46,7 +46,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--timesteps", type=int, help="training steps (default: from the YAML)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--n-envs", type=int, help="parallel envs (default: from the YAML)")
-    p.add_argument("--vec", choices=VEC_KINDS, help="vectorized env kind (default: YAML/dummy)")
+    p.add_argument(
+        "--vec", choices=VEC_KINDS, help="vectorized env kind (default: YAML, else dummy)"
+    )
     p.add_argument("--threads", type=int, default=1, help="torch threads (1 is fastest here)")
     p.add_argument("--eval-freq", type=int, help="steps between evaluations (0: none)")
     p.add_argument("--eval-episodes", type=int, help="episodes per periodic evaluation")
@@ -94,6 +96,8 @@ def main(argv: list[str] | None = None) -> int:
     config.env_kwargs = {**config.env_kwargs, **extra}
     if args.wrapper:
         config.wrapper = None if args.wrapper == "none" else args.wrapper
+        if config.wrapper and config.vec == "native" and not args.vec:
+            config.vec = "dummy"  # the native vector env cannot apply a Python wrapper
     train(config, root=args.runs)
     return 0
 

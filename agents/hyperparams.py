@@ -22,6 +22,7 @@ DEFAULT_PATH = Path(__file__).with_name("hyperparams.yml")
 RUN_KEYS = (
     "n_timesteps",
     "n_envs",
+    "vec",
     "policy",
     "env_kwargs",
     "wrapper",
