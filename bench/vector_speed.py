@@ -202,7 +202,7 @@ def fmt(r: dict[str, Any] | None) -> str:
     """``median [min-max]``."""
     if r is None:
         return "failed"
-    return f"{r['median']:,.0f} [{r['min']:,.0f}-{r['max']:,.0f}]"
+    return f"{r['median']:,.0f} [{r['min']:,.0f}-{r['max']:,.0f}] (load {r['load']:.1f})"
 
 
 def report(speed: dict, runs: dict, args: argparse.Namespace, loads: list[float]) -> str:
@@ -211,8 +211,9 @@ def report(speed: dict, runs: dict, args: argparse.Namespace, loads: list[float]
         "# Vector env speed",
         "",
         "Shots per second of a random policy, median of "
-        f"{args.repeats} runs of ~{args.seconds:g} s [range], same-step autoreset (every step",
-        "is one shot per table; resets included). Each configuration runs in a fresh process.",
+        f"{args.repeats} runs of ~{args.seconds:g} s [range] (1-minute load average at its end;",
+        "2.0 means both cores busy), same-step autoreset (every step is one shot per table;",
+        "resets included). Each configuration runs in a fresh process.",
         "`native`: `gym.make_vec(id, N)` (PoolVectorEnv); `native+sb3`: the same through",
         "`agents.native_vec.make_native_vec_env` (SB3 `VecEnv`, per-table info dicts);",
         "`sync`/`async`: Gymnasium's `SyncVectorEnv`/`AsyncVectorEnv` of `gym.make(id)`;",

@@ -168,8 +168,11 @@ def simulate_batch_threads(
             first, rest = str(exc).split(":", 1)  # "table k: ..." counted from lo
             raise ValueError(f"table {lo + int(first.split()[-1])}:{rest}") from None
 
-    futures = [_thread_pool(parts).submit(part, lo, hi) for lo, hi in itertools.pairwise(edges)]
-    results = [f.result() for f in futures]
+    bounds = list(itertools.pairwise(edges))
+    # The calling thread takes the last part itself instead of sleeping until the others end.
+    futures = [_thread_pool(parts - 1).submit(part, lo, hi) for lo, hi in bounds[:-1]]
+    last = part(*bounds[-1])
+    results = [f.result() for f in futures] + [last]
     return BatchResult(
         *(np.concatenate([getattr(r, f) for r in results]) for f in BatchResult.__slots__)
     )
