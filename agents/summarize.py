@@ -70,8 +70,8 @@ def table(runs: list[dict[str, Any]]) -> str:
         stats = []
         for k in ("pots_per_shot", "clean_pot_rate"):
             values = [r[k] for r in rows]
-            sd = statistics.stdev(values) if len(values) > 1 else 0.0
-            stats.append(f"{100 * statistics.mean(values):.1f}% ({100 * sd:.1f})")
+            sd = f"{100 * statistics.stdev(values):.1f}" if len(values) > 1 else "-"
+            stats.append(f"{100 * statistics.mean(values):.1f}% ({sd})")
         lines.append(
             f"| {env} | {variant} | {algo} | {steps:,} | {len(rows)} | " + " | ".join(stats) + " |"
         )
