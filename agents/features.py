@@ -7,8 +7,10 @@ wrapper appends, in the frame of that line, where each pocket lies from the obje
 (``cos``, ``sin`` of its bearing and its distance), sorted from the straightest pocket to
 the thinnest cut, plus the cue-to-ball distance: what a player looks at. Sorting makes
 "cut towards the first pocket" a smooth function of the observation, where a fixed pocket
-order asks the network to learn an argmax. It computes nothing the observation does not determine, and it does not
-solve the shot: which pocket, how thin and how hard are still learned.
+order asks the network to learn an argmax. It computes nothing the observation does not
+determine, and it does not solve the shot: which pocket, how thin and how hard are still
+learned. Measured on OneBall-v0 (results/agents.md): PPO with it ends on the same plateau
+as without (the constant full hit), at 300k and at 1M steps.
 """
 
 from __future__ import annotations
