@@ -68,7 +68,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     Why ``cut`` is the default: PPO (SB3 defaults but ``gamma=0``, 8 envs, 200k steps, two
     seeds) on ``OneBall-v0`` pots 71% of its shots (64% without a scratch) with ``cut`` aim,
-    and 10-11% with ``relative``.
+    and 10-11% with ``relative``. Note that a constant full hit at the top speed already
+    pots ~81% (66% without a scratch) on ``OneBall-v0``: see ``results/agents.md``.
 
     Out-of-range actions (infinities included) are clipped to ``[-1, 1]``. An action with a
     NaN raises ``ValueError`` and changes nothing. With ``noise=(sigma_angle, sigma_speed)``
