@@ -158,7 +158,8 @@ def main() -> None:
         f"{args.breaks} --repeats {args.repeats} --cold {args.cold}`",
         "",
         f"Machine: {platform.processor() or platform.machine()}, {os.cpu_count()} cores; "
-        f"Python {platform.python_version()}, numpy {np.__version__}, numba {numba.__version__}.",
+        f"Python {platform.python_version()}, numpy {np.__version__}, numba {numba.__version__}; "
+        f"load average at the end {os.getloadavg()[0]:.1f} (the machine is shared).",
         "",
         "Time per `shoot()` call, end to end from Python (validation, the compiled event loop,",
         "the result object, events recorded), warm, one process.",
