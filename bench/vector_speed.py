@@ -282,6 +282,19 @@ def report(speed: dict, runs: dict, args: argparse.Namespace, loads: list[float]
                 )
     lines += [
         "",
+        "## Notes",
+        "",
+        "- Physics dominates: a OneBall shot of the random policy takes ~15 events and ~5 us "
+        "of CPU in the compiled loop; the rest of a native step is under 1 us per table from "
+        "N=256 on. So the native env's speed is about (CPUs free) / 5.5 us: it reaches the "
+        "200,000 target only when both cores are ours; an earlier run of this script with "
+        "another engineer's training job on one core measured 140,000-160,000 at N >= 256.",
+        "- The process kinds stop at N=16: each SubprocVecEnv worker holds ~"
+        f"{WORKER_MB} MB (it imports SB3 and torch), and 16 workers already take 20-70 s to "
+        "start on 2 cores. Per-shot IPC makes them slower than a single process here anyway.",
+        "- N=1: the native env spends ~50 us per step on its fixed costs (some 30 numpy and "
+        "numba calls), about what a single PoolEnv step costs; batching pays from N=16 on.",
+        "",
         f"Machine: {cpu_name()}, {os.cpu_count()} cores, shared with other engineers' jobs: "
         f"load average {min(loads):.1f}-{max(loads):.1f} during the run (1-minute, sampled per "
         "configuration; 2.0 is both cores busy). " + versions() + ".",
@@ -316,8 +329,12 @@ def main() -> None:
         args.repeats, args.seconds, args.n, args.ppo_steps = 2, 0.2, [1, 16], 4096
     speed: dict[tuple[str, str, int], dict | None] = {}
     loads = [os.getloadavg()[0]]
-    for env_id in IDS:
-        for kind in args.kinds:
+    # In-process kinds first: spawning worker processes raises the load average for a while
+    # (it is a 1-minute average), which would be charged to whatever ran next.
+    kinds = [k for k in args.kinds if k not in PROCESS_KINDS]
+    kinds += [k for k in args.kinds if k in PROCESS_KINDS]
+    for kind in kinds:
+        for env_id in IDS:
             for n in args.n:
                 if kind in PROCESS_KINDS and n > args.max_procs:
                     continue
