@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.aiming import decode, shot_to_action
-from agents.state import EnvSpec, LayoutSource, batch_obs, env_spec
+from agents.state import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from pool_env import shoot
 
 #: Speeds (m/s) at which the object ball should reach the capture circle: softer shots keep
@@ -57,7 +57,7 @@ class Shot:
     robustness: int = 0
 
 
-class GhostBallAgent:
+class GhostBallAgent(BaselineAgent):
     """Ghost-ball aiming, verified with the simulator; SB3's ``predict`` signature.
 
     Args:
@@ -79,27 +79,9 @@ class GhostBallAgent:
         self.n_robust = n_robust
         self.last_plan: dict[str, Any] = {}
 
-    def predict(
-        self,
-        observation: Any,
-        state: tuple[NDArray[Any], ...] | None = None,
-        episode_start: NDArray[np.bool_] | None = None,
-        deterministic: bool = True,
-    ) -> tuple[NDArray[np.float32], tuple[NDArray[Any], ...] | None]:
-        """The planned action for each observation.
-
-        Args:
-            observation: One observation ``(D,)`` or a batch ``(B, D)``.
-            state: Recurrent state (unused, returned as is).
-            episode_start: Unused.
-            deterministic: Unused (the plan is deterministic up to the fallback search).
-
-        Returns:
-            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` float32 actions.
-        """
-        obs, single = batch_obs(observation)
-        actions = np.stack([self.plan(pos, on) for pos, on in self.source.layouts(obs)])
-        return (actions[0] if single else actions), state
+    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
+        """The planned action for each observation's layout."""
+        return np.stack([self.plan(pos, on) for pos, on in self.source.layouts(observations)])
 
     # -- planning -------------------------------------------------------------------------
 

@@ -162,3 +162,37 @@ def batch_obs(observation: Any) -> tuple[NDArray[np.floating], bool]:
     if obs.ndim != 2:
         raise ValueError(f"observations must have shape (D,) or (B, D), got {obs.shape}")
     return obs, False
+
+
+class BaselineAgent:
+    """SB3's ``predict`` for the baselines, so ``evaluate_policy`` takes them unchanged.
+
+    Subclasses implement :meth:`act` on a batch; ``predict`` batches a single observation
+    and unbatches the answer.
+    """
+
+    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
+        """``(B, 2)`` float32 actions for ``(B, D)`` observations."""
+        raise NotImplementedError
+
+    def predict(
+        self,
+        observation: Any,
+        state: tuple[NDArray[Any], ...] | None = None,
+        episode_start: NDArray[np.bool_] | None = None,
+        deterministic: bool = True,
+    ) -> tuple[NDArray[np.float32], tuple[NDArray[Any], ...] | None]:
+        """Actions for one observation ``(D,)`` or a batch ``(B, D)`` (SB3's signature).
+
+        Args:
+            observation: One observation ``(D,)`` or a batch ``(B, D)``.
+            state: Recurrent state (unused, returned as is).
+            episode_start: Unused.
+            deterministic: Unused: each baseline is what it is.
+
+        Returns:
+            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` float32 actions.
+        """
+        obs, single = batch_obs(observation)
+        actions = self.act(obs)
+        return (actions[0] if single else actions), state
