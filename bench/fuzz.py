@@ -16,9 +16,9 @@ from pathlib import Path
 import numpy as np
 
 from pool_env import Table, simulate
-from pool_env.invariants import check_shot
-from pool_env.layouts import break_scene
-from pool_env.scenes_random import random_layout
+from pool_env.sim.layouts import break_scene
+from pool_env.testing.invariants import check_shot
+from pool_env.testing.scenes_random import random_layout
 
 
 def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray, np.ndarray]:

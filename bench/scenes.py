@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env import Table, simulate
-from pool_env.layouts import break_scene
+from pool_env.sim.layouts import break_scene
 
 FAMILIES = ("straight", "cut", "bank", "combo", "cushion")
 SPEEDS = (0.3, 2.5)  # m/s, cue speed range of the non-chaotic suite

@@ -16,7 +16,7 @@ from bench.report import Metrics, fmt_len, fmt_time
 from bench.runners import Run, fixed_outcome, pooltool_outcome, pymunk_outcome, worker_scene
 from bench.scenes import Scene
 from pool_env import simulate
-from pool_env.layouts import break_scene
+from pool_env.sim.layouts import break_scene
 
 
 def breaks_table(rows: list[Metrics], runs: list[Run], refs: list[Outcome]) -> list[str]:

@@ -24,9 +24,9 @@ import numba
 import numpy as np
 
 from pool_env import Table, shoot
-from pool_env.batch import simulate_batch
-from pool_env.layouts import break_scene
-from pool_env.scenes_random import random_layout
+from pool_env.sim.batch import simulate_batch
+from pool_env.sim.layouts import break_scene
+from pool_env.testing.scenes_random import random_layout
 
 # pooltool 0.6.0 on this machine (../shared/research/PRIOR_ART.md; not measured here: see
 # bench/speed_vs_error.py for a same-run comparison).
@@ -97,7 +97,7 @@ def cold_start(cache_dir: str) -> float:
     """Seconds from spawning a fresh interpreter to its first shot done."""
     code = (
         "from pool_env import Table, shoot\n"
-        "from pool_env.layouts import break_scene\n"
+        "from pool_env.sim.layouts import break_scene\n"
         "t = Table(); shoot(t, break_scene(t, 'nine'), 0.0, 8.0)\n"
     )
     env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)

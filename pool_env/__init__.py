@@ -2,9 +2,7 @@
 
 from pool_env.env import PoolEnv
 from pool_env.registration import register_envs
-from pool_env.result import Event, ShotResult
-from pool_env.simulate import shoot, simulate
-from pool_env.table import Table
+from pool_env.sim import Event, ShotResult, Table, shoot, simulate
 
 register_envs()
 

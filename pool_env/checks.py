@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from pool_env.table import Table
+from pool_env.sim.table import Table
 
 
 def parse_table(table: Table | dict[str, Any] | None) -> Table:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import time
 
 from pool_env import Table, shoot
-from pool_env.layouts import break_scene
+from pool_env.sim.layouts import break_scene
 
 
 def main() -> None:

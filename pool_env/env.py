@@ -26,9 +26,9 @@ from pool_env.mdp import (
     pocket_potentials,
     shot_rewards,
 )
-from pool_env.result import ShotResult
-from pool_env.simulate import shoot
-from pool_env.table import Table
+from pool_env.sim.result import ShotResult
+from pool_env.sim.simulate import shoot
+from pool_env.sim.table import Table
 
 
 class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
@@ -163,11 +163,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ## Attributes
 
     Of the unwrapped environment (``env.unwrapped``), for agents and tools:
-    ``table`` (the :class:`~pool_env.table.Table`), ``positions`` (``(N, 2)`` ball centres in
+    ``table`` (the :class:`~pool_env.sim.table.Table`), ``positions`` (``(N, 2)`` ball centres in
     metres, cue first; a copy), ``on_table`` (``(N,)`` booleans), ``cue`` (0), ``aim``,
     ``aim_range``, ``speed_range``, ``noise``, ``n_object_balls``, ``end_on_miss``,
     ``max_shots``, ``reward_weights`` (pot, scratch, no contact, shaping), ``shots`` (this
-    episode), ``last_shot`` (the :class:`~pool_env.result.ShotResult`, rows in the order of
+    episode), ``last_shot`` (the :class:`~pool_env.sim.result.ShotResult`, rows in the order of
     ``last_shot_balls``).
 
     Physics note: rolling resistance is low (``mu_roll = 0.01``: a ball at 3 m/s rolls 46 m
@@ -400,7 +400,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     @property
     def last_shot(self) -> ShotResult | None:
-        """The :class:`~pool_env.result.ShotResult` of the last step (rows: ``last_shot_balls``)."""
+        """The :class:`~pool_env.ShotResult` of the last step (rows: ``last_shot_balls``)."""
         return self._last_shot
 
     @property

@@ -14,7 +14,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.kernels._jit import kernel
+from pool_env.sim.kernels._jit import kernel
 
 AimMode = Literal["absolute", "relative", "cut"]
 

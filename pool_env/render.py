@@ -14,8 +14,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.result import ShotResult
-from pool_env.table import Table
+from pool_env.sim.result import ShotResult
+from pool_env.sim.table import Table
 
 Frame = NDArray[np.uint8]
 

@@ -28,9 +28,9 @@ from collections.abc import Callable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.layouts import break_scene, head_spot
-from pool_env.simulate import shoot
-from pool_env.table import Table
+from pool_env.sim.layouts import break_scene, head_spot
+from pool_env.sim.simulate import shoot
+from pool_env.sim.table import Table
 
 #: Scene names and their number of object balls (``None``: set by ``n_balls``).
 SCENES: dict[str, int | None] = {"one_ball": 1, "random": None, "nine_ball": 9, "eight_ball": 15}

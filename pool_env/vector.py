@@ -3,9 +3,9 @@
 The decision process is :class:`pool_env.env.PoolEnv`'s, reused rather than rewritten: the
 arguments are parsed by a ``PoolEnv`` (so spaces, defaults and errors are its own), actions,
 observations and rewards are the batched functions of :mod:`pool_env.mdp`, and the physics
-is :func:`pool_env.batch.simulate_batch`. What ``PoolEnv`` does per table in Python (layout
+is :func:`pool_env.sim.batch.simulate_batch`. What ``PoolEnv`` does per table in Python (layout
 sampling, noise, applying a shot's outcome) runs here in kernels over the whole batch
-(:mod:`pool_env.kernels.vector`), drawing from each table's own ``numpy`` generator.
+(:mod:`pool_env.game.kernels.vector`), drawing from each table's own ``numpy`` generator.
 """
 
 from __future__ import annotations
@@ -21,17 +21,17 @@ from gymnasium.vector.utils import batch_space
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env import checks, scenes
-from pool_env.batch import (
+from pool_env.env import PoolEnv
+from pool_env.game.kernels import vector as kv
+from pool_env.mdp import AIM_MODES, decode_shots, encode_observations, pocket_potentials
+from pool_env.mdp import shot_rewards as _shot_rewards
+from pool_env.sim.batch import (
     PARALLEL_FROM,
     BatchResult,
     available_cpus,
     simulate_batch,
     simulate_batch_threads,
 )
-from pool_env.env import PoolEnv
-from pool_env.kernels import vector as kv
-from pool_env.mdp import AIM_MODES, decode_shots, encode_observations, pocket_potentials
-from pool_env.mdp import shot_rewards as _shot_rewards
 from pool_env.vector_info import StepInfo, potted_lookup, step_infos
 from pool_env.vector_util import (
     TWO,
@@ -81,7 +81,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     keeps the tables' generators, creating random ones the first time). Each table owns a
     ``numpy.random.Generator`` made by ``gymnasium.utils.seeding.np_random``, as
     ``PoolEnv.np_random``; layouts and execution noise draw from it in the same order as
-    ``PoolEnv``, inside compiled code (:mod:`pool_env.kernels.rng`). ``np_random`` and
+    ``PoolEnv``, inside compiled code (:mod:`pool_env.game.kernels.rng`). ``np_random`` and
     ``np_random_seed`` are tuples over the tables.
 
     ## Info
@@ -96,7 +96,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     ``num_envs`` (tables), ``max_episode_steps`` (``TimeLimit``'s; ``make_vec`` passes the
     id's), ``autoreset_mode``, ``parallel`` (split each batch of shots over the CPUs, one
     Python thread each running the GIL-free compiled loop,
-    :func:`pool_env.batch.simulate_batch_threads`; ``None``: from 64 tables on), and every
+    :func:`pool_env.sim.batch.simulate_batch_threads`; ``None``: from 64 tables on), and every
     ``PoolEnv`` argument (``scene``, ``aim``, ``noise``, ``end_on_miss``, ...).
     ``reset(options=...)`` takes ``positions`` (``(N, 2)`` for every table reset, or
     ``(num_envs, N, 2)``) with an optional ``on_table``, and ``reset_mask``.

@@ -1,7 +1,7 @@
 """Plumbing of :class:`pool_env.vector.PoolVectorEnv`: arguments, generators and scenes.
 
 Everything here is per batch, never per table in Python on the hot path: the scene's
-layouts are drawn by :func:`pool_env.kernels.vector.sample_layouts` from constants laid
+layouts are drawn by :func:`pool_env.game.kernels.vector.sample_layouts` from constants laid
 out exactly as the Python scene code (:mod:`pool_env.scenes`) uses them.
 """
 
@@ -15,11 +15,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env import scenes
-from pool_env.kernels import vector as kv
-from pool_env.layouts import break_scene, head_spot
-from pool_env.table import Table
+from pool_env.game.kernels import vector as kv
+from pool_env.sim.layouts import break_scene, head_spot
+from pool_env.sim.table import Table
 
-#: Exponent read at run time by the kernels (see :mod:`pool_env.kernels.vector`).
+#: Exponent read at run time by the kernels (see :mod:`pool_env.game.kernels.vector`).
 TWO = np.array([2.0])
 
 

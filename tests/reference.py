@@ -2,7 +2,7 @@
 
 This module re-implements the physics of ``/work/shared/design/PHYSICS.md`` from scratch in
 ``mpmath`` at 50 significant digits. It deliberately shares no code with the simulator
-kernels in ``pool_env/kernels``: it only reads the attributes of a ``pool_env.table.Table``
+kernels in ``pool_env/sim/kernels``: it only reads the attributes of a ``pool_env.sim.table.Table``
 (and imports that class for type checking only), so a bug in a float64 kernel cannot hide in
 both implementations at once.
 
@@ -87,7 +87,7 @@ from mpmath import mp, mpf
 if TYPE_CHECKING:
     # Type checking only: at run time the reference reads the table's attributes and runs
     # no code from pool_env at all.
-    from pool_env.table import Table
+    from pool_env.sim.table import Table
 
 #: Working precision in significant decimal digits.
 DPS = 50

@@ -6,9 +6,9 @@ import numpy as np
 import pytest
 
 from pool_env import Table, shoot, simulate
-from pool_env.batch import simulate_batch
-from pool_env.layouts import break_scene
-from pool_env.scenes_random import random_layout
+from pool_env.sim.batch import simulate_batch
+from pool_env.sim.layouts import break_scene
+from pool_env.testing.scenes_random import random_layout
 
 
 def _scenes(table: Table, n_tables: int, n_balls: int, seed: int):

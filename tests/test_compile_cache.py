@@ -23,8 +23,8 @@ SHOT = """
 import hashlib, warnings
 warnings.simplefilter("always")
 from pool_env import Table, shoot
-from pool_env.kernels import loop
-from pool_env.layouts import break_scene
+from pool_env.sim.kernels import loop
+from pool_env.sim.layouts import break_scene
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
 print(hashlib.sha256(r.positions.tobytes()).hexdigest(), r.n_events)

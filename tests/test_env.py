@@ -13,9 +13,9 @@ from hypothesis import strategies as st
 
 import pool_env
 from pool_env import PoolEnv, Table
-from pool_env.layouts import head_spot
 from pool_env.registration import ENV_IDS
 from pool_env.scenes import check_layout
+from pool_env.sim.layouts import head_spot
 
 TABLE = Table()
 R = TABLE.ball_radius

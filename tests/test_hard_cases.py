@@ -12,8 +12,8 @@ import numpy as np
 import pytest
 
 from pool_env import Table, shoot, simulate
-from pool_env.invariants import check_shot
-from pool_env.layouts import break_scene
+from pool_env.sim.layouts import break_scene
+from pool_env.testing.invariants import check_shot
 from tests.helpers_sim import normal_velocities, speed_after, stop_point
 
 R = Table().ball_radius

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env import Table, shoot
-from pool_env.invariants import check_energy, check_geometry, check_momentum, check_shot
+from pool_env.testing.invariants import check_energy, check_geometry, check_momentum, check_shot
 
 
 def _shot():

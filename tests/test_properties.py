@@ -9,9 +9,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from pool_env import Table, simulate
-from pool_env.invariants import check_shot
-from pool_env.layouts import break_scene
-from pool_env.scenes_random import random_layout
+from pool_env.sim.layouts import break_scene
+from pool_env.testing.invariants import check_shot
+from pool_env.testing.scenes_random import random_layout
 
 tables = st.builds(
     Table,

@@ -17,7 +17,7 @@ import numpy as np
 import pytest
 
 from pool_env import Table, simulate
-from pool_env.scenes_random import random_layout
+from pool_env.testing.scenes_random import random_layout
 from tests.reference import reference_simulate
 
 TOLERANCE = 1e-9  # m

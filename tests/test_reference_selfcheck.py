@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 from mpmath import mp, mpf
 
-from pool_env.table import Table
+from pool_env.sim.table import Table
 from tests.reference import (
     ReferenceSimulationError,
     _first_contact,
@@ -381,7 +381,7 @@ def test_straight_shot_into_each_pocket(k: int) -> None:
 def test_side_pocket_mouth_edge(offset: float, potted: bool) -> None:
     """A ball rolling straight at the rail is potted exactly inside the side-pocket mouth."""
     table = Table()
-    half_mouth = 2.5 * 0.0254  # side mouth 5 in (WPA), see pool_env.table
+    half_mouth = 2.5 * 0.0254  # side mouth 5 in (WPA), see pool_env.sim.table
     res = reference_simulate(table, [(L / 2 + half_mouth + offset, 0.4)], [(0.0, -1.5)])
     if potted:
         assert res.events[0][1:] == ("pocket", 0, 1)
@@ -567,7 +567,7 @@ def test_three_ball_three_collision_scene_is_fast() -> None:
 
 
 def test_reference_imports_nothing_from_the_simulator() -> None:
-    """Independence: only pool_env.table.Table, and only for type checking."""
+    """Independence: only pool_env.sim.table.Table, and only for type checking."""
     src = (Path(__file__).parent / "reference.py").read_text()
     tree = ast.parse(src)
     type_checking_nodes = set()
@@ -576,7 +576,7 @@ def test_reference_imports_nothing_from_the_simulator() -> None:
             type_checking_nodes.update(id(n) for n in ast.walk(node))
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("pool_env"):
-            assert node.module == "pool_env.table"
+            assert node.module == "pool_env.sim.table"
             assert [a.name for a in node.names] == ["Table"]
             assert id(node) in type_checking_nodes
         if isinstance(node, ast.Import):

@@ -8,7 +8,6 @@ import numpy as np
 import pytest
 
 from pool_env import Table
-from pool_env.layouts import foot_spot, head_spot, rack_eight_ball, rack_nine_ball
 from pool_env.scenes import (
     check_layout,
     free_spot,
@@ -17,6 +16,7 @@ from pool_env.scenes import (
     sample_scene,
     sample_uniform,
 )
+from pool_env.sim.layouts import foot_spot, head_spot, rack_eight_ball, rack_nine_ball
 
 TABLE = Table()
 R = TABLE.ball_radius

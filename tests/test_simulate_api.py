@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 from pool_env import Table, shoot, simulate
-from pool_env.layouts import break_scene, foot_spot, head_spot, rack_eight_ball, rack_nine_ball
-from pool_env.table import CORNER_MOUTH, SIDE_MOUTH
+from pool_env.sim.layouts import break_scene, foot_spot, head_spot, rack_eight_ball, rack_nine_ball
+from pool_env.sim.table import CORNER_MOUTH, SIDE_MOUTH
 
 R = Table().ball_radius
 

@@ -14,10 +14,10 @@ from gymnasium.vector.utils import batch_space
 
 import pool_env  # noqa: F401  (registers the ids)
 from pool_env import PoolEnv, Table
-from pool_env.batch import simulate_batch, simulate_batch_threads
-from pool_env.kernels import vector as kv
-from pool_env.layouts import head_spot
+from pool_env.game.kernels import vector as kv
 from pool_env.registration import ENV_IDS
+from pool_env.sim.batch import simulate_batch, simulate_batch_threads
+from pool_env.sim.layouts import head_spot
 from pool_env.vector import PoolVectorEnv
 
 NEXT, SAME, DISABLED = AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP, AutoresetMode.DISABLED

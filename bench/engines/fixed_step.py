@@ -32,7 +32,7 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
-# Indices into the table's flat parameter array (pool_env.table.Table.params).
+# Indices into the table's flat parameter array (pool_env.sim.table.Table.params).
 _L, _W, _R, _DECEL, _E_BALL, _E_CUSHION = range(6)
 
 

@@ -16,9 +16,9 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.kernels.resolve import V_REST, V_ZENO
-from pool_env.result import ShotResult
-from pool_env.table import Table
+from pool_env.sim.kernels.resolve import V_REST, V_ZENO
+from pool_env.sim.result import ShotResult
+from pool_env.sim.table import Table
 
 GEOMETRY_TOL = 1e-9  # m
 MOMENTUM_RTOL = 1e-12

@@ -3,7 +3,7 @@
 Touching balls: rack neighbours are placed ``2R + gap`` apart (``gap = 0`` by default, so a
 rack touches as a real, tightly racked one does, up to rounding of the last bit). The
 simulator accepts overlaps up to 1e-9 m from such rounding, and resolves the simultaneous
-contacts of a break by its documented sequential rule (see ``pool_env.kernels.loop``). A
+contacts of a break by its documented sequential rule (see ``pool_env.sim.kernels.loop``). A
 positive ``gap`` separates the balls, so every impact of the break has its own instant.
 """
 
@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.table import Table
+from pool_env.sim.table import Table
 
 
 def head_spot(table: Table) -> NDArray[np.float64]:

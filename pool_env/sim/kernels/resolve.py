@@ -40,8 +40,8 @@ import math
 
 import numpy as np
 
-from pool_env.kernels._jit import kernel
-from pool_env.kernels.motion import POTTED, set_anchor, state_at
+from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.motion import POTTED, set_anchor, state_at
 
 V_ZENO = 1e-6  # m/s
 V_REST = 1e-9  # m/s

@@ -1,6 +1,6 @@
 """Batched simulation: many independent tables in one compiled, parallel call.
 
-The front of :mod:`pool_env.kernels.batch` for vectorized environments and bulk evaluation.
+The front of :mod:`pool_env.sim.kernels.batch` for vectorized environments and bulk evaluation.
 Results equal one :func:`pool_env.shoot` per table, bit for bit.
 """
 
@@ -14,10 +14,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.kernels import batch as _batch
-from pool_env.kernels import loop
-from pool_env.simulate import DEFAULT_MAX_EVENTS, _raise_invalid
-from pool_env.table import Table
+from pool_env.sim.kernels import batch as _batch
+from pool_env.sim.kernels import loop
+from pool_env.sim.simulate import DEFAULT_MAX_EVENTS, _raise_invalid
+from pool_env.sim.table import Table
 
 #: Batches this large and larger run in parallel by default.
 PARALLEL_FROM = 64

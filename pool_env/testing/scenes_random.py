@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.table import Table
+from pool_env.sim.table import Table
 
 
 def random_layout(

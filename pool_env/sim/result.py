@@ -8,8 +8,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.kernels.timeline import positions_at as _positions_at
-from pool_env.kernels.timeline import positions_at_many as _positions_at_many
+from pool_env.sim.kernels.timeline import positions_at as _positions_at
+from pool_env.sim.kernels.timeline import positions_at_many as _positions_at_many
 
 EventKind = Literal["pocket", "ball", "cushion", "stop"]
 

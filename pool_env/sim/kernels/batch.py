@@ -10,8 +10,8 @@ from __future__ import annotations
 import numpy as np
 from numba import prange
 
-from pool_env.kernels._jit import kernel, parallel_kernel
-from pool_env.kernels.loop import IN_POCKET, OK, run_shot, validate
+from pool_env.sim.kernels._jit import kernel, parallel_kernel
+from pool_env.sim.kernels.loop import IN_POCKET, OK, run_shot, validate
 
 
 @kernel

@@ -32,7 +32,7 @@ F = TypeVar("F", bound=Callable[..., Any])
 # of the stable root formulas. error_model="numpy" removes Python's zero-division checks.
 _OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": False}
 
-_PACKAGE = Path(__file__).resolve().parents[1]
+_PACKAGE = Path(__file__).resolve().parents[2]
 
 
 def _source_hash() -> str:

@@ -21,8 +21,8 @@ from __future__ import annotations
 
 import numpy as np
 
-from pool_env.kernels._jit import kernel
-from pool_env.kernels.motion import (
+from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.motion import (
     MOVING,
     NCOL,
     POTTED,
@@ -34,7 +34,7 @@ from pool_env.kernels.motion import (
     set_anchor,
     state_at,
 )
-from pool_env.kernels.predict import (
+from pool_env.sim.kernels.predict import (
     BALL,
     CUSHION,
     EV_ARG,
@@ -45,8 +45,8 @@ from pool_env.kernels.predict import (
     predict_own,
     predict_pair,
 )
-from pool_env.kernels.resolve import V_REST, ZENO_WINDOW, ball_ball, cushion, stick_cluster
-from pool_env.kernels.roots import INF
+from pool_env.sim.kernels.resolve import V_REST, ZENO_WINDOW, ball_ball, cushion, stick_cluster
+from pool_env.sim.kernels.roots import INF
 
 # Tolerance of input validation: rounding in a rack or a position read back from a result
 # may leave a ball a hair over a rail or another ball.

@@ -8,9 +8,9 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.kernels import loop
-from pool_env.result import ShotResult
-from pool_env.table import Table
+from pool_env.sim.kernels import loop
+from pool_env.sim.result import ShotResult
+from pool_env.sim.table import Table
 
 #: Default event cap. A 16-ball break has a few hundred events; pooltool's FastFiz
 #: ancestor used 5,000. A shot that reaches the cap is reported, never hangs.
@@ -93,7 +93,7 @@ def simulate(
             ``positions_at``). Training loops that only need the final state pass False.
 
     Returns:
-        The :class:`~pool_env.result.ShotResult`.
+        The :class:`~pool_env.sim.result.ShotResult`.
 
     Raises:
         ValueError: On malformed, non-finite or out-of-table input, overlapping balls, a
@@ -164,7 +164,7 @@ def shoot(
         record: Keep events and trajectories (see :func:`simulate`).
 
     Returns:
-        The :class:`~pool_env.result.ShotResult`.
+        The :class:`~pool_env.sim.result.ShotResult`.
 
     Raises:
         ValueError: On a non-finite angle, a negative or non-finite speed, a cue index out

@@ -12,7 +12,7 @@ constant relative acceleration. Degrees are handled explicitly:
 * both resting: no event;
 * one resting: a ray-circle quadratic in the moving ball's arc length;
 * both moving with bitwise-equal directions: ``c = 0``, a quadratic in time;
-* otherwise the bracketed quartic of :mod:`pool_env.kernels.roots`.
+* otherwise the bracketed quartic of :mod:`pool_env.sim.kernels.roots`.
 
 Before any root is sought, the pair is culled when the capsules swept by the two balls until
 their next trajectory change are farther apart than ``2R``.
@@ -22,8 +22,8 @@ from __future__ import annotations
 
 import math
 
-from pool_env.kernels._jit import kernel
-from pool_env.kernels.motion import (
+from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.motion import (
     MOVING,
     POTTED,
     PX,
@@ -37,7 +37,7 @@ from pool_env.kernels.motion import (
     rest_point,
     state_at,
 )
-from pool_env.kernels.roots import APPROACH_RTOL, INF, first_contact, ray_circle_entry
+from pool_env.sim.kernels.roots import APPROACH_RTOL, INF, first_contact, ray_circle_entry
 
 # Event kinds, in the order that breaks ties between simultaneous events.
 POCKET, BALL, CUSHION, STOP = 0, 1, 2, 3

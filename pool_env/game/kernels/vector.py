@@ -3,7 +3,7 @@
 Each mirrors, table by table and operation by operation, what the single environment does
 in Python (:mod:`pool_env.scenes`, :class:`pool_env.env.PoolEnv`), so that a batch gives
 bit for bit the same layouts, shots and outcomes. Random numbers come from each table's
-own generator through :mod:`pool_env.kernels.rng`.
+own generator through :mod:`pool_env.game.kernels.rng`.
 
 Squares that the Python code writes as ``d ** 2`` are, near a decision threshold, computed
 here as ``d ** two`` with ``two`` read from an array: CPython's ``**`` calls the C library's
@@ -18,8 +18,8 @@ import math
 
 import numpy as np
 
-from pool_env.kernels._jit import kernel
-from pool_env.kernels.rng import next_double, standard_normal
+from pool_env.game.kernels.rng import next_double, standard_normal
+from pool_env.sim.kernels._jit import kernel
 
 
 @kernel
@@ -60,7 +60,7 @@ def sample_layouts(tables, positions, ptrs, n_new, placed, box, circles, min_d2,
         tables: ``(K,)`` tables to lay out.
         positions: ``(B, N, 2)`` written in place: rows ``0..n_new-1`` the new balls in
             the order drawn, the rows after them ``placed``.
-        ptrs: ``(B, 3)`` generator addresses per table (:mod:`pool_env.kernels.rng`).
+        ptrs: ``(B, 3)`` generator addresses per table (:mod:`pool_env.game.kernels.rng`).
         n_new: Balls to draw.
         placed: ``(M, 2)`` fixed balls the new ones must keep clear of (a rack), or empty.
         box: ``(x_low, x_high, y_low, y_high)`` for the new centres.

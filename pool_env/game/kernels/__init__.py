@@ -1,0 +1,1 @@
+"""Compiled kernels of the decision process (per-table work around a batch of shots)."""

@@ -1,0 +1,20 @@
+"""The table simulator: tables, layouts, exact shots and batches of them.
+
+This layer knows nothing of Gymnasium: arrays and a frozen :class:`Table` in, a
+:class:`ShotResult` (or batched arrays) out. Its compiled code lives in :mod:`.kernels`.
+"""
+
+from pool_env.sim.batch import simulate_batch, simulate_batch_threads
+from pool_env.sim.result import Event, ShotResult
+from pool_env.sim.simulate import shoot, simulate
+from pool_env.sim.table import Table
+
+__all__ = [
+    "Event",
+    "ShotResult",
+    "Table",
+    "shoot",
+    "simulate",
+    "simulate_batch",
+    "simulate_batch_threads",
+]
