@@ -32,8 +32,7 @@ import numba
 import numpy as np
 from numpy.typing import NDArray
 
-# Indices into the table's flat parameter array (pool_env.sim.table.Table.params).
-_L, _W, _R, _DECEL, _E_BALL, _E_CUSHION = range(6)
+from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_LENGTH, P_RADIUS, P_WIDTH
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -125,8 +124,8 @@ def run_fixed_step(positions, velocities, masses, params, pockets, dt, max_steps
         collided at least once, and the deepest ball-ball overlap and rail penetration seen
         at any step end (m).
     """
-    length, width, r = params[_L], params[_W], params[_R]
-    a, e_ball, e_cushion = params[_DECEL], params[_E_BALL], params[_E_CUSHION]
+    length, width, r = params[P_LENGTH], params[P_WIDTH], params[P_RADIUS]
+    a, e_ball, e_cushion = params[P_DECEL], params[P_E_BALL], params[P_E_CUSHION]
     n = positions.shape[0]
     pos = positions.copy()
     vel = velocities.copy()

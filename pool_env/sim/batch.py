@@ -33,6 +33,11 @@ class BatchResult:
         n_events: ``(B,)`` events per table.
         hit_event_cap: ``(B,)`` whether a table reached ``max_events``.
         first_contact: ``(B, 2)`` balls of each table's first ball-ball impact, -1 if none.
+        first_hit: ``(B, N)`` the first ball each ball touched, -1 if none (or inactive).
+        cushions_after_contact: ``(B, N)`` each ball's cushion impacts after its table's
+            first ball-ball impact (see :attr:`pool_env.ShotResult.cushions_after_contact`).
+        pocket_order: ``(B, N)`` the order in which each table's balls dropped (0 first),
+            -1 on the table (or inactive).
     """
 
     positions: NDArray[np.float64]
@@ -40,6 +45,9 @@ class BatchResult:
     n_events: NDArray[np.int64]
     hit_event_cap: NDArray[np.bool_]
     first_contact: NDArray[np.int64]
+    first_hit: NDArray[np.int64]
+    cushions_after_contact: NDArray[np.int64]
+    pocket_order: NDArray[np.int64]
 
 
 def simulate_batch(
@@ -89,9 +97,10 @@ def simulate_batch(
     if parallel is None:
         parallel = n_tables >= PARALLEL_FROM
     run = _batch.run_batch_parallel if parallel else _batch.run_batch
-    final, pocketed, n_events, capped, first, error = run(
+    out = run(
         pos, vel, mass, np.ascontiguousarray(on), table.params, table.pockets, int(max_events)
     )
+    error = out.error
     bad = np.flatnonzero(error[:, 0] != loop.OK)
     if bad.size:
         b = int(bad[0])
@@ -99,7 +108,16 @@ def simulate_batch(
             _raise_invalid(int(error[b, 0]), int(error[b, 1]), int(error[b, 2]), pos[b], table)
         except ValueError as exc:
             raise ValueError(f"table {b}: {exc}") from None
-    return BatchResult(final, pocketed, n_events, capped, first)
+    return BatchResult(
+        positions=out.positions,
+        pocketed=out.pocketed,
+        n_events=out.n_events,
+        hit_event_cap=out.capped,
+        first_contact=out.first_contact,
+        first_hit=out.first_hit,
+        cushions_after_contact=out.cushions_after_contact,
+        pocket_order=out.pocket_order,
+    )
 
 
 _pool: tuple[int, int, ThreadPoolExecutor] | None = None  # (owner pid, workers, pool)

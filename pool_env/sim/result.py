@@ -8,6 +8,8 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.sim.kernels import loop
+from pool_env.sim.kernels.loop import ShotOutput
 from pool_env.sim.kernels.timeline import positions_at as _positions_at
 from pool_env.sim.kernels.timeline import positions_at_many as _positions_at_many
 
@@ -58,6 +60,14 @@ class ShotResult:
         hit_event_cap: True if the shot reached ``max_events``; every ball was then stopped
             where it was at that instant.
         first_contact: ``(i, j)`` of the first ball-ball impact, or ``None``.
+        first_hit: ``(N,)`` ints: the first ball each ball touched, -1 if none. For the
+            struck ball (``first_hit[cue]``) that is the first contact the rules judge.
+        cushions_after_contact: ``(N,)`` ints: each ball's cushion impacts after the shot's
+            first ball-ball impact (all zero without one). With one ball struck (as by
+            :func:`pool_env.shoot`) that impact is the cue ball's first contact, so a rail
+            hit before it is not counted: the "rail after contact" of the rules.
+        pocket_order: ``(N,)`` ints: 0 for the first ball to drop, 1 for the next, and so
+            on; -1 for a ball left on the table.
         event_times, event_kinds, event_i, event_j: The events as arrays (kinds are codes
             into :data:`KIND_NAMES`).
         event_first_segment: For each event, the first row it wrote in :attr:`segments`
@@ -70,6 +80,7 @@ class ShotResult:
         "_seg_potted",
         "_seg_state",
         "_seg_t",
+        "cushions_after_contact",
         "duration",
         "event_first_segment",
         "event_i",
@@ -77,36 +88,33 @@ class ShotResult:
         "event_kinds",
         "event_times",
         "first_contact",
+        "first_hit",
         "hit_event_cap",
         "n_events",
+        "pocket_order",
         "pocketed",
         "positions",
         "recorded",
     )
 
-    def __init__(self, raw: tuple, deceleration: float, recorded: bool = True) -> None:
-        (
-            self.positions,
-            self.pocketed,
-            n_events,
-            duration,
-            capped,
-            first_i,
-            first_j,
-            self.event_times,
-            self.event_kinds,
-            self.event_i,
-            self.event_j,
-            self.event_first_segment,
-            self._seg_ball,
-            self._seg_t,
-            self._seg_state,
-            self._seg_potted,
-        ) = raw
-        self.n_events = int(n_events)
-        self.duration = float(duration)
-        self.hit_event_cap = bool(capped)
-        self.first_contact = (int(first_i), int(first_j)) if first_i >= 0 else None
+    def __init__(self, raw: ShotOutput, deceleration: float, recorded: bool = True) -> None:
+        """Wrap the kernel's :data:`~pool_env.sim.kernels.loop.ShotOutput` (taken over)."""
+        self.positions = raw.positions
+        self.pocketed = raw.pocketed
+        self.pocket_order = raw.pocket_order
+        self.first_hit = raw.first_hit
+        self.cushions_after_contact = raw.cushions_after_contact
+        self.n_events = int(raw.n_events)
+        self.duration = float(raw.duration)
+        self.hit_event_cap = bool(raw.capped)
+        first_i, first_j = int(raw.first_i), int(raw.first_j)
+        self.first_contact = (first_i, first_j) if first_i >= 0 else None
+        events, segments = raw.events, raw.segments
+        self.event_times, self.event_kinds = events.t, events.kind
+        self.event_i, self.event_j = events.i, events.j
+        self.event_first_segment = events.first_segment
+        self._seg_ball, self._seg_t = segments.ball, segments.t
+        self._seg_state, self._seg_potted = segments.state, segments.potted
         self._deceleration = deceleration
         self.recorded = recorded
 
@@ -114,19 +122,24 @@ class ShotResult:
     def unrecorded(
         cls,
         final: NDArray[np.float64],
-        pocketed: NDArray[np.int64],
+        balls: NDArray[np.int64],
         meta: NDArray[np.int64],
         duration: float,
         deceleration: float,
     ) -> ShotResult:
         """A result without events or trajectories (``simulate(record=False)``).
 
-        ``meta`` is ``(code, i, j, n_events, capped, first_i, first_j)`` from the kernel.
+        ``balls`` and ``meta`` are the per-ball rows and the meta slots written by
+        :func:`~pool_env.sim.kernels.loop.shoot_final` (the result takes them over).
         """
         self = cls.__new__(cls)  # attribute by attribute: this runs once per training step
         self.positions = final
-        self.pocketed = pocketed
-        self.n_events, capped, first_i, first_j = meta[3:7].tolist()
+        self.pocketed = balls[loop.BALL_POCKET]
+        self.pocket_order = balls[loop.BALL_POCKET_ORDER]
+        self.first_hit = balls[loop.BALL_FIRST_HIT]
+        self.cushions_after_contact = balls[loop.BALL_CUSHIONS]
+        counts = meta[loop.META_EVENTS : loop.META_FIRST_J + 1].tolist()
+        self.n_events, capped, first_i, first_j = counts
         self.duration = duration
         self.hit_event_cap = bool(capped)
         self.first_contact = (first_i, first_j) if first_i >= 0 else None

@@ -126,14 +126,15 @@ def _run(
         raise ValueError(f"max_events must be a non-negative integer, got {max_events!r}")
     if not record:  # one compiled call: validation and the loop, final state only
         final = np.empty((n, 2))
-        pocketed = np.empty(n, dtype=np.int64)
-        meta = np.empty(7, dtype=np.int64)
+        balls = np.empty((loop.N_BALL_ROWS, n), dtype=np.int64)
+        meta = np.empty(loop.N_META, dtype=np.int64)
         duration = loop.shoot_final(
-            pos, vel, mass, table.params, table.pockets, int(max_events), final, pocketed, meta
+            pos, vel, mass, table.params, table.pockets, int(max_events), final, balls, meta
         )
-        if meta[0] != loop.OK:
-            _raise_invalid(int(meta[0]), int(meta[1]), int(meta[2]), pos, table)
-        return ShotResult.unrecorded(final, pocketed, meta, duration, table.deceleration)
+        if meta[loop.META_CODE] != loop.OK:
+            code, i, j = meta[loop.META_CODE : loop.META_J + 1].tolist()
+            _raise_invalid(code, i, j, pos, table)
+        return ShotResult.unrecorded(final, balls, meta, duration, table.deceleration)
     code, i, j = loop.validate(pos, vel, mass, table.params, table.pockets)
     if code != loop.OK:
         _raise_invalid(code, i, j, pos, table)

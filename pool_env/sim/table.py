@@ -14,6 +14,17 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.sim.kernels.params import (
+    N_PARAMS,
+    P_DECEL,
+    P_E_BALL,
+    P_E_CUSHION,
+    P_LENGTH,
+    P_MASS,
+    P_RADIUS,
+    P_WIDTH,
+)
+
 #: WPA equipment specification: corner pocket mouth 4.5-4.625 in, side pocket mouth
 #: 5-5.125 in, measured between the points where the cushion noses end. We take the
 #: narrow end of each range.
@@ -21,9 +32,6 @@ CORNER_MOUTH = 4.5 * 0.0254
 SIDE_MOUTH = 5.0 * 0.0254
 
 PocketSpec = Literal["standard", "none"] | Sequence[Sequence[float]] | NDArray[np.float64]
-
-# Indices into Table.params, the flat array the compiled kernels read.
-P_LENGTH, P_WIDTH, P_RADIUS, P_DECEL, P_E_BALL, P_E_CUSHION, P_MASS = range(7)
 
 
 def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray[np.float64]:
@@ -129,18 +137,14 @@ class Table:
         pockets = self._parse_pockets(self.pockets)
         pockets.setflags(write=False)
         setter(self, "pockets", pockets)
-        params = np.array(
-            [
-                self.length,
-                self.width,
-                self.ball_radius,
-                self.mu_roll * self.g,
-                self.e_ball,
-                self.e_cushion,
-                self.ball_mass,
-            ],
-            dtype=np.float64,
-        )
+        params = np.empty(N_PARAMS, dtype=np.float64)  # the layout the kernels read
+        params[P_LENGTH] = self.length
+        params[P_WIDTH] = self.width
+        params[P_RADIUS] = self.ball_radius
+        params[P_DECEL] = self.mu_roll * self.g
+        params[P_E_BALL] = self.e_ball
+        params[P_E_CUSHION] = self.e_cushion
+        params[P_MASS] = self.ball_mass
         params.setflags(write=False)
         setter(self, "params", params)
 

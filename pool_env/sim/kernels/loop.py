@@ -19,21 +19,22 @@ is at that instant, and the result reports it.
 
 from __future__ import annotations
 
+from collections import namedtuple
+
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels._jit import inline_kernel, kernel
 from pool_env.sim.kernels.motion import (
     MOVING,
     NCOL,
     POTTED,
     PX,
     PY,
-    VX,
-    VY,
     rest_point,
     set_anchor,
     state_at,
 )
+from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_MASS, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.predict import (
     BALL,
     CUSHION,
@@ -45,6 +46,16 @@ from pool_env.sim.kernels.predict import (
     predict_own,
     predict_pair,
 )
+from pool_env.sim.kernels.record import (
+    grown_event_log,
+    grown_segment_log,
+    log_event,
+    log_segment,
+    new_event_log,
+    new_segment_log,
+    trim_events,
+    trim_segments,
+)
 from pool_env.sim.kernels.resolve import V_REST, ZENO_WINDOW, ball_ball, cushion, stick_cluster
 from pool_env.sim.kernels.roots import INF
 
@@ -55,11 +66,52 @@ POS_TOL = 1e-9
 # Validation codes.
 OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET = range(7)
 
+#: What :func:`run_shot` returns, by name.
+#:
+#: * ``positions`` ``(N, 2)``: final positions (a potted ball keeps its capture point).
+#: * ``pocketed`` ``(N,)``: the pocket each ball dropped into, -1 if none.
+#: * ``pocket_order`` ``(N,)``: 0 for the first ball to drop, 1 for the next, ...; -1 if none.
+#: * ``first_i``, ``first_j``: the shot's first ball-ball impact (``i < j``), -1 if none.
+#: * ``first_hit`` ``(N,)``: the first ball each ball touched, -1 if none. For the struck
+#:   ball of a shot that is the rules' first contact.
+#: * ``cushions_after_contact`` ``(N,)``: each ball's cushion impacts after the shot's first
+#:   ball-ball impact (all zero if there was none). With one ball struck, that impact is the
+#:   cue ball's first contact: the "rail after contact" of the rules.
+#: * ``n_events``, ``duration`` (s), ``capped`` (the event cap was reached).
+#: * ``events``: an :data:`~pool_env.sim.kernels.record.EventLog`, ``segments``: a
+#:   :data:`~pool_env.sim.kernels.record.SegmentLog`, both chronological and empty unless
+#:   recorded.
+ShotOutput = namedtuple(
+    "ShotOutput",
+    [
+        "positions",
+        "pocketed",
+        "pocket_order",
+        "first_i",
+        "first_j",
+        "first_hit",
+        "cushions_after_contact",
+        "n_events",
+        "duration",
+        "capped",
+        "events",
+        "segments",
+    ],
+)
+
+#: Rows of the per-ball output of :func:`shoot_final` (``N_BALL_ROWS`` of them).
+BALL_POCKET, BALL_POCKET_ORDER, BALL_FIRST_HIT, BALL_CUSHIONS = range(4)
+N_BALL_ROWS = 4
+
+#: Slots of the ``meta`` output of :func:`shoot_final` (``N_META`` of them).
+META_CODE, META_I, META_J, META_EVENTS, META_CAPPED, META_FIRST_I, META_FIRST_J = range(7)
+N_META = 7
+
 
 @kernel
 def validate(positions, velocities, masses, params, pockets):
     """Check a scene; return ``(code, i, j)`` naming the first problem (``OK`` if none)."""
-    length, width, radius = params[0], params[1], params[2]
+    length, width, radius = params[P_LENGTH], params[P_WIDTH], params[P_RADIUS]
     n = positions.shape[0]
     for i in range(n):
         if not (np.isfinite(positions[i, 0]) and np.isfinite(positions[i, 1])):
@@ -105,28 +157,6 @@ def _earlier(t, kind, i, j, bt, bkind, bi, bj):
 
 
 @kernel
-def _grow(arr, n):
-    """``arr`` if it has room for index ``n``, else a copy with twice the capacity."""
-    if n < arr.shape[0]:
-        return arr
-    out = np.empty((max(2 * arr.shape[0], 16),) + arr.shape[1:], dtype=arr.dtype)
-    out[:n] = arr[:n]
-    return out
-
-
-@kernel
-def _log_segment(seg_ball, seg_t, seg_state, seg_potted, row, k, now, st, status):
-    """Record that ball ``k``'s trajectory is re-anchored at ``now``."""
-    seg_ball[row] = k
-    seg_t[row] = now
-    seg_state[row, 0] = st[k, PX]
-    seg_state[row, 1] = st[k, PY]
-    seg_state[row, 2] = st[k, VX]
-    seg_state[row, 3] = st[k, VY]
-    seg_potted[row] = status[k] == POTTED
-
-
-@kernel
 def _repredict_pairs(st, status, k, now, params, own, caps, pair):
     n = st.shape[0]
     for j in range(n):
@@ -134,6 +164,33 @@ def _repredict_pairs(st, status, k, now, params, own, caps, pair):
             continue
         lo, hi = (k, j) if k < j else (j, k)
         pair[lo, hi] = predict_pair(st, status, lo, hi, now, params, own, caps)
+
+
+@inline_kernel
+def _tally(kind, i, j, balls, first_i, first_j):
+    """Update what the rules read from a shot with event ``(kind, i, j)``.
+
+    ``balls`` holds the per-ball rows (``BALL_POCKET``, ...); ``(first_i, first_j)`` is the
+    shot's first ball-ball impact so far (-1 before it), returned updated.
+    """
+    if kind == POCKET:
+        order = 0
+        for k in range(balls.shape[1]):
+            if balls[BALL_POCKET, k] >= 0:
+                order += 1
+        balls[BALL_POCKET, i] = j
+        balls[BALL_POCKET_ORDER, i] = order
+    elif kind == CUSHION:
+        if first_i >= 0:
+            balls[BALL_CUSHIONS, i] += 1
+    elif kind == BALL:
+        if first_i < 0:
+            first_i, first_j = i, j
+        if balls[BALL_FIRST_HIT, i] < 0:
+            balls[BALL_FIRST_HIT, i] = j
+        if balls[BALL_FIRST_HIT, j] < 0:
+            balls[BALL_FIRST_HIT, j] = i
+    return first_i, first_j
 
 
 @kernel
@@ -150,16 +207,12 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         record: Whether to log events and trajectory segments (off for batched training).
 
     Returns:
-        ``(final_positions, pocketed, n_events, duration, capped, first_i, first_j,
-        ev_t, ev_kind, ev_i, ev_j, ev_seg, seg_ball, seg_t, seg_state, seg_potted)`` where
-        the ``ev_*`` arrays list events chronologically (``ev_seg``: the first segment row
-        each event wrote) and each segment row anchors a ball's trajectory from ``seg_t`` on
-        (``seg_state`` holds x, y, vx, vy).
+        A :data:`ShotOutput`; its logs are empty unless ``record``.
     """
     n = positions.shape[0]
-    a = params[3]
+    a = params[P_DECEL]
     if masses.shape[0] == 0:
-        masses = np.full(n, params[6])
+        masses = np.full(n, params[P_MASS])
     st = np.zeros((n, NCOL), dtype=np.float64)
     status = np.zeros(n, dtype=np.int8)
     for i in range(n):
@@ -184,35 +237,24 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     for i in range(n):
         for j in range(i + 1, n):
             pair[i, j] = predict_pair(st, status, i, j, 0.0, params, own, caps)
-    pocketed = np.full(n, -1, dtype=np.int64)
     pair_last = np.full((n, n), -INF, dtype=np.float64)  # time of each pair's last impact
     pair_repeats = np.zeros((n, n), dtype=np.int64)  # impacts in a row within ZENO_WINDOW
 
-    ev_t = np.empty(16 if record else 0, dtype=np.float64)
-    ev_kind = np.empty(16 if record else 0, dtype=np.int8)
-    ev_i = np.empty(16 if record else 0, dtype=np.int64)
-    ev_j = np.empty(16 if record else 0, dtype=np.int64)
-    ev_seg = np.empty(16 if record else 0, dtype=np.int64)  # first segment row of each event
-    n_seg = n if record else 0
-    seg_cap = max(2 * n, 16) if record else 0
-    seg_ball = np.empty(seg_cap, dtype=np.int64)
-    seg_t = np.empty(seg_cap, dtype=np.float64)
-    seg_state = np.empty((seg_cap, 4), dtype=np.float64)
-    seg_potted = np.zeros(seg_cap, dtype=np.bool_)
+    balls = np.full((N_BALL_ROWS, n), -1, dtype=np.int64)  # one allocation for four rows
+    balls[BALL_CUSHIONS] = 0
+    first_i = first_j = -1
+
+    events = new_event_log(16 if record else 0)
+    segments = new_segment_log(max(2 * n, 16) if record else 0)
+    n_seg = 0
     if record:
         for i in range(n):
-            seg_ball[i] = i
-            seg_t[i] = 0.0
-            seg_state[i, 0] = st[i, PX]
-            seg_state[i, 1] = st[i, PY]
-            seg_state[i, 2] = st[i, VX]
-            seg_state[i, 3] = st[i, VY]
+            log_segment(segments, n_seg, i, 0.0, st, status)
+            n_seg += 1
 
     n_ev = 0
     now = 0.0
     capped = False
-    first_i = -1
-    first_j = -1
     changed = np.empty(n, dtype=np.int64)  # balls re-anchored by the current event
     while True:
         bt, bkind, bi, bj = INF, 99, n, n
@@ -235,17 +277,11 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
             break
         now = bt
         if record:
-            ev_t = _grow(ev_t, n_ev)
-            ev_kind = _grow(ev_kind, n_ev)
-            ev_i = _grow(ev_i, n_ev)
-            ev_j = _grow(ev_j, n_ev)
-            ev_seg = _grow(ev_seg, n_ev)
-            ev_seg[n_ev] = n_seg
-            ev_t[n_ev] = now
-            ev_kind[n_ev] = bkind
-            ev_i[n_ev] = bi
-            ev_j[n_ev] = bj
+            if n_ev == events.t.shape[0]:
+                events = grown_event_log(events)
+            log_event(events, n_ev, now, bkind, bi, bj, n_seg)
         n_ev += 1
+        first_i, first_j = _tally(bkind, bi, bj, balls, first_i, first_j)
 
         n_changed = 0
         if bkind == STOP:
@@ -256,7 +292,6 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
             x, y, _, _ = state_at(st, status, bi, now, a)
             set_anchor(st, status, bi, now, x, y, 0.0, 0.0, a, V_REST)
             status[bi] = POTTED
-            pocketed[bi] = bj
             predict_own(st, status, bi, params, pockets, own, caps)
             for j in range(n):
                 lo, hi = (bi, j) if bi < j else (j, bi)
@@ -270,8 +305,6 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
             changed[0] = bi
             n_changed = 1
         else:
-            if first_i < 0:
-                first_i, first_j = bi, bj
             if now - pair_last[bi, bj] <= ZENO_WINDOW:
                 pair_repeats[bi, bj] += 1
             else:
@@ -288,14 +321,10 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
             for c in range(n_changed):
                 _repredict_pairs(st, status, changed[c], now, params, own, caps, pair)
         if record:
+            if n_seg + n_changed > segments.t.shape[0]:
+                segments = grown_segment_log(segments)  # doubles: room for N more at least
             for c in range(n_changed):
-                seg_ball = _grow(seg_ball, n_seg)
-                seg_t = _grow(seg_t, n_seg)
-                seg_state = _grow(seg_state, n_seg)
-                seg_potted = _grow(seg_potted, n_seg)
-                _log_segment(
-                    seg_ball, seg_t, seg_state, seg_potted, n_seg, changed[c], now, st, status
-                )
+                log_segment(segments, n_seg, changed[c], now, st, status)
                 n_seg += 1
     if capped:
         for i in range(n):
@@ -303,38 +332,32 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
                 x, y, _, _ = state_at(st, status, i, now, a)
                 set_anchor(st, status, i, now, x, y, 0.0, 0.0, a, V_REST)
                 if record:
-                    seg_ball = _grow(seg_ball, n_seg)
-                    seg_t = _grow(seg_t, n_seg)
-                    seg_state = _grow(seg_state, n_seg)
-                    seg_potted = _grow(seg_potted, n_seg)
-                    _log_segment(seg_ball, seg_t, seg_state, seg_potted, n_seg, i, now, st, status)
+                    if n_seg == segments.t.shape[0]:
+                        segments = grown_segment_log(segments)
+                    log_segment(segments, n_seg, i, now, st, status)
                     n_seg += 1
     final = np.empty((n, 2), dtype=np.float64)
     for i in range(n):
         final[i, 0] = st[i, PX]
         final[i, 1] = st[i, PY]
-    return (
+    return ShotOutput(
         final,
-        pocketed,
+        balls[BALL_POCKET],
+        balls[BALL_POCKET_ORDER],
+        first_i,
+        first_j,
+        balls[BALL_FIRST_HIT],
+        balls[BALL_CUSHIONS],
         n_ev,
         now,
         capped,
-        first_i,
-        first_j,
-        ev_t[:n_ev].copy(),
-        ev_kind[:n_ev].copy(),
-        ev_i[:n_ev].copy(),
-        ev_j[:n_ev].copy(),
-        ev_seg[:n_ev].copy(),
-        seg_ball[:n_seg].copy(),
-        seg_t[:n_seg].copy(),
-        seg_state[:n_seg].copy(),
-        seg_potted[:n_seg].copy(),
+        trim_events(events, n_ev),
+        trim_segments(segments, n_seg),
     )
 
 
 @kernel
-def shoot_final(positions, velocities, masses, params, pockets, max_events, final, pocketed, meta):
+def shoot_final(positions, velocities, masses, params, pockets, max_events, final, balls, meta):
     """Validate and simulate one shot in a single call, writing only the final state.
 
     The lean path for training loops: no event log, and nothing allocated for Python (each
@@ -343,20 +366,26 @@ def shoot_final(positions, velocities, masses, params, pockets, max_events, fina
     Args:
         positions, velocities, masses, params, pockets, max_events: As for :func:`run_shot`.
         final: ``(N, 2)`` output: final positions.
-        pocketed: ``(N,)`` output: pockets (-1 on the table).
-        meta: ``(7,)`` output: ``(code, i, j, n_events, capped, first_i, first_j)``, where
-            ``code`` is the validation code (``OK``, or the problem with balls ``i, j``,
-            and then nothing is simulated).
+        balls: ``(N_BALL_ROWS, N)`` output: per-ball results in the rows ``BALL_POCKET``,
+            ``BALL_POCKET_ORDER``, ``BALL_FIRST_HIT`` and ``BALL_CUSHIONS`` (the
+            :data:`ShotOutput` fields of those names).
+        meta: ``(N_META,)`` output: ``META_CODE`` (the validation code: ``OK``, or the
+            problem with balls ``META_I``, ``META_J``, and then nothing is simulated),
+            ``META_EVENTS``, ``META_CAPPED``, ``META_FIRST_I``, ``META_FIRST_J``.
 
     Returns:
         The shot's duration (s).
     """
     code, i, j = validate(positions, velocities, masses, params, pockets)
-    meta[0], meta[1], meta[2] = code, i, j
+    meta[META_CODE], meta[META_I], meta[META_J] = code, i, j
     if code != OK:
         return 0.0
     out = run_shot(positions, velocities, masses, params, pockets, max_events, False)
-    final[:] = out[0]
-    pocketed[:] = out[1]
-    meta[3], meta[4], meta[5], meta[6] = out[2], out[4], out[5], out[6]
-    return out[3]
+    final[:] = out.positions
+    balls[BALL_POCKET] = out.pocketed
+    balls[BALL_POCKET_ORDER] = out.pocket_order
+    balls[BALL_FIRST_HIT] = out.first_hit
+    balls[BALL_CUSHIONS] = out.cushions_after_contact
+    meta[META_EVENTS], meta[META_CAPPED] = out.n_events, out.capped
+    meta[META_FIRST_I], meta[META_FIRST_J] = out.first_i, out.first_j
+    return out.duration

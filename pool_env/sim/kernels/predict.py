@@ -37,6 +37,7 @@ from pool_env.sim.kernels.motion import (
     rest_point,
     state_at,
 )
+from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF, first_contact, ray_circle_entry
 
 # Event kinds, in the order that breaks ties between simultaneous events.
@@ -58,7 +59,8 @@ def predict_own(st, status, i, params, pockets, own, caps):
     Writes ``own[i] = (time, kind, arg, end)`` where ``end`` is the time its trajectory next
     changes (a cushion or pocket event; ``inf`` if it rolls to rest), and ``caps[i]``.
     """
-    length, width, radius, a = params[0], params[1], params[2], params[3]
+    length, width = params[P_LENGTH], params[P_WIDTH]
+    radius, a = params[P_RADIUS], params[P_DECEL]
     x, y = st[i, PX], st[i, PY]
     if status[i] != MOVING:
         own[i, EV_T] = INF
@@ -225,7 +227,7 @@ def predict_pair(st, status, i, j, now, params, own, caps):
         return INF
     if status[i] != MOVING and status[j] != MOVING:
         return INF
-    radius, a = params[2], params[3]
+    radius, a = params[P_RADIUS], params[P_DECEL]
     if not capsules_may_meet(caps, i, j, 2.0 * radius + CULL_MARGIN):
         return INF
     t_end = min(own[i, EV_END], own[j, EV_END])

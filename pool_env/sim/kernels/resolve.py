@@ -42,6 +42,7 @@ import numpy as np
 
 from pool_env.sim.kernels._jit import kernel
 from pool_env.sim.kernels.motion import POTTED, set_anchor, state_at
+from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_LENGTH, P_RADIUS, P_WIDTH
 
 V_ZENO = 1e-6  # m/s
 V_REST = 1e-9  # m/s
@@ -86,7 +87,7 @@ def ball_ball(st, status, masses, i, j, t, params, repeats):
     Returns:
         Whether the pair must stick (see :func:`stick_cluster`).
     """
-    a, e = params[3], params[4]
+    a, e = params[P_DECEL], params[P_E_BALL]
     xi, yi, vxi, vyi = state_at(st, status, i, t, a)
     xj, yj, vxj, vyj = state_at(st, status, j, t, a)
     dx, dy = xj - xi, yj - yi
@@ -133,7 +134,7 @@ def stick_cluster(st, status, masses, i, t, params, changed):
     Returns:
         How many balls changed; their indices are written to ``changed``.
     """
-    a, radius = params[3], params[2]
+    a, radius = params[P_DECEL], params[P_RADIUS]
     n = st.shape[0]
     reach2 = (2.0 * radius + CONTACT_TOL) ** 2
     xs = np.empty(n)
@@ -169,7 +170,7 @@ def stick_cluster(st, status, masses, i, t, params, changed):
     # A lump that presses into a rail it touches slower than V_ZENO stops pressing (the
     # rail takes that momentum). Otherwise it would bounce off the rail and re-stick,
     # shedding its normal momentum only geometrically, forever at one instant.
-    length, width = params[0], params[1]
+    length, width = params[P_LENGTH], params[P_WIDTH]
     for c in range(size):
         k = changed[c]
         if abs(vx) < V_ZENO and (
@@ -191,7 +192,7 @@ def stick_cluster(st, status, masses, i, t, params, changed):
 @kernel
 def cushion(st, status, i, rail, t, params):
     """Resolve ball ``i`` hitting rail ``rail`` (0: x=R, 1: x=L-R, 2: y=R, 3: y=W-R)."""
-    a, e = params[3], params[5]
+    a, e = params[P_DECEL], params[P_E_CUSHION]
     x, y, vx, vy = state_at(st, status, i, t, a)
     # Only a velocity into the rail is reflected, so a repeated or stale hit is harmless.
     if rail < 2:
