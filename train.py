@@ -6,9 +6,14 @@ pot rate next to the random and ghost-ball baselines on the same layouts. Each r
 ``runs/<env>/<algo>_s<seed>_<steps>_<time>/``: config.yaml, command.txt, model.zip,
 evaluation.md/.json, curve.csv, learning_curve.png and tensorboard logs (tb/).
 
+With ``--backend rllib`` it trains PPO on Ray RLlib instead (:mod:`agents.rllib_train`):
+EnvRunners sample in parallel, each with its own batch of tables, on this machine or on
+every node of the Ray cluster that ``RAY_ADDRESS`` names.
+
 Examples::
 
     python train.py
+    python train.py --backend rllib --env-runners 2 --timesteps 50000
     python train.py --algo sac --timesteps 300000
     python train.py --timesteps 1000000 --seed 1 --set learning_rate=lin_1e-3 n_epochs=20
     tensorboard --logdir runs
@@ -42,10 +47,17 @@ def build_parser() -> argparse.ArgumentParser:
         description=__doc__.split("\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
     )
     p.add_argument("--env", default="pool_env/OneBall-v0", help="registered env id")
+    p.add_argument(
+        "--backend", default="sb3", choices=("sb3", "rllib"), help="trainer (rllib: PPO only)"
+    )
+    p.add_argument("--env-runners", type=int, default=2, help="rllib: EnvRunner actors")
+    p.add_argument("--address", help="rllib: Ray cluster address (default: RAY_ADDRESS or local)")
     p.add_argument("--algo", default="ppo", choices=sorted(ALGOS))
     p.add_argument("--timesteps", type=int, help="training steps (default: from the YAML)")
     p.add_argument("--seed", type=int, default=0)
-    p.add_argument("--n-envs", type=int, help="parallel envs (default: from the YAML)")
+    p.add_argument(
+        "--n-envs", type=int, help="parallel envs (default: YAML; rllib: 64 tables per runner)"
+    )
     p.add_argument(
         "--vec", choices=VEC_KINDS, help="vectorized env kind (default: YAML, else dummy)"
     )
@@ -74,6 +86,13 @@ def main(argv: list[str] | None = None) -> int:
         algo_kwargs = parse_sets(args.set)
     except ValueError as exc:
         parser.error(str(exc))
+    extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
+    if not isinstance(extra, dict):
+        parser.error("--env-kwargs must be a YAML mapping")
+    if args.aim:
+        extra["aim"] = args.aim
+    if args.backend == "rllib":
+        return _train_rllib(parser, args, algo_kwargs, extra)
     overrides: dict[str, Any] = {
         "seed": args.seed,
         "n_timesteps": args.timesteps,
@@ -88,17 +107,47 @@ def main(argv: list[str] | None = None) -> int:
         "algo_kwargs": algo_kwargs,
     }
     config = resolve_config(args.env, args.algo, overrides, args.hyperparams)
-    extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
-    if not isinstance(extra, dict):
-        parser.error("--env-kwargs must be a YAML mapping")
-    if args.aim:
-        extra["aim"] = args.aim
     config.env_kwargs = {**config.env_kwargs, **extra}
     if args.wrapper:
         config.wrapper = None if args.wrapper == "none" else args.wrapper
         if config.wrapper and config.vec == "native" and not args.vec:
             config.vec = "dummy"  # the native vector env cannot apply a Python wrapper
     train(config, root=args.runs)
+    return 0
+
+
+def _train_rllib(
+    parser: argparse.ArgumentParser,
+    args: argparse.Namespace,
+    algo_kwargs: dict[str, Any],
+    env_kwargs: dict[str, Any],
+) -> int:
+    """``--backend rllib``: PPO on Ray RLlib with the same hyperparameter file."""
+    if args.algo != "ppo":
+        parser.error("--backend rllib trains PPO only")
+    if args.vec or args.wrapper:
+        parser.error("--backend rllib always samples the native vector env: no --vec/--wrapper")
+    if args.env_runners < 0:
+        parser.error("--env-runners must be >= 0")
+    from agents.rllib_train import resolve_run
+    from agents.rllib_train import train as train_rllib
+
+    overrides: dict[str, Any] = {
+        "seed": args.seed,
+        "n_timesteps": args.timesteps,
+        "env_runners": args.env_runners,
+        "n_envs": args.n_envs,
+        "threads": args.threads,
+        "final_episodes": args.final_episodes,
+        "baselines": not args.no_baselines,
+        "env_kwargs": env_kwargs,
+        "algo_kwargs": algo_kwargs,
+    }
+    try:
+        run = resolve_run(args.env, overrides, args.hyperparams)
+    except (KeyError, ValueError) as exc:
+        parser.error(str(exc))
+    train_rllib(run, root=args.runs, address=args.address)
     return 0
 
 

@@ -11,8 +11,6 @@ the random and ghost-ball baselines, same seeds), ``curve.csv`` and ``learning_c
 from __future__ import annotations
 
 import json
-import shlex
-import sys
 import time
 from dataclasses import asdict, dataclass, field
 from pathlib import Path
@@ -25,9 +23,9 @@ from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.env_util import make_vec_env
 from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecEnv, VecMonitor
 
-from agents import hyperparams
+from agents import hyperparams, runs
 from agents.envs import EnvFactory, make_env
-from agents.evaluate import evaluate_agent, format_table, run_episodes
+from agents.evaluate import evaluate_agent, format_table, one_line, run_episodes
 from agents.metrics import Estimate
 
 #: Algorithms by the name used in ``hyperparams.yml`` and on the command line.
@@ -174,19 +172,7 @@ def resolve_config(
 
 def run_folder(root: str | Path, config: TrainConfig) -> Path:
     """A new folder ``root/<env>/<algo>_s<seed>_<steps>_<time>`` for one run."""
-    env_name = config.env_id.split("/")[-1]
-    stamp = time.strftime("%Y%m%d-%H%M%S")
-    base = Path(root) / env_name / f"{config.algo}_s{config.seed}_{_steps(config.n_timesteps)}"
-    path = Path(f"{base}_{stamp}")
-    k = 1
-    while path.exists():  # two runs in the same second
-        path, k = Path(f"{base}_{stamp}-{k}"), k + 1
-    path.mkdir(parents=True)
-    return path
-
-
-def _steps(n: int) -> str:
-    return f"{n // 1_000_000}M" if n % 1_000_000 == 0 else f"{n // 1000}k" if n >= 1000 else str(n)
+    return runs.run_folder(root, config.env_id, config.algo, config.seed, config.n_timesteps)
 
 
 def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -> Path:
@@ -206,7 +192,7 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     t0 = time.perf_counter()
     out = run_folder(root, config)
     (out / "config.yaml").write_text(yaml.safe_dump(asdict(config), sort_keys=False))
-    (out / "command.txt").write_text(shlex.join([sys.executable, *sys.argv]) + "\n")
+    runs.write_command(out)
 
     env = make_vec(config)
     model = ALGOS[config.algo](
@@ -251,7 +237,7 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     )
     print(f"\n{config.algo.upper()} on {config.env_id} after {config.n_timesteps:,} steps")
     print(table)
-    print("\n" + _one_line(rows))
+    print("\n" + one_line(rows))
     if not quiet:
         print(f"\nTraining took {train_seconds:.0f} s ({total:.0f} s in all). Run folder: {out}")
     return out
@@ -266,16 +252,6 @@ def _final_evaluation(config: TrainConfig, model: BaseAlgorithm) -> dict[str, di
         for name in ("random", "const", "ghost"):
             rows[name] = evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, None)
     return rows
-
-
-def _one_line(rows: dict[str, dict[str, Estimate]]) -> str:
-    """``pots per shot: ppo 74.0% (clean 65.6%) | random 56.0% (clean 29.6%) | ...``."""
-    parts = [
-        f"{name.split(' ')[0]} {stats['pots_per_shot'].value:.1%} "
-        f"(clean {stats['clean_pot_rate'].value:.1%})"
-        for name, stats in rows.items()
-    ]
-    return "pots per shot: " + " | ".join(parts)
 
 
 def _as_dict(stats: dict[str, Estimate]) -> dict[str, list[float]]:
