@@ -1,0 +1,125 @@
+"""Ray RLlib: the env creator in every worker, hyperparameters translated, PPO iterations."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+ray = pytest.importorskip(
+    "ray", reason="needs the rllib extra (ray[rllib]): pip install -e '.[rllib]'"
+)
+pytest.importorskip("ray.rllib", reason="needs the rllib extra: pip install -e '.[rllib]'")
+
+from gymnasium.vector import AutoresetMode  # noqa: E402
+
+from agents import hyperparams  # noqa: E402
+from agents.rllib_env import make_env, register  # noqa: E402
+from agents.rllib_train import (  # noqa: E402
+    RLlibRun,
+    build_config,
+    fit,
+    resolve_run,
+    rllib_training_kwargs,
+)
+from pool_env.vector import PoolVectorEnv  # noqa: E402
+
+ONE = "pool_env/OneBall-v0"
+
+
+def test_make_env_gives_the_native_vector_env_in_next_step_mode() -> None:
+    env = make_env({"num_envs": 4, "env_kwargs": {"aim": "relative"}}, env_id=ONE)
+    assert isinstance(env, PoolVectorEnv)
+    assert env.num_envs == 4
+    assert env.aim == "relative"
+    assert env.autoreset_mode == AutoresetMode.NEXT_STEP
+    assert env.max_episode_steps == 10  # the id's TimeLimit, as gym.make(id)
+    single = make_env({"env_id": ONE})
+    assert single.spec.id == ONE
+    with pytest.raises(ValueError, match="next-step"):
+        make_env({"num_envs": 2, "env_kwargs": {"autoreset_mode": "SameStep"}}, env_id=ONE)
+    with pytest.raises(ValueError, match="env id must be one of"):
+        make_env({"num_envs": 2}, env_id="CartPole-v1")
+    with pytest.raises(ValueError, match="not a pool_env id"):
+        register("CartPole-v1")
+
+
+def test_hyperparameters_translate_key_by_key() -> None:
+    _, algo = hyperparams.split(hyperparams.load(ONE, "ppo"))
+    kw = rllib_training_kwargs(algo, 300_000)
+    # The OneBall entry: gamma 0, lambda 0, n_steps 256 x 8 envs, batch 256, 10 epochs.
+    assert kw["gamma"] == 0.0
+    assert kw["lambda_"] == 0.0
+    assert kw["train_batch_size_per_learner"] == algo["n_steps"] * 8 == 2048
+    assert kw["minibatch_size"] == algo["batch_size"] == 256
+    assert kw["num_epochs"] == algo["n_epochs"] == 10
+    assert kw["lr"] == pytest.approx(3e-4)
+    # Keys the entry leaves out take SB3's defaults, not RLlib's (clip 0.3, KL penalty).
+    assert kw["clip_param"] == 0.2
+    assert kw["grad_clip"] == 0.5
+    assert kw["kl_coeff"] == 0.0
+    assert kw["model"] == {"fcnet_hiddens": [64, 64], "fcnet_activation": "tanh"}
+    schedule = rllib_training_kwargs({"learning_rate": "lin_1e-3"}, 5000)["lr"]
+    assert schedule == [[0, 1e-3], [5000, 0.0]]
+    with pytest.raises(ValueError, match="buffer_size"):
+        rllib_training_kwargs({"buffer_size": 10}, 1000)
+    with pytest.raises(ValueError, match="activation_fn"):
+        rllib_training_kwargs({"policy_kwargs": {"activation_fn": "swish"}}, 1000)
+
+
+@pytest.fixture(scope="module")
+def local_ray():  # type: ignore[no-untyped-def]
+    if ray.is_initialized():
+        ray.shutdown()
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    yield
+    ray.shutdown()
+
+
+def test_ppo_trains_on_two_env_runners_with_the_plain_id(local_ray: None, tmp_path: Path) -> None:
+    run = resolve_run(
+        ONE,
+        {
+            "env_runners": 2,
+            "n_envs": 16,
+            "n_timesteps": 1,  # one iteration
+            "final_episodes": 20,
+            "baselines": False,
+            "algo_kwargs": {"n_steps": 32, "batch_size": 128, "n_epochs": 1},  # 256 a batch
+        },
+    )
+    assert isinstance(run, RLlibRun)
+    algo = build_config(run).build_algo()
+    try:
+        # Each EnvRunner is its own process that never imported pool_env itself: the
+        # creator registered the plain id there and built a 16-table PoolVectorEnv.
+        found = algo.env_runner_group.foreach_env_runner(
+            lambda r: (os.getpid(), type(r.env.unwrapped).__name__, r.env.unwrapped.num_envs),
+            local_env_runner=False,
+        )
+        pids = {pid for pid, _, _ in found}
+        assert len(pids) == 2
+        assert os.getpid() not in pids
+        assert {(name, n) for _, name, n in found} == {("PoolVectorEnv", 16)}
+        before = [p.detach().clone() for p in algo.get_module().parameters()]
+        steps = fit(algo, run, tmp_path)
+        after = list(algo.get_module().parameters())
+    finally:
+        algo.stop()
+    assert steps >= 256
+    assert any(
+        not np.allclose(b.numpy(), a.detach().numpy()) for b, a in zip(before, after, strict=True)
+    )
+    rows = list(csv.DictReader((tmp_path / "progress.csv").open()))
+    assert len(rows) == 1
+    # OneBall-v0 is one shot per episode: every sampled step ends an episode.
+    assert int(rows[0]["episodes"]) == int(rows[0]["env_steps"]) == steps
+    assert -1.0 <= float(rows[0]["episode_return_mean"]) <= 1.0
+    report = json.loads((tmp_path / "evaluation.json").read_text())
+    assert report["episodes"] == 20
+    assert set(report["results"]) == {"ppo (rllib)"}
+    assert (tmp_path / "checkpoint").is_dir()
