@@ -140,7 +140,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     | ``reward_scratch`` | float | -1.0 | when the cue ball is potted |
     | ``reward_no_contact`` | float | 0.0 | when the cue ball hits no ball |
     | ``reward_shaping`` | float | 0.0 | weight of the pocket-distance potential |
-    | ``render_mode`` | str or None | None | ``"rgb_array"`` or ``"human"`` |
+    | ``render_mode`` | str or None | None | ``"rgb_array"``, ``"rgb_array_list"``, ``"human"`` |
     | ``render_width`` | int | 800 | frame width in pixels |
 
     Registered ids (``import pool_env``): ``pool_env/Pool-v0`` (these defaults, 50 shots),
@@ -155,8 +155,14 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     ``"rgb_array"``: ``render()`` returns an ``(H, W, 3)`` uint8 top-down frame: the balls at
     rest, with the paths of the last shot drawn as trails, so ``RecordVideo`` shows each
-    shot as one frame (``render_fps`` is 2: half a second per shot). ``"human"``: a pygame
-    window (``pip install "pool_env[render]"``) that animates each shot. With a render mode,
+    shot as one frame (``render_fps`` is 2: half a second per shot). ``"rgb_array_list"``:
+    ``render()`` returns every frame since the last call: the layout at reset, then each shot
+    sampled from its exact trajectories at ``render_fps`` 30 (twice real time, at most 4 s,
+    at least 20 frames a shot; :data:`pool_env.render.LIST_PLAYBACK`). Gymnasium's
+    ``RecordVideo`` keeps one frame per step of a list; :class:`pool_env.record.RecordShots`
+    keeps them all, and ``gymnasium.utils.save_video.save_video(env.render(), ...)`` writes
+    them too. ``"human"``: a pygame window (``pip install "pool_env[render]"``) that animates
+    each shot (off screen, silently, on a machine without a display). With a render mode,
     shots keep their trajectories: ``shot_frames()`` samples the last shot for an animation
     and ``save_shot(path)`` writes it as GIF or MP4.
 
@@ -180,7 +186,10 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     * v0: Initial version.
     """
 
-    metadata: ClassVar[dict[str, Any]] = {"render_modes": ["human", "rgb_array"], "render_fps": 2}
+    metadata: ClassVar[dict[str, Any]] = {
+        "render_modes": ["human", "rgb_array", "rgb_array_list"],
+        "render_fps": 2,  # rgb_array's; an instance carries its mode's (render.RENDER_FPS)
+    }
 
     def __init__(
         self,
@@ -223,6 +232,10 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             modes = self.metadata["render_modes"]
             raise ValueError(f"render_mode must be one of {modes} or None, got {render_mode!r}")
         self.render_mode = render_mode
+        if render_mode is not None:
+            from pool_env.render import RENDER_FPS
+
+            self.metadata = {**self.metadata, "render_fps": RENDER_FPS[render_mode]}
         self.render_width = checks.parse_count("render_width", render_width) or 800
         if self.render_width < 64:
             raise ValueError(f"render_width must be at least 64 pixels, got {render_width!r}")
@@ -243,6 +256,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._shot_rows = self._rows
         self._renderer: Any = None
         self._window: Any = None
+        self._frames: list[NDArray[np.uint8]] = []  # rgb_array_list: since the last render()
 
     # -- Gymnasium API --------------------------------------------------------------------
 
@@ -281,6 +295,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._last_shot = None
         if self.render_mode == "human":
             self.render()
+        elif self.render_mode == "rgb_array_list":
+            self._frames = [self._frame()]
         return self._observation(), {}
 
     def step(
@@ -361,6 +377,10 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         }
         if self.render_mode == "human":
             self.render()
+        elif self.render_mode == "rgb_array_list":
+            from pool_env.render import LIST_PLAYBACK, RENDER_FPS
+
+            self._frames += self.shot_frames(RENDER_FPS["rgb_array_list"], **LIST_PLAYBACK)
         return self._observation(), reward, terminated, truncated, info
 
     # -- state ----------------------------------------------------------------------------
@@ -424,25 +444,32 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             trails = renderer.trails(self._last_shot, self._shot_rows)
         return renderer.frame(self.positions, self._on_table, trails=trails)
 
-    def render(self) -> NDArray[np.uint8] | None:
-        """``rgb_array``: the current frame with the last shot's trails; ``human``: animate it."""
+    def render(self) -> NDArray[np.uint8] | list[NDArray[np.uint8]] | None:
+        """The frame(s) of the render mode (see the class docstring, Rendering).
+
+        ``rgb_array``: the current frame with the last shot's trails; ``rgb_array_list``:
+        every frame since the last call (the shots animated); ``human``: animate the shot.
+        """
         if self.render_mode is None:
             gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array'")
             return None
         if self.render_mode == "rgb_array":
             return self._frame()
+        if self.render_mode == "rgb_array_list":
+            frames, self._frames = self._frames, []
+            return frames
         from pool_env.render import Window
 
         if self._window is None:
             renderer = self._get_renderer()
             self._window = Window(renderer.size, "pool_env")
         if self._last_shot is not None and self._last_shot.recorded:
-            self._window.play(self.shot_frames(), fps=30)
+            self._window.play(self.shot_frames(), fps=self.metadata["render_fps"])
         self._window.show(self._frame())
         return None
 
     def shot_frames(
-        self, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0
+        self, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0, min_frames: int = 2
     ) -> list[NDArray[np.uint8]]:
         """Frames of the last shot sampled from its exact trajectories.
 
@@ -450,6 +477,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             fps: Frames per second of playback.
             speed: Playback speed (1 is real time).
             max_seconds: Longer shots are sped up to fit in this playback time.
+            min_frames: At least this many frames (shorter shots are slowed down).
 
         Returns:
             Frames from the strike until everything rests (the last frame shows a scratched
@@ -463,7 +491,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         shot = self._last_shot
         if shot is None or not shot.recorded:
             raise ValueError("no recorded shot: create the env with a render_mode and step() first")
-        return shot_frames(self._get_renderer(), shot, self._shot_rows, fps, speed, max_seconds)
+        renderer = self._get_renderer()
+        return shot_frames(renderer, shot, self._shot_rows, fps, speed, max_seconds, min_frames)
 
     def save_shot(
         self, path: str, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0

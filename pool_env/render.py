@@ -1,13 +1,21 @@
 """Rendering: top-down frames drawn with numpy, a pygame window, and shot animations.
 
-Frames need numpy only, so ``rgb_array`` works headless and without the ``render`` extra.
-pygame (the window) and imageio (GIF/MP4 files) are imported only when used.
+Frames need numpy only, so ``rgb_array`` and ``rgb_array_list`` work headless and without
+the ``render`` extra. pygame (the window) and imageio (GIF/MP4 files) are imported only
+when used, and pygame's display only when a window is asked for.
+
+Render modes and their frame rates (:data:`RENDER_FPS`, the env's ``metadata["render_fps"]``):
+``rgb_array`` gives one frame per shot (the balls at rest with the shot's trails) and plays
+at 2 fps; ``rgb_array_list`` gives every frame since the last ``render()`` call: the layout
+at reset, then each shot sampled from its exact trajectories (:func:`shot_frames` with
+:data:`LIST_PLAYBACK`) at 30 fps; ``human`` animates each shot in a window at 30 fps.
 """
 
 from __future__ import annotations
 
 import math
 import os
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -42,6 +50,14 @@ SIGHT = np.array((235, 225, 200), dtype=np.uint8)
 WHITE = np.array((250, 250, 245), dtype=np.float64)
 
 RAIL = 0.09  # rail width drawn around the playing surface (m)
+
+#: ``metadata["render_fps"]`` of each render mode (``RecordVideo`` plays at this rate).
+RENDER_FPS = {"rgb_array": 2, "rgb_array_list": 30, "human": 30}
+
+#: How ``rgb_array_list`` samples a shot: at twice real time, at most 4 s of playback (a
+#: 20 s shot at 800 px would otherwise hold 600 MB of frames), at least 20 frames (a
+#: shot shorter than 0.7 s is slowed down). The frames are the exact trajectories.
+LIST_PLAYBACK = {"speed": 2.0, "max_seconds": 4.0, "min_frames": 20}
 
 # 3x5 bitmap digits, one string per row.
 _DIGITS = {
@@ -248,8 +264,12 @@ def shot_frames(
     fps: int = 30,
     speed: float = 1.0,
     max_seconds: float = 8.0,
+    min_frames: int = 2,
 ) -> list[Frame]:
     """Sample a recorded shot into animation frames, from the strike until all rest.
+
+    Frame ``k`` of ``n`` shows the balls at ``positions_at(k * duration / (n - 1))``, the
+    exact trajectories, with the balls potted by then gone.
 
     Args:
         renderer: The renderer.
@@ -258,9 +278,10 @@ def shot_frames(
         fps: Frames per second of playback.
         speed: Playback speed (1 is real time).
         max_seconds: A longer shot is sped up to fit in this playback time.
+        min_frames: At least this many frames (a shorter shot is slowed down).
 
     Returns:
-        The frames (at least two: the strike and the rest).
+        The frames (at least ``max(2, min_frames)``: the strike, ..., the rest).
 
     Raises:
         ValueError: If the shot was not recorded, or on a non-positive ``fps``, ``speed`` or
@@ -273,7 +294,7 @@ def shot_frames(
             f"fps, speed and max_seconds must be positive, got {fps}, {speed}, {max_seconds}"
         )
     rate = max(float(speed), shot.duration / float(max_seconds))  # shot seconds per second
-    n = max(2, math.ceil(shot.duration / rate * fps) + 1)
+    n = max(2, int(min_frames), math.ceil(shot.duration / rate * fps) + 1)
     balls = np.asarray(balls)
     frames = []
     for t in np.linspace(0.0, shot.duration, n):
@@ -315,8 +336,20 @@ def save_animation(frames: list[Frame], path: str | os.PathLike[str], fps: int =
     iio.imwrite(path, np.stack(frames), fps=fps, codec="libx264", plugin="FFMPEG")
 
 
+def has_display() -> bool:
+    """Whether a window can be shown: on Linux and BSD, an X11 or Wayland display is set."""
+    if not sys.platform.startswith(("linux", "freebsd", "openbsd", "netbsd")):
+        return True  # macOS and Windows always have their own display
+    return bool(os.environ.get("DISPLAY") or os.environ.get("WAYLAND_DISPLAY"))
+
+
 class Window:
     """A pygame window that shows frames (``render_mode="human"``).
+
+    On a machine without a display (no ``DISPLAY`` / ``WAYLAND_DISPLAY``, e.g. a headless
+    server or CI running ``check_env``) and no ``SDL_VIDEODRIVER`` chosen, the window is
+    drawn off screen (SDL's ``dummy`` driver) instead of SDL printing display errors such
+    as ``XDG_RUNTIME_DIR is invalid``; ``rgb_array_list`` gives the frames there.
 
     Raises:
         gymnasium.error.DependencyNotInstalled: Without pygame (the ``render`` extra).
@@ -332,6 +365,9 @@ class Window:
             raise DependencyNotInstalled(
                 'render_mode="human" needs pygame: pip install "pool_env[render]"'
             ) from None
+        if "SDL_VIDEODRIVER" not in os.environ and not has_display():
+            # Silently: check_env opens every render mode and must pass without warnings.
+            os.environ["SDL_VIDEODRIVER"] = "dummy"  # read by SDL at display.init()
         self._pg = pygame
         pygame.display.init()
         pygame.display.set_caption(title)

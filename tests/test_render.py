@@ -192,3 +192,112 @@ def test_ball_colours_cover_the_set() -> None:
     for k in (3, 11):
         top = _pixel(renderer, frame, positions[k] + np.array([0.0, 0.8 * TABLE.ball_radius]))
         assert (top.min() > 180) == (k > 8)
+
+
+def _list_env(env_id: str = "pool_env/OneBall-v0", **kwargs: object) -> gym.Env:
+    return gym.make(env_id, render_mode="rgb_array_list", render_width=320, **kwargs)
+
+
+def test_rgb_array_list_returns_the_layout_then_the_shot_from_its_trajectories() -> None:
+    env = _list_env()
+    env.reset(seed=3)
+    raw = env.unwrapped
+    renderer = raw._get_renderer()
+    start = (raw.positions, raw.on_table)
+    env.step(np.array([0.0, -0.5], np.float32))
+    frames = env.render()
+    assert env.render() == []  # everything since the last call, once
+    shot, balls = raw.last_shot, raw.last_shot_balls
+    np.testing.assert_array_equal(frames[0], renderer.frame(*start))  # the reset frame
+    clip = frames[1:]
+    n = len(clip)
+    assert n >= 20
+    # Playback at 2x real time, at most 4 s, at 30 fps: n - 1 intervals over the shot.
+    assert n == max(20, int(np.ceil(min(shot.duration / 2.0, 4.0) * 30)) + 1)
+    assert raw.metadata["render_fps"] == 30
+    for k in (0, n // 3, n - 1):  # frame k is the exact state at k * duration / (n - 1)
+        t = k * shot.duration / (n - 1)
+        expected = renderer.frame(shot.positions_at(t), ~shot.pocketed_at(t), balls)
+        np.testing.assert_array_equal(clip[k], expected)
+    assert not np.array_equal(clip[1], clip[n // 3])  # the balls move between frames
+
+
+def test_gymnasiums_record_video_keeps_one_frame_of_a_list_per_step(tmp_path: object) -> None:
+    pytest.importorskip("moviepy")
+    from gymnasium.wrappers import RecordVideo
+
+    folder = str(tmp_path / "videos")  # type: ignore[operator]
+    env = RecordVideo(_list_env(), folder, episode_trigger=lambda e: True)
+    env.reset(seed=0)
+    env.step(np.array([0.0, -0.5], np.float32))
+    assert len(env.recorded_frames) == 2  # why RecordShots exists
+    env.close()
+
+
+def test_record_shots_records_every_frame_of_every_shot(tmp_path: object) -> None:
+    pytest.importorskip("moviepy")
+    import imageio.v3 as iio
+
+    from pool_env.record import RecordShots
+
+    folder = tmp_path / "videos"  # type: ignore[operator]
+    env = RecordShots(_list_env(), str(folder), episode_trigger=lambda e: True)
+    assert env.frames_per_sec == 30
+    env.reset(seed=1)
+    durations = []
+    done = False
+    while not done:  # OneBall-v0: one shot per episode
+        *_, terminated, truncated, _ = env.step(env.action_space.sample())
+        durations.append(env.unwrapped.last_shot.duration)
+        done = terminated or truncated
+    frames = len(env.recorded_frames)
+    assert frames >= 1 + 20 * len(durations)  # the layout, then >= 20 frames a shot
+    env.close()
+    (video,) = folder.glob("*.mp4")
+    in_file = sum(1 for _ in iio.imiter(video, plugin="FFMPEG"))
+    assert in_file >= 1 + 20 * len(durations)
+    assert frames - 1 <= in_file <= frames  # moviepy may round the last frame off the clip
+    with pytest.raises(ValueError, match="rgb_array_list"):
+        RecordShots(gym.make("pool_env/OneBall-v0", render_mode="rgb_array"), str(folder / "x"))
+
+
+def test_save_video_writes_an_rgb_array_list_episode(tmp_path: object) -> None:
+    pytest.importorskip("moviepy")
+    from gymnasium.utils.save_video import save_video
+
+    env = _list_env("pool_env/NineBall-v0", max_episode_steps=2)
+    env.reset(seed=0)
+    for _ in range(2):
+        env.step(env.action_space.sample())
+    frames = env.render()
+    assert len(frames) >= 1 + 2 * 20
+    save_video(frames, str(tmp_path), fps=env.metadata["render_fps"], name_prefix="nine")
+    assert next(iter(tmp_path.glob("nine*.mp4"))).stat().st_size > 1000  # type: ignore[attr-defined]
+
+
+def test_headless_check_env_prints_no_display_error() -> None:
+    import os
+    import subprocess
+
+    code = (
+        "import gymnasium as gym, sys, pool_env\n"
+        "from gymnasium.utils.env_checker import check_env\n"
+        "env = gym.make('pool_env/OneBall-v0', render_mode='rgb_array')\n"
+        "env.reset(seed=0); env.step(env.action_space.sample()); env.render()\n"
+        "assert 'pygame' not in sys.modules  # no pygame unless a window is asked for\n"
+        "check_env(gym.make('pool_env/OneBall-v0').unwrapped)\n"
+        "print('checked')\n"
+    )
+    headless = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER", "XDG_RUNTIME_DIR")
+    }
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=headless, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    assert "checked" in done.stdout
+    output = done.stdout + done.stderr
+    assert "XDG_RUNTIME_DIR" not in output
+    assert "WARN" not in output
