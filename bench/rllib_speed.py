@@ -32,29 +32,38 @@ def load() -> str:
     return f"{os.getloadavg()[0]:.2f}"
 
 
-def rllib_rate(runners: int, tables: int, steps: int, repeats: int) -> tuple[float, list[str]]:
-    """Median env steps/s sampled by ``runners`` EnvRunners at once, and the loads seen."""
+def rllib_rate(
+    runners: int, tables: int, steps: int, repeats: int
+) -> tuple[float, float, list[str]]:
+    """Sampling by ``runners`` EnvRunners at once.
+
+    Returns:
+        Median wall-clock env steps/s of all runners together, median env steps per
+        CPU-second of one runner (its own process time), and the loads seen.
+    """
     from agents.rllib_train import build_config, resolve_run
 
     run = resolve_run(ENV_ID, {"env_runners": runners, "n_envs": tables})
     algo = build_config(run).build_algo()
     group = algo.env_runner_group
 
-    def sample(runner: object) -> int:
+    def sample(runner: object) -> tuple[int, float]:
+        cpu = time.process_time()
         episodes = runner.sample(num_timesteps=steps, random_actions=False)  # type: ignore[attr-defined]
-        return sum(len(e) for e in episodes)
+        return sum(len(e) for e in episodes), time.process_time() - cpu
 
     try:
         group.foreach_env_runner(sample, local_env_runner=False)  # warm-up: compile, connect
-        rates, loads = [], []
+        rates, per_cpu, loads = [], [], []
         for _ in range(repeats):
             t0 = time.perf_counter()
-            counts = group.foreach_env_runner(sample, local_env_runner=False)
-            rates.append(sum(counts) / (time.perf_counter() - t0))
+            done = group.foreach_env_runner(sample, local_env_runner=False)
+            rates.append(sum(n for n, _ in done) / (time.perf_counter() - t0))
+            per_cpu += [n / cpu for n, cpu in done]
             loads.append(load())
     finally:
         algo.stop()
-    return statistics.median(rates), loads
+    return statistics.median(rates), statistics.median(per_cpu), loads
 
 
 def sb3_rate(tables: int, steps: int, repeats: int) -> tuple[float, list[str]]:
@@ -104,12 +113,16 @@ def main(argv: list[str] | None = None) -> int:
     print(f"SB3: {sb3:,.0f} steps/s (load {', '.join(sb3_loads)})", flush=True)
     ray.init(num_cpus=max(2, cpus), include_dashboard=False, log_to_driver=False)
     try:
-        rates = {}
+        rates, per_cpu = {}, {}
         for runners in (1, 2):
-            rate, loads = rllib_rate(runners, args.tables, args.steps, args.repeats)
-            rates[runners] = rate
+            rate, cpu_rate, loads = rllib_rate(runners, args.tables, args.steps, args.repeats)
+            rates[runners], per_cpu[runners] = rate, cpu_rate
             rows.append((f"RLlib PPO, {runners} EnvRunner{'s' * (runners > 1)}", rate, loads))
-            print(f"RLlib {runners}: {rate:,.0f} steps/s (load {', '.join(loads)})", flush=True)
+            print(
+                f"RLlib {runners}: {rate:,.0f} steps/s, {cpu_rate:,.0f} per runner CPU-s "
+                f"(load {', '.join(loads)})",
+                flush=True,
+            )
     finally:
         ray.shutdown()
 
@@ -131,6 +144,12 @@ def main(argv: list[str] | None = None) -> int:
         "",
         f"2 EnvRunners / 1 EnvRunner: {ratio:.2f}x (target >= 1.5x). "
         f"RLlib 1 EnvRunner / SB3: {rates[1] / sb3:.2f}x.",
+        "",
+        "Env steps per CPU-second of one EnvRunner's own process (median over runners and "
+        f"rounds): {per_cpu[1]:,.0f} with 1 EnvRunner, {per_cpu[2]:,.0f} each with 2. "
+        "A runner is one single-threaded process, so the wall-clock rate of N runners "
+        "reaches N times one runner only while N cores are free; a load average above the "
+        "core count means other processes hold them.",
         "",
         "RLlib's EnvRunner autoresets next-step: a one-shot episode costs two vector steps "
         "(one shot, one reset), which RLlib does not count as env steps; SB3's adapter "
