@@ -127,8 +127,6 @@ def _train_rllib(
         parser.error("--backend rllib trains PPO only")
     if args.vec or args.wrapper:
         parser.error("--backend rllib always samples the native vector env: no --vec/--wrapper")
-    if args.env_runners < 0:
-        parser.error("--env-runners must be >= 0")
     from agents.rllib_train import resolve_run
     from agents.rllib_train import train as train_rllib
 

@@ -75,6 +75,8 @@ class RLlibRun:
         baselines: Evaluate random, constant and ghost-ball next to the policy.
         env_kwargs: ``gymnasium.make`` keyword arguments.
         algo_kwargs: SB3 PPO keyword arguments (``hyperparams.yml``'s data form).
+        sb3_n_envs: The file's ``n_envs``: one SB3 rollout (``n_steps`` x this) is one
+            RLlib train batch.
     """
 
     env_id: str = "pool_env/OneBall-v0"
@@ -87,20 +89,32 @@ class RLlibRun:
     baselines: bool = True
     env_kwargs: dict[str, Any] = field(default_factory=dict)
     algo_kwargs: dict[str, Any] = field(default_factory=dict)
+    sb3_n_envs: int = 8
 
 
 def resolve_run(env_id: str, overrides: dict[str, Any], path: str | Path | None = None) -> RLlibRun:
     """The PPO entry of ``hyperparams.yml`` for ``env_id`` with command-line overrides.
 
-    ``n_envs`` is not taken from the file (its value is SB3's number of envs); ``None``
-    overrides are ignored and ``algo_kwargs`` is merged over the file's.
+    ``n_envs`` is not taken from the file (its value is SB3's number of envs, which sets
+    the train batch); ``None`` overrides are ignored and ``algo_kwargs`` is merged over the
+    file's.
+
+    Raises:
+        ValueError: On a negative ``env_runners``, a non-positive ``n_envs``, or algorithm
+            keys RLlib's PPO cannot take.
     """
     run, algo_kwargs = hyperparams.split(hyperparams.load(env_id, "ppo", path))
     algo_kwargs.update(overrides.pop("algo_kwargs", None) or {})
     fields = {k: v for k, v in overrides.items() if v is not None}
     fields.setdefault("n_timesteps", run.get("n_timesteps", RLlibRun.n_timesteps))
     env_kwargs = {**(run.get("env_kwargs") or {}), **(fields.pop("env_kwargs", None) or {})}
-    rllib_training_kwargs(algo_kwargs, fields["n_timesteps"])  # bad keys fail here, not in Ray
+    fields.setdefault("sb3_n_envs", int(run.get("n_envs", RLlibRun.sb3_n_envs)))
+    if fields.get("env_runners", 0) < 0:
+        raise ValueError(f"env_runners must be >= 0, got {fields['env_runners']}")
+    if fields.get("n_envs", 1) < 1:
+        raise ValueError(f"n_envs (tables per EnvRunner) must be >= 1, got {fields['n_envs']}")
+    # Bad keys fail here, at the entry point, not later inside Ray's workers.
+    rllib_training_kwargs(algo_kwargs, fields["n_timesteps"], fields["sb3_n_envs"])
     return RLlibRun(env_id=env_id, env_kwargs=env_kwargs, algo_kwargs=algo_kwargs, **fields)
 
 
@@ -162,7 +176,7 @@ def build_config(run: RLlibRun) -> Any:
     from agents.rllib_env import register
 
     register(run.env_id)
-    training = rllib_training_kwargs(run.algo_kwargs, run.n_timesteps)
+    training = rllib_training_kwargs(run.algo_kwargs, run.n_timesteps, run.sb3_n_envs)
     model = training.pop("model")
     return (
         PPOConfig()

@@ -69,6 +69,13 @@ def test_hyperparameters_translate_key_by_key() -> None:
         rllib_training_kwargs({"buffer_size": 10}, 1000)
     with pytest.raises(ValueError, match="activation_fn"):
         rllib_training_kwargs({"policy_kwargs": {"activation_fn": "swish"}}, 1000)
+    with pytest.raises(ValueError, match="env_runners"):
+        resolve_run(ONE, {"env_runners": -1})
+    with pytest.raises(ValueError, match="n_envs"):
+        resolve_run(ONE, {"n_envs": 0})
+    with pytest.raises(ValueError, match="buffer_size"):  # at the entry point, not in Ray
+        resolve_run(ONE, {"algo_kwargs": {"buffer_size": 10}})
+    assert resolve_run(ONE, {}).sb3_n_envs == 8  # the file's n_envs sets the train batch
 
 
 @pytest.fixture(scope="module")
