@@ -12,9 +12,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import pool_env
-from pool_env import PoolEnv, Table
+from pool_env import PoolEnv, Table, check_layout
 from pool_env.registration import ENV_IDS
-from pool_env.scenes import check_layout
 from pool_env.sim.layouts import head_spot
 
 TABLE = Table()

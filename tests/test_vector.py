@@ -13,12 +13,12 @@ from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
 import pool_env  # noqa: F401  (registers the ids)
-from pool_env import PoolEnv, Table
-from pool_env.game.kernels import vector as kv
-from pool_env.registration import ENV_IDS
+from pool_env import ENV_IDS, PoolEnv, PoolVectorEnv, Table
+from pool_env.game.kernels.actions import executed_shots
+from pool_env.game.kernels.layout import sample_layouts
+from pool_env.game.state import generator_addresses
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.layouts import head_spot
-from pool_env.vector import PoolVectorEnv
 
 NEXT, SAME, DISABLED = AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP, AutoresetMode.DISABLED
 HEAD = head_spot(Table())
@@ -267,13 +267,18 @@ def test_rgb_array_render_gives_one_frame_per_table() -> None:
 
 @pytest.mark.parametrize("bits", [np.random.PCG64, np.random.MT19937, np.random.Philox])
 def test_compiled_draws_equal_numpys(bits: type) -> None:
-    from pool_env.vector_util import generator_addresses
-
     ours, theirs = np.random.Generator(bits(3)), np.random.Generator(bits(3))
     table = np.array([generator_addresses(ours)], dtype=np.uintp)
-    angles, speeds = np.zeros(20_000), np.full(20_000, 5.0)
+    one, zero_action = np.zeros(1, np.intp), np.zeros((1, 2))
+    at_rest, on = np.zeros((1, 2, 2)), np.ones((1, 2), np.bool_)
+    angles, speeds = np.zeros(20_000), np.zeros(20_000)
     for k in range(20_000):  # noise of one table, drawn 20,000 times: tails included
-        kv.add_noise(np.zeros(1, np.int64), angles[k : k + 1], speeds[k : k + 1], table, 1.0, 2.0)
+        # Absolute aim with a zero-width range: the shot is angle 0 at 5 m/s, plus noise.
+        a, v, *_ = executed_shots(
+            zero_action, one, at_rest, on, 0, 0, 0.03, (0.0, 0.0), (5.0, 5.0),
+            np.array([1.0, 2.0]), table,
+        )  # fmt: skip
+        angles[k], speeds[k] = a[0], v[0]
     normals = theirs.standard_normal(40_000)
     np.testing.assert_array_equal(angles, normals[0::2])
     np.testing.assert_array_equal(speeds, np.maximum(0.0, 5.0 + 2.0 * normals[1::2]))
@@ -282,21 +287,12 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
         np.array([0, 1, 0, 1.0]),
         np.zeros((0, 3)),
     )
-    tables, nothing_placed = np.zeros(1, np.int64), np.zeros((0, 2))
-    kv.sample_layouts(
-        tables, positions, table, 2, nothing_placed, unit_box, no_pockets, 0.0, np.array([2.0]), 9
-    )
+    nothing_placed = np.zeros((0, 2))
+    sample_layouts(
+        one, positions, table, 2, nothing_placed, unit_box, unit_box, no_pockets, 0.0, 9, 1,
+        np.zeros((2, 2)),
+    )  # fmt: skip
     np.testing.assert_array_equal(positions[0].ravel(), theirs.random(8)[:4])
-
-
-def test_squares_decide_as_pythons_pow_at_the_threshold() -> None:
-    rng = np.random.default_rng(0)
-    for dx, dy in rng.uniform(-2, 2, (3_000, 2)).tolist():
-        exact = dx**2 + dy**2  # CPython: the C library's pow
-        for threshold in (exact, np.nextafter(exact, 0.0), np.nextafter(exact, 9.0)):
-            q = kv._square_distance(dx, dy, threshold, 2.0)
-            assert (q <= threshold) == (exact <= threshold)
-            assert (q < threshold) == (exact < threshold)
 
 
 def test_threaded_batch_equals_serial_and_names_the_table() -> None:
@@ -305,7 +301,9 @@ def test_threaded_batch_equals_serial_and_names_the_table() -> None:
     env.reset(seed=1)
     pos, on = env.positions, env.on_table
     rng = np.random.default_rng(0)
-    vel = kv.cue_velocities(rng.uniform(-3, 3, 50), rng.uniform(0, 10, 50), 2, 0)
+    angle, speed = rng.uniform(-3, 3, 50), rng.uniform(0, 10, 50)
+    vel = np.zeros((50, 2, 2))
+    vel[:, 0] = np.stack([speed * np.cos(angle), speed * np.sin(angle)], axis=1)
     serial = simulate_batch(table, pos, vel, active=on, parallel=False)
     for threads in (2, 3):
         split = simulate_batch_threads(table, pos, vel, on, threads)

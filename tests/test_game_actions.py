@@ -1,4 +1,4 @@
-"""The pure decision-process functions: decoding, aiming, observations, potential, reward."""
+"""The decision process's pure functions: decoding, aiming, observations, potential, rules."""
 
 from __future__ import annotations
 
@@ -7,17 +7,12 @@ import math
 import numpy as np
 import pytest
 
-from pool_env import Table
-from pool_env.mdp import (
-    AIM_MODES,
-    aim_angles,
-    check_action,
-    decode_actions,
-    decode_shots,
-    encode_observations,
-    pocket_potentials,
-    shot_rewards,
-)
+from pool_env import AIM_MODES, Table, decode_shots, encode_observations, nearest_object_ball
+from pool_env.game.checks import check_actions
+from pool_env.game.kernels.actions import aim_angles, decode_actions
+from pool_env.game.kernels.observe import pocket_potentials
+from pool_env.game.rules import judge
+from pool_env.game.scenes import placement
 
 TABLE = Table()
 R = TABLE.ball_radius
@@ -41,17 +36,17 @@ def test_decode_clips_out_of_range_and_infinite_actions() -> None:
 @pytest.mark.parametrize("bad", [[np.nan, 0.0], [0.0, np.nan], np.array([np.nan, 1], np.float32)])
 def test_check_action_rejects_nan(bad: object) -> None:
     with pytest.raises(ValueError, match="NaN"):
-        check_action(bad)  # type: ignore[arg-type]
+        check_actions(bad, 1, single=True)
 
 
 @pytest.mark.parametrize("bad", [[0.0], [0.0, 0.0, 0.0], [[0.0, 0.0]], "ab", None])
 def test_check_action_rejects_bad_shapes(bad: object) -> None:
     with pytest.raises(ValueError, match="action"):
-        check_action(bad)  # type: ignore[arg-type]
+        check_actions(bad, 1, single=True)
 
 
 def test_check_action_accepts_lists_and_integers() -> None:
-    assert check_action([1, 0]).tolist() == [1.0, 0.0]
+    assert check_actions([1, 0], 1, single=True).tolist() == [[1.0, 0.0]]
 
 
 def _aim(params: list[float], positions: np.ndarray, on: np.ndarray, mode: int) -> np.ndarray:
@@ -147,20 +142,78 @@ def test_pocket_potential() -> None:
         [[1.0, 0.6], corner + np.array([0.3, 0.4]), [1.2, 0.6]]
     )  # ball 1 is 0.5 m from a corner
     on = np.array([True, True, False])
-    phi = pocket_potentials(pos[None], on[None], TABLE.pockets, 2.0)[0]
+    ONE = np.zeros(1, np.intp)
+    phi = pocket_potentials(ONE, pos[None], on[None], TABLE.pockets, 2.0)[0]
     assert phi == pytest.approx(-0.25)
     on[1] = False
-    assert pocket_potentials(pos[None], on[None], TABLE.pockets, 2.0)[0] == 0.0  # cleared
-    assert pocket_potentials(pos[None], np.ones((1, 3), bool), np.zeros((0, 3)), 2.0)[0] == 0.0
+    assert pocket_potentials(ONE, pos[None], on[None], TABLE.pockets, 2.0)[0] == 0.0  # cleared
+    no_pockets = np.zeros((0, 3))
+    assert pocket_potentials(ONE, pos[None], np.ones((1, 3), bool), no_pockets, 2.0)[0] == 0.0
 
 
-def test_shot_rewards_scalars_and_arrays() -> None:
+def _judge(n_potted, scratch, first, phi, weights, n_left=1, shots=1, end_on_miss=False,
+           limit=0, positions=None):  # fmt: skip
+    k = len(n_potted)
+    pos = np.tile([[0.1, 0.1], [1.5, 0.5]], (k, 1, 1)) if positions is None else positions
+    on = np.ones((k, 2), bool)
+    on[:, 0] = ~np.asarray(scratch)  # settle took a scratched cue ball off the table
+    place = placement(TABLE)
+    out = judge(
+        np.arange(k), pos, on, np.full(k, n_left), np.full(k, shots), np.asarray(n_potted),
+        np.asarray(scratch), np.asarray(first), np.asarray(phi, float), np.asarray(weights),
+        end_on_miss, limit, 0, place.spot, place.bounds, place.circles, place.reach**2,
+    )  # fmt: skip
+    return (*out, pos, on)
+
+
+def test_rule_rewards_pots_scratches_misses_and_shaping() -> None:
     w = (1.0, -1.0, -0.25, 2.0)
-    assert shot_rewards(2, True, False, 0.1, w) == pytest.approx(1.2)
-    out = shot_rewards(
-        np.array([0, 1]), np.array([False, True]), np.array([True, False]), np.zeros(2), w
-    )
-    np.testing.assert_allclose(out, [-0.25, 0.0])
+    rewards, *_ = _judge([2], [True], [3], [0.1], w)
+    assert rewards[0] == pytest.approx(1.2)
+    rewards, *_ = _judge([0, 1], [False, True], [-1, 2], [0.0, 0.0], w)
+    np.testing.assert_allclose(rewards, [-0.25, 0.0])
+
+
+def test_rule_puts_a_scratched_cue_ball_on_the_head_spot_when_free() -> None:
+    _, _, _, _, taken, pos, on = _judge([0], [True], [1], [0.0], (1.0, -1.0, 0.0, 0.0))
+    assert on[0, 0] and not taken[0]
+    np.testing.assert_array_equal(pos[0, 0], placement(TABLE).spot)
+    covered = np.array([[[0.1, 0.1], placement(TABLE).spot + [0.01, 0.0]]])
+    *_, taken, pos, on = _judge([0], [True], [1], [0.0], (1, -1, 0, 0), positions=covered)
+    assert on[0, 0] and taken[0]  # back on the table; free_spot places it
+    np.testing.assert_array_equal(pos[0, 0], [0.1, 0.1])
+
+
+@pytest.mark.parametrize(
+    ("n_potted", "scratch", "n_left", "end_on_miss", "shots", "limit", "ends"),
+    [
+        (1, False, 0, False, 1, 0, (True, False, True)),  # cleared
+        (1, False, 2, False, 1, 0, (False, False, False)),
+        (0, False, 2, False, 1, 0, (False, False, False)),
+        (0, False, 2, True, 1, 0, (True, False, False)),  # a miss ends it
+        (1, True, 2, True, 1, 0, (True, False, False)),  # a pot with a scratch too
+        (1, False, 2, True, 1, 0, (False, False, False)),
+        (0, False, 2, False, 3, 3, (False, True, False)),  # the shot limit
+        (1, False, 0, False, 3, 3, (True, True, True)),
+    ],
+)
+def test_rule_episode_ends(n_potted, scratch, n_left, end_on_miss, shots, limit, ends) -> None:
+    _, terminated, truncated, cleared, *_ = _judge(
+        [n_potted], [scratch], [1], [0.0], (1.0, -1.0, 0.0, 0.0), n_left=n_left,
+        shots=shots, end_on_miss=end_on_miss, limit=limit,
+    )  # fmt: skip
+    assert (bool(terminated[0]), bool(truncated[0]), bool(cleared[0])) == ends
+
+
+def test_nearest_object_ball_ties_go_to_the_lower_number_and_none_is_minus_one() -> None:
+    pos = np.array([[1.0, 0.6], [1.3, 0.6], [0.7, 0.6], [1.0, 0.2]])
+    on = np.ones(4, bool)
+    j, dist, angle = nearest_object_ball(pos, on, 0)
+    assert (j, dist) == (1, pytest.approx(0.3)) and angle == 0.0
+    on[1] = False
+    assert nearest_object_ball(pos, on, 0)[0] == 2
+    on[1:] = False
+    assert nearest_object_ball(pos, on, 0) == (-1, math.inf, 0.0)
 
 
 def test_decode_shots_is_decode_then_aim() -> None:

@@ -1,0 +1,167 @@
+"""Actions to shots: decode an action, aim it, add execution noise, strike the cue ball.
+
+Each kernel works on a batch (a leading dimension over tables), so that the single env
+(B = 1) and the vector env (B = N) run the very same code.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pool_env.game.kernels.rng import standard_normal
+from pool_env.sim.kernels._jit import kernel
+
+
+@kernel
+def decode_actions(actions, aim_low, aim_high, speed_low, speed_high):
+    """Map actions in ``[-1, 1]^2`` linearly to an aim parameter and a speed.
+
+    Values outside ``[-1, 1]`` (infinities included) are clipped; NaN must be rejected
+    before (:func:`pool_env.game.checks.check_actions`).
+
+    Args:
+        actions: ``(B, 2)``: ``[:, 0]`` the aim, ``[:, 1]`` the speed.
+        aim_low: Aim parameter that -1 maps to.
+        aim_high: Aim parameter that +1 maps to.
+        speed_low: Speed (m/s) that -1 maps to.
+        speed_high: Speed (m/s) that +1 maps to.
+
+    Returns:
+        ``(aims, speeds)``, each ``(B,)`` float64.
+    """
+    b = actions.shape[0]
+    aims = np.empty(b)
+    speeds = np.empty(b)
+    for k in range(b):
+        u = (min(max(float(actions[k, 0]), -1.0), 1.0) + 1.0) * 0.5
+        v = (min(max(float(actions[k, 1]), -1.0), 1.0) + 1.0) * 0.5
+        aims[k] = aim_low + u * (aim_high - aim_low)
+        speeds[k] = speed_low + v * (speed_high - speed_low)
+    return aims, speeds
+
+
+@kernel
+def nearest_object_ball(positions, on_table, cue):
+    """The reference ball of relative and cut aim: the object ball nearest to the cue ball.
+
+    Args:
+        positions: ``(N, 2)`` ball centres of one table.
+        on_table: ``(N,)`` which balls are on the table.
+        cue: Index of the cue ball.
+
+    Returns:
+        ``(index, distance, angle)``: the ball (ties go to the lower number), its centre's
+        distance from the cue ball's and the direction to it (radians from +x); with no
+        object ball on the table ``(-1, inf, 0.0)``.
+    """
+    best, best_j, base = np.inf, -1, 0.0
+    cx, cy = positions[cue, 0], positions[cue, 1]
+    for j in range(on_table.shape[0]):
+        if j != cue and on_table[j]:
+            dx = positions[j, 0] - cx
+            dy = positions[j, 1] - cy
+            d2 = dx * dx + dy * dy
+            if d2 < best:
+                best, best_j, base = d2, j, math.atan2(dy, dx)
+    return best_j, math.sqrt(best), base
+
+
+@kernel
+def aim_angles(params, positions, on_table, cue, mode, ball_radius):
+    """Absolute shot directions (radians from +x) from decoded aim parameters.
+
+    Args:
+        params: ``(B,)`` aim parameters.
+        positions: ``(B, N, 2)`` ball centres.
+        on_table: ``(B, N)`` which balls are on the table.
+        cue: Index of the cue ball.
+        mode: Code of the aim mode (:data:`pool_env.game.config.AIM_MODES`): 0 absolute,
+            1 relative, 2 cut.
+        ball_radius: ``R`` (m), for ``cut``.
+
+    Returns:
+        ``(B,)`` angles. With no object ball left the reference line is +x: ``relative``
+        offsets from it, ``cut`` aims along it.
+    """
+    b = on_table.shape[0]
+    out = np.empty(b)
+    for k in range(b):
+        if mode == 0:
+            out[k] = params[k]
+            continue
+        j, dist, base = nearest_object_ball(positions[k], on_table[k], cue)
+        if mode == 1 or j < 0:
+            out[k] = base + (params[k] if mode == 1 else 0.0)
+        else:  # the cue ball's path passes params * 2R from the object ball's centre
+            s = params[k] * 2.0 * ball_radius / dist
+            out[k] = base + math.asin(min(max(s, -1.0), 1.0))
+    return out
+
+
+@kernel
+def decode_shots(actions, positions, on_table, cue, mode, ball_radius, aim_range, speed_range):
+    """:func:`decode_actions` then :func:`aim_angles`: the shots that actions ask for.
+
+    Args:
+        actions: ``(B, 2)`` actions.
+        positions: ``(B, N, 2)`` ball centres.
+        on_table: ``(B, N)`` which balls are on the table.
+        cue: Index of the cue ball.
+        mode: Code of the aim mode (0 absolute, 1 relative, 2 cut).
+        ball_radius: ``R`` (m).
+        aim_range: ``(low, high)`` that action 0 maps to.
+        speed_range: ``(low, high)`` speeds (m/s) that action 1 maps to.
+
+    Returns:
+        ``(angles, speeds)``: directions (radians from +x) and speeds (m/s), each ``(B,)``.
+    """
+    aims, speeds = decode_actions(
+        actions, aim_range[0], aim_range[1], speed_range[0], speed_range[1]
+    )
+    return aim_angles(aims, positions, on_table, cue, mode, ball_radius), speeds
+
+
+@kernel
+def executed_shots(actions, tables, positions, on_table, cue, mode, ball_radius, aim_range,
+                   speed_range, sigmas, ptrs):  # fmt: skip
+    """The shots that are played: decoded, with execution noise, as initial velocities.
+
+    Args:
+        actions: ``(K, 2)`` actions of the tables that shoot.
+        tables: ``(K,)`` those tables.
+        positions: ``(B, N, 2)`` ball centres of every table.
+        on_table: ``(B, N)`` which balls are on each table.
+        cue: Index of the cue ball.
+        mode: Code of the aim mode.
+        ball_radius: ``R`` (m).
+        aim_range: ``(low, high)`` of action 0.
+        speed_range: ``(low, high)`` of action 1 (m/s).
+        sigmas: ``(2,)`` noise sigmas ``(angle, speed)`` in radians and m/s, or ``(0,)``
+            for none. Each table draws from its own generator (``ptrs``), angle first; the
+            noisy speed is clipped at 0.
+        ptrs: ``(B, 3)`` generator addresses (:mod:`pool_env.game.kernels.rng`).
+
+    Returns:
+        ``(angles, speeds, velocities, shot_positions, shot_on_table)``: ``(K,)``,
+        ``(K,)``, ``(K, N, 2)`` with only the cue ball moving, and the shooting tables'
+        rows of ``positions`` and ``on_table`` (copies, for the simulator).
+    """
+    n_shots, n_balls = tables.shape[0], on_table.shape[1]
+    pos = np.empty((n_shots, n_balls, 2))
+    on = np.empty((n_shots, n_balls), dtype=np.bool_)
+    for k in range(n_shots):
+        pos[k] = positions[tables[k]]
+        on[k] = on_table[tables[k]]
+    angles, speeds = decode_shots(actions, pos, on, cue, mode, ball_radius, aim_range, speed_range)
+    velocities = np.zeros((n_shots, n_balls, 2))
+    for k in range(n_shots):
+        if sigmas.shape[0]:
+            p = ptrs[tables[k]]
+            angles[k] = angles[k] + sigmas[0] * standard_normal(p)
+            s = speeds[k] + sigmas[1] * standard_normal(p)
+            speeds[k] = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
+        velocities[k, cue, 0] = speeds[k] * math.cos(angles[k])
+        velocities[k, cue, 1] = speeds[k] * math.sin(angles[k])
+    return angles, speeds, velocities, pos, on

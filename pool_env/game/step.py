@@ -1,0 +1,305 @@
+"""One step of the decision process over B tables: the single source of truth.
+
+``step(config, state, tables, actions)`` plays one shot on each of ``tables``:
+
+1. decode each action into a shot and add execution noise (:mod:`.kernels.actions`);
+2. simulate the shots to rest (:mod:`pool_env.sim`: one table through its single-shot
+   entry, whose fixed cost is a third of the batch call's; several through the batch);
+3. write what happened into the state (:func:`.kernels.settle.settle`);
+4. apply the rules (:func:`pool_env.game.rules.judge`): rewards, re-spotting, episode ends.
+
+``reset(config, state, tables, options)`` lays out new episodes and ``observe`` encodes
+observations. :class:`pool_env.PoolEnv` is these with B = 1, :class:`pool_env.PoolVectorEnv`
+with B = N; neither holds game logic.
+"""
+
+from __future__ import annotations
+
+from typing import Any, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from pool_env.game.config import CUE, GameConfig
+from pool_env.game.kernels.actions import executed_shots
+from pool_env.game.kernels.layout import sample_layouts
+from pool_env.game.kernels.observe import encode_observations, pocket_potentials
+from pool_env.game.kernels.settle import settle
+from pool_env.game.rules import judge
+from pool_env.game.scenes import MAX_TRIES, RESTARTS, check_layout, free_spot
+from pool_env.game.state import GameState
+from pool_env.sim.batch import (
+    PARALLEL_FROM,
+    available_cpus,
+    simulate_batch,
+    simulate_batch_threads,
+)
+from pool_env.sim.result import ShotResult
+from pool_env.sim.simulate import simulate
+
+_NO_CONTACT = np.full((1, 2), -1, dtype=np.int64)
+_NO_CONTACT.setflags(write=False)
+
+
+class StepResult(NamedTuple):
+    """What one step did; row ``k`` of each array is table ``tables[k]``.
+
+    Attributes:
+        tables: ``(K,)`` the tables that shot.
+        rewards: ``(K,)`` float64.
+        terminated: ``(K,)`` the episode ended by the rules.
+        truncated: ``(K,)`` the episode reached its shot limit.
+        potted_bits: ``(K,)`` bit ``j - 1`` set for each object ball ``j`` potted.
+        potted: ``(K, N)`` booleans: the object balls potted.
+        scratch: ``(K,)`` the cue ball dropped.
+        first_contact: ``(K,)`` the first ball the cue ball hit, -1 for none.
+        n_events: ``(K,)`` simulator events.
+        hit_event_cap: ``(K,)`` a shot reached the simulator's event cap.
+        angle: ``(K,)`` executed directions (radians from +x).
+        speed: ``(K,)`` executed speeds (m/s).
+        cleared: ``(K,)`` the table is cleared (``info["is_success"]``).
+        shot: The :class:`~pool_env.ShotResult` of a one-table step, else ``None``.
+        shot_balls: Ball numbers of ``shot``'s rows (the balls on the table before it).
+    """
+
+    tables: NDArray[np.intp]
+    rewards: NDArray[np.float64]
+    terminated: NDArray[np.bool_]
+    truncated: NDArray[np.bool_]
+    potted_bits: NDArray[np.int64]
+    potted: NDArray[np.bool_]
+    scratch: NDArray[np.bool_]
+    first_contact: NDArray[np.int64]
+    n_events: NDArray[np.int64]
+    hit_event_cap: NDArray[np.bool_]
+    angle: NDArray[np.float64]
+    speed: NDArray[np.float64]
+    cleared: NDArray[np.bool_]
+    shot: ShotResult | None
+    shot_balls: NDArray[np.intp] | None
+
+
+class _Outcome(NamedTuple):
+    final: NDArray[np.float64]
+    pocketed: NDArray[np.int64]
+    first: NDArray[np.int64]
+    n_events: NDArray[np.int64]
+    capped: NDArray[np.bool_]
+    balls: NDArray[np.intp]
+    shot: ShotResult | None
+
+
+def step(
+    config: GameConfig,
+    state: GameState,
+    tables: NDArray[np.intp],
+    actions: NDArray[np.float64],
+    record: bool = False,
+    parallel: bool | None = None,
+) -> StepResult:
+    """Play one shot on each of ``tables`` and apply the outcomes to ``state``.
+
+    Args:
+        config: The fixed model.
+        state: The tables, updated in place.
+        tables: ``(K,)`` distinct tables that shoot.
+        actions: ``(K, 2)`` checked actions (:func:`pool_env.game.checks.check_actions`).
+        record: Keep the trajectories of a one-table step (for rendering).
+        parallel: Split a batch over the CPUs (``None``: from ``PARALLEL_FROM`` shots).
+
+    Returns:
+        The :class:`StepResult`.
+    """
+    table = config.table
+    angles, speeds, velocities, pos, on = executed_shots(
+        actions, tables, state.positions, state.on_table, CUE, config.aim_code,
+        table.ball_radius, config.aim_range, config.speed_range, config.sigmas, state.ptrs,
+    )  # fmt: skip
+    if config.shaping:
+        phi_before = pocket_potentials(
+            tables, state.positions, state.on_table, table.pockets, config.diagonal
+        )
+    out = _simulate(config, pos, velocities, on, record, parallel)
+    n_potted, bits, potted, scratch, first_ball = settle(
+        tables, out.balls, state.positions, state.on_table, state.n_left, state.shots,
+        out.final, out.pocketed, out.first, CUE,
+    )  # fmt: skip
+    if config.shaping:
+        phi_after = pocket_potentials(
+            tables, state.positions, state.on_table, table.pockets, config.diagonal
+        )
+        phi_change = phi_after - phi_before
+    else:
+        phi_change = np.zeros(tables.shape[0])
+    place = config.place
+    rewards, terminated, truncated, cleared, spot_taken = judge(
+        tables, state.positions, state.on_table, state.n_left, state.shots, n_potted,
+        scratch, first_ball, phi_change, config.weights, config.end_on_miss,
+        config.shot_limit, CUE, place.spot, place.bounds, place.circles, place.reach**2,
+    )  # fmt: skip
+    if spot_taken.any():  # rare: something covers the head spot
+        for k in np.flatnonzero(spot_taken).tolist():
+            b = int(tables[k])
+            occupied = state.on_table[b].copy()
+            occupied[CUE] = False
+            state.positions[b, CUE] = free_spot(table, state.positions[b], occupied)
+    return StepResult(
+        tables, rewards, terminated, truncated, bits, potted, scratch, first_ball,
+        out.n_events, out.capped, angles, speeds, cleared, out.shot,
+        out.balls if out.shot is not None else None,
+    )  # fmt: skip
+
+
+def _simulate(
+    config: GameConfig,
+    pos: NDArray[np.float64],
+    vel: NDArray[np.float64],
+    on: NDArray[np.bool_],
+    record: bool,
+    parallel: bool | None,
+) -> _Outcome:
+    """The shots to rest: ``simulate`` for one table (the balls on it), else the batch."""
+    table = config.table
+    n_shots, n_balls = on.shape
+    if n_shots == 1:
+        balls = on[0].nonzero()[0]
+        every = balls.shape[0] == n_balls
+        shot = simulate(
+            table, pos[0] if every else pos[0, balls], vel[0] if every else vel[0, balls],
+            record=record,
+        )  # fmt: skip
+        contact = shot.first_contact
+        return _Outcome(
+            shot.positions[None],
+            shot.pocketed[None],
+            _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64),
+            np.array([shot.n_events], dtype=np.int64),
+            np.array([shot.hit_event_cap]),
+            balls,
+            shot,
+        )
+    if parallel is None:
+        parallel = n_shots >= PARALLEL_FROM
+    threads = available_cpus() if parallel else 1
+    if threads > 1:
+        result = simulate_batch_threads(table, pos, vel, on, threads)
+    else:
+        result = simulate_batch(table, pos, vel, active=on, parallel=False)
+    return _Outcome(
+        result.positions, result.pocketed, result.first_contact, result.n_events,
+        result.hit_event_cap, np.arange(n_balls), None,
+    )  # fmt: skip
+
+
+def reset(
+    config: GameConfig,
+    state: GameState,
+    tables: NDArray[np.intp],
+    options: dict[str, Any] | None = None,
+    option_names: tuple[str, ...] = ("positions", "on_table"),
+) -> None:
+    """Start new episodes on ``tables``: layouts from the scene, or from ``options``.
+
+    Args:
+        config: The fixed model.
+        state: The tables (their generators must be set), updated in place.
+        tables: ``(K,)`` distinct tables to reset.
+        options: ``positions`` (``(N, 2)`` for every table, or ``(B, N, 2)``) and an
+            optional ``on_table`` (``(N,)`` or ``(B, N)``); checked before anything changes.
+        option_names: The option names the caller accepts (for the error message).
+
+    Raises:
+        ValueError: On bad options, naming them; the state is then unchanged.
+    """
+    if options:
+        positions, on_table = option_layouts(config, options, tables, state.n_tables, option_names)
+        state.positions[tables], state.on_table[tables] = positions, on_table
+    else:
+        _lay_out(config, state, tables)
+        state.on_table[tables] = True
+    state.n_left[tables] = state.on_table[tables].sum(axis=1) - 1
+    state.shots[tables] = 0
+
+
+def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> None:
+    """The scene's layouts for ``tables``."""
+    scene = config.scene
+    if scene.fixed is not None:
+        state.positions[tables] = scene.fixed
+    elif scene.n_new:
+        place = config.place
+        sample_layouts(
+            tables, state.positions, state.ptrs, scene.n_new, scene.placed, scene.box,
+            place.bounds, place.circles, place.reach**2, MAX_TRIES, RESTARTS, scene.fallback,
+        )  # fmt: skip
+    else:  # a callable scene: Python, one table at a time
+        generators = state.ensure_generators()
+        for b in tables.tolist():
+            layout = scene.spec(config.table, generators[b])  # type: ignore[operator]
+            state.positions[b] = check_layout(config.table, layout, config.n_balls)
+
+
+def option_layouts(
+    config: GameConfig,
+    options: dict[str, Any],
+    tables: NDArray[np.intp],
+    n_envs: int,
+    option_names: tuple[str, ...] = ("positions", "on_table"),
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Layouts from ``options["positions"]`` (and ``on_table``), checked.
+
+    Returns:
+        ``(K, N, 2)`` positions and ``(K, N)`` on-table flags for ``tables``.
+
+    Raises:
+        ValueError: Naming the bad option (and the table, for a batch).
+    """
+    unknown = set(options) - set(option_names)
+    if unknown:
+        names = ", ".join(repr(name) for name in option_names)
+        raise ValueError(f"unknown reset options {sorted(unknown)}: use {names}")
+    if "positions" not in options:
+        raise ValueError("options['on_table'] needs options['positions']")
+    n = config.n_balls
+    shapes = f"({n}, 2)" if n_envs == 1 else f"({n}, 2) or ({n_envs}, {n}, 2)"
+    try:
+        pos = np.array(options["positions"], dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"options['positions'] must be numbers of shape {shapes}: {exc}") from None
+    if pos.shape == (n, 2):
+        pos = np.broadcast_to(pos, (tables.size, n, 2)).copy()
+    elif pos.shape == (n_envs, n, 2) and n_envs > 1:
+        pos = pos[tables]
+    else:
+        raise ValueError(f"options['positions'] must have shape {shapes}, got {pos.shape}")
+    on = np.ones((tables.size, n), dtype=np.bool_)
+    if options.get("on_table") is not None:
+        given = np.array(options["on_table"])
+        flags = f"({n},)" if n_envs == 1 else f"({n},) or ({n_envs}, {n})"
+        if given.dtype.kind not in "biu":
+            raise ValueError(f"options['on_table'] must be {flags} booleans, got {given!r}")
+        given = given.astype(np.bool_)
+        if given.shape == (n,):
+            on[:] = given
+        elif given.shape == (n_envs, n) and n_envs > 1:
+            on = given[tables]
+        else:
+            raise ValueError(f"options['on_table'] must have shape {flags}, got {given.shape}")
+        if not on[:, CUE].all():
+            raise ValueError("options['on_table'] must keep the cue (0) on the table")
+        if not on[:, 1:].any(axis=1).all():
+            raise ValueError("options['on_table'] leaves no object ball on the table")
+    for k in range(tables.size):
+        try:
+            check_layout(config.table, pos[k][on[k]])
+        except ValueError as exc:
+            where = "" if n_envs == 1 else f"table {int(tables[k])}: "
+            raise ValueError(f"{where}options['positions']: {exc}") from None
+    return pos, on
+
+
+def observe(config: GameConfig, state: GameState) -> NDArray[np.float32]:
+    """``(B, 3 N)`` observations of every table (see :class:`pool_env.PoolEnv`)."""
+    return encode_observations(
+        state.positions, state.on_table, config.table.length, config.table.width
+    )
