@@ -9,10 +9,11 @@ import pytest
 
 from pool_env import AIM_MODES, Table, decode_shots, encode_observations, nearest_object_ball
 from pool_env.game.checks import check_actions
+from pool_env.game.config import kernel_params
 from pool_env.game.kernels.actions import aim_angles, decode_actions
 from pool_env.game.kernels.observe import pocket_potentials
 from pool_env.game.rules import judge
-from pool_env.game.scenes import placement
+from pool_env.sim.layouts import head_spot
 
 TABLE = Table()
 R = TABLE.ball_radius
@@ -142,67 +143,84 @@ def test_pocket_potential() -> None:
         [[1.0, 0.6], corner + np.array([0.3, 0.4]), [1.2, 0.6]]
     )  # ball 1 is 0.5 m from a corner
     on = np.array([True, True, False])
-    ONE = np.zeros(1, np.intp)
-    phi = pocket_potentials(ONE, pos[None], on[None], TABLE.pockets, 2.0)[0]
+    phi = pocket_potentials(pos[None], on[None], TABLE.pockets, 2.0)[0]
     assert phi == pytest.approx(-0.25)
     on[1] = False
-    assert pocket_potentials(ONE, pos[None], on[None], TABLE.pockets, 2.0)[0] == 0.0  # cleared
+    assert pocket_potentials(pos[None], on[None], TABLE.pockets, 2.0)[0] == 0.0  # cleared
     no_pockets = np.zeros((0, 3))
-    assert pocket_potentials(ONE, pos[None], np.ones((1, 3), bool), no_pockets, 2.0)[0] == 0.0
+    assert pocket_potentials(pos[None], np.ones((1, 3), bool), no_pockets, 2.0)[0] == 0.0
 
 
-def _judge(n_potted, scratch, first, phi, weights, n_left=1, shots=1, end_on_miss=False,
-           limit=0, positions=None):  # fmt: skip
-    k = len(n_potted)
-    pos = np.tile([[0.1, 0.1], [1.5, 0.5]], (k, 1, 1)) if positions is None else positions
-    on = np.ones((k, 2), bool)
-    on[:, 0] = ~np.asarray(scratch)  # settle took a scratched cue ball off the table
-    place = placement(TABLE)
+LAYOUT = np.array([[0.1, 0.6], [1.5, 0.5], [1.8, 0.9], [2.1, 0.3]])  # cue and balls 1-3
+
+
+def _judge(
+    dropped: list[int],
+    first: tuple[int, int] = (0, 1),
+    weights: tuple[float, ...] = (1.0, -1.0, -0.25, 0.0),
+    shots: int = 0,
+    end_on_miss: bool = False,
+    limit: int = 0,
+    layout: np.ndarray = LAYOUT,
+    on: np.ndarray | None = None,
+) -> tuple:
+    """The rules after a shot that left every ball in place but dropped ``dropped``."""
+    params = kernel_params(
+        TABLE, "cut", (-1.0, 1.0), (0.5, 10.0), None, weights, end_on_miss, limit
+    )  # type: ignore[arg-type]
+    n = layout.shape[0]
+    pos = layout[None].copy()
+    on_table = np.ones((1, n), bool) if on is None else on[None].copy()
+    pocketed = np.full((1, n), -1)
+    pocketed[0, dropped] = 0
     out = judge(
-        np.arange(k), pos, on, np.full(k, n_left), np.full(k, shots), np.asarray(n_potted),
-        np.asarray(scratch), np.asarray(first), np.asarray(phi, float), np.asarray(weights),
-        end_on_miss, limit, 0, place.spot, place.bounds, place.circles, place.reach**2,
+        params, TABLE.pockets, np.zeros(1, np.intp), np.arange(n), pos, on_table,
+        np.array([shots]), layout[None].copy(), pocketed, np.array([first]),
     )  # fmt: skip
-    return (*out, pos, on)
+    return (*(x[0] for x in out), pos[0], on_table[0])
 
 
-def test_rule_rewards_pots_scratches_misses_and_shaping() -> None:
-    w = (1.0, -1.0, -0.25, 2.0)
-    rewards, *_ = _judge([2], [True], [3], [0.1], w)
-    assert rewards[0] == pytest.approx(1.2)
-    rewards, *_ = _judge([0, 1], [False, True], [-1, 2], [0.0, 0.0], w)
-    np.testing.assert_allclose(rewards, [-0.25, 0.0])
+def test_rule_rewards_pots_scratches_and_misses() -> None:
+    assert _judge([1, 2, 0])[0] == 1.0  # two pots and a scratch
+    assert _judge([], first=(-1, -1))[0] == -0.25  # no contact
+    assert _judge([3, 0], first=(2, 0))[0] == 0.0  # the cue ball hit ball 2 second
+    reward, *_, potted, scratch, first_ball, _, _, _ = _judge([1, 3], first=(2, 0))
+    assert reward == 2.0 and first_ball == 2 and not scratch
+    assert potted.tolist() == [False, True, False, True]
 
 
 def test_rule_puts_a_scratched_cue_ball_on_the_head_spot_when_free() -> None:
-    _, _, _, _, taken, pos, on = _judge([0], [True], [1], [0.0], (1.0, -1.0, 0.0, 0.0))
-    assert on[0, 0] and not taken[0]
-    np.testing.assert_array_equal(pos[0, 0], placement(TABLE).spot)
-    covered = np.array([[[0.1, 0.1], placement(TABLE).spot + [0.01, 0.0]]])
-    *_, taken, pos, on = _judge([0], [True], [1], [0.0], (1, -1, 0, 0), positions=covered)
-    assert on[0, 0] and taken[0]  # back on the table; free_spot places it
-    np.testing.assert_array_equal(pos[0, 0], [0.1, 0.1])
+    *_, taken, pos, on = _judge([0])
+    assert on[0] and not taken
+    np.testing.assert_array_equal(pos[0], head_spot(TABLE))
+    covered = LAYOUT.copy()
+    covered[2] = head_spot(TABLE) + [0.01, 0.0]
+    *_, taken, pos, on = _judge([0], layout=covered)
+    assert on[0] and taken  # back on the table; free_spot places it
+    np.testing.assert_array_equal(pos[0], LAYOUT[0])
 
 
 @pytest.mark.parametrize(
-    ("n_potted", "scratch", "n_left", "end_on_miss", "shots", "limit", "ends"),
+    ("dropped", "end_on_miss", "shots", "limit", "ends"),
     [
-        (1, False, 0, False, 1, 0, (True, False, True)),  # cleared
-        (1, False, 2, False, 1, 0, (False, False, False)),
-        (0, False, 2, False, 1, 0, (False, False, False)),
-        (0, False, 2, True, 1, 0, (True, False, False)),  # a miss ends it
-        (1, True, 2, True, 1, 0, (True, False, False)),  # a pot with a scratch too
-        (1, False, 2, True, 1, 0, (False, False, False)),
-        (0, False, 2, False, 3, 3, (False, True, False)),  # the shot limit
-        (1, False, 0, False, 3, 3, (True, True, True)),
+        ([1, 2, 3], False, 0, 0, (True, False, True)),  # cleared
+        ([1], False, 0, 0, (False, False, False)),
+        ([], False, 0, 0, (False, False, False)),
+        ([], True, 0, 0, (True, False, False)),  # a miss ends it
+        ([1, 0], True, 0, 0, (True, False, False)),  # a pot with a scratch too
+        ([1], True, 0, 0, (False, False, False)),
+        ([], False, 2, 3, (False, True, False)),  # the third shot reaches the limit
+        ([], False, 1, 3, (False, False, False)),
+        ([1, 2, 3], False, 2, 3, (True, True, True)),
     ],
 )
-def test_rule_episode_ends(n_potted, scratch, n_left, end_on_miss, shots, limit, ends) -> None:
+def test_rule_episode_ends(
+    dropped: list[int], end_on_miss: bool, shots: int, limit: int, ends: tuple
+) -> None:
     _, terminated, truncated, cleared, *_ = _judge(
-        [n_potted], [scratch], [1], [0.0], (1.0, -1.0, 0.0, 0.0), n_left=n_left,
-        shots=shots, end_on_miss=end_on_miss, limit=limit,
-    )  # fmt: skip
-    assert (bool(terminated[0]), bool(truncated[0]), bool(cleared[0])) == ends
+        dropped, shots=shots, end_on_miss=end_on_miss, limit=limit
+    )
+    assert (bool(terminated), bool(truncated), bool(cleared)) == ends
 
 
 def test_nearest_object_ball_ties_go_to_the_lower_number_and_none_is_minus_one() -> None:

@@ -11,13 +11,9 @@ from pool_env import PoolEnv, Table, check_layout, free_spot
 from pool_env.game import step as game
 from pool_env.game.config import make_config
 from pool_env.game.kernels.layout import sample_layouts
-from pool_env.game.scenes import (
-    MAX_TRIES,
-    RESTARTS,
-    n_object_balls,
-    placement,
-    plan_scene,
-)
+from pool_env.game.kernels.params import REACH, RESTARTS, TRIES
+from pool_env.game.scenes import MAX_TRIES, n_object_balls, placement, plan_scene
+from pool_env.game.scenes import RESTARTS as RESTARTS_DEFAULT
 from pool_env.game.state import new_state
 from pool_env.sim.layouts import foot_spot, head_spot, rack_eight_ball, rack_nine_ball
 
@@ -44,13 +40,13 @@ def sample_scene(scene: str, table: Table, n: int, rng: np.random.Generator) -> 
 
 def _crowd(rng: np.random.Generator, n: int, box: tuple[float, float, float, float]) -> np.ndarray:
     """``n`` balls drawn uniformly in ``box`` by the scenes' own sampler."""
-    place = placement(TABLE)
+    params = placement(TABLE)
     out = np.zeros((1, n, 2))
-    ptrs = new_state(1, 1)
-    ptrs.use_generator(0, rng)
+    state = new_state(1, 1)
+    state.use_generator(0, rng)
     fell_back = sample_layouts(
-        np.zeros(1, np.intp), out, ptrs.ptrs, n, np.zeros((0, 2)), np.array(box), place.bounds,
-        place.circles, place.reach**2, MAX_TRIES, RESTARTS, np.zeros((n, 2)),
+        params, TABLE.pockets, np.zeros(1, np.intp), out, state.ptrs, np.zeros((0, 2)),
+        np.array(box), np.zeros((n, 2)), params[REACH] ** 2,
     )  # fmt: skip
     assert not fell_back[0]
     return out[0]
@@ -135,27 +131,20 @@ def test_a_crowded_scene_is_decided_at_construction_and_every_reset_succeeds() -
 
 def test_when_random_placement_keeps_failing_the_plans_grid_layout_is_used() -> None:
     config = make_config(table={"length": 0.4, "width": 0.2}, n_balls=11)
-    plan, place = config.scene, config.place
+    plan = config.scene
     check_layout(config.table, plan.fallback)  # the grid is legal
+    params = config.params.copy()
+    params[TRIES] = params[RESTARTS] = 1  # one try, one attempt: 12 balls cannot succeed
     state = new_state(3, 12)
     for i in range(3):
         state.seed(i, i)
     fell_back = sample_layouts(
-        np.arange(3),
-        state.positions,
-        state.ptrs,
-        plan.n_new,
-        plan.placed,
-        plan.box,
-        place.bounds,
-        place.circles,
-        place.reach**2,
-        1,
-        1,
-        plan.fallback,
-    )  # fmt: skip  (one try, one attempt: a 12-ball layout cannot succeed)
+        params, config.table.pockets, np.arange(3), state.positions, state.ptrs, plan.placed,
+        plan.box, plan.fallback, params[REACH] ** 2,
+    )  # fmt: skip
     assert fell_back.all()
     np.testing.assert_array_equal(state.positions, np.repeat(plan.fallback[None], 3, axis=0))
+    assert params[TRIES] < MAX_TRIES and config.params[RESTARTS] == RESTARTS_DEFAULT
 
 
 def test_fixed_and_callable_scenes() -> None:

@@ -14,8 +14,10 @@ from gymnasium.vector.utils import batch_space
 
 import pool_env  # noqa: F401  (registers the ids)
 from pool_env import ENV_IDS, PoolEnv, PoolVectorEnv, Table
+from pool_env.game.config import kernel_params
 from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.kernels.layout import sample_layouts
+from pool_env.game.kernels.params import N_PARAMS, RESTARTS, TRIES, X_HIGH, Y_HIGH
 from pool_env.game.state import generator_addresses
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.layouts import head_spot
@@ -270,14 +272,15 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
     ours, theirs = np.random.Generator(bits(3)), np.random.Generator(bits(3))
     table = np.array([generator_addresses(ours)], dtype=np.uintp)
     one, zero_action = np.zeros(1, np.intp), np.zeros((1, 2))
+    noise = (1.0, 2.0)
+    params = kernel_params(
+        Table(), "absolute", (0.0, 0.0), (5.0, 5.0), noise, (1, -1, 0, 0), False, 0
+    )
     at_rest, on = np.zeros((1, 2, 2)), np.ones((1, 2), np.bool_)
     angles, speeds = np.zeros(20_000), np.zeros(20_000)
     for k in range(20_000):  # noise of one table, drawn 20,000 times: tails included
         # Absolute aim with a zero-width range: the shot is angle 0 at 5 m/s, plus noise.
-        a, v, *_ = executed_shots(
-            zero_action, one, at_rest, on, 0, 0, 0.03, (0.0, 0.0), (5.0, 5.0),
-            np.array([1.0, 2.0]), table,
-        )  # fmt: skip
+        a, v, *_ = executed_shots(params, zero_action, one, at_rest, on, table)
         angles[k], speeds[k] = a[0], v[0]
     normals = theirs.standard_normal(40_000)
     np.testing.assert_array_equal(angles, normals[0::2])
@@ -288,10 +291,11 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
         np.zeros((0, 3)),
     )
     nothing_placed = np.zeros((0, 2))
+    unit = np.zeros(N_PARAMS)
+    unit[[X_HIGH, Y_HIGH, TRIES, RESTARTS]] = 1.0, 1.0, 9, 1  # a 1 m square, no pockets
     sample_layouts(
-        one, positions, table, 2, nothing_placed, unit_box, unit_box, no_pockets, 0.0, 9, 1,
-        np.zeros((2, 2)),
-    )  # fmt: skip
+        unit, no_pockets, one, positions, table, nothing_placed, unit_box, np.zeros((2, 2)), 0.0
+    )
     np.testing.assert_array_equal(positions[0].ravel(), theirs.random(8)[:4])
 
 

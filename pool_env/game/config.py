@@ -8,14 +8,15 @@ Both fronts build their config here, so defaults, checks and messages exist once
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.game import checks
-from pool_env.game.scenes import Placement, ScenePlan, SceneSpec, placement, plan_scene
+from pool_env.game.kernels import params as kp
+from pool_env.game.scenes import ScenePlan, SceneSpec, placement, plan_scene
 from pool_env.sim.table import Table
 
 AimMode = Literal["absolute", "relative", "cut"]
@@ -56,36 +57,29 @@ class GameConfig:
         table: The table.
         scene: The parsed scene (:class:`pool_env.game.scenes.ScenePlan`).
         aim: Aim mode.
-        aim_code: Its code in the kernels (index in :data:`AIM_MODES`).
         aim_range: What action[0] = -1 and +1 map to.
         speed_range: Speeds (m/s) of action[1] = -1 and +1.
         noise: Execution noise sigmas ``(angle, speed)`` or ``None``.
-        sigmas: The same as a ``(2,)`` array, ``(0,)`` without noise (for the kernels).
         end_on_miss: A shot that pots nothing (or scratches) ends the episode.
         max_shots: The raw environment's own shot limit, or ``None``.
-        shot_limit: Shots after which an episode is truncated (0: never); ``max_shots``,
+        shot_limit: Shots after which an episode is truncated (0: never): ``max_shots``,
             or the vector env's smaller of it and ``max_episode_steps``.
         reward_weights: ``(pot, scratch, no contact, shaping)``.
-        weights: The same as an array (for the kernels).
-        place: Where balls may be placed on this table.
-        diagonal: The table's diagonal (m), the shaping potential's scale.
+        params: All of the above that the kernels read, as one read-only float64 array
+            (:mod:`pool_env.game.kernels.params` names its entries).
     """
 
     table: Table
     scene: ScenePlan
     aim: AimMode
-    aim_code: int
     aim_range: tuple[float, float]
     speed_range: tuple[float, float]
     noise: tuple[float, float] | None
-    sigmas: NDArray[np.float64]
     end_on_miss: bool
     max_shots: int | None
     shot_limit: int
     reward_weights: tuple[float, float, float, float]
-    weights: NDArray[np.float64]
-    place: Placement
-    diagonal: float
+    params: NDArray[np.float64]
 
     @property
     def n_object_balls(self) -> int:
@@ -97,26 +91,38 @@ class GameConfig:
         """Balls of a layout, the cue ball included."""
         return self.scene.n_objects + 1
 
-    @property
-    def shaping(self) -> bool:
-        """Whether the reward includes the potential's change (it costs two evaluations)."""
-        return self.reward_weights[3] != 0.0
-
     def with_shot_limit(self, limit: int | None) -> GameConfig:
         """This config truncating after ``min(max_shots, limit)`` shots."""
         limits = [x for x in (self.max_shots, limit) if x is not None]
-        return _replace(self, shot_limit=min(limits) if limits else 0)
+        shot_limit = min(limits) if limits else 0
+        params = self.params.copy()
+        params[kp.SHOT_LIMIT] = shot_limit
+        params.setflags(write=False)
+        return replace(self, shot_limit=shot_limit, params=params)
 
 
-def _replace(config: GameConfig, **changes: Any) -> GameConfig:
-    fields = {**config.__dict__, **changes}
-    return GameConfig(**fields)
-
-
-def _read_only(values: Any) -> NDArray[np.float64]:
-    out = np.array(values, dtype=np.float64)
-    out.setflags(write=False)
-    return out
+def kernel_params(
+    table: Table,
+    aim: str,
+    aim_range: tuple[float, float],
+    speed_range: tuple[float, float],
+    noise: tuple[float, float] | None,
+    weights: tuple[float, float, float, float],
+    end_on_miss: bool,
+    shot_limit: int,
+) -> NDArray[np.float64]:
+    """The read-only parameter array of :mod:`pool_env.game.kernels.params`."""
+    params = placement(table)
+    params[kp.AIM_MODE] = AIM_MODES.index(aim)
+    params[[kp.AIM_LOW, kp.AIM_HIGH]] = aim_range
+    params[[kp.SPEED_LOW, kp.SPEED_HIGH]] = speed_range
+    if noise is not None:
+        params[[kp.NOISE, kp.SIGMA_ANGLE, kp.SIGMA_SPEED]] = (1.0, *noise)
+    params[[kp.W_POT, kp.W_SCRATCH, kp.W_NO_CONTACT, kp.W_SHAPING]] = weights
+    params[kp.END_ON_MISS] = float(end_on_miss)
+    params[kp.SHOT_LIMIT] = shot_limit
+    params.setflags(write=False)
+    return params
 
 
 def make_config(
@@ -143,7 +149,11 @@ def make_config(
     parsed_table = checks.parse_table(table)
     if aim not in AIM_MODES:
         raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {aim!r}")
-    noise_sigmas = checks.parse_noise(noise)
+    aims = checks.parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
+    speeds = checks.parse_range("speed_range", speed_range, 0.0)
+    sigmas = checks.parse_noise(noise)
+    miss = checks.parse_bool("end_on_miss", end_on_miss)
+    shots = checks.parse_count("max_shots", max_shots)
     weights = tuple(
         checks.parse_float(name, value)
         for name, value in (
@@ -153,22 +163,16 @@ def make_config(
             ("reward_shaping", reward_shaping),
         )
     )
-    shots = checks.parse_count("max_shots", max_shots)
-    config = GameConfig(
+    return GameConfig(
         table=parsed_table,
         scene=plan_scene(scene, parsed_table, n_balls),
         aim=aim,
-        aim_code=AIM_MODES.index(aim),
-        aim_range=checks.parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None),
-        speed_range=checks.parse_range("speed_range", speed_range, 0.0),
-        noise=noise_sigmas,
-        sigmas=_read_only(noise_sigmas if noise_sigmas is not None else ()),
-        end_on_miss=checks.parse_bool("end_on_miss", end_on_miss),
+        aim_range=aims,
+        speed_range=speeds,
+        noise=sigmas,
+        end_on_miss=miss,
         max_shots=shots,
         shot_limit=shots or 0,
         reward_weights=weights,  # type: ignore[arg-type]
-        weights=_read_only(weights),
-        place=placement(parsed_table),
-        diagonal=math.hypot(parsed_table.length, parsed_table.width),
+        params=kernel_params(parsed_table, aim, aims, speeds, sigmas, weights, miss, shots or 0),  # type: ignore[arg-type]
     )
-    return config

@@ -1,29 +1,30 @@
 """The rules: what a shot's outcome means. The one place for every rule of the game.
 
-Both fronts (:class:`pool_env.PoolEnv`, :class:`pool_env.PoolVectorEnv`) run these
-through :func:`pool_env.game.step.step`, after the simulator and
-:func:`pool_env.game.kernels.settle.settle` have said what physically happened (which
-balls dropped, the first ball the cue ball hit). A rule is a pure function of that outcome
-and the tables' state, compiled, one table at a time inside a loop over the batch.
+Both fronts (:class:`pool_env.PoolEnv`, :class:`pool_env.PoolVectorEnv`) run
+:func:`judge` through :func:`pool_env.game.step.step`, right after the simulator has said
+where every ball ended and which dropped. ``judge`` is compiled and loops over the tables
+that shot; per table it applies the rule below, reading only the outcome and the table's
+state.
 
 The rule of the registered ids is *solitaire*: one player pots every object ball in any
 order and any pocket.
 
-* Reward: ``reward_pot`` per object ball potted, ``reward_scratch`` when the cue ball
-  drops, ``reward_no_contact`` when it hits no ball, and ``reward_shaping`` times the
-  change of the pocket-distance potential.
-* A potted object ball stays off the table; a potted cue ball goes back on the head spot,
-  or (when the spot is taken; the caller finishes that case with
-  :func:`pool_env.game.scenes.free_spot`) the free point nearest to it.
+* A potted object ball leaves the table (keeping its capture point as its position).
+* A potted cue ball (a scratch) goes back on the head spot, or, when the spot is taken
+  (the caller finishes that case with :func:`pool_env.game.scenes.free_spot`), on the
+  free point nearest to it.
+* Reward: ``reward_pot`` per object ball potted, ``reward_scratch`` for a scratch,
+  ``reward_no_contact`` when the cue ball hits no ball, and ``reward_shaping`` times the
+  change of the pocket-distance potential (:func:`pool_env.game.kernels.observe.potential`).
 * The episode terminates when the table is cleared, and with ``end_on_miss`` after a shot
   that pots nothing or scratches; it is truncated after ``shot_limit`` shots.
 
-Where game rules go (fouls, ball in hand, turns, two players): a new rule beside
-:func:`judge`, reading the same outcome arrays (``potted``, ``scratch``, ``first_ball``,
-and the events of the shot if it needs them) plus the state it keeps in
-:class:`pool_env.game.state.GameState` (e.g. whose turn, ball in hand), chosen by a
-:class:`pool_env.game.config.GameConfig` field and called from
-:func:`pool_env.game.step.step`; the fronts do not change.
+Where game rules go (fouls, ball in hand, turns, two players): here. A new rule is a
+function beside :func:`_solitaire` reading the same outcome (``potted``, ``scratch``,
+``first_ball``; the shot's events if it needs them) and the state it keeps in
+:class:`pool_env.game.state.GameState` (whose turn, ball in hand), selected by a
+:class:`pool_env.game.config.GameConfig` field; :func:`pool_env.game.step.step` and the
+fronts do not change.
 """
 
 from __future__ import annotations
@@ -31,69 +32,143 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env.game.kernels.layout import point_free
+from pool_env.game.kernels.observe import potential
+from pool_env.game.kernels.params import (
+    DIAGONAL,
+    END_ON_MISS,
+    REACH,
+    SHOT_LIMIT,
+    SPOT_X,
+    SPOT_Y,
+    W_NO_CONTACT,
+    W_POT,
+    W_SCRATCH,
+    W_SHAPING,
+)
 from pool_env.sim.kernels._jit import kernel
+
+CUE = 0  # the cue ball's row in every layout
 
 
 @kernel
-def judge(tables, positions, on_table, n_left, shots, n_potted, scratch, first_ball,
-          phi_change, weights, end_on_miss, shot_limit, cue, spot, bounds, circles,
-          reach2):  # fmt: skip
-    """The solitaire rule for each table that shot (see the module docstring).
+def judge(params, pockets, tables, balls, positions, on_table, shots, final, pocketed, first):
+    """Apply a batch of simulated shots to the tables, by the rules.
 
     Args:
-        tables: ``(K,)`` tables that shot.
-        positions: ``(B, N, 2)`` state after :func:`~pool_env.game.kernels.settle.settle`;
-            a scratched cue ball is put back on ``spot`` here when it is free.
-        on_table: ``(B, N)`` state, updated in place (the cue ball is always back on).
-        n_left: ``(B,)`` object balls on each table.
-        shots: ``(B,)`` shots of each episode, this one included.
-        n_potted: ``(K,)`` object balls the shot potted.
-        scratch: ``(K,)`` whether the cue ball dropped.
-        first_ball: ``(K,)`` first ball the cue ball hit, -1 for none.
-        phi_change: ``(K,)`` change of the shaping potential (zeros when shaping is off).
-        weights: ``(4,)`` ``(reward_pot, reward_scratch, reward_no_contact, reward_shaping)``.
-        end_on_miss: Whether a shot without a pot, or with a scratch, ends the episode.
-        shot_limit: Shots after which an episode is truncated (0: none).
-        cue: Ball number of the cue ball.
-        spot: ``(2,)`` where a scratched cue ball goes back (the head spot).
-        bounds: ``(4,)`` centres allowed on the table.
-        circles: ``(P, 3)`` padded capture circles.
-        reach2: Squared distance a re-spotted ball keeps from the others.
+        params: The config's numbers (:mod:`pool_env.game.kernels.params`).
+        pockets: ``(P, 3)`` capture circles.
+        tables: ``(K,)`` tables that shot; row ``k`` of the results is table ``tables[k]``.
+        balls: ``(M,)`` ball number of each column of the results (the simulator may have
+            seen only the balls on the table).
+        positions: ``(B, N, 2)`` state, updated in place.
+        on_table: ``(B, N)`` state, updated in place.
+        shots: ``(B,)`` shots of each table's episode, counted up in place.
+        final: ``(K, M, 2)`` simulated final positions.
+        pocketed: ``(K, M)`` pocket of each ball, -1 for none.
+        first: ``(K, 2)`` result columns of the first ball-ball impact, -1 for none.
 
     Returns:
-        ``(rewards, terminated, truncated, cleared, spot_taken)``, each ``(K,)``;
-        ``spot_taken``: tables whose scratched cue ball is back on the table but not yet
-        placed, since something covers the spot.
+        ``(rewards, terminated, truncated, cleared, potted_bits, potted, scratch,
+        first_ball, spot_taken)``, per shot: the reward; the episode's ends; whether the
+        table is cleared; a bit mask of the object balls potted (bit ``j - 1`` for ball
+        ``j`` up to 63) and ``(K, N)`` booleans of them; whether the cue ball dropped; the
+        first ball it hit (-1 for none); and whether its spot is taken (the cue ball is
+        then back on the table but not yet placed).
     """
-    n_shots, n_balls = tables.shape[0], on_table.shape[1]
+    n_shots, n_cols = pocketed.shape
+    n_balls = on_table.shape[1]
     rewards = np.empty(n_shots)
     terminated = np.zeros(n_shots, dtype=np.bool_)
     truncated = np.zeros(n_shots, dtype=np.bool_)
     cleared = np.zeros(n_shots, dtype=np.bool_)
+    bits = np.zeros(n_shots, dtype=np.int64)
+    potted = np.zeros((n_shots, n_balls), dtype=np.bool_)
+    scratch = np.zeros(n_shots, dtype=np.bool_)
+    first_ball = np.full(n_shots, -1, dtype=np.int64)
     spot_taken = np.zeros(n_shots, dtype=np.bool_)
     others = np.empty((n_balls, 2))
+    shaping = params[W_SHAPING] != 0.0
     for k in range(n_shots):
         b = tables[k]
-        no_contact = 1.0 if first_ball[k] < 0 else 0.0
-        rewards[k] = (
-            weights[0] * n_potted[k]
-            + weights[1] * (1.0 if scratch[k] else 0.0)
-            + weights[2] * no_contact
-            + weights[3] * phi_change[k]
-        )
-        if scratch[k]:
-            on_table[b, cue] = True
-            count = 0
-            for j in range(n_balls):
-                if j != cue and on_table[b, j]:
-                    others[count] = positions[b, j]
-                    count += 1
-            if point_free(spot[0], spot[1], bounds, circles, others, count, reach2):
-                positions[b, cue, 0], positions[b, cue, 1] = spot[0], spot[1]
-            else:
-                spot_taken[k] = True
-        cleared[k] = n_left[b] == 0
-        missed = n_potted[k] == 0 or scratch[k]
-        terminated[k] = cleared[k] or (end_on_miss and missed)
-        truncated[k] = shot_limit > 0 and shots[b] >= shot_limit
-    return rewards, terminated, truncated, cleared, spot_taken
+        phi_before = 0.0
+        if shaping:
+            phi_before = potential(positions[b], on_table[b], pockets, params[DIAGONAL])
+        n_potted = 0
+        for c in range(n_cols):  # what happened: balls move, potted ones leave
+            j = balls[c]
+            positions[b, j, 0] = final[k, c, 0]
+            positions[b, j, 1] = final[k, c, 1]
+            if pocketed[k, c] >= 0:
+                on_table[b, j] = False
+                if j == CUE:
+                    scratch[k] = True
+                else:
+                    potted[k, j] = True
+                    n_potted += 1
+                    if j <= 63:
+                        bits[k] |= np.int64(1) << (j - 1)
+        shots[b] += 1
+        if first[k, 0] >= 0:
+            i, j = balls[first[k, 0]], balls[first[k, 1]]
+            first_ball[k] = j if i == CUE else i
+        phi_change = 0.0
+        if shaping:
+            phi_after = potential(positions[b], on_table[b], pockets, params[DIAGONAL])
+            phi_change = phi_after - phi_before
+        rewards[k], terminated[k], truncated[k], cleared[k], spot_taken[k] = _solitaire(
+            params, pockets, positions[b], on_table[b], shots[b], n_potted, scratch[k],
+            first_ball[k], phi_change, others,
+        )  # fmt: skip
+    return (
+        rewards, terminated, truncated, cleared, bits, potted, scratch, first_ball, spot_taken
+    )  # fmt: skip
+
+
+@kernel
+def _solitaire(params, pockets, positions, on_table, shots, n_potted, scratch, first_ball,
+               phi_change, others):  # fmt: skip
+    """The solitaire rule for one table after its shot (see the module docstring).
+
+    Args:
+        params: The config's numbers.
+        pockets: ``(P, 3)`` capture circles.
+        positions: ``(N, 2)`` the table's balls after the shot, updated in place.
+        on_table: ``(N,)`` which are on the table, updated in place.
+        shots: Shots of the episode, this one included.
+        n_potted: Object balls the shot potted.
+        scratch: Whether the cue ball dropped.
+        first_ball: First ball the cue ball hit, -1 for none.
+        phi_change: Change of the shaping potential.
+        others: ``(N, 2)`` scratch space.
+
+    Returns:
+        ``(reward, terminated, truncated, cleared, spot_taken)``.
+    """
+    reward = (
+        params[W_POT] * n_potted
+        + params[W_SCRATCH] * (1.0 if scratch else 0.0)
+        + params[W_NO_CONTACT] * (1.0 if first_ball < 0 else 0.0)
+        + params[W_SHAPING] * phi_change
+    )
+    spot_taken = False
+    if scratch:  # back on the head spot when it is free
+        on_table[CUE] = True
+        count = 0
+        for j in range(on_table.shape[0]):
+            if j != CUE and on_table[j]:
+                others[count] = positions[j]
+                count += 1
+        sx, sy, reach = params[SPOT_X], params[SPOT_Y], params[REACH]
+        if point_free(sx, sy, params, pockets, others, count, reach * reach):
+            positions[CUE, 0], positions[CUE, 1] = sx, sy
+        else:
+            spot_taken = True
+    cleared = True
+    for j in range(on_table.shape[0]):
+        if j != CUE and on_table[j]:
+            cleared = False
+    missed = n_potted == 0 or scratch
+    terminated = cleared or (params[END_ON_MISS] != 0.0 and missed)
+    limit = params[SHOT_LIMIT]
+    truncated = limit > 0.0 and shots >= limit
+    return reward, terminated, truncated, cleared, spot_taken

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.layout import free_points, point_free
 from pool_env.sim.layouts import break_scene, head_spot
 from pool_env.sim.simulate import check_layout as check_simulator_layout
@@ -61,23 +62,6 @@ SceneSpec = str | ArrayLike | Callable[[Table, np.random.Generator], ArrayLike]
 
 
 @dataclass(frozen=True)
-class Placement:
-    """The constants of "may a ball go here?" on one table (see :func:`point_free`).
-
-    Attributes:
-        bounds: ``(x_low, x_high, y_low, y_high)`` allowed for centres (inside the rails).
-        circles: ``(P, 3)`` capture circles ``(x, y, (radius + CLEARANCE)^2)``.
-        reach: ``2R + CLEARANCE``: the distance kept between placed centres.
-        spot: The head spot, where a potted cue ball goes back.
-    """
-
-    bounds: NDArray[np.float64]
-    circles: NDArray[np.float64]
-    reach: float
-    spot: NDArray[np.float64]
-
-
-@dataclass(frozen=True)
 class ScenePlan:
     """A scene, parsed and checked once: how each reset lays out a table.
 
@@ -100,16 +84,28 @@ class ScenePlan:
     fallback: NDArray[np.float64]
 
 
-def placement(table: Table) -> Placement:
-    """The :class:`Placement` constants of ``table``."""
+def placement(table: Table) -> NDArray[np.float64]:
+    """The placement entries of the kernels' parameter array for ``table`` (others zero).
+
+    Centres inside the rails, :data:`CLEARANCE` from capture circles and ``2R + CLEARANCE``
+    apart; the head spot; :data:`MAX_TRIES` and :data:`RESTARTS` (see
+    :mod:`pool_env.game.kernels.params`).
+    """
     r = table.ball_radius
-    circles = [(px, py, (pr + CLEARANCE) ** 2) for px, py, pr in table.pockets.tolist()]
-    return Placement(
-        bounds=np.array([r, table.length - r, r, table.width - r]),
-        circles=np.array(circles, dtype=np.float64).reshape(-1, 3),
-        reach=2.0 * r + CLEARANCE,
-        spot=head_spot(table),
-    )
+    params = np.zeros(kp.N_PARAMS)
+    params[kp.RADIUS] = r
+    params[[kp.X_LOW, kp.X_HIGH, kp.Y_LOW, kp.Y_HIGH]] = (r, table.length - r, r, table.width - r)
+    params[kp.REACH] = 2.0 * r + CLEARANCE
+    params[kp.CLEARANCE] = CLEARANCE
+    params[[kp.SPOT_X, kp.SPOT_Y]] = head_spot(table)
+    params[kp.DIAGONAL] = math.hypot(table.length, table.width)
+    params[kp.TRIES], params[kp.RESTARTS] = MAX_TRIES, RESTARTS
+    return params
+
+
+def bounds(params: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``(x_low, x_high, y_low, y_high)`` allowed for centres."""
+    return params[[kp.X_LOW, kp.X_HIGH, kp.Y_LOW, kp.Y_HIGH]].copy()
 
 
 def n_object_balls(scene: str, n_balls: int | None) -> int:
@@ -177,7 +173,7 @@ def kitchen_box(table: Table) -> tuple[float, float, float, float]:
 
 
 def grid_layout(
-    place: Placement, n: int, box: NDArray[np.float64], placed: NDArray[np.float64]
+    table: Table, n: int, box: NDArray[np.float64], placed: NDArray[np.float64]
 ) -> NDArray[np.float64] | None:
     """``n`` free centres on a triangular grid over ``box`` (rows from its low corner).
 
@@ -186,7 +182,9 @@ def grid_layout(
     Returns:
         ``(n, 2)`` centres, or ``None`` when fewer than ``n`` grid points are free.
     """
-    step = place.reach + CLEARANCE
+    params = placement(table)
+    reach = float(params[kp.REACH])
+    step = reach + CLEARANCE
     x0, x1, y0, y1 = box.tolist()
     rows = int((y1 - y0) / (step * math.sqrt(3.0) / 2.0)) + 1
     cols = int((x1 - x0) / step) + 1
@@ -198,7 +196,7 @@ def grid_layout(
     points = np.array(grid, dtype=np.float64).reshape(-1, 2)
     inside = (points[:, 0] <= x1) & (points[:, 1] <= y1)
     points = np.ascontiguousarray(points[inside])
-    ok = free_points(points, place.bounds, place.circles, placed, place.reach**2)
+    ok = free_points(params, table.pockets, points, placed, reach * reach)
     if np.count_nonzero(ok) < n:
         return None
     return np.ascontiguousarray(points[ok][:n])
@@ -220,22 +218,23 @@ def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan
         ValueError: Naming the argument: an unknown scene, a count the scene cannot have,
             a scene that does not fit on the table, or an invalid layout.
     """
-    place = placement(table)
     empty = np.zeros((0, 2))
+    full_table = bounds(placement(table))
     if isinstance(scene, str):
         n = n_object_balls(scene, n_balls)
         if scene in ("one_ball", "random"):
-            n_new, placed, box = n + 1, empty, place.bounds
+            n_new, placed, box = n + 1, empty, full_table
         else:
             rack = break_scene(table, "nine" if scene == "nine_ball" else "eight")
             n_new, placed, box = 1, np.ascontiguousarray(rack[1:]), np.array(kitchen_box(table))
-        fallback = grid_layout(place, n_new, box, placed)
+        fallback = grid_layout(table, n_new, box, placed)
         if fallback is None:
             raise ValueError(
                 f"scene={scene!r}, n_balls={n}: cannot lay out the scene: {n_new} balls do "
                 f"not fit in x in [{box[0]:.4g}, {box[1]:.4g}], y in [{box[2]:.4g}, "
                 f"{box[3]:.4g}] on a {table.length} x {table.width} m table (each needs "
-                f"{place.reach:.4g} m from the others and its centre out of the pockets); "
+                f"{2 * table.ball_radius + CLEARANCE:.4g} m from the others, its centre out "
+                "of the pockets); "
                 "use fewer balls, smaller balls or a larger table"
             )
         return ScenePlan(scene, n, None, n_new, placed, box, fallback)
@@ -252,7 +251,7 @@ def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan
     if not callable(scene):
         layout.setflags(write=False)
         fixed = layout
-    return ScenePlan(scene, n, fixed, 0, empty, place.bounds, empty)
+    return ScenePlan(scene, n, fixed, 0, empty, full_table, empty)
 
 
 def free_spot(
@@ -282,12 +281,12 @@ def free_spot(
     Raises:
         ValueError: If the table has no free point at all.
     """
-    place = placement(table)
-    target = place.spot if target is None else np.array(target, dtype=np.float64)
+    params, pockets = placement(table), table.pockets
+    target = head_spot(table) if target is None else np.array(target, dtype=np.float64)
     balls = np.ascontiguousarray(positions[occupied], dtype=np.float64)
-    reach = place.reach
+    reach = float(params[kp.REACH])
     tx, ty = target.tolist()
-    if point_free(tx, ty, place.bounds, place.circles, balls, balls.shape[0], reach * reach):
+    if point_free(tx, ty, params, pockets, balls, balls.shape[0], reach * reach):
         return target
     cands = [target[None, :]]
     if balls.shape[0]:
@@ -308,7 +307,7 @@ def free_spot(
     # Candidates lie on a 2R circle up to rounding: half the clearance absorbs it.
     min_d2 = (reach - CLEARANCE / 2.0) ** 2
     cand = np.ascontiguousarray(np.concatenate(cands))
-    ok = free_points(cand, place.bounds, place.circles, balls, min_d2)
+    ok = free_points(params, pockets, cand, balls, min_d2)
     if np.any(ok):
         dist = np.hypot(*(cand[ok] - target).T)
         return cand[ok][int(np.argmin(dist))].copy()
@@ -317,7 +316,7 @@ def free_spot(
         k = max(8, int(2.0 * math.pi * ring))
         phi = np.linspace(0.0, 2.0 * math.pi, k, endpoint=False)
         cand = target + ring * step * np.stack([np.cos(phi), np.sin(phi)], axis=1)
-        ok = free_points(np.ascontiguousarray(cand), place.bounds, place.circles, balls, min_d2)
+        ok = free_points(params, pockets, np.ascontiguousarray(cand), balls, min_d2)
         if np.any(ok):
             return cand[int(np.argmax(ok))].copy()
     raise ValueError("no free point on the table to re-spot the ball")

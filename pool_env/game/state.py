@@ -25,7 +25,6 @@ class GameState:
         positions: ``(B, N, 2)`` ball centres (m), cue first; a potted ball keeps the point
             where it was captured.
         on_table: ``(B, N)`` which balls are on each table.
-        n_left: ``(B,)`` object balls on each table.
         shots: ``(B,)`` shots played in each table's episode.
         generators: Each table's generator (``None`` until first seeded).
         seeds: The seed each generator was made from (``None``: not from an int).
@@ -34,7 +33,6 @@ class GameState:
 
     positions: NDArray[np.float64]
     on_table: NDArray[np.bool_]
-    n_left: NDArray[np.int64]
     shots: NDArray[np.int64]
     generators: list[np.random.Generator | None]
     seeds: list[int | None]
@@ -74,7 +72,6 @@ def new_state(n_tables: int, n_balls: int) -> GameState:
     return GameState(
         positions=np.zeros((n_tables, n_balls, 2)),
         on_table=np.ones((n_tables, n_balls), dtype=np.bool_),
-        n_left=np.zeros(n_tables, dtype=np.int64),
         shots=np.zeros(n_tables, dtype=np.int64),
         generators=[None] * n_tables,
         seeds=[None] * n_tables,

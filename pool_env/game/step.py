@@ -5,8 +5,8 @@
 1. decode each action into a shot and add execution noise (:mod:`.kernels.actions`);
 2. simulate the shots to rest (:mod:`pool_env.sim`: one table through its single-shot
    entry, whose fixed cost is a third of the batch call's; several through the batch);
-3. write what happened into the state (:func:`.kernels.settle.settle`);
-4. apply the rules (:func:`pool_env.game.rules.judge`): rewards, re-spotting, episode ends.
+3. apply the outcomes by the rules (:func:`pool_env.game.rules.judge`): balls that
+   dropped, re-spotting, rewards, episode ends.
 
 ``reset(config, state, tables, options)`` lays out new episodes and ``observe`` encodes
 observations. :class:`pool_env.PoolEnv` is these with B = 1, :class:`pool_env.PoolVectorEnv`
@@ -23,10 +23,10 @@ from numpy.typing import NDArray
 from pool_env.game.config import CUE, GameConfig
 from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.kernels.layout import sample_layouts
-from pool_env.game.kernels.observe import encode_observations, pocket_potentials
-from pool_env.game.kernels.settle import settle
+from pool_env.game.kernels.observe import encode_observations
+from pool_env.game.kernels.params import REACH
 from pool_env.game.rules import judge
-from pool_env.game.scenes import MAX_TRIES, RESTARTS, check_layout, free_spot
+from pool_env.game.scenes import check_layout, free_spot
 from pool_env.game.state import GameState
 from pool_env.sim.batch import (
     PARALLEL_FROM,
@@ -36,6 +36,7 @@ from pool_env.sim.batch import (
 )
 from pool_env.sim.result import ShotResult
 from pool_env.sim.simulate import simulate
+from pool_env.sim.table import Table
 
 _NO_CONTACT = np.full((1, 2), -1, dtype=np.int64)
 _NO_CONTACT.setflags(write=False)
@@ -112,31 +113,14 @@ def step(
     """
     table = config.table
     angles, speeds, velocities, pos, on = executed_shots(
-        actions, tables, state.positions, state.on_table, CUE, config.aim_code,
-        table.ball_radius, config.aim_range, config.speed_range, config.sigmas, state.ptrs,
+        config.params, actions, tables, state.positions, state.on_table, state.ptrs
+    )
+    out = _simulate(table, pos, velocities, on, record, parallel)
+    judged = judge(
+        config.params, table.pockets, tables, out.balls, state.positions, state.on_table,
+        state.shots, out.final, out.pocketed, out.first,
     )  # fmt: skip
-    if config.shaping:
-        phi_before = pocket_potentials(
-            tables, state.positions, state.on_table, table.pockets, config.diagonal
-        )
-    out = _simulate(config, pos, velocities, on, record, parallel)
-    n_potted, bits, potted, scratch, first_ball = settle(
-        tables, out.balls, state.positions, state.on_table, state.n_left, state.shots,
-        out.final, out.pocketed, out.first, CUE,
-    )  # fmt: skip
-    if config.shaping:
-        phi_after = pocket_potentials(
-            tables, state.positions, state.on_table, table.pockets, config.diagonal
-        )
-        phi_change = phi_after - phi_before
-    else:
-        phi_change = np.zeros(tables.shape[0])
-    place = config.place
-    rewards, terminated, truncated, cleared, spot_taken = judge(
-        tables, state.positions, state.on_table, state.n_left, state.shots, n_potted,
-        scratch, first_ball, phi_change, config.weights, config.end_on_miss,
-        config.shot_limit, CUE, place.spot, place.bounds, place.circles, place.reach**2,
-    )  # fmt: skip
+    rewards, terminated, truncated, cleared, bits, potted, scratch, first_ball, spot_taken = judged
     if spot_taken.any():  # rare: something covers the head spot
         for k in np.flatnonzero(spot_taken).tolist():
             b = int(tables[k])
@@ -151,7 +135,7 @@ def step(
 
 
 def _simulate(
-    config: GameConfig,
+    table: Table,
     pos: NDArray[np.float64],
     vel: NDArray[np.float64],
     on: NDArray[np.bool_],
@@ -159,7 +143,6 @@ def _simulate(
     parallel: bool | None,
 ) -> _Outcome:
     """The shots to rest: ``simulate`` for one table (the balls on it), else the batch."""
-    table = config.table
     n_shots, n_balls = on.shape
     if n_shots == 1:
         balls = on[0].nonzero()[0]
@@ -217,7 +200,6 @@ def reset(
     else:
         _lay_out(config, state, tables)
         state.on_table[tables] = True
-    state.n_left[tables] = state.on_table[tables].sum(axis=1) - 1
     state.shots[tables] = 0
 
 
@@ -227,10 +209,10 @@ def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> 
     if scene.fixed is not None:
         state.positions[tables] = scene.fixed
     elif scene.n_new:
-        place = config.place
+        reach = config.params[REACH]
         sample_layouts(
-            tables, state.positions, state.ptrs, scene.n_new, scene.placed, scene.box,
-            place.bounds, place.circles, place.reach**2, MAX_TRIES, RESTARTS, scene.fallback,
+            config.params, config.table.pockets, tables, state.positions, state.ptrs,
+            scene.placed, scene.box, scene.fallback, reach * reach,
         )  # fmt: skip
     else:  # a callable scene: Python, one table at a time
         generators = state.ensure_generators()

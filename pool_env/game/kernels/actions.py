@@ -10,6 +10,17 @@ import math
 
 import numpy as np
 
+from pool_env.game.kernels.params import (
+    AIM_HIGH,
+    AIM_LOW,
+    AIM_MODE,
+    NOISE,
+    RADIUS,
+    SIGMA_ANGLE,
+    SIGMA_SPEED,
+    SPEED_HIGH,
+    SPEED_LOW,
+)
 from pool_env.game.kernels.rng import standard_normal
 from pool_env.sim.kernels._jit import kernel
 
@@ -124,24 +135,18 @@ def decode_shots(actions, positions, on_table, cue, mode, ball_radius, aim_range
 
 
 @kernel
-def executed_shots(actions, tables, positions, on_table, cue, mode, ball_radius, aim_range,
-                   speed_range, sigmas, ptrs):  # fmt: skip
+def executed_shots(params, actions, tables, positions, on_table, ptrs):
     """The shots that are played: decoded, with execution noise, as initial velocities.
 
     Args:
+        params: The config's numbers (:mod:`pool_env.game.kernels.params`).
         actions: ``(K, 2)`` actions of the tables that shoot.
         tables: ``(K,)`` those tables.
-        positions: ``(B, N, 2)`` ball centres of every table.
+        positions: ``(B, N, 2)`` ball centres of every table (ball 0 is the cue ball).
         on_table: ``(B, N)`` which balls are on each table.
-        cue: Index of the cue ball.
-        mode: Code of the aim mode.
-        ball_radius: ``R`` (m).
-        aim_range: ``(low, high)`` of action 0.
-        speed_range: ``(low, high)`` of action 1 (m/s).
-        sigmas: ``(2,)`` noise sigmas ``(angle, speed)`` in radians and m/s, or ``(0,)``
-            for none. Each table draws from its own generator (``ptrs``), angle first; the
-            noisy speed is clipped at 0.
-        ptrs: ``(B, 3)`` generator addresses (:mod:`pool_env.game.kernels.rng`).
+        ptrs: ``(B, 3)`` generator addresses (:mod:`pool_env.game.kernels.rng`). With
+            noise, each table draws from its own generator, angle first; the noisy speed
+            is clipped at 0.
 
     Returns:
         ``(angles, speeds, velocities, shot_positions, shot_on_table)``: ``(K,)``,
@@ -154,14 +159,17 @@ def executed_shots(actions, tables, positions, on_table, cue, mode, ball_radius,
     for k in range(n_shots):
         pos[k] = positions[tables[k]]
         on[k] = on_table[tables[k]]
-    angles, speeds = decode_shots(actions, pos, on, cue, mode, ball_radius, aim_range, speed_range)
+    aims, speeds = decode_actions(
+        actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
+    )
+    angles = aim_angles(aims, pos, on, 0, int(params[AIM_MODE]), params[RADIUS])
     velocities = np.zeros((n_shots, n_balls, 2))
     for k in range(n_shots):
-        if sigmas.shape[0]:
+        if params[NOISE] != 0.0:
             p = ptrs[tables[k]]
-            angles[k] = angles[k] + sigmas[0] * standard_normal(p)
-            s = speeds[k] + sigmas[1] * standard_normal(p)
+            angles[k] = angles[k] + params[SIGMA_ANGLE] * standard_normal(p)
+            s = speeds[k] + params[SIGMA_SPEED] * standard_normal(p)
             speeds[k] = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
-        velocities[k, cue, 0] = speeds[k] * math.cos(angles[k])
-        velocities[k, cue, 1] = speeds[k] * math.sin(angles[k])
+        velocities[k, 0, 0] = speeds[k] * math.cos(angles[k])
+        velocities[k, 0, 1] = speeds[k] * math.sin(angles[k])
     return angles, speeds, velocities, pos, on

@@ -39,37 +39,38 @@ def encode_observations(positions, on_table, length, width):
 
 
 @kernel
-def pocket_potentials(tables, positions, on_table, pockets, scale):
+def potential(positions, on_table, pockets, scale):
     """Shaping potential: minus the summed distance of object balls to their nearest pocket.
 
     Ball 0 (the cue) is left out and potted balls count 0, so a cleared table has potential
     0; a table without pockets has potential 0 everywhere.
 
     Args:
-        tables: ``(K,)`` the tables to evaluate.
-        positions: ``(B, N, 2)`` centres.
-        on_table: ``(B, N)`` which balls are on the table.
+        positions: ``(N, 2)`` centres of one table.
+        on_table: ``(N,)`` which balls are on the table.
         pockets: ``(P, 3)`` capture circles.
         scale: Length to divide by (the table diagonal in the environment).
 
     Returns:
-        ``(K,)`` potentials (<= 0).
+        The potential (<= 0).
     """
-    n = on_table.shape[1]
-    out = np.zeros(tables.shape[0])
     if pockets.shape[0] == 0:
-        return out
-    for k in range(tables.shape[0]):
-        b = tables[k]
-        total = 0.0
-        for j in range(1, n):
-            if on_table[b, j]:
-                best = np.inf
-                for p in range(pockets.shape[0]):
-                    d = math.hypot(
-                        positions[b, j, 0] - pockets[p, 0], positions[b, j, 1] - pockets[p, 1]
-                    )
-                    best = min(best, d)
-                total += best
-        out[k] = -total / scale
+        return 0.0
+    total = 0.0
+    for j in range(1, on_table.shape[0]):
+        if on_table[j]:
+            best = np.inf
+            for p in range(pockets.shape[0]):
+                d = math.hypot(positions[j, 0] - pockets[p, 0], positions[j, 1] - pockets[p, 1])
+                best = min(best, d)
+            total += best
+    return -total / scale
+
+
+@kernel
+def pocket_potentials(positions, on_table, pockets, scale):
+    """:func:`potential` of each of ``B`` tables: ``(B, N, 2)``, ``(B, N)`` in, ``(B,)`` out."""
+    out = np.zeros(on_table.shape[0])
+    for k in range(on_table.shape[0]):
+        out[k] = potential(positions[k], on_table[k], pockets, scale)
     return out
