@@ -245,7 +245,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         actions = check_actions(action, 1, single=True)
         self._use_generator()
         result = game.step(self.config, self._state, _ONE, actions, record=self._record)
-        self._last_shot, self._shot_balls = result.shot, result.shot_balls
+        self._last_shot, self._shot_balls = result.shot, result.balls
         info = table_info(result, self._potted_lut)
         reward = float(result.rewards[0])
         terminated, truncated = bool(result.terminated[0]), bool(result.truncated[0])

@@ -12,7 +12,16 @@ from pool_env.game.checks import check_actions
 from pool_env.game.config import kernel_params
 from pool_env.game.kernels.actions import aim_angles, decode_actions
 from pool_env.game.kernels.observe import pocket_potentials
-from pool_env.game.rules import judge
+from pool_env.game.rules import (
+    CLEARED,
+    FIRST_BALL,
+    POTTED_BITS,
+    SCRATCH,
+    SPOT_TAKEN,
+    TERMINATED,
+    TRUNCATED,
+    judge,
+)
 from pool_env.sim.layouts import head_spot
 
 TABLE = Table()
@@ -177,16 +186,21 @@ def _judge(
         params, TABLE.pockets, np.zeros(1, np.intp), np.arange(n), pos, on_table,
         np.array([shots]), layout[None].copy(), pocketed, np.array([first]),
     )  # fmt: skip
-    return (*(x[0] for x in out), pos[0], on_table[0])
+    rewards, flags, hits = out
+    f, h = flags[0], hits[0]
+    return (
+        rewards[0], f[TERMINATED], f[TRUNCATED], f[CLEARED], h[POTTED_BITS], f[SCRATCH],
+        h[FIRST_BALL], f[SPOT_TAKEN], pos[0], on_table[0],
+    )  # fmt: skip
 
 
 def test_rule_rewards_pots_scratches_and_misses() -> None:
     assert _judge([1, 2, 0])[0] == 1.0  # two pots and a scratch
     assert _judge([], first=(-1, -1))[0] == -0.25  # no contact
     assert _judge([3, 0], first=(2, 0))[0] == 0.0  # the cue ball hit ball 2 second
-    reward, *_, potted, scratch, first_ball, _, _, _ = _judge([1, 3], first=(2, 0))
+    reward, _, _, _, bits, scratch, first_ball, *_ = _judge([1, 3], first=(2, 0))
     assert reward == 2.0 and first_ball == 2 and not scratch
-    assert potted.tolist() == [False, True, False, True]
+    assert bits == 0b101  # balls 1 and 3
 
 
 def test_rule_puts_a_scratched_cue_ball_on_the_head_spot_when_free() -> None:

@@ -12,7 +12,7 @@ from gymnasium.utils.env_checker import data_equivalence
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
-import pool_env  # noqa: F401  (registers the ids)
+import pool_env
 from pool_env import ENV_IDS, PoolEnv, PoolVectorEnv, Table
 from pool_env.game.config import kernel_params
 from pool_env.game.kernels.actions import executed_shots
@@ -280,8 +280,8 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
     angles, speeds = np.zeros(20_000), np.zeros(20_000)
     for k in range(20_000):  # noise of one table, drawn 20,000 times: tails included
         # Absolute aim with a zero-width range: the shot is angle 0 at 5 m/s, plus noise.
-        a, v, *_ = executed_shots(params, zero_action, one, at_rest, on, table)
-        angles[k], speeds[k] = a[0], v[0]
+        shots, _ = executed_shots(params, zero_action, one, at_rest, on, table)
+        angles[k], speeds[k] = shots[0]
     normals = theirs.standard_normal(40_000)
     np.testing.assert_array_equal(angles, normals[0::2])
     np.testing.assert_array_equal(speeds, np.maximum(0.0, 5.0 + 2.0 * normals[1::2]))
@@ -316,3 +316,47 @@ def test_threaded_batch_equals_serial_and_names_the_table() -> None:
     pos[40, 1] = pos[40, 0]
     with pytest.raises(ValueError, match="table 40: balls 0 and 1 overlap"):
         simulate_batch_threads(table, pos, vel, on, 2)
+
+
+@pytest.mark.parametrize("dtype", [np.float16, np.longdouble, ">f8", np.float32])
+def test_action_dtypes_play_as_in_pool_env(dtype: object) -> None:
+    actions = np.array([[0.25, -0.5], [-0.7, 0.3]], dtype=dtype)
+    env = PoolVectorEnv(2, scene="random", n_balls=4)
+    env.reset(seed=4)
+    obs, rewards, *_ = env.step(actions)
+    for i in range(2):
+        single = PoolEnv(scene="random", n_balls=4)
+        single.reset(seed=4 + i)
+        expected = single.step(actions[i])
+        np.testing.assert_array_equal(obs[i], expected[0])
+        assert rewards[i] == expected[1]
+
+
+def test_bad_actions_seeds_and_layouts_get_the_same_messages_as_pool_env() -> None:
+    env, single = PoolVectorEnv(2, n_balls=2), PoolEnv(n_balls=2)
+    env.reset(seed=0)
+    single.reset(seed=0)
+    for bad in (np.array([0.3 + 0.5j, 0.1]), np.array(["a", "b"])):
+        with pytest.raises(ValueError, match="real numbers") as vector_error:
+            env.step(np.stack([bad, bad]))
+        with pytest.raises(ValueError, match="real numbers") as single_error:
+            single.step(bad)
+        assert str(vector_error.value).split("got")[-1] == str(single_error.value).split("got")[-1]
+    for seed in (1.5, "7", [1, 2.5], [-1, 2], True):
+        with pytest.raises(ValueError, match="seed"):
+            env.reset(seed=seed)  # type: ignore[arg-type]
+    layout = [[0.5, 0.5], [1.0, 0.5], [2.0, 0.8]]
+    for target in (env, single):
+        with pytest.raises(ValueError, match="leaves no object ball on the table"):
+            target.reset(options={"positions": layout, "on_table": [True, False, False]})
+
+
+def test_a_crowded_scene_never_fails_in_an_autoreset() -> None:
+    # Issue 11 (5): the autoreset inside step() raised "cannot lay out the scene".
+    env = PoolVectorEnv(16, table={"length": 0.4, "width": 0.2}, n_balls=11, autoreset_mode=SAME)
+    env.reset(seed=0)
+    rng = np.random.default_rng(0)
+    for _ in range(30):
+        env.step(rng.uniform(-1, 1, (16, 2)))
+        for positions, on in zip(env.positions, env.on_table, strict=True):
+            pool_env.check_layout(env.table, positions[on])

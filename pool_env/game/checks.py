@@ -124,7 +124,12 @@ def check_actions(
     out = np.array(arr, dtype=np.float64, order="C").reshape(n, 2)
     if tables is not None:
         out = out[tables]
-    if out.size and np.isnan(out.min()):  # one cheap test: min() propagates NaN
+    if single:  # two Python floats test faster than numpy's reductions
+        x, y = out[0].tolist()
+        nan = x != x or y != y
+    else:
+        nan = bool(np.isnan(out).any())
+    if nan:
         k = int(np.argmax(np.isnan(out).any(axis=1)))
         table = k if tables is None else int(tables[k])
         where = "the action" if single else f"the action of table {table}"

@@ -54,10 +54,10 @@ def potted_tuples(
     """The ``potted`` tuples of ``rows`` of a result, as an object array."""
     if lut is not None:
         return lut[result.potted_bits[rows]]
-    potted = result.potted[rows]
-    out = np.empty(potted.shape[0], dtype=object)
-    for k, row in enumerate(potted):
-        out[k] = tuple(np.flatnonzero(row).tolist())
+    pocketed = result.pocketed[rows]
+    out = np.empty(pocketed.shape[0], dtype=object)
+    for k, row in enumerate(pocketed >= 0):
+        out[k] = tuple(sorted(b for b in result.balls[row].tolist() if b != 0))
     return out
 
 

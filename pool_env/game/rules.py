@@ -49,6 +49,12 @@ from pool_env.sim.kernels._jit import kernel
 
 CUE = 0  # the cue ball's row in every layout
 
+#: Columns of :func:`judge`'s boolean results.
+TERMINATED, TRUNCATED, CLEARED, SCRATCH, SPOT_TAKEN = range(5)
+
+#: Columns of :func:`judge`'s integer results.
+POTTED_BITS, FIRST_BALL = range(2)
+
 
 @kernel
 def judge(params, pockets, tables, balls, positions, on_table, shots, final, pocketed, first):
@@ -68,24 +74,19 @@ def judge(params, pockets, tables, balls, positions, on_table, shots, final, poc
         first: ``(K, 2)`` result columns of the first ball-ball impact, -1 for none.
 
     Returns:
-        ``(rewards, terminated, truncated, cleared, potted_bits, potted, scratch,
-        first_ball, spot_taken)``, per shot: the reward; the episode's ends; whether the
-        table is cleared; a bit mask of the object balls potted (bit ``j - 1`` for ball
-        ``j`` up to 63) and ``(K, N)`` booleans of them; whether the cue ball dropped; the
-        first ball it hit (-1 for none); and whether its spot is taken (the cue ball is
-        then back on the table but not yet placed).
+        ``(rewards, flags, balls_hit)``: ``(K,)`` rewards; ``(K, 5)`` booleans, by the
+        column names :data:`TERMINATED`, :data:`TRUNCATED`, :data:`CLEARED`,
+        :data:`SCRATCH` (the cue ball dropped) and :data:`SPOT_TAKEN` (something covers
+        the head spot: the cue ball is back on the table but not yet placed); ``(K, 2)``
+        integers: :data:`POTTED_BITS` (bit ``j - 1`` for each object ball ``j`` potted, up
+        to 63) and :data:`FIRST_BALL` (the first ball the cue ball hit, -1 for none).
     """
     n_shots, n_cols = pocketed.shape
     n_balls = on_table.shape[1]
+    # Few returned arrays: numba spends about a microsecond handing each one to Python.
     rewards = np.empty(n_shots)
-    terminated = np.zeros(n_shots, dtype=np.bool_)
-    truncated = np.zeros(n_shots, dtype=np.bool_)
-    cleared = np.zeros(n_shots, dtype=np.bool_)
-    bits = np.zeros(n_shots, dtype=np.int64)
-    potted = np.zeros((n_shots, n_balls), dtype=np.bool_)
-    scratch = np.zeros(n_shots, dtype=np.bool_)
-    first_ball = np.full(n_shots, -1, dtype=np.int64)
-    spot_taken = np.zeros(n_shots, dtype=np.bool_)
+    flags = np.zeros((n_shots, 5), dtype=np.bool_)
+    balls_hit = np.zeros((n_shots, 2), dtype=np.int64)
     others = np.empty((n_balls, 2))
     shaping = params[W_SHAPING] != 0.0
     for k in range(n_shots):
@@ -93,7 +94,7 @@ def judge(params, pockets, tables, balls, positions, on_table, shots, final, poc
         phi_before = 0.0
         if shaping:
             phi_before = potential(positions[b], on_table[b], pockets, params[DIAGONAL])
-        n_potted = 0
+        n_potted, bits, scratch = 0, np.int64(0), False
         for c in range(n_cols):  # what happened: balls move, potted ones leave
             j = balls[c]
             positions[b, j, 0] = final[k, c, 0]
@@ -101,27 +102,31 @@ def judge(params, pockets, tables, balls, positions, on_table, shots, final, poc
             if pocketed[k, c] >= 0:
                 on_table[b, j] = False
                 if j == CUE:
-                    scratch[k] = True
+                    scratch = True
                 else:
-                    potted[k, j] = True
                     n_potted += 1
                     if j <= 63:
-                        bits[k] |= np.int64(1) << (j - 1)
+                        bits |= np.int64(1) << (j - 1)
         shots[b] += 1
+        first_ball = -1
         if first[k, 0] >= 0:
             i, j = balls[first[k, 0]], balls[first[k, 1]]
-            first_ball[k] = j if i == CUE else i
+            first_ball = j if i == CUE else i
         phi_change = 0.0
         if shaping:
             phi_after = potential(positions[b], on_table[b], pockets, params[DIAGONAL])
             phi_change = phi_after - phi_before
-        rewards[k], terminated[k], truncated[k], cleared[k], spot_taken[k] = _solitaire(
-            params, pockets, positions[b], on_table[b], shots[b], n_potted, scratch[k],
-            first_ball[k], phi_change, others,
+        reward, terminated, truncated, cleared, spot_taken = _solitaire(
+            params, pockets, positions[b], on_table[b], shots[b], n_potted, scratch,
+            first_ball, phi_change, others,
         )  # fmt: skip
-    return (
-        rewards, terminated, truncated, cleared, bits, potted, scratch, first_ball, spot_taken
-    )  # fmt: skip
+        rewards[k] = reward
+        flags[k, TERMINATED], flags[k, TRUNCATED], flags[k, CLEARED] = (
+            terminated, truncated, cleared
+        )  # fmt: skip
+        flags[k, SCRATCH], flags[k, SPOT_TAKEN] = scratch, spot_taken
+        balls_hit[k, POTTED_BITS], balls_hit[k, FIRST_BALL] = bits, first_ball
+    return rewards, flags, balls_hit
 
 
 @kernel

@@ -25,7 +25,16 @@ from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.kernels.layout import sample_layouts
 from pool_env.game.kernels.observe import encode_observations
 from pool_env.game.kernels.params import REACH
-from pool_env.game.rules import judge
+from pool_env.game.rules import (
+    CLEARED,
+    FIRST_BALL,
+    POTTED_BITS,
+    SCRATCH,
+    SPOT_TAKEN,
+    TERMINATED,
+    TRUNCATED,
+    judge,
+)
 from pool_env.game.scenes import check_layout, free_spot
 from pool_env.game.state import GameState
 from pool_env.sim.batch import (
@@ -50,34 +59,35 @@ class StepResult(NamedTuple):
         rewards: ``(K,)`` float64.
         terminated: ``(K,)`` the episode ended by the rules.
         truncated: ``(K,)`` the episode reached its shot limit.
-        potted_bits: ``(K,)`` bit ``j - 1`` set for each object ball ``j`` potted.
-        potted: ``(K, N)`` booleans: the object balls potted.
+        cleared: ``(K,)`` the table is cleared (``info["is_success"]``).
         scratch: ``(K,)`` the cue ball dropped.
+        potted_bits: ``(K,)`` bit ``j - 1`` set for each object ball ``j`` potted.
         first_contact: ``(K,)`` the first ball the cue ball hit, -1 for none.
         n_events: ``(K,)`` simulator events.
         hit_event_cap: ``(K,)`` a shot reached the simulator's event cap.
         angle: ``(K,)`` executed directions (radians from +x).
         speed: ``(K,)`` executed speeds (m/s).
-        cleared: ``(K,)`` the table is cleared (``info["is_success"]``).
-        shot: The :class:`~pool_env.ShotResult` of a one-table step, else ``None``.
-        shot_balls: Ball numbers of ``shot``'s rows (the balls on the table before it).
+        pocketed: ``(K, M)`` the simulator's pocket per ball (-1: none), columns ``balls``.
+        balls: ``(M,)`` ball number of each column of the simulator's results.
+        shot: The :class:`~pool_env.ShotResult` of a one-table step (its rows are
+            ``balls``), else ``None``.
     """
 
     tables: NDArray[np.intp]
     rewards: NDArray[np.float64]
     terminated: NDArray[np.bool_]
     truncated: NDArray[np.bool_]
-    potted_bits: NDArray[np.int64]
-    potted: NDArray[np.bool_]
+    cleared: NDArray[np.bool_]
     scratch: NDArray[np.bool_]
+    potted_bits: NDArray[np.int64]
     first_contact: NDArray[np.int64]
     n_events: NDArray[np.int64]
     hit_event_cap: NDArray[np.bool_]
     angle: NDArray[np.float64]
     speed: NDArray[np.float64]
-    cleared: NDArray[np.bool_]
+    pocketed: NDArray[np.int64]
+    balls: NDArray[np.intp]
     shot: ShotResult | None
-    shot_balls: NDArray[np.intp] | None
 
 
 class _Outcome(NamedTuple):
@@ -112,43 +122,47 @@ def step(
         The :class:`StepResult`.
     """
     table = config.table
-    angles, speeds, velocities, pos, on = executed_shots(
+    shots, velocities = executed_shots(
         config.params, actions, tables, state.positions, state.on_table, state.ptrs
     )
-    out = _simulate(table, pos, velocities, on, record, parallel)
-    judged = judge(
+    out = _simulate(table, state, tables, velocities, record, parallel)
+    rewards, flags, hits = judge(
         config.params, table.pockets, tables, out.balls, state.positions, state.on_table,
         state.shots, out.final, out.pocketed, out.first,
     )  # fmt: skip
-    rewards, terminated, truncated, cleared, bits, potted, scratch, first_ball, spot_taken = judged
-    if spot_taken.any():  # rare: something covers the head spot
-        for k in np.flatnonzero(spot_taken).tolist():
+    if flags[:, SPOT_TAKEN].any():  # rare: something covers the head spot
+        for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
             b = int(tables[k])
             occupied = state.on_table[b].copy()
             occupied[CUE] = False
             state.positions[b, CUE] = free_spot(table, state.positions[b], occupied)
     return StepResult(
-        tables, rewards, terminated, truncated, bits, potted, scratch, first_ball,
-        out.n_events, out.capped, angles, speeds, cleared, out.shot,
-        out.balls if out.shot is not None else None,
+        tables, rewards, flags[:, TERMINATED], flags[:, TRUNCATED], flags[:, CLEARED],
+        flags[:, SCRATCH], hits[:, POTTED_BITS], hits[:, FIRST_BALL], out.n_events,
+        out.capped, shots[:, 0], shots[:, 1], out.pocketed, out.balls, out.shot,
     )  # fmt: skip
 
 
 def _simulate(
     table: Table,
-    pos: NDArray[np.float64],
+    state: GameState,
+    tables: NDArray[np.intp],
     vel: NDArray[np.float64],
-    on: NDArray[np.bool_],
     record: bool,
     parallel: bool | None,
 ) -> _Outcome:
-    """The shots to rest: ``simulate`` for one table (the balls on it), else the batch."""
-    n_shots, n_balls = on.shape
+    """The shots to rest: ``simulate`` for one table (the balls on it), else the batch.
+
+    The simulator copies what it is given, so the state's arrays are passed as they are.
+    """
+    n_shots, n_balls = vel.shape[:2]
     if n_shots == 1:
-        balls = on[0].nonzero()[0]
+        b = int(tables[0])
+        pos, on = state.positions[b], state.on_table[b]
+        balls = on.nonzero()[0]
         every = balls.shape[0] == n_balls
         shot = simulate(
-            table, pos[0] if every else pos[0, balls], vel[0] if every else vel[0, balls],
+            table, pos if every else pos[balls], vel[0] if every else vel[0, balls],
             record=record,
         )  # fmt: skip
         contact = shot.first_contact
@@ -161,6 +175,9 @@ def _simulate(
             balls,
             shot,
         )
+    every = n_shots == state.n_tables
+    pos = state.positions if every else state.positions[tables]
+    on = state.on_table if every else state.on_table[tables]
     if parallel is None:
         parallel = n_shots >= PARALLEL_FROM
     threads = available_cpus() if parallel else 1

@@ -80,6 +80,16 @@ def nearest_object_ball(positions, on_table, cue):
 
 
 @kernel
+def _aim_angle(param, mode, ball_radius, j, dist, base):
+    """The direction of one relative or cut aim, from :func:`nearest_object_ball`'s answer."""
+    if mode == 1 or j < 0:
+        return base + (param if mode == 1 else 0.0)
+    # cut: the cue ball's path passes param * 2R from the object ball's centre
+    s = param * 2.0 * ball_radius / dist
+    return base + math.asin(min(max(s, -1.0), 1.0))
+
+
+@kernel
 def aim_angles(params, positions, on_table, cue, mode, ball_radius):
     """Absolute shot directions (radians from +x) from decoded aim parameters.
 
@@ -101,13 +111,9 @@ def aim_angles(params, positions, on_table, cue, mode, ball_radius):
     for k in range(b):
         if mode == 0:
             out[k] = params[k]
-            continue
-        j, dist, base = nearest_object_ball(positions[k], on_table[k], cue)
-        if mode == 1 or j < 0:
-            out[k] = base + (params[k] if mode == 1 else 0.0)
-        else:  # the cue ball's path passes params * 2R from the object ball's centre
-            s = params[k] * 2.0 * ball_radius / dist
-            out[k] = base + math.asin(min(max(s, -1.0), 1.0))
+        else:
+            j, dist, base = nearest_object_ball(positions[k], on_table[k], cue)
+            out[k] = _aim_angle(params[k], mode, ball_radius, j, dist, base)
     return out
 
 
@@ -149,27 +155,29 @@ def executed_shots(params, actions, tables, positions, on_table, ptrs):
             is clipped at 0.
 
     Returns:
-        ``(angles, speeds, velocities, shot_positions, shot_on_table)``: ``(K,)``,
-        ``(K,)``, ``(K, N, 2)`` with only the cue ball moving, and the shooting tables'
-        rows of ``positions`` and ``on_table`` (copies, for the simulator).
+        ``(shots, velocities)``: ``(K, 2)`` executed ``(angle, speed)`` (radians from +x,
+        m/s) and ``(K, N, 2)`` initial velocities, only the cue ball moving.
     """
     n_shots, n_balls = tables.shape[0], on_table.shape[1]
-    pos = np.empty((n_shots, n_balls, 2))
-    on = np.empty((n_shots, n_balls), dtype=np.bool_)
-    for k in range(n_shots):
-        pos[k] = positions[tables[k]]
-        on[k] = on_table[tables[k]]
     aims, speeds = decode_actions(
         actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
     )
-    angles = aim_angles(aims, pos, on, 0, int(params[AIM_MODE]), params[RADIUS])
+    shots = np.empty((n_shots, 2))
     velocities = np.zeros((n_shots, n_balls, 2))
+    mode, radius = int(params[AIM_MODE]), params[RADIUS]
     for k in range(n_shots):
+        b = tables[k]
+        angle = aims[k]  # absolute aim: the parameter is the angle
+        if mode != 0:
+            j, dist, base = nearest_object_ball(positions[b], on_table[b], 0)
+            angle = _aim_angle(aims[k], mode, radius, j, dist, base)
+        speed = speeds[k]
         if params[NOISE] != 0.0:
-            p = ptrs[tables[k]]
-            angles[k] = angles[k] + params[SIGMA_ANGLE] * standard_normal(p)
-            s = speeds[k] + params[SIGMA_SPEED] * standard_normal(p)
-            speeds[k] = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
-        velocities[k, 0, 0] = speeds[k] * math.cos(angles[k])
-        velocities[k, 0, 1] = speeds[k] * math.sin(angles[k])
-    return angles, speeds, velocities, pos, on
+            p = ptrs[b]
+            angle = angle + params[SIGMA_ANGLE] * standard_normal(p)
+            s = speed + params[SIGMA_SPEED] * standard_normal(p)
+            speed = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
+        shots[k, 0], shots[k, 1] = angle, speed
+        velocities[k, 0, 0] = speed * math.cos(angle)
+        velocities[k, 0, 1] = speed * math.sin(angle)
+    return shots, velocities
