@@ -17,6 +17,7 @@ from pool_env.game import step as game
 from pool_env.game.checks import check_actions, check_render
 from pool_env.game.config import CUE, DEFAULT_SPEED_RANGE, AimMode, GameConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
+from pool_env.game.rules import TERMINATED, TRUNCATED
 from pool_env.game.scenes import SceneSpec
 from pool_env.game.state import GameState, new_state
 from pool_env.sim.result import ShotResult
@@ -247,8 +248,9 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         result = game.step(self.config, self._state, _ONE, actions, record=self._record)
         self._last_shot, self._shot_balls = result.shot, result.balls
         info = table_info(result, self._potted_lut)
-        reward = float(result.rewards[0])
-        terminated, truncated = bool(result.terminated[0]), bool(result.truncated[0])
+        reward = result.rewards.item()
+        flags = result.flags[0].tolist()
+        terminated, truncated = flags[TERMINATED], flags[TRUNCATED]
         if self.render_mode == "human":
             self.render()
         return self._observation(), reward, terminated, truncated, info

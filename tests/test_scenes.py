@@ -11,7 +11,7 @@ from pool_env import PoolEnv, Table, check_layout, free_spot
 from pool_env.game import step as game
 from pool_env.game.config import make_config
 from pool_env.game.kernels.layout import sample_layouts
-from pool_env.game.kernels.params import REACH, RESTARTS, TRIES
+from pool_env.game.kernels.params import RESTARTS, TRIES
 from pool_env.game.scenes import MAX_TRIES, n_object_balls, placement, plan_scene
 from pool_env.game.scenes import RESTARTS as RESTARTS_DEFAULT
 from pool_env.game.state import new_state
@@ -46,7 +46,7 @@ def _crowd(rng: np.random.Generator, n: int, box: tuple[float, float, float, flo
     state.use_generator(0, rng)
     fell_back = sample_layouts(
         params, TABLE.pockets, np.zeros(1, np.intp), out, state.ptrs, np.zeros((0, 2)),
-        np.array(box), np.zeros((n, 2)), params[REACH] ** 2,
+        np.array(box), np.zeros((n, 2)),
     )  # fmt: skip
     assert not fell_back[0]
     return out[0]
@@ -140,7 +140,7 @@ def test_when_random_placement_keeps_failing_the_plans_grid_layout_is_used() -> 
         state.seed(i, i)
     fell_back = sample_layouts(
         params, config.table.pockets, np.arange(3), state.positions, state.ptrs, plan.placed,
-        plan.box, plan.fallback, params[REACH] ** 2,
+        plan.box, plan.fallback,
     )  # fmt: skip
     assert fell_back.all()
     np.testing.assert_array_equal(state.positions, np.repeat(plan.fallback[None], 3, axis=0))

@@ -15,19 +15,22 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
+
 if TYPE_CHECKING:
     from pool_env.game.step import StepResult
 
-#: ``info`` key -> (column of :class:`~pool_env.game.step.StepResult`, dtype); ``potted``
-#: (the tuple of object balls the shot potted, ascending) comes first.
-COLUMNS: dict[str, tuple[str, type]] = {
-    "scratch": ("scratch", np.bool_),
-    "first_contact": ("first_contact", np.int64),
-    "n_events": ("n_events", np.int64),
-    "hit_event_cap": ("hit_event_cap", np.bool_),
-    "angle": ("angle", np.float64),
-    "speed": ("speed", np.float64),
-    "is_success": ("cleared", np.bool_),
+#: ``info`` key -> (array of :class:`~pool_env.game.step.StepResult`, its column or
+#: ``None``, dtype). ``potted`` (the tuple of object balls the shot potted, ascending) comes
+#: first, from the potted bits.
+COLUMNS: dict[str, tuple[str, int | None, type]] = {
+    "scratch": ("flags", SCRATCH, np.bool_),
+    "first_contact": ("hits", FIRST_BALL, np.int64),
+    "n_events": ("n_events", None, np.int64),
+    "hit_event_cap": ("hit_event_cap", None, np.bool_),
+    "angle": ("shots", 0, np.float64),
+    "speed": ("shots", 1, np.float64),
+    "is_success": ("flags", CLEARED, np.bool_),
 }
 
 #: Every key of a step's ``info``.
@@ -53,7 +56,7 @@ def potted_tuples(
 ) -> NDArray[np.object_]:
     """The ``potted`` tuples of ``rows`` of a result, as an object array."""
     if lut is not None:
-        return lut[result.potted_bits[rows]]
+        return lut[result.hits[rows, POTTED_BITS]]
     pocketed = result.pocketed[rows]
     out = np.empty(pocketed.shape[0], dtype=object)
     for k, row in enumerate(pocketed >= 0):
@@ -62,10 +65,22 @@ def potted_tuples(
 
 
 def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str, Any]:
-    """The ``info`` dict of a one-table result, with Python scalars."""
+    """The ``info`` dict of a one-table result, with Python scalars.
+
+    Each result array's row is converted once; per-shot counts come from the
+    :class:`~pool_env.ShotResult` itself (this runs on every :class:`pool_env.PoolEnv` step).
+    """
+    shot = result.shot
+    rows: dict[str, Any] = {}
     info: dict[str, Any] = {"potted": potted_tuples(result, slice(None), lut)[0]}
-    for key, (column, _) in COLUMNS.items():
-        info[key] = getattr(result, column).tolist()[0]
+    for key, (name, column, _) in COLUMNS.items():
+        if column is None:
+            info[key] = getattr(shot, name) if shot is not None else getattr(result, name).item()
+            continue
+        row = rows.get(name)
+        if row is None:
+            row = rows[name] = getattr(result, name)[0].tolist()
+        info[key] = row[column]
     return info
 
 
@@ -93,9 +108,10 @@ def batch_info(
     potted = np.full(n_envs, None, dtype=object)
     potted[tables] = potted_tuples(result, rows, lut)
     info: dict[str, Any] = {"potted": potted, "_potted": present}
-    for key, (column, dtype) in COLUMNS.items():
+    for key, (name, column, dtype) in COLUMNS.items():
+        source = getattr(result, name)
         values = np.zeros(n_envs, dtype=dtype)
-        values[tables] = getattr(result, column)[rows]
+        values[tables] = (source if column is None else source[:, column])[rows]
         info[key] = values
         info[f"_{key}"] = present.copy()
     return info

@@ -24,7 +24,6 @@ from pool_env.game.config import CUE, GameConfig
 from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.kernels.layout import sample_layouts
 from pool_env.game.kernels.observe import encode_observations
-from pool_env.game.kernels.params import REACH
 from pool_env.game.rules import (
     CLEARED,
     FIRST_BALL,
@@ -51,51 +50,103 @@ _NO_CONTACT = np.full((1, 2), -1, dtype=np.int64)
 _NO_CONTACT.setflags(write=False)
 
 
-class StepResult(NamedTuple):
+class StepResult:
     """What one step did; row ``k`` of each array is table ``tables[k]``.
+
+    The rules' results are kept as the few arrays the kernels returned (one array costs
+    about a microsecond to hand over); the named columns are views into them.
 
     Attributes:
         tables: ``(K,)`` the tables that shot.
         rewards: ``(K,)`` float64.
-        terminated: ``(K,)`` the episode ended by the rules.
-        truncated: ``(K,)`` the episode reached its shot limit.
-        cleared: ``(K,)`` the table is cleared (``info["is_success"]``).
-        scratch: ``(K,)`` the cue ball dropped.
-        potted_bits: ``(K,)`` bit ``j - 1`` set for each object ball ``j`` potted.
-        first_contact: ``(K,)`` the first ball the cue ball hit, -1 for none.
-        n_events: ``(K,)`` simulator events.
-        hit_event_cap: ``(K,)`` a shot reached the simulator's event cap.
-        angle: ``(K,)`` executed directions (radians from +x).
-        speed: ``(K,)`` executed speeds (m/s).
+        flags: ``(K, 5)`` booleans, columns named in :mod:`pool_env.game.rules`.
+        hits: ``(K, 2)`` integers: potted bits and the first ball hit.
+        shots: ``(K, 2)`` the executed ``(angle, speed)``.
         pocketed: ``(K, M)`` the simulator's pocket per ball (-1: none), columns ``balls``.
         balls: ``(M,)`` ball number of each column of the simulator's results.
         shot: The :class:`~pool_env.ShotResult` of a one-table step (its rows are
             ``balls``), else ``None``.
     """
 
-    tables: NDArray[np.intp]
-    rewards: NDArray[np.float64]
-    terminated: NDArray[np.bool_]
-    truncated: NDArray[np.bool_]
-    cleared: NDArray[np.bool_]
-    scratch: NDArray[np.bool_]
-    potted_bits: NDArray[np.int64]
-    first_contact: NDArray[np.int64]
-    n_events: NDArray[np.int64]
-    hit_event_cap: NDArray[np.bool_]
-    angle: NDArray[np.float64]
-    speed: NDArray[np.float64]
-    pocketed: NDArray[np.int64]
-    balls: NDArray[np.intp]
-    shot: ShotResult | None
+    __slots__ = ("_capped", "_n_events", "balls", "flags", "hits", "pocketed", "rewards", "shot",
+                 "shots", "tables")  # fmt: skip
+
+    def __init__(
+        self,
+        tables: NDArray[np.intp],
+        rewards: NDArray[np.float64],
+        flags: NDArray[np.bool_],
+        hits: NDArray[np.int64],
+        shots: NDArray[np.float64],
+        outcome: _Outcome,
+    ) -> None:
+        self.tables, self.rewards, self.flags, self.hits, self.shots = (
+            tables, rewards, flags, hits, shots
+        )  # fmt: skip
+        self.pocketed, self.balls, self.shot = outcome.pocketed, outcome.balls, outcome.shot
+        self._n_events, self._capped = outcome.n_events, outcome.capped
+
+    @property
+    def terminated(self) -> NDArray[np.bool_]:
+        """``(K,)`` the episode ended by the rules."""
+        return self.flags[:, TERMINATED]
+
+    @property
+    def truncated(self) -> NDArray[np.bool_]:
+        """``(K,)`` the episode reached its shot limit."""
+        return self.flags[:, TRUNCATED]
+
+    @property
+    def cleared(self) -> NDArray[np.bool_]:
+        """``(K,)`` the table is cleared (``info["is_success"]``)."""
+        return self.flags[:, CLEARED]
+
+    @property
+    def scratch(self) -> NDArray[np.bool_]:
+        """``(K,)`` the cue ball dropped."""
+        return self.flags[:, SCRATCH]
+
+    @property
+    def potted_bits(self) -> NDArray[np.int64]:
+        """``(K,)`` bit ``j - 1`` set for each object ball ``j`` potted."""
+        return self.hits[:, POTTED_BITS]
+
+    @property
+    def first_contact(self) -> NDArray[np.int64]:
+        """``(K,)`` the first ball the cue ball hit, -1 for none."""
+        return self.hits[:, FIRST_BALL]
+
+    @property
+    def angle(self) -> NDArray[np.float64]:
+        """``(K,)`` executed directions (radians from +x)."""
+        return self.shots[:, 0]
+
+    @property
+    def speed(self) -> NDArray[np.float64]:
+        """``(K,)`` executed speeds (m/s)."""
+        return self.shots[:, 1]
+
+    @property
+    def n_events(self) -> NDArray[np.int64]:
+        """``(K,)`` simulator events."""
+        if self._n_events is None:
+            self._n_events = np.array([self.shot.n_events], dtype=np.int64)  # type: ignore[union-attr]
+        return self._n_events
+
+    @property
+    def hit_event_cap(self) -> NDArray[np.bool_]:
+        """``(K,)`` a shot reached the simulator's event cap."""
+        if self._capped is None:
+            self._capped = np.array([self.shot.hit_event_cap])  # type: ignore[union-attr]
+        return self._capped
 
 
 class _Outcome(NamedTuple):
     final: NDArray[np.float64]
     pocketed: NDArray[np.int64]
     first: NDArray[np.int64]
-    n_events: NDArray[np.int64]
-    capped: NDArray[np.bool_]
+    n_events: NDArray[np.int64] | None  # None: read from shot
+    capped: NDArray[np.bool_] | None
     balls: NDArray[np.intp]
     shot: ShotResult | None
 
@@ -136,11 +187,7 @@ def step(
             occupied = state.on_table[b].copy()
             occupied[CUE] = False
             state.positions[b, CUE] = free_spot(table, state.positions[b], occupied)
-    return StepResult(
-        tables, rewards, flags[:, TERMINATED], flags[:, TRUNCATED], flags[:, CLEARED],
-        flags[:, SCRATCH], hits[:, POTTED_BITS], hits[:, FIRST_BALL], out.n_events,
-        out.capped, shots[:, 0], shots[:, 1], out.pocketed, out.balls, out.shot,
-    )  # fmt: skip
+    return StepResult(tables, rewards, flags, hits, shots, out)
 
 
 def _simulate(
@@ -157,24 +204,17 @@ def _simulate(
     """
     n_shots, n_balls = vel.shape[:2]
     if n_shots == 1:
-        b = int(tables[0])
+        b = tables[0]
         pos, on = state.positions[b], state.on_table[b]
         balls = on.nonzero()[0]
-        every = balls.shape[0] == n_balls
-        shot = simulate(
-            table, pos if every else pos[balls], vel[0] if every else vel[0, balls],
-            record=record,
-        )  # fmt: skip
+        if balls.shape[0] == n_balls:
+            shot = simulate(table, pos, vel[0], record=record)
+        else:
+            shot = simulate(table, pos[balls], vel[0, balls], record=record)
         contact = shot.first_contact
-        return _Outcome(
-            shot.positions[None],
-            shot.pocketed[None],
-            _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64),
-            np.array([shot.n_events], dtype=np.int64),
-            np.array([shot.hit_event_cap]),
-            balls,
-            shot,
-        )
+        first = _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64)
+        final, pocketed = shot.positions, shot.pocketed
+        return _Outcome(final[None], pocketed[None], first, None, None, balls, shot)
     every = n_shots == state.n_tables
     pos = state.positions if every else state.positions[tables]
     on = state.on_table if every else state.on_table[tables]
@@ -226,10 +266,9 @@ def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> 
     if scene.fixed is not None:
         state.positions[tables] = scene.fixed
     elif scene.n_new:
-        reach = config.params[REACH]
         sample_layouts(
             config.params, config.table.pockets, tables, state.positions, state.ptrs,
-            scene.placed, scene.box, scene.fallback, reach * reach,
+            scene.placed, scene.box, scene.fallback,
         )  # fmt: skip
     else:  # a callable scene: Python, one table at a time
         generators = state.ensure_generators()

@@ -6,6 +6,7 @@ import numpy as np
 
 from pool_env.game.kernels.params import (
     CLEARANCE,
+    REACH,
     RESTARTS,
     TRIES,
     X_HIGH,
@@ -61,7 +62,7 @@ def free_points(params, pockets, points, balls, min_d2):
 
 
 @kernel
-def sample_layouts(params, pockets, tables, positions, ptrs, placed, box, fallback, min_d2):
+def sample_layouts(params, pockets, tables, positions, ptrs, placed, box, fallback):
     """Draw a starting layout for each of ``tables``, uniformly at random by rejection.
 
     Balls are placed one after another; each draw is uniform over ``box`` and kept when
@@ -82,7 +83,6 @@ def sample_layouts(params, pockets, tables, positions, ptrs, placed, box, fallba
         placed: ``(M, 2)`` fixed balls the drawn ones keep clear of (a rack), or empty.
         box: ``(x_low, x_high, y_low, y_high)`` for the drawn centres.
         fallback: ``(n_new, 2)`` the drawn balls' layout when every attempt failed.
-        min_d2: Smallest squared distance between centres.
 
     Returns:
         ``(K,)`` booleans: the tables that got ``fallback``.
@@ -91,6 +91,7 @@ def sample_layouts(params, pockets, tables, positions, ptrs, placed, box, fallba
     total = n_fixed + n_new
     x0, x1, y0, y1 = box[0], box[1], box[2], box[3]
     tries, restarts = int(params[TRIES]), int(params[RESTARTS])
+    min_d2 = params[REACH] * params[REACH]  # centres 2R + clearance apart
     fell_back = np.zeros(tables.shape[0], dtype=np.bool_)
     balls = np.empty((total, 2))
     draws = np.empty(2 * (n_new + 2))
