@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env.game import step as game
-from pool_env.game.checks import check_actions, check_render
+from pool_env.game.checks import check_actions, check_render, check_seed
 from pool_env.game.config import CUE, DEFAULT_SPEED_RANGE, AimMode, GameConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.rules import TERMINATED, TRUNCATED
@@ -228,6 +228,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[NDArray[np.float32], dict[str, Any]]:
         """Start an episode: a new layout from the scene, or ``options["positions"]``."""
+        if seed is not None:
+            check_seed(seed)  # a ValueError, as the vector env's, before anything changes
         super().reset(seed=seed)
         self._use_generator()
         game.reset(self.config, self._state, _ONE, options)

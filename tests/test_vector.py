@@ -345,6 +345,9 @@ def test_bad_actions_seeds_and_layouts_get_the_same_messages_as_pool_env() -> No
     for seed in (1.5, "7", [1, 2.5], [-1, 2], True):
         with pytest.raises(ValueError, match="seed"):
             env.reset(seed=seed)  # type: ignore[arg-type]
+    for seed in (1.5, "7", -1, True):
+        with pytest.raises(ValueError, match="seed"):
+            single.reset(seed=seed)  # type: ignore[arg-type]
     layout = [[0.5, 0.5], [1.0, 0.5], [2.0, 0.8]]
     for target in (env, single):
         with pytest.raises(ValueError, match="leaves no object ball on the table"):

@@ -147,18 +147,19 @@ def check_seeds(seed: object, n: int) -> list[int | None]:
     if seed is None:
         return [None] * n
     if _is_int(seed):
-        return [_seed(seed) + i for i in range(n)]
+        return [check_seed(seed) + i for i in range(n)]
     seeds = list(seed) if isinstance(seed, list | tuple | np.ndarray) else None
     if seeds is None or len(seeds) != n:
         raise ValueError(f"seed must be None, an int or {n} seeds (one per table), got {seed!r}")
-    return [None if s is None else _seed(s) for s in seeds]
+    return [None if s is None else check_seed(s) for s in seeds]
 
 
 def _is_int(value: object) -> bool:
     return isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
 
 
-def _seed(value: object) -> int:
+def check_seed(value: object) -> int:
+    """A seed: a non-negative integer (``ValueError`` otherwise)."""
     if not _is_int(value) or int(value) < 0:  # type: ignore[call-overload]
         raise ValueError(f"a seed must be None or a non-negative integer, got {value!r}")
     return int(value)  # type: ignore[call-overload]
