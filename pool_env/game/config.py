@@ -16,6 +16,7 @@ from numpy.typing import NDArray
 
 from pool_env.game import checks
 from pool_env.game.kernels import params as kp
+from pool_env.game.rules import CUE as RULES_CUE
 from pool_env.game.scenes import ScenePlan, SceneSpec, placement, plan_scene
 from pool_env.sim.table import Table
 
@@ -45,8 +46,8 @@ DEFAULT_AIM_RANGE: dict[str, tuple[float, float]] = {
 #: Default cue speed range (m/s): from a soft touch (rolls ~1.3 m) to a hard break.
 DEFAULT_SPEED_RANGE = (0.5, 10.0)
 
-#: The cue ball's row in every layout.
-CUE = 0
+#: The cue ball's row in every layout (the rules' constant).
+CUE = RULES_CUE
 
 
 @dataclass(frozen=True)
