@@ -294,7 +294,7 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
     unit = np.zeros(N_PARAMS)
     unit[[X_HIGH, Y_HIGH, TRIES, RESTARTS]] = 1.0, 1.0, 9, 1  # a 1 m square, no pockets
     sample_layouts(
-        unit, no_pockets, one, positions, table, nothing_placed, unit_box, np.zeros((2, 2)), 0.0
+        unit, no_pockets, one, positions, table, nothing_placed, unit_box, np.zeros((2, 2))
     )
     np.testing.assert_array_equal(positions[0].ravel(), theirs.random(8)[:4])
 
