@@ -1,6 +1,6 @@
 """From a desired shot (absolute direction, speed) to the environment's action, and back.
 
-The environment decodes an action with :func:`pool_env.mdp.decode_shots`: action[0] maps
+The environment decodes an action with :func:`pool_env.decode_shots`: action[0] maps
 linearly onto ``aim_range`` and is read as an absolute angle, an angle relative to the line
 to the nearest object ball, or a cut offset on that ball (in ball diameters); action[1] maps
 linearly onto ``speed_range``. :func:`shot_to_action` inverts that; a direction outside what
@@ -17,8 +17,8 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.state import EnvSpec
-from pool_env.mdp import AIM_MODES, decode_shots
+from agents.base import EnvSpec
+from pool_env import AIM_MODES, decode_shots, nearest_object_ball
 
 # Slack when testing a parameter against its range: the float32 round trip moves it ~1e-7.
 _RANGE_TOL = 1e-9
@@ -28,25 +28,6 @@ def wrap_angle(angle: float) -> float:
     """``angle`` wrapped into ``(-pi, pi]``."""
     a = math.remainder(angle, 2.0 * math.pi)
     return math.pi if a == -math.pi else a
-
-
-def nearest_object_ball(
-    positions: NDArray[np.float64], on_table: NDArray[np.bool_], cue: int = 0
-) -> tuple[int, float, float]:
-    """The env's reference ball for relative aim: ``(index, distance, angle from the cue)``.
-
-    Ties go to the lower number, as in :func:`pool_env.mdp.aim_angles`. With no object ball
-    left: ``(-1, inf, 0.0)``.
-    """
-    cx, cy = positions[cue]
-    best, best_j, base = math.inf, -1, 0.0
-    for j in range(positions.shape[0]):
-        if j != cue and on_table[j]:
-            dx, dy = positions[j, 0] - cx, positions[j, 1] - cy
-            d2 = dx * dx + dy * dy
-            if d2 < best:
-                best, best_j, base = d2, j, math.atan2(dy, dx)
-    return best_j, math.sqrt(best), base
 
 
 def aim_parameter(
@@ -64,7 +45,9 @@ def aim_parameter(
             if lo - _RANGE_TOL <= p <= hi + _RANGE_TOL:
                 return p
         return None
-    j, dist, base = nearest_object_ball(positions, on_table)
+    j, dist, base = nearest_object_ball(
+        np.ascontiguousarray(positions, dtype=np.float64), np.asarray(on_table, np.bool_), 0
+    )
     delta = wrap_angle(angle - base)
     if spec.aim == "relative":
         param = delta
@@ -116,7 +99,7 @@ def decode(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """What the environment executes for ``(B, 2)`` actions on one layout: ``(angles, speeds)``.
 
-    The environment's own decoding (:func:`pool_env.mdp.decode_shots`), so that a planner
+    The environment's own decoding (:func:`pool_env.decode_shots`), so that a planner
     simulates exactly the shot its action will play (before execution noise).
     """
     acts = np.ascontiguousarray(actions, dtype=np.float32)

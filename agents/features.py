@@ -21,7 +21,7 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.aiming import nearest_object_ball
+from pool_env import nearest_object_ball
 
 
 class PocketFeatures(gym.ObservationWrapper):
@@ -55,7 +55,7 @@ class PocketFeatures(gym.ObservationWrapper):
     def features(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
         """The appended features for one layout (cue first)."""
         out = np.zeros(1 + 3 * self._pockets.shape[0], dtype=np.float32)
-        j, dist, base = nearest_object_ball(positions, on_table)
+        j, dist, base = nearest_object_ball(positions, on_table, 0)
         if j < 0:
             return out
         out[0] = dist / self._diagonal

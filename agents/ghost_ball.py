@@ -24,7 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.aiming import decode, shot_to_action
-from agents.state import BaselineAgent, EnvSpec, LayoutSource, env_spec
+from agents.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from pool_env import shoot
 
 #: Speeds (m/s) at which the object ball should reach the capture circle: softer shots keep

@@ -1,4 +1,4 @@
-"""Stable-Baselines3 ``VecEnv`` over :class:`pool_env.vector.PoolVectorEnv` (``--vec native``).
+"""Stable-Baselines3 ``VecEnv`` over :class:`pool_env.PoolVectorEnv` (``--vec native``).
 
 All tables step in one compiled call instead of one Python call (``DummyVecEnv``) or one
 process (``SubprocVecEnv``) per environment. The adapter follows SB3's conventions: a
@@ -24,8 +24,8 @@ from stable_baselines3.common.vec_env import VecEnv
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvStepReturn
 
 import pool_env  # noqa: F401  (registers the ids and their vector entry point)
-from pool_env.registration import ENV_IDS, VECTOR_ENTRY_POINT
-from pool_env.vector import PoolVectorEnv
+from pool_env import ENV_IDS, PoolVectorEnv
+from pool_env.registration import VECTOR_ENTRY_POINT
 
 #: ``PoolEnv``'s step info keys, in its order.
 INFO_KEYS = (
@@ -44,7 +44,7 @@ PER_TABLE = frozenset({"positions", "on_table", "shots", "np_random", "np_random
 
 
 class NativeVecEnv(VecEnv):
-    """SB3 ``VecEnv`` adapter of a :class:`~pool_env.vector.PoolVectorEnv`.
+    """SB3 ``VecEnv`` adapter of a :class:`~pool_env.PoolVectorEnv`.
 
     Args:
         env: The vector env; it must use ``AutoresetMode.SAME_STEP``.

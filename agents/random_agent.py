@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.state import BaselineAgent
+from agents.base import BaselineAgent
 
 
 class RandomAgent(BaselineAgent):

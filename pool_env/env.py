@@ -1,34 +1,29 @@
 """PoolEnv: the Gymnasium environment. One step is one shot, simulated exactly to rest.
 
-The class holds state and glue only: the action decoding, observation encoding and reward
-are the pure functions of :mod:`pool_env.mdp`, the layouts those of :mod:`pool_env.scenes`,
-so that a batched environment can reuse them.
+The class is a front: the decision process is :mod:`pool_env.game` (its config, state and
+``step``), run here on one table (B = 1); :class:`pool_env.PoolVectorEnv` runs the same on
+many. What stays here is Gymnasium's API, the generator, and rendering.
 """
 
 from __future__ import annotations
 
-import math
 from typing import Any, ClassVar
 
 import gymnasium as gym
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env import checks, scenes
-from pool_env.mdp import (
-    AIM_MODES,
-    DEFAULT_AIM_RANGE,
-    DEFAULT_SPEED_RANGE,
-    AimMode,
-    check_action,
-    decode_shots,
-    encode_observations,
-    pocket_potentials,
-    shot_rewards,
-)
+from pool_env.game import step as game
+from pool_env.game.checks import check_actions, check_render, check_seed
+from pool_env.game.config import CUE, DEFAULT_SPEED_RANGE, AimMode, GameConfig, make_config
+from pool_env.game.info import potted_lookup, table_info
+from pool_env.game.rules import TERMINATED, TRUNCATED
+from pool_env.game.scenes import SceneSpec
+from pool_env.game.state import GameState, new_state
 from pool_env.sim.result import ShotResult
-from pool_env.sim.simulate import shoot
 from pool_env.sim.table import Table
+
+_ONE = np.zeros(1, dtype=np.intp)  # the rows of the single table
 
 
 class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
@@ -100,7 +95,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     ## Starting State
 
-    Set by ``scene`` (see :mod:`pool_env.scenes`): ``"one_ball"`` (cue and one object ball
+    Set by ``scene`` (see :mod:`pool_env.game.scenes`): ``"one_ball"`` (cue and one object ball
     uniformly at random), ``"random"`` (cue and ``n_balls`` object balls uniformly at random,
     3 by default), ``"nine_ball"`` / ``"eight_ball"`` (the rack on the foot spot, the cue
     ball anywhere in the kitchen: the first shot is the break), a fixed ``(N, 2)`` layout, or
@@ -169,7 +164,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ## Attributes
 
     Of the unwrapped environment (``env.unwrapped``), for agents and tools:
-    ``table`` (the :class:`~pool_env.sim.table.Table`), ``positions`` (``(N, 2)`` ball centres in
+    ``config`` (the parsed :class:`~pool_env.game.config.GameConfig`), ``table`` (the
+    :class:`~pool_env.Table`), ``positions`` (``(N, 2)`` ball centres in
     metres, cue first; a copy), ``on_table`` (``(N,)`` booleans), ``cue`` (0), ``aim``,
     ``aim_range``, ``speed_range``, ``noise``, ``n_object_balls``, ``end_on_miss``,
     ``max_shots``, ``reward_weights`` (pot, scratch, no contact, shaping), ``shots`` (this
@@ -194,7 +190,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     def __init__(
         self,
         table: Table | dict[str, Any] | None = None,
-        scene: scenes.SceneSpec = "random",
+        scene: SceneSpec = "random",
         n_balls: int | None = None,
         aim: AimMode = "cut",
         aim_range: tuple[float, float] | None = None,
@@ -209,51 +205,33 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         render_mode: str | None = None,
         render_width: int = 800,
     ) -> None:
-        self.table = checks.parse_table(table)
-        if aim not in AIM_MODES:
-            raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {aim!r}")
-        self.aim: AimMode = aim
-        self._aim_code = AIM_MODES.index(aim)
-        self.aim_range = checks.parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
-        self.speed_range = checks.parse_range("speed_range", speed_range, 0.0)
-        self.noise = checks.parse_noise(noise)
-        self.end_on_miss = checks.parse_bool("end_on_miss", end_on_miss)
-        self.max_shots = checks.parse_count("max_shots", max_shots)
-        self.reward_weights = tuple(
-            checks.parse_float(name, value)
-            for name, value in (
-                ("reward_pot", reward_pot),
-                ("reward_scratch", reward_scratch),
-                ("reward_no_contact", reward_no_contact),
-                ("reward_shaping", reward_shaping),
-            )
-        )
-        if render_mode is not None and render_mode not in self.metadata["render_modes"]:
-            modes = self.metadata["render_modes"]
-            raise ValueError(f"render_mode must be one of {modes} or None, got {render_mode!r}")
+        self.render_width = check_render(render_mode, self.metadata["render_modes"], render_width)
         self.render_mode = render_mode
         if render_mode is not None:
             from pool_env.render import RENDER_FPS
 
             self.metadata = {**self.metadata, "render_fps": RENDER_FPS[render_mode]}
-        self.render_width = checks.parse_count("render_width", render_width) or 800
-        if self.render_width < 64:
-            raise ValueError(f"render_width must be at least 64 pixels, got {render_width!r}")
-        self._sample, self.n_object_balls = scenes.make_sampler(scene, self.table, n_balls)
-
-        n = self.n_object_balls + 1
+        self.config: GameConfig = make_config(
+            table, scene, n_balls, aim, aim_range, speed_range, noise, end_on_miss, max_shots,
+            reward_pot, reward_scratch, reward_no_contact, reward_shaping,
+        )  # fmt: skip
+        config = self.config
+        self.table = config.table
+        self.aim: AimMode = config.aim
+        self.aim_range, self.speed_range = config.aim_range, config.speed_range
+        self.noise, self.end_on_miss = config.noise, config.end_on_miss
+        self.max_shots, self.reward_weights = config.max_shots, config.reward_weights
+        self.n_object_balls = config.n_object_balls
+        self.cue = CUE
+        n = config.n_balls
         self.observation_space = gym.spaces.Box(-1.0, 1.0, (3 * n,), np.float32)
         self.action_space = gym.spaces.Box(-1.0, 1.0, (2,), np.float32)
-        self.cue = 0
         self._record = render_mode is not None  # trajectories only when something draws them
-        self._diagonal = math.hypot(self.table.length, self.table.width)
-        self._positions: NDArray[np.float64] | None = None
-        self._on_table = np.ones(n, dtype=bool)
-        self._rows = np.arange(n)  # balls on the table, cue first: the rows the simulator sees
-        self._n_left = n - 1
-        self._shots = 0
+        self._state: GameState = new_state(1, n)
+        self._started = False
+        self._potted_lut = potted_lookup(config.n_object_balls)
         self._last_shot: ShotResult | None = None
-        self._shot_rows = self._rows
+        self._shot_balls = np.arange(n)
         self._renderer: Any = None
         self._window: Any = None
         self._frames: list[NDArray[np.uint8]] = []  # rgb_array_list: since the last render()
@@ -264,34 +242,12 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[NDArray[np.float32], dict[str, Any]]:
         """Start an episode: a new layout from the scene, or ``options["positions"]``."""
+        if seed is not None:
+            check_seed(seed)  # a ValueError, as the vector env's, before anything changes
         super().reset(seed=seed)
-        n = self.n_object_balls + 1
-        on_table = np.ones(n, dtype=bool)
-        if options:
-            unknown = set(options) - {"positions", "on_table"}
-            if unknown:
-                raise ValueError(
-                    f"unknown reset options {sorted(unknown)}: use 'positions', 'on_table'"
-                )
-        if options and "positions" in options:
-            positions = np.array(options["positions"], dtype=np.float64)
-            if positions.shape != (n, 2):
-                raise ValueError(
-                    f"options['positions'] must have shape ({n}, 2), got {positions.shape}"
-                )
-            if options.get("on_table") is not None:
-                on_table = np.array(options["on_table"], dtype=bool)
-                if on_table.shape != (n,) or not on_table[0]:
-                    raise ValueError(
-                        f"options['on_table'] must be ({n},) booleans with the cue (0) True"
-                    )
-            scenes.check_layout(self.table, positions[on_table])
-        elif options and "on_table" in options:
-            raise ValueError("options['on_table'] needs options['positions']")
-        else:
-            positions = self._sample(self.np_random)
-        self._set_state(positions, on_table)
-        self._shots = 0
+        self._use_generator()
+        game.reset(self.config, self._state, _ONE, options)
+        self._started = True
         self._last_shot = None
         if self.render_mode == "human":
             self.render()
@@ -303,78 +259,16 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self, action: ArrayLike
     ) -> tuple[NDArray[np.float32], float, bool, bool, dict[str, Any]]:
         """Play one shot to rest; see the class docstring for the action, reward and end."""
-        positions = self._positions
-        if positions is None:
+        if not self._started:
             raise RuntimeError("call reset() before step()")
-        angles, speeds = decode_shots(
-            check_action(action)[None],
-            positions[None],
-            self._on_table[None],
-            self.cue,
-            self._aim_code,
-            self.table.ball_radius,
-            self.aim_range,
-            self.speed_range,
-        )
-        angle, speed = float(angles[0]), float(speeds[0])
-        if self.noise is not None:
-            angle += self.noise[0] * float(self.np_random.standard_normal())
-            speed = max(0.0, speed + self.noise[1] * float(self.np_random.standard_normal()))
-
-        rows = self._rows
-        all_on = rows.shape[0] == positions.shape[0]
-        shaping = self.reward_weights[3] != 0.0
-        phi_before = self._potential() if shaping else 0.0
-        result = shoot(
-            self.table, positions if all_on else positions[rows], angle, speed, record=self._record
-        )
-        # The state never aliases an array that a ShotResult (or a caller) may hold.
-        if all_on:
-            new = result.positions  # a fresh array from the simulator
-        else:
-            new = positions.copy()
-            new[rows] = result.positions
-        self._last_shot, self._shot_rows = result, rows
-        self._shots += 1
-
-        # Plain lists: for a handful of balls they beat numpy's per-call overhead.
-        pocketed = result.pocketed.tolist()
-        potted: tuple[int, ...] = ()
-        scratch = False
-        if max(pocketed) >= 0:
-            balls = [b for b, k in zip(rows.tolist(), pocketed, strict=True) if k >= 0]
-            on_table = self._on_table = self._on_table.copy()
-            on_table[balls] = False
-            scratch = balls[0] == self.cue
-            potted = tuple(balls[1:] if scratch else balls)
-            self._n_left -= len(potted)
-            if scratch:  # back on the head spot, or the free point nearest to it
-                if new is result.positions:
-                    new = new.copy()
-                new[self.cue] = scenes.free_spot(self.table, new, on_table)
-                on_table[self.cue] = True
-            self._rows = on_table.nonzero()[0]
-        self._positions = new
-        contact = result.first_contact
-        first = -1 if contact is None else int(rows[contact[1] if contact[0] == 0 else contact[0]])
-        phi_change = self._potential() - phi_before if shaping else 0.0
-        reward = float(
-            shot_rewards(len(potted), scratch, first < 0, phi_change, self.reward_weights)
-        )
-
-        cleared = self._n_left == 0
-        terminated = cleared or (self.end_on_miss and (not potted or scratch))
-        truncated = self.max_shots is not None and self._shots >= self.max_shots
-        info = {
-            "potted": potted,
-            "scratch": scratch,
-            "first_contact": first,
-            "n_events": result.n_events,
-            "hit_event_cap": result.hit_event_cap,
-            "angle": angle,
-            "speed": speed,
-            "is_success": cleared,
-        }
+        actions = check_actions(action, 1, single=True)
+        self._use_generator()
+        result = game.step(self.config, self._state, _ONE, actions, record=self._record)
+        self._last_shot, self._shot_balls = result.shot, result.balls
+        info = table_info(result, self._potted_lut)
+        reward = result.rewards.item()
+        flags = result.flags[0].tolist()
+        terminated, truncated = flags[TERMINATED], flags[TRUNCATED]
         if self.render_mode == "human":
             self.render()
         elif self.render_mode == "rgb_array_list":
@@ -385,48 +279,47 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     # -- state ----------------------------------------------------------------------------
 
-    def _set_state(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> None:
-        self._positions = np.ascontiguousarray(positions, dtype=np.float64)
-        self._on_table = on_table
-        self._rows = on_table.nonzero()[0]
-        self._n_left = len(self._rows) - 1  # object balls on the table
+    def _use_generator(self) -> None:
+        """Draw layouts and noise from ``self.np_random`` (Gymnasium may have replaced it)."""
+        rng = self.np_random
+        if rng is not self._state.generators[0]:
+            self._state.use_generator(0, rng)
 
     def _observation(self) -> NDArray[np.float32]:
-        table = self.table
-        return encode_observations(
-            self._positions[None], self._on_table[None], table.length, table.width
-        )[0]
+        return game.observe(self.config, self._state)[0]
 
-    def _potential(self) -> float:
-        pos, on = self._positions[None], self._on_table[None]
-        return float(pocket_potentials(pos, on, self.table.pockets, self._diagonal)[0])
+    def _require_reset(self) -> None:
+        if not self._started:
+            raise RuntimeError("call reset() first")
 
     @property
     def positions(self) -> NDArray[np.float64]:
         """``(N, 2)`` ball centres in metres, cue first (a potted ball: where it was captured)."""
-        if self._positions is None:
-            raise RuntimeError("call reset() first")
-        return self._positions.copy()
+        self._require_reset()
+        return self._state.positions[0].copy()
 
     @property
     def on_table(self) -> NDArray[np.bool_]:
         """``(N,)`` booleans: which balls are on the table, cue first."""
-        return self._on_table.copy()
+        return self._state.on_table[0].copy()
 
     @property
     def shots(self) -> int:
         """Shots played in this episode."""
-        return self._shots
+        return int(self._state.shots[0])
 
     @property
     def last_shot(self) -> ShotResult | None:
-        """The :class:`~pool_env.ShotResult` of the last step (rows: ``last_shot_balls``)."""
+        """The :class:`~pool_env.ShotResult` of the last step (rows: ``last_shot_balls``).
+
+        The simulator's result, not the environment's state: changing it changes nothing.
+        """
         return self._last_shot
 
     @property
     def last_shot_balls(self) -> NDArray[np.int64]:
         """Ball numbers of the rows of :attr:`last_shot` (the balls that were on the table)."""
-        return self._shot_rows.copy()
+        return self._shot_balls.copy()
 
     # -- rendering ------------------------------------------------------------------------
 
@@ -441,8 +334,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         renderer = self._get_renderer()
         trails = None
         if self._last_shot is not None and self._last_shot.recorded:
-            trails = renderer.trails(self._last_shot, self._shot_rows)
-        return renderer.frame(self.positions, self._on_table, trails=trails)
+            trails = renderer.trails(self._last_shot, self._shot_balls)
+        return renderer.frame(self.positions, self.on_table, trails=trails)
 
     def render(self) -> NDArray[np.uint8] | list[NDArray[np.uint8]] | None:
         """The frame(s) of the render mode (see the class docstring, Rendering).
@@ -492,7 +385,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         if shot is None or not shot.recorded:
             raise ValueError("no recorded shot: create the env with a render_mode and step() first")
         renderer = self._get_renderer()
-        return shot_frames(renderer, shot, self._shot_rows, fps, speed, max_seconds, min_frames)
+        return shot_frames(renderer, shot, self._shot_balls, fps, speed, max_seconds, min_frames)
 
     def save_shot(
         self, path: str, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0

@@ -11,9 +11,9 @@ import pytest
 import pool_env
 from agents import GhostBallAgent, RandomAgent, run_episodes
 from agents.aiming import decode, shot_to_action
+from agents.base import decode_observation, env_spec
 from agents.features import PocketFeatures
 from agents.random_agent import ConstantAgent
-from agents.state import decode_observation, env_spec
 
 ONE = "pool_env/OneBall-v0"
 

@@ -12,9 +12,8 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import pool_env
-from pool_env import PoolEnv, Table
+from pool_env import PoolEnv, Table, check_layout
 from pool_env.registration import ENV_IDS
-from pool_env.scenes import check_layout
 from pool_env.sim.layouts import head_spot
 
 TABLE = Table()
@@ -371,3 +370,55 @@ def test_subproc_vec_env_with_two_workers_matches_dummy_vec_env() -> None:
 def test_package_exports() -> None:
     assert pool_env.PoolEnv is PoolEnv
     assert "PoolEnv" in pool_env.__all__
+
+
+def test_the_state_never_aliases_what_callers_were_given() -> None:
+    # Issue 11 (3): editing last_shot.positions used to change the environment.
+    layout = np.array([[0.5, 0.5], [1.0, 0.5], [2.0, 0.8]])
+    env = _env(n_balls=2)
+    env.reset(seed=0, options={"positions": layout})
+    layout[:] = np.nan  # the caller's layout was copied
+    obs, *_ = env.step(np.array([0.2, -0.5]))
+    before = env.positions
+    env.last_shot.positions[:] = np.nan
+    env.last_shot.pocketed[:] = 0
+    obs[:] = 7.0
+    np.testing.assert_array_equal(env.positions, before)
+    assert np.isfinite(env.step(np.array([0.1, -0.5]))[0]).all()  # plays on as before
+
+
+@pytest.mark.parametrize("dtype", [np.float16, np.float32, np.longdouble, ">f8", "<f4", np.int8])
+def test_every_real_action_dtype_plays_as_its_float64_value(dtype: object) -> None:
+    # Issue 11 (7): float16, long double and big-endian actions raised numba's TypingError.
+    action = np.array([0.25, -0.5], dtype=dtype) if dtype != np.int8 else np.array([1, -1], dtype)
+    results = []
+    for played in (action, action.astype(np.float64)):
+        env = _env(scene="random", n_balls=4)
+        env.reset(seed=4)
+        results.append(env.step(played))
+    assert _same(*results)
+
+
+@pytest.mark.parametrize(
+    ("action", "message"),
+    [
+        (np.array([0.3 + 0.5j, 0.1]), "real numbers"),
+        ([0.3j, 0.0], "real numbers"),
+        (np.array(["a", "b"]), "real numbers"),
+        ([object(), 1.0], "real numbers"),
+    ],
+)
+def test_complex_and_other_non_real_actions_are_refused(action: object, message: str) -> None:
+    env = _env()
+    env.reset(seed=0)
+    before = env.positions
+    with pytest.raises(ValueError, match=message):
+        env.step(action)
+    np.testing.assert_array_equal(env.positions, before)
+
+
+def test_a_reset_layout_without_object_balls_says_so() -> None:
+    env = _env(n_balls=2)
+    layout = [[0.5, 0.5], [1.0, 0.5], [2.0, 0.8]]
+    with pytest.raises(ValueError, match="no object ball"):
+        env.reset(options={"positions": layout, "on_table": [True, False, False]})

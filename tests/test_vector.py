@@ -12,13 +12,15 @@ from gymnasium.utils.env_checker import data_equivalence
 from gymnasium.vector import AutoresetMode
 from gymnasium.vector.utils import batch_space
 
-import pool_env  # noqa: F401  (registers the ids)
-from pool_env import PoolEnv, Table
-from pool_env.game.kernels import vector as kv
-from pool_env.registration import ENV_IDS
+import pool_env
+from pool_env import ENV_IDS, PoolEnv, PoolVectorEnv, Table
+from pool_env.game.config import kernel_params
+from pool_env.game.kernels.actions import executed_shots
+from pool_env.game.kernels.layout import sample_layouts
+from pool_env.game.kernels.params import N_PARAMS, RESTARTS, TRIES, X_HIGH, Y_HIGH
+from pool_env.game.state import generator_addresses
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.layouts import head_spot
-from pool_env.vector import PoolVectorEnv
 
 NEXT, SAME, DISABLED = AutoresetMode.NEXT_STEP, AutoresetMode.SAME_STEP, AutoresetMode.DISABLED
 HEAD = head_spot(Table())
@@ -267,13 +269,19 @@ def test_rgb_array_render_gives_one_frame_per_table() -> None:
 
 @pytest.mark.parametrize("bits", [np.random.PCG64, np.random.MT19937, np.random.Philox])
 def test_compiled_draws_equal_numpys(bits: type) -> None:
-    from pool_env.vector_util import generator_addresses
-
     ours, theirs = np.random.Generator(bits(3)), np.random.Generator(bits(3))
     table = np.array([generator_addresses(ours)], dtype=np.uintp)
-    angles, speeds = np.zeros(20_000), np.full(20_000, 5.0)
+    one, zero_action = np.zeros(1, np.intp), np.zeros((1, 2))
+    noise = (1.0, 2.0)
+    params = kernel_params(
+        Table(), "absolute", (0.0, 0.0), (5.0, 5.0), noise, (1, -1, 0, 0), False, 0
+    )
+    at_rest, on = np.zeros((1, 2, 2)), np.ones((1, 2), np.bool_)
+    angles, speeds = np.zeros(20_000), np.zeros(20_000)
     for k in range(20_000):  # noise of one table, drawn 20,000 times: tails included
-        kv.add_noise(np.zeros(1, np.int64), angles[k : k + 1], speeds[k : k + 1], table, 1.0, 2.0)
+        # Absolute aim with a zero-width range: the shot is angle 0 at 5 m/s, plus noise.
+        shots, _ = executed_shots(params, zero_action, one, at_rest, on, table)
+        angles[k], speeds[k] = shots[0]
     normals = theirs.standard_normal(40_000)
     np.testing.assert_array_equal(angles, normals[0::2])
     np.testing.assert_array_equal(speeds, np.maximum(0.0, 5.0 + 2.0 * normals[1::2]))
@@ -282,21 +290,13 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
         np.array([0, 1, 0, 1.0]),
         np.zeros((0, 3)),
     )
-    tables, nothing_placed = np.zeros(1, np.int64), np.zeros((0, 2))
-    kv.sample_layouts(
-        tables, positions, table, 2, nothing_placed, unit_box, no_pockets, 0.0, np.array([2.0]), 9
+    nothing_placed = np.zeros((0, 2))
+    unit = np.zeros(N_PARAMS)
+    unit[[X_HIGH, Y_HIGH, TRIES, RESTARTS]] = 1.0, 1.0, 9, 1  # a 1 m square, no pockets
+    sample_layouts(
+        unit, no_pockets, one, positions, table, nothing_placed, unit_box, np.zeros((2, 2))
     )
     np.testing.assert_array_equal(positions[0].ravel(), theirs.random(8)[:4])
-
-
-def test_squares_decide_as_pythons_pow_at_the_threshold() -> None:
-    rng = np.random.default_rng(0)
-    for dx, dy in rng.uniform(-2, 2, (3_000, 2)).tolist():
-        exact = dx**2 + dy**2  # CPython: the C library's pow
-        for threshold in (exact, np.nextafter(exact, 0.0), np.nextafter(exact, 9.0)):
-            q = kv._square_distance(dx, dy, threshold, 2.0)
-            assert (q <= threshold) == (exact <= threshold)
-            assert (q < threshold) == (exact < threshold)
 
 
 def test_threaded_batch_equals_serial_and_names_the_table() -> None:
@@ -305,7 +305,9 @@ def test_threaded_batch_equals_serial_and_names_the_table() -> None:
     env.reset(seed=1)
     pos, on = env.positions, env.on_table
     rng = np.random.default_rng(0)
-    vel = kv.cue_velocities(rng.uniform(-3, 3, 50), rng.uniform(0, 10, 50), 2, 0)
+    angle, speed = rng.uniform(-3, 3, 50), rng.uniform(0, 10, 50)
+    vel = np.zeros((50, 2, 2))
+    vel[:, 0] = np.stack([speed * np.cos(angle), speed * np.sin(angle)], axis=1)
     serial = simulate_batch(table, pos, vel, active=on, parallel=False)
     for threads in (2, 3):
         split = simulate_batch_threads(table, pos, vel, on, threads)
@@ -314,3 +316,50 @@ def test_threaded_batch_equals_serial_and_names_the_table() -> None:
     pos[40, 1] = pos[40, 0]
     with pytest.raises(ValueError, match="table 40: balls 0 and 1 overlap"):
         simulate_batch_threads(table, pos, vel, on, 2)
+
+
+@pytest.mark.parametrize("dtype", [np.float16, np.longdouble, ">f8", np.float32])
+def test_action_dtypes_play_as_in_pool_env(dtype: object) -> None:
+    actions = np.array([[0.25, -0.5], [-0.7, 0.3]], dtype=dtype)
+    env = PoolVectorEnv(2, scene="random", n_balls=4)
+    env.reset(seed=4)
+    obs, rewards, *_ = env.step(actions)
+    for i in range(2):
+        single = PoolEnv(scene="random", n_balls=4)
+        single.reset(seed=4 + i)
+        expected = single.step(actions[i])
+        np.testing.assert_array_equal(obs[i], expected[0])
+        assert rewards[i] == expected[1]
+
+
+def test_bad_actions_seeds_and_layouts_get_the_same_messages_as_pool_env() -> None:
+    env, single = PoolVectorEnv(2, n_balls=2), PoolEnv(n_balls=2)
+    env.reset(seed=0)
+    single.reset(seed=0)
+    for bad in (np.array([0.3 + 0.5j, 0.1]), np.array(["a", "b"])):
+        with pytest.raises(ValueError, match="real numbers") as vector_error:
+            env.step(np.stack([bad, bad]))
+        with pytest.raises(ValueError, match="real numbers") as single_error:
+            single.step(bad)
+        assert str(vector_error.value).split("got")[-1] == str(single_error.value).split("got")[-1]
+    for seed in (1.5, "7", [1, 2.5], [-1, 2], True):
+        with pytest.raises(ValueError, match="seed"):
+            env.reset(seed=seed)  # type: ignore[arg-type]
+    for seed in (1.5, "7", -1, True):
+        with pytest.raises(ValueError, match="seed"):
+            single.reset(seed=seed)  # type: ignore[arg-type]
+    layout = [[0.5, 0.5], [1.0, 0.5], [2.0, 0.8]]
+    for target in (env, single):
+        with pytest.raises(ValueError, match="leaves no object ball on the table"):
+            target.reset(options={"positions": layout, "on_table": [True, False, False]})
+
+
+def test_a_crowded_scene_never_fails_in_an_autoreset() -> None:
+    # Issue 11 (5): the autoreset inside step() raised "cannot lay out the scene".
+    env = PoolVectorEnv(16, table={"length": 0.4, "width": 0.2}, n_balls=11, autoreset_mode=SAME)
+    env.reset(seed=0)
+    rng = np.random.default_rng(0)
+    for _ in range(30):
+        env.step(rng.uniform(-1, 1, (16, 2)))
+        for positions, on in zip(env.positions, env.on_table, strict=True):
+            pool_env.check_layout(env.table, positions[on])

@@ -1,5 +1,11 @@
-"""The decision process over B tables: scenes, actions, shots, settling, rewards, rules.
+"""The decision process over B tables: scenes, actions, shots, settling, rules, rewards.
 
 One copy serves both Gymnasium fronts (:class:`pool_env.PoolEnv` with B = 1 and
-:class:`pool_env.PoolVectorEnv` with B = N). Knows the simulator, not Gymnasium.
+:class:`pool_env.PoolVectorEnv` with B = N). Knows the simulator, not Gymnasium's API
+(it borrows only Gymnasium's seeding, so that generators match ``Env.np_random``).
+
+Modules: :mod:`.config` (the fixed model, parsed once), :mod:`.state` (B tables in arrays),
+:mod:`.scenes` (starting layouts, re-spotting), :mod:`.rules` (what an outcome means),
+:mod:`.step` (one step), :mod:`.info` (the step's info), :mod:`.checks` (every argument
+check), and :mod:`.kernels` (the compiled parts).
 """

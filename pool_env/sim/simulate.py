@@ -184,3 +184,24 @@ def shoot(
     vel = np.zeros((n, 2))
     vel[cue] = (speed * math.cos(angle), speed * math.sin(angle))
     return _run(table, pos, vel, masses, max_events, record)
+
+
+def check_layout(table: Table, positions: ArrayLike) -> NDArray[np.float64]:
+    """Check that balls at rest at ``positions`` are a state :func:`simulate` accepts.
+
+    Args:
+        table: The table.
+        positions: ``(N, 2)`` ball centres.
+
+    Returns:
+        The positions as a new contiguous float64 array.
+
+    Raises:
+        ValueError: As :func:`simulate` would, naming the first ball off the table, inside
+            a pocket or overlapping another (nothing is simulated).
+    """
+    pos = np.array(_as_points("positions", positions, None))
+    code, i, j = loop.validate(pos, np.zeros_like(pos), _TABLE_MASSES, table.params, table.pockets)
+    if code != loop.OK:
+        _raise_invalid(code, i, j, pos, table)
+    return pos

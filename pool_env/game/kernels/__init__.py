@@ -1,1 +1,1 @@
-"""Compiled kernels of the decision process (per-table work around a batch of shots)."""
+"""Compiled kernels of the decision process: actions, layouts, settling, observations, rng."""

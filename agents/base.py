@@ -1,4 +1,6 @@
-"""What a baseline agent knows about its environment: the table, the action decoding, the layout.
+"""The base of every baseline agent (SB3's ``predict``) and what it knows of its environment.
+
+The table, the action decoding and the layout:
 
 Baselines are built from an environment (a Gymnasium env, wrapped or not, or an SB3
 ``VecEnv``) and then called like an SB3 model, with observations only. The observation holds
@@ -16,8 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env import Table
-from pool_env.mdp import encode_observations
+from pool_env import Table, encode_observations
 
 Layout = tuple[NDArray[np.float64], NDArray[np.bool_]]
 
@@ -68,7 +69,7 @@ def env_spec(env: Any) -> EnvSpec:
 
 
 def decode_observation(obs: NDArray[np.floating], table: Table) -> Layout:
-    """Invert :func:`pool_env.mdp.encode_observations` for one observation (float32 precision).
+    """Invert :func:`pool_env.encode_observations` for one observation (float32 precision).
 
     Balls that decode closer than ``2R`` (touching in the real layout) are pushed apart along
     their line of centres, so that the simulator accepts the layout.

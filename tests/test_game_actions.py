@@ -1,4 +1,4 @@
-"""The pure decision-process functions: decoding, aiming, observations, potential, reward."""
+"""The decision process's pure functions: decoding, aiming, observations, potential, rules."""
 
 from __future__ import annotations
 
@@ -7,17 +7,22 @@ import math
 import numpy as np
 import pytest
 
-from pool_env import Table
-from pool_env.mdp import (
-    AIM_MODES,
-    aim_angles,
-    check_action,
-    decode_actions,
-    decode_shots,
-    encode_observations,
-    pocket_potentials,
-    shot_rewards,
+from pool_env import AIM_MODES, Table, decode_shots, encode_observations, nearest_object_ball
+from pool_env.game.checks import check_actions
+from pool_env.game.config import kernel_params
+from pool_env.game.kernels.actions import aim_angles, decode_actions
+from pool_env.game.kernels.observe import pocket_potentials
+from pool_env.game.rules import (
+    CLEARED,
+    FIRST_BALL,
+    POTTED_BITS,
+    SCRATCH,
+    SPOT_TAKEN,
+    TERMINATED,
+    TRUNCATED,
+    judge,
 )
+from pool_env.sim.layouts import head_spot
 
 TABLE = Table()
 R = TABLE.ball_radius
@@ -41,17 +46,17 @@ def test_decode_clips_out_of_range_and_infinite_actions() -> None:
 @pytest.mark.parametrize("bad", [[np.nan, 0.0], [0.0, np.nan], np.array([np.nan, 1], np.float32)])
 def test_check_action_rejects_nan(bad: object) -> None:
     with pytest.raises(ValueError, match="NaN"):
-        check_action(bad)  # type: ignore[arg-type]
+        check_actions(bad, 1, single=True)
 
 
 @pytest.mark.parametrize("bad", [[0.0], [0.0, 0.0, 0.0], [[0.0, 0.0]], "ab", None])
 def test_check_action_rejects_bad_shapes(bad: object) -> None:
     with pytest.raises(ValueError, match="action"):
-        check_action(bad)  # type: ignore[arg-type]
+        check_actions(bad, 1, single=True)
 
 
 def test_check_action_accepts_lists_and_integers() -> None:
-    assert check_action([1, 0]).tolist() == [1.0, 0.0]
+    assert check_actions([1, 0], 1, single=True).tolist() == [[1.0, 0.0]]
 
 
 def _aim(params: list[float], positions: np.ndarray, on: np.ndarray, mode: int) -> np.ndarray:
@@ -151,16 +156,96 @@ def test_pocket_potential() -> None:
     assert phi == pytest.approx(-0.25)
     on[1] = False
     assert pocket_potentials(pos[None], on[None], TABLE.pockets, 2.0)[0] == 0.0  # cleared
-    assert pocket_potentials(pos[None], np.ones((1, 3), bool), np.zeros((0, 3)), 2.0)[0] == 0.0
+    no_pockets = np.zeros((0, 3))
+    assert pocket_potentials(pos[None], np.ones((1, 3), bool), no_pockets, 2.0)[0] == 0.0
 
 
-def test_shot_rewards_scalars_and_arrays() -> None:
-    w = (1.0, -1.0, -0.25, 2.0)
-    assert shot_rewards(2, True, False, 0.1, w) == pytest.approx(1.2)
-    out = shot_rewards(
-        np.array([0, 1]), np.array([False, True]), np.array([True, False]), np.zeros(2), w
+LAYOUT = np.array([[0.1, 0.6], [1.5, 0.5], [1.8, 0.9], [2.1, 0.3]])  # cue and balls 1-3
+
+
+def _judge(
+    dropped: list[int],
+    first: tuple[int, int] = (0, 1),
+    weights: tuple[float, ...] = (1.0, -1.0, -0.25, 0.0),
+    shots: int = 0,
+    end_on_miss: bool = False,
+    limit: int = 0,
+    layout: np.ndarray = LAYOUT,
+    on: np.ndarray | None = None,
+) -> tuple:
+    """The rules after a shot that left every ball in place but dropped ``dropped``."""
+    params = kernel_params(
+        TABLE, "cut", (-1.0, 1.0), (0.5, 10.0), None, weights, end_on_miss, limit
+    )  # type: ignore[arg-type]
+    n = layout.shape[0]
+    pos = layout[None].copy()
+    on_table = np.ones((1, n), bool) if on is None else on[None].copy()
+    pocketed = np.full((1, n), -1)
+    pocketed[0, dropped] = 0
+    out = judge(
+        params, TABLE.pockets, np.zeros(1, np.intp), np.arange(n), pos, on_table,
+        np.array([shots]), layout[None].copy(), pocketed, np.array([first]),
+    )  # fmt: skip
+    rewards, flags, hits = out
+    f, h = flags[0], hits[0]
+    return (
+        rewards[0], f[TERMINATED], f[TRUNCATED], f[CLEARED], h[POTTED_BITS], f[SCRATCH],
+        h[FIRST_BALL], f[SPOT_TAKEN], pos[0], on_table[0],
+    )  # fmt: skip
+
+
+def test_rule_rewards_pots_scratches_and_misses() -> None:
+    assert _judge([1, 2, 0])[0] == 1.0  # two pots and a scratch
+    assert _judge([], first=(-1, -1))[0] == -0.25  # no contact
+    assert _judge([3, 0], first=(2, 0))[0] == 0.0  # the cue ball hit ball 2 second
+    reward, _, _, _, bits, scratch, first_ball, *_ = _judge([1, 3], first=(2, 0))
+    assert reward == 2.0 and first_ball == 2 and not scratch
+    assert bits == 0b101  # balls 1 and 3
+
+
+def test_rule_puts_a_scratched_cue_ball_on_the_head_spot_when_free() -> None:
+    *_, taken, pos, on = _judge([0])
+    assert on[0] and not taken
+    np.testing.assert_array_equal(pos[0], head_spot(TABLE))
+    covered = LAYOUT.copy()
+    covered[2] = head_spot(TABLE) + [0.01, 0.0]
+    *_, taken, pos, on = _judge([0], layout=covered)
+    assert on[0] and taken  # back on the table; free_spot places it
+    np.testing.assert_array_equal(pos[0], LAYOUT[0])
+
+
+@pytest.mark.parametrize(
+    ("dropped", "end_on_miss", "shots", "limit", "ends"),
+    [
+        ([1, 2, 3], False, 0, 0, (True, False, True)),  # cleared
+        ([1], False, 0, 0, (False, False, False)),
+        ([], False, 0, 0, (False, False, False)),
+        ([], True, 0, 0, (True, False, False)),  # a miss ends it
+        ([1, 0], True, 0, 0, (True, False, False)),  # a pot with a scratch too
+        ([1], True, 0, 0, (False, False, False)),
+        ([], False, 2, 3, (False, True, False)),  # the third shot reaches the limit
+        ([], False, 1, 3, (False, False, False)),
+        ([1, 2, 3], False, 2, 3, (True, True, True)),
+    ],
+)
+def test_rule_episode_ends(
+    dropped: list[int], end_on_miss: bool, shots: int, limit: int, ends: tuple
+) -> None:
+    _, terminated, truncated, cleared, *_ = _judge(
+        dropped, shots=shots, end_on_miss=end_on_miss, limit=limit
     )
-    np.testing.assert_allclose(out, [-0.25, 0.0])
+    assert (bool(terminated), bool(truncated), bool(cleared)) == ends
+
+
+def test_nearest_object_ball_ties_go_to_the_lower_number_and_none_is_minus_one() -> None:
+    pos = np.array([[1.0, 0.6], [1.3, 0.6], [0.7, 0.6], [1.0, 0.2]])
+    on = np.ones(4, bool)
+    j, dist, angle = nearest_object_ball(pos, on, 0)
+    assert (j, dist) == (1, pytest.approx(0.3)) and angle == 0.0
+    on[1] = False
+    assert nearest_object_ball(pos, on, 0)[0] == 2
+    on[1:] = False
+    assert nearest_object_ball(pos, on, 0) == (-1, math.inf, 0.0)
 
 
 def test_decode_shots_is_decode_then_aim() -> None:

@@ -1,0 +1,184 @@
+"""Checks of every argument at every entry point: each error is a ``ValueError`` naming it.
+
+One module for both fronts (:class:`pool_env.PoolEnv`, :class:`pool_env.PoolVectorEnv`), so
+that the same bad input gets the same message from either.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from pool_env.sim.table import Table
+
+
+def parse_table(table: Table | dict[str, Any] | None) -> Table:
+    """A :class:`Table`, the ``Table(**dict)`` of a dict (a config file), or the default."""
+    if table is None:
+        return Table()
+    if isinstance(table, Table):
+        return table
+    if isinstance(table, dict):
+        try:
+            return Table(**table)
+        except TypeError as exc:
+            raise ValueError(f"table: {exc}") from None
+    raise ValueError(
+        f"table must be a pool_env.Table, a dict of Table arguments or None, got {table!r}"
+    )
+
+
+def parse_float(name: str, value: object) -> float:
+    """A finite number."""
+    try:
+        out = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(out):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return out
+
+
+def parse_range(name: str, value: object, minimum: float | None) -> tuple[float, float]:
+    """A pair ``(low, high)`` of finite numbers with ``low <= high`` (and ``low >= minimum``)."""
+    try:
+        low, high = (parse_float(name, v) for v in value)  # type: ignore[union-attr]
+    except (TypeError, ValueError) as exc:
+        raise ValueError(
+            f"{name} must be a pair (low, high) of finite numbers, got {value!r}"
+        ) from exc
+    if not low <= high or (minimum is not None and low < minimum):
+        floor = "" if minimum is None else f" and low >= {minimum}"
+        raise ValueError(f"{name} must have low <= high{floor}, got {value!r}")
+    return low, high
+
+
+def parse_noise(value: object) -> tuple[float, float] | None:
+    """Noise sigmas ``(angle, speed)``, both >= 0; ``None`` when off (or both 0)."""
+    if value is None:
+        return None
+    try:
+        angle, speed = (parse_float("noise", v) for v in value)  # type: ignore[union-attr]
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"noise must be a pair (sigma_angle, sigma_speed), got {value!r}") from exc
+    if angle < 0.0 or speed < 0.0:
+        raise ValueError(f"noise sigmas must be >= 0, got {value!r}")
+    return None if angle == speed == 0.0 else (angle, speed)
+
+
+def parse_bool(name: str, value: object) -> bool:
+    """A real boolean (not a truthy string)."""
+    if not isinstance(value, bool | np.bool_):
+        raise ValueError(f"{name} must be True or False, got {value!r}")
+    return bool(value)
+
+
+def parse_count(name: str, value: object) -> int | None:
+    """A positive integer, or ``None``."""
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
+        raise ValueError(f"{name} must be a positive integer or None, got {value!r}")
+    return int(value)
+
+
+def check_actions(
+    actions: object, n: int, single: bool, tables: NDArray[np.intp] | None = None
+) -> NDArray[np.float64]:
+    """Actions as a ``(n, 2)`` float64 array, checked alike for every front.
+
+    Every real dtype is accepted and converted to float64 (exact for float16 and float32;
+    long double rounds to the nearest double), whatever its byte order; complex numbers,
+    strings and objects are rejected, since their imaginary part or text has no meaning as
+    an aim or a speed. Out-of-range values (infinities included) are left to the decoding,
+    which clips them; NaN has no direction to clip it to and raises.
+
+    Args:
+        actions: ``(2,)`` when ``single`` (one table), else ``(n, 2)``.
+        n: Number of tables.
+        single: Whether this is the single environment's one action.
+        tables: The tables whose actions are played (``None``: all); only their rows are
+            returned and checked for NaN (the others are ignored, as an autoreset does).
+
+    Returns:
+        ``(K, 2)`` float64 for the ``K`` tables, a new array (the caller's is never kept).
+
+    Raises:
+        ValueError: On a bad shape, a non-real dtype, or a NaN (naming the table).
+    """
+    what = "the action" if single else "actions"
+    shape = (2,) if single else (n, 2)
+    arr = actions if isinstance(actions, np.ndarray) else None
+    if arr is None:
+        try:
+            arr = np.asarray(actions)
+        except (TypeError, ValueError) as exc:
+            raise ValueError(f"{what} must be real numbers of shape {shape}: {exc}") from None
+    if arr.dtype.kind not in "fiub":
+        raise ValueError(f"{what} must be real numbers of shape {shape}, got dtype {arr.dtype}")
+    if arr.shape != shape:
+        raise ValueError(f"{what} must have shape {shape}, got {arr.shape}")
+    out = np.array(arr, dtype=np.float64, order="C").reshape(n, 2)
+    if tables is not None:
+        out = out[tables]
+    if single:  # two Python floats test faster than numpy's reductions
+        x, y = out[0].tolist()
+        nan = x != x or y != y
+    else:
+        nan = bool(np.isnan(out).any())
+    if nan:
+        k = int(np.argmax(np.isnan(out).any(axis=1)))
+        table = k if tables is None else int(tables[k])
+        where = "the action" if single else f"the action of table {table}"
+        raise ValueError(f"{where} contains NaN: {out[k].tolist()}; nothing was changed")
+    return out
+
+
+def check_seeds(seed: object, n: int) -> list[int | None]:
+    """One seed per table, as ``SyncVectorEnv.reset``: ``None``, ``seed + i``, or a list.
+
+    Raises:
+        ValueError: Unless ``seed`` is ``None``, a non-negative integer, or ``n`` of them
+            (each ``None`` or a non-negative integer).
+    """
+    if seed is None:
+        return [None] * n
+    if _is_int(seed):
+        return [check_seed(seed) + i for i in range(n)]
+    seeds = list(seed) if isinstance(seed, list | tuple | np.ndarray) else None
+    if seeds is None or len(seeds) != n:
+        raise ValueError(f"seed must be None, an int or {n} seeds (one per table), got {seed!r}")
+    return [None if s is None else check_seed(s) for s in seeds]
+
+
+def _is_int(value: object) -> bool:
+    return isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
+
+
+def check_seed(value: object) -> int:
+    """A seed: a non-negative integer (``ValueError`` otherwise)."""
+    if not _is_int(value) or int(value) < 0:  # type: ignore[call-overload]
+        raise ValueError(f"a seed must be None or a non-negative integer, got {value!r}")
+    return int(value)  # type: ignore[call-overload]
+
+
+def check_reset_mask(mask: object, n: int) -> NDArray[np.intp]:
+    """The tables of ``options["reset_mask"]``, checked as ``SyncVectorEnv`` checks it."""
+    if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_ or mask.shape != (n,):
+        raise ValueError(f"options['reset_mask'] must be a ({n},) numpy bool array, got {mask!r}")
+    if not mask.any():
+        raise ValueError("options['reset_mask'] must select at least one table")
+    return np.flatnonzero(mask)
+
+
+def check_render(render_mode: object, modes: list[str], width: object) -> int:
+    """The render mode (one of ``modes`` or ``None``) and the frame width (>= 64 px)."""
+    if render_mode is not None and render_mode not in modes:
+        raise ValueError(f"render_mode must be one of {modes} or None, got {render_mode!r}")
+    out = parse_count("render_width", width) or 800
+    if out < 64:
+        raise ValueError(f"render_width must be at least 64 pixels, got {width!r}")
+    return out

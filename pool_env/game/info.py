@@ -1,0 +1,117 @@
+"""The step ``info``: its keys defined once, as one dict (one table) or Gymnasium's batch.
+
+Gymnasium's vector environments gather the per-table ``info`` dicts into one dict: an array
+over the tables per key, with a boolean mask ``"_key"`` of the tables that gave the key,
+and the array type set by the value (``bool``, ``int64``, ``float64``, or ``object`` for
+the tuple of potted balls). :func:`batch_info` builds that from a
+:class:`pool_env.game.step.StepResult` without a loop over tables, :func:`table_info` the
+single environment's dict; both read the same columns.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
+
+if TYPE_CHECKING:
+    from pool_env.game.step import StepResult
+
+#: ``info`` key -> (array of :class:`~pool_env.game.step.StepResult`, its column or
+#: ``None``, dtype). ``potted`` (the tuple of object balls the shot potted, ascending) comes
+#: first, from the potted bits.
+COLUMNS: dict[str, tuple[str, int | None, type]] = {
+    "scratch": ("flags", SCRATCH, np.bool_),
+    "first_contact": ("hits", FIRST_BALL, np.int64),
+    "n_events": ("n_events", None, np.int64),
+    "hit_event_cap": ("hit_event_cap", None, np.bool_),
+    "angle": ("shots", 0, np.float64),
+    "speed": ("shots", 1, np.float64),
+    "is_success": ("flags", CLEARED, np.bool_),
+}
+
+#: Every key of a step's ``info``.
+INFO_KEYS: tuple[str, ...] = ("potted", *COLUMNS)
+
+#: Object balls up to which the potted tuples come from a lookup table (``2^n`` entries).
+LOOKUP_MAX_BALLS = 16
+
+
+def potted_lookup(n_objects: int) -> NDArray[np.object_] | None:
+    """Tuple of potted balls for each bit mask (ascending), or ``None`` for many balls."""
+    if n_objects > LOOKUP_MAX_BALLS:
+        return None
+    out = np.empty(1 << n_objects, dtype=object)
+    balls = range(1, n_objects + 1)
+    for mask in range(1 << n_objects):
+        out[mask] = tuple(j for j in balls if mask >> (j - 1) & 1)
+    return out
+
+
+def potted_tuples(
+    result: StepResult, rows: NDArray[np.bool_] | slice, lut: NDArray[np.object_] | None
+) -> NDArray[np.object_]:
+    """The ``potted`` tuples of ``rows`` of a result, as an object array."""
+    if lut is not None:
+        return lut[result.hits[rows, POTTED_BITS]]
+    pocketed = result.pocketed[rows]
+    out = np.empty(pocketed.shape[0], dtype=object)
+    for k, row in enumerate(pocketed >= 0):
+        out[k] = tuple(sorted(b for b in result.balls[row].tolist() if b != 0))
+    return out
+
+
+def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str, Any]:
+    """The ``info`` dict of a one-table result, with Python scalars.
+
+    Each result array's row is converted once; per-shot counts come from the
+    :class:`~pool_env.ShotResult` itself (this runs on every :class:`pool_env.PoolEnv` step).
+    """
+    shot = result.shot
+    rows: dict[str, Any] = {}
+    info: dict[str, Any] = {"potted": potted_tuples(result, slice(None), lut)[0]}
+    for key, (name, column, _) in COLUMNS.items():
+        if column is None:
+            info[key] = getattr(shot, name) if shot is not None else getattr(result, name).item()
+            continue
+        row = rows.get(name)
+        if row is None:
+            row = rows[name] = getattr(result, name)[0].tolist()
+        info[key] = row[column]
+    return info
+
+
+def batch_info(
+    result: StepResult, n_envs: int, mask: NDArray[np.bool_] | None, lut: NDArray[np.object_] | None
+) -> dict[str, Any]:
+    """The tables' infos in Gymnasium's vector layout.
+
+    Args:
+        result: The step's result; row ``k`` is table ``result.tables[k]``.
+        n_envs: Number of tables.
+        mask: ``(n_envs,)`` tables to report (``None``: every table that shot).
+        lut: :func:`potted_lookup`'s table.
+
+    Returns:
+        The info dict; ``{}`` when no table is reported (as Gymnasium's, which only has
+        the keys some table gave).
+    """
+    rows: NDArray[np.bool_] | slice = slice(None) if mask is None else mask[result.tables]
+    tables = result.tables[rows]
+    if tables.size == 0:
+        return {}
+    present = np.zeros(n_envs, dtype=np.bool_)
+    present[tables] = True
+    potted = np.full(n_envs, None, dtype=object)
+    potted[tables] = potted_tuples(result, rows, lut)
+    info: dict[str, Any] = {"potted": potted, "_potted": present}
+    for key, (name, column, dtype) in COLUMNS.items():
+        source = getattr(result, name)
+        values = np.zeros(n_envs, dtype=dtype)
+        values[tables] = (source if column is None else source[:, column])[rows]
+        info[key] = values
+        info[f"_{key}"] = present.copy()
+    return info

@@ -1,0 +1,38 @@
+"""The config's numbers as one float64 array, and the names of its entries.
+
+Kernels take this one array instead of a dozen scalars and tuples: numba checks the type of
+every argument on each call (about 0.3 us each), and a step makes several calls.
+:func:`pool_env.game.config.make_config` fills it; kernels read it by these indices only.
+"""
+
+from __future__ import annotations
+
+(
+    RADIUS,  # ball radius R (m)
+    AIM_MODE,  # code of the aim mode: 0 absolute, 1 relative, 2 cut
+    AIM_LOW,  # aim parameter of action[0] = -1
+    AIM_HIGH,  # ... and of +1
+    SPEED_LOW,  # speed (m/s) of action[1] = -1
+    SPEED_HIGH,  # ... and of +1
+    NOISE,  # 1.0 with execution noise, else 0.0
+    SIGMA_ANGLE,  # its sigma for the direction (rad)
+    SIGMA_SPEED,  # ... and for the speed (m/s)
+    W_POT,  # reward per object ball potted
+    W_SCRATCH,  # reward when the cue ball drops
+    W_NO_CONTACT,  # reward when the cue ball hits no ball
+    W_SHAPING,  # weight of the shaping potential's change
+    END_ON_MISS,  # 1.0: a shot without a pot, or with a scratch, ends the episode
+    SHOT_LIMIT,  # shots after which an episode is truncated (0: never)
+    SPOT_X,  # where a scratched cue ball goes back (the head spot)
+    SPOT_Y,
+    X_LOW,  # centres allowed on the table: inside the rails
+    X_HIGH,
+    Y_LOW,
+    Y_HIGH,
+    REACH,  # 2R + clearance: the distance kept between placed centres
+    CLEARANCE,  # extra margin from capture circles and between placed balls (m)
+    DIAGONAL,  # the table's diagonal (m), the shaping potential's scale
+    TRIES,  # failed random draws in a row that end an attempt at a layout
+    RESTARTS,  # attempts at a random layout before the scene's fallback layout
+    N_PARAMS,
+) = range(27)

@@ -1,0 +1,322 @@
+"""Scenes: where the balls start, and where a re-spotted ball goes.
+
+Configuration (a name and a ball count), never subclasses. Row 0 of a layout is the cue
+ball; rows ``1..n`` are the object balls numbered ``1..n``.
+
+Scenes (the ``scene=`` argument of :class:`pool_env.PoolEnv`):
+
+========== =============== ==================================================================
+name       object balls    starting state
+========== =============== ==================================================================
+one_ball   1               cue and object ball uniformly at random on the table
+random     ``n_balls``     cue and ``n_balls`` object balls uniformly at random (default 3)
+nine_ball  9               the 9-ball diamond on the foot spot; cue in the kitchen (break)
+eight_ball 15              the 15-ball triangle on the foot spot; cue in the kitchen (break)
+========== =============== ==================================================================
+
+"Uniformly at random" means centres uniform over ``[R, L - R] x [R, W - R]``, rejected when
+inside a pocket's capture circle or closer than ``2R`` to a ball already placed (both with
+:data:`CLEARANCE` to spare). The kitchen is the area behind the head string
+(``x <= L / 4``), where the cue ball is placed for a break. A scene that cannot fit is
+refused when it is planned (at the environment's construction), and a reset never fails:
+should random placement fail :data:`RESTARTS` times in a row, the table gets a fixed
+layout on a grid, which the plan checked.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from pool_env.game.kernels import params as kp
+from pool_env.game.kernels.layout import free_points, point_free
+from pool_env.sim.layouts import break_scene, head_spot
+from pool_env.sim.simulate import check_layout as check_simulator_layout
+from pool_env.sim.table import Table
+
+#: Scene names and their number of object balls (``None``: set by ``n_balls``).
+SCENES: dict[str, int | None] = {"one_ball": 1, "random": None, "nine_ball": 9, "eight_ball": 15}
+
+#: Object balls of the ``"random"`` scene when ``n_balls`` is not given.
+DEFAULT_RANDOM_BALLS = 3
+
+#: Largest ``n_balls`` of the ``"random"`` scene (the 15 numbered balls of a pool set).
+MAX_RANDOM_BALLS = 15
+
+#: Extra clearance (m) kept between placed balls and from capture circles, so that a layout
+#: never trips the simulator's overlap or in-pocket checks through rounding.
+CLEARANCE = 1e-7
+
+#: Failed random draws in a row after which an attempt at a layout starts over.
+MAX_TRIES = 4096
+
+#: Attempts at a random layout before the scene's grid layout is used instead.
+RESTARTS = 16
+
+#: A scene is a name, a fixed ``(N, 2)`` layout, or a callable ``(table, rng) -> (N, 2)``.
+SceneSpec = str | ArrayLike | Callable[[Table, np.random.Generator], ArrayLike]
+
+
+@dataclass(frozen=True)
+class ScenePlan:
+    """A scene, parsed and checked once: how each reset lays out a table.
+
+    Attributes:
+        spec: The scene as given (a name, a layout or a callable).
+        n_objects: Object balls.
+        fixed: The layout of a fixed scene (read-only), else ``None``.
+        n_new: Balls drawn at random per layout (0: not a random scene).
+        placed: ``(M, 2)`` fixed balls of a random layout (a rack), after the drawn ones.
+        box: ``(4,)`` where the drawn balls go.
+        fallback: ``(n_new, 2)`` drawn balls' grid layout, used when random placement fails.
+    """
+
+    spec: SceneSpec
+    n_objects: int
+    fixed: NDArray[np.float64] | None
+    n_new: int
+    placed: NDArray[np.float64]
+    box: NDArray[np.float64]
+    fallback: NDArray[np.float64]
+
+
+def placement(table: Table) -> NDArray[np.float64]:
+    """The placement entries of the kernels' parameter array for ``table`` (others zero).
+
+    Centres inside the rails, :data:`CLEARANCE` from capture circles and ``2R + CLEARANCE``
+    apart; the head spot; :data:`MAX_TRIES` and :data:`RESTARTS` (see
+    :mod:`pool_env.game.kernels.params`).
+    """
+    r = table.ball_radius
+    params = np.zeros(kp.N_PARAMS)
+    params[kp.RADIUS] = r
+    params[[kp.X_LOW, kp.X_HIGH, kp.Y_LOW, kp.Y_HIGH]] = (r, table.length - r, r, table.width - r)
+    params[kp.REACH] = 2.0 * r + CLEARANCE
+    params[kp.CLEARANCE] = CLEARANCE
+    params[[kp.SPOT_X, kp.SPOT_Y]] = head_spot(table)
+    params[kp.DIAGONAL] = math.hypot(table.length, table.width)
+    params[kp.TRIES], params[kp.RESTARTS] = MAX_TRIES, RESTARTS
+    return params
+
+
+def bounds(params: NDArray[np.float64]) -> NDArray[np.float64]:
+    """``(x_low, x_high, y_low, y_high)`` allowed for centres."""
+    return params[[kp.X_LOW, kp.X_HIGH, kp.Y_LOW, kp.Y_HIGH]].copy()
+
+
+def n_object_balls(scene: str, n_balls: int | None) -> int:
+    """Number of object balls of a named scene.
+
+    Raises:
+        ValueError: On an unknown scene, or an ``n_balls`` the scene cannot have.
+    """
+    if scene not in SCENES:
+        raise ValueError(
+            f"scene must be one of {sorted(SCENES)}, a layout or a callable, got {scene!r}"
+        )
+    fixed = SCENES[scene]
+    if n_balls is not None and (
+        isinstance(n_balls, bool) or not isinstance(n_balls, int | np.integer)
+    ):
+        raise ValueError(f"n_balls must be an integer or None, got {n_balls!r}")
+    if fixed is not None:
+        if n_balls is not None and n_balls != fixed:
+            raise ValueError(f"n_balls={n_balls} does not fit scene {scene!r}, which has {fixed}")
+        return fixed
+    n = DEFAULT_RANDOM_BALLS if n_balls is None else int(n_balls)
+    if not 1 <= n <= MAX_RANDOM_BALLS:
+        raise ValueError(
+            f"n_balls must lie in [1, {MAX_RANDOM_BALLS}] for scene {scene!r}, got {n}"
+        )
+    return n
+
+
+def check_layout(
+    table: Table, positions: ArrayLike, n_total: int | None = None
+) -> NDArray[np.float64]:
+    """Validate a layout: inside the rails, no overlaps, nothing in a pocket.
+
+    Args:
+        table: The table.
+        positions: ``(N, 2)`` centres, cue first.
+        n_total: Required number of rows, if any.
+
+    Returns:
+        The layout as a new contiguous float64 array.
+
+    Raises:
+        ValueError: Saying what is wrong (the simulator's own checks and messages).
+    """
+    try:
+        pos = np.array(positions, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"a layout must be an (N, 2) array of numbers: {exc}") from None
+    if pos.ndim != 2 or pos.shape[1] != 2:
+        raise ValueError(f"a layout must have shape (N, 2), cue first, got {pos.shape}")
+    if pos.shape[0] < 2:
+        raise ValueError(
+            f"a layout needs the cue ball and at least one object ball, got {pos.shape[0]} ball(s)"
+        )
+    if n_total is not None and pos.shape[0] != n_total:
+        raise ValueError(f"the layout has {pos.shape[0]} balls, the environment {n_total}")
+    return check_simulator_layout(table, pos)
+
+
+def kitchen_box(table: Table) -> tuple[float, float, float, float]:
+    """The kitchen, behind the head string: centres with ``x <= L / 4``."""
+    r = table.ball_radius
+    return (r, table.length / 4.0, r, table.width - r)
+
+
+def grid_layout(
+    table: Table, n: int, box: NDArray[np.float64], placed: NDArray[np.float64]
+) -> NDArray[np.float64] | None:
+    """``n`` free centres on a triangular grid over ``box`` (rows from its low corner).
+
+    Grid points are ``reach + CLEARANCE`` apart, so every free one can take a ball.
+
+    Returns:
+        ``(n, 2)`` centres, or ``None`` when fewer than ``n`` grid points are free.
+    """
+    params = placement(table)
+    reach = float(params[kp.REACH])
+    step = reach + CLEARANCE
+    x0, x1, y0, y1 = box.tolist()
+    rows = int((y1 - y0) / (step * math.sqrt(3.0) / 2.0)) + 1
+    cols = int((x1 - x0) / step) + 1
+    grid = [
+        (x0 + (c + 0.5 * (r % 2)) * step, y0 + r * step * math.sqrt(3.0) / 2.0)
+        for r in range(rows)
+        for c in range(cols)
+    ]
+    points = np.array(grid, dtype=np.float64).reshape(-1, 2)
+    inside = (points[:, 0] <= x1) & (points[:, 1] <= y1)
+    points = np.ascontiguousarray(points[inside])
+    ok = free_points(params, table.pockets, points, placed, reach * reach)
+    if np.count_nonzero(ok) < n:
+        return None
+    return np.ascontiguousarray(points[ok][:n])
+
+
+def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan:
+    """Parse and check a scene once; every reset then follows the plan.
+
+    Args:
+        scene: A name from :data:`SCENES`, a fixed ``(N, 2)`` layout (cue first), or a
+            callable ``(table, rng) -> (N, 2)`` (called once here with a fixed seed).
+        table: The table.
+        n_balls: Requested object balls (``None``: the scene's own count).
+
+    Returns:
+        The plan.
+
+    Raises:
+        ValueError: Naming the argument: an unknown scene, a count the scene cannot have,
+            a scene that does not fit on the table, or an invalid layout.
+    """
+    empty = np.zeros((0, 2))
+    full_table = bounds(placement(table))
+    if isinstance(scene, str):
+        n = n_object_balls(scene, n_balls)
+        if scene in ("one_ball", "random"):
+            n_new, placed, box = n + 1, empty, full_table
+        else:
+            rack = break_scene(table, "nine" if scene == "nine_ball" else "eight")
+            n_new, placed, box = 1, np.ascontiguousarray(rack[1:]), np.array(kitchen_box(table))
+        fallback = grid_layout(table, n_new, box, placed)
+        if fallback is None:
+            raise ValueError(
+                f"scene={scene!r}, n_balls={n}: cannot lay out the scene: {n_new} balls do "
+                f"not fit in x in [{box[0]:.4g}, {box[1]:.4g}], y in [{box[2]:.4g}, "
+                f"{box[3]:.4g}] on a {table.length} x {table.width} m table (each needs "
+                f"{2 * table.ball_radius + CLEARANCE:.4g} m from the others, its centre out "
+                "of the pockets); "
+                "use fewer balls, smaller balls or a larger table"
+            )
+        return ScenePlan(scene, n, None, n_new, placed, box, fallback)
+    kind = "callable" if callable(scene) else "layout"
+    try:
+        given = scene(table, np.random.default_rng(0)) if callable(scene) else scene
+        layout = check_layout(table, given)
+    except ValueError as exc:
+        raise ValueError(f"scene ({kind}): {exc}") from None
+    n = layout.shape[0] - 1
+    if n_balls is not None and n_balls != n:
+        raise ValueError(f"n_balls={n_balls} does not match the scene's {n} object balls")
+    fixed = None
+    if not callable(scene):
+        layout.setflags(write=False)
+        fixed = layout
+    return ScenePlan(scene, n, fixed, 0, empty, full_table, empty)
+
+
+def free_spot(
+    table: Table,
+    positions: NDArray[np.float64],
+    occupied: NDArray[np.bool_],
+    target: NDArray[np.float64] | None = None,
+) -> NDArray[np.float64]:
+    """The free point nearest to ``target`` (the head spot by default) for a re-spotted ball.
+
+    A point is free when :func:`pool_env.game.kernels.layout.point_free` says so: inside
+    the rails, outside every capture circle and at least ``2R`` from every occupied ball.
+    The nearest free point is the target itself, the radial projection of the target onto
+    the ``2R`` circle of one ball, or an intersection of two such circles; these candidates
+    are checked exactly. A ring search around the target is the fallback for the rare case
+    that the rails or a pocket cut all of them off.
+
+    Args:
+        table: The table.
+        positions: ``(N, 2)`` centres.
+        occupied: ``(N,)`` which rows are balls on the table (the ball to place excluded).
+        target: The preferred point.
+
+    Returns:
+        The ``(2,)`` free point.
+
+    Raises:
+        ValueError: If the table has no free point at all.
+    """
+    params, pockets = placement(table), table.pockets
+    target = head_spot(table) if target is None else np.array(target, dtype=np.float64)
+    balls = np.ascontiguousarray(positions[occupied], dtype=np.float64)
+    reach = float(params[kp.REACH])
+    tx, ty = target.tolist()
+    if point_free(tx, ty, params, pockets, balls, balls.shape[0], reach * reach):
+        return target
+    cands = [target[None, :]]
+    if balls.shape[0]:
+        d = target - balls
+        norm = np.hypot(d[:, 0], d[:, 1])
+        unit = np.where(norm[:, None] > 0.0, d / np.maximum(norm, 1e-300)[:, None], [1.0, 0.0])
+        cands.append(balls + reach * unit)
+        i, j = np.triu_indices(balls.shape[0], 1)
+        sep = balls[j] - balls[i]
+        dist = np.hypot(sep[:, 0], sep[:, 1])
+        near = (dist > 0.0) & (dist < 2.0 * reach)
+        if np.any(near):
+            a, s, dist = balls[i[near]], sep[near], dist[near]
+            mid = a + 0.5 * s
+            h = np.sqrt(np.maximum(reach * reach - 0.25 * dist * dist, 0.0)) * 1.000001
+            perp = np.stack([-s[:, 1], s[:, 0]], axis=1) / dist[:, None]
+            cands += [mid + h[:, None] * perp, mid - h[:, None] * perp]
+    # Candidates lie on a 2R circle up to rounding: half the clearance absorbs it.
+    min_d2 = (reach - CLEARANCE / 2.0) ** 2
+    cand = np.ascontiguousarray(np.concatenate(cands))
+    ok = free_points(params, pockets, cand, balls, min_d2)
+    if np.any(ok):
+        dist = np.hypot(*(cand[ok] - target).T)
+        return cand[ok][int(np.argmin(dist))].copy()
+    step = table.ball_radius / 4.0
+    for ring in range(1, int(math.hypot(table.length, table.width) / step) + 1):
+        k = max(8, int(2.0 * math.pi * ring))
+        phi = np.linspace(0.0, 2.0 * math.pi, k, endpoint=False)
+        cand = target + ring * step * np.stack([np.cos(phi), np.sin(phi)], axis=1)
+        ok = free_points(params, pockets, np.ascontiguousarray(cand), balls, min_d2)
+        if np.any(ok):
+            return cand[int(np.argmax(ok))].copy()
+    raise ValueError("no free point on the table to re-spot the ball")

@@ -1,0 +1,90 @@
+"""The changing part of the decision process: B tables held in arrays.
+
+Each table owns a ``numpy.random.Generator`` (layouts and execution noise draw from it), so
+that table ``i`` of a batch plays exactly as a single environment seeded alike. Kernels
+reach the generators through their addresses (:mod:`pool_env.game.kernels.rng`), which are
+per process: they are taken again after unpickling.
+"""
+
+from __future__ import annotations
+
+import ctypes
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from gymnasium.utils import seeding
+from numpy.typing import NDArray
+
+
+@dataclass
+class GameState:
+    """B tables of one :class:`~pool_env.game.config.GameConfig`.
+
+    Attributes:
+        positions: ``(B, N, 2)`` ball centres (m), cue first; a potted ball keeps the point
+            where it was captured.
+        on_table: ``(B, N)`` which balls are on each table.
+        shots: ``(B,)`` shots played in each table's episode.
+        generators: Each table's generator (``None`` until first seeded).
+        seeds: The seed each generator was made from (``None``: not from an int).
+        ptrs: ``(B, 3)`` addresses of each generator's state and draw functions.
+    """
+
+    positions: NDArray[np.float64]
+    on_table: NDArray[np.bool_]
+    shots: NDArray[np.int64]
+    generators: list[np.random.Generator | None]
+    seeds: list[int | None]
+    ptrs: NDArray[np.uintp]
+
+    @property
+    def n_tables(self) -> int:
+        """B."""
+        return int(self.positions.shape[0])
+
+    def seed(self, table: int, seed: int | None) -> None:
+        """Give ``table`` a new generator, as ``gymnasium.Env.reset(seed=seed)`` makes one."""
+        rng, used = seeding.np_random(seed)
+        self.use_generator(table, rng, used)
+
+    def use_generator(self, table: int, rng: np.random.Generator, seed: int | None = None) -> None:
+        """Let ``table`` draw from ``rng`` (held, not copied: its state advances)."""
+        self.generators[table], self.seeds[table] = rng, seed
+        self.ptrs[table] = generator_addresses(rng)
+
+    def ensure_generators(self) -> list[np.random.Generator]:
+        """Every table's generator, making random ones for tables never seeded."""
+        for i, rng in enumerate(self.generators):
+            if rng is None:
+                self.seed(i, None)
+        return self.generators  # type: ignore[return-value]
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        self.__dict__.update(state)
+        for i, rng in enumerate(self.generators):  # addresses are per process
+            if rng is not None:
+                self.ptrs[i] = generator_addresses(rng)
+
+
+def new_state(n_tables: int, n_balls: int) -> GameState:
+    """``n_tables`` empty tables of ``n_balls`` balls (lay them out with a reset)."""
+    return GameState(
+        positions=np.zeros((n_tables, n_balls, 2)),
+        on_table=np.ones((n_tables, n_balls), dtype=np.bool_),
+        shots=np.zeros(n_tables, dtype=np.int64),
+        generators=[None] * n_tables,
+        seeds=[None] * n_tables,
+        ptrs=np.zeros((n_tables, 3), dtype=np.uintp),
+    )
+
+
+def generator_addresses(rng: np.random.Generator) -> tuple[int, int, int]:
+    """``(state, next_double, next_uint64)`` addresses of a generator's bit generator."""
+    c = rng.bit_generator.ctypes
+    as_int = ctypes.cast  # function pointers -> their addresses
+    return (
+        int(c.state_address),
+        int(as_int(c.next_double, ctypes.c_void_p).value or 0),
+        int(as_int(c.next_uint64, ctypes.c_void_p).value or 0),
+    )
