@@ -22,8 +22,11 @@ M_LIGHT = 0.17
 
 
 def _driven_into_rail(table: Table, ratio: float):
-    """The issue's scene: a heavy ball at 1 m/s drives a light one resting on the right
-    rail; ball 2 rolls on its own far away."""
+    """The issue's scene, heavy ball ``ratio`` times the others.
+
+    The heavy ball at 1 m/s drives a light one resting on the right rail; ball 2 rolls on
+    its own far away.
+    """
     length, r = table.length, table.ball_radius
     positions = [[1.0, 0.6], [length - r, 0.6], [0.3, 0.2]]
     velocities = [[1.0, 0.0], [0.0, 0.0], [0.0, 2.0]]
@@ -76,8 +79,7 @@ def test_issue_reproducer_leaves_ball_2_alone() -> None:
 @pytest.mark.parametrize("e_cushion", [1.0, 0.85, 0.3, 0.0])
 @pytest.mark.parametrize("ratio", [1.0, 100.0, 1e6])
 def test_inelastic_lump_off_rail_closed_form(e_cushion: float, ratio: float) -> None:
-    """C, P, E: an inelastic impact next to a rail leaves the pair as one lump, which
-    rebounds as a whole.
+    """C, P, E: an inelastic impact at a rail leaves one lump, which rebounds as a whole.
 
     The pusher (mass ``M``) reaches the resting ball (``m``, touching the right rail) at
     speed ``v``. The pair sticks at ``M v / (M + m)`` (momentum conserved) and meets the
@@ -116,8 +118,10 @@ def test_inelastic_lump_off_rail_closed_form(e_cushion: float, ratio: float) -> 
 
 
 def test_equal_masses_frozen_on_rail_unchanged() -> None:
-    """C: an ordinary elastic-ish shot at a ball frozen on the rail still follows the
-    sequential rule (the lump rule only ends cascades that stick)."""
+    """C: a shot at a ball frozen on the rail still follows the sequential rule.
+
+    The lump rule only ends cascades that stick; an ordinary impact is exact.
+    """
     table = Table(pockets="none")
     length, r = table.length, table.ball_radius
     result = simulate(table, [[1.5, 0.6], [length - r, 0.6]], [[1.0, 0.0], [0.0, 0.0]])

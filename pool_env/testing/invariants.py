@@ -86,7 +86,7 @@ def _rail_impulse_allowed(
         push = dp[axis]
         if abs(push) <= slack:
             continue
-        if push > 0.0 and not low[axis] or push < 0.0 and not high[axis]:
+        if (push > 0.0 and not low[axis]) or (push < 0.0 and not high[axis]):
             return False
         if abs(push) > bound[axis]:
             return False

@@ -233,12 +233,8 @@ def stick_cluster(st, status, masses, i, t, params, changed):
         top |= ys[k] >= width - radius - CONTACT_TOL
     normals = np.zeros((4, 2))
     count = 0
-    for touched, nx, ny in (
-        (left, 1.0, 0.0),
-        (right, -1.0, 0.0),
-        (bottom, 0.0, 1.0),
-        (top, 0.0, -1.0),
-    ):
+    rails = ((left, 1.0, 0.0), (right, -1.0, 0.0), (bottom, 0.0, 1.0), (top, 0.0, -1.0))
+    for touched, nx, ny in rails:
         if touched:
             normals[count, 0] = nx
             normals[count, 1] = ny
