@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import itertools
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
@@ -121,6 +122,17 @@ def simulate_batch(
 
 
 _pool: tuple[int, int, ThreadPoolExecutor] | None = None  # (owner pid, workers, pool)
+_pool_lock = threading.Lock()
+
+
+def _forget_pool_in_child() -> None:
+    """A forked child has none of the parent's threads, and maybe a lock held by one."""
+    global _pool, _pool_lock
+    _pool, _pool_lock = None, threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_pool_in_child)
 
 
 def available_cpus() -> int:
@@ -132,13 +144,18 @@ def available_cpus() -> int:
 
 
 def _thread_pool(workers: int) -> ThreadPoolExecutor:
+    """The process's shared pool, with at least ``workers`` threads.
+
+    A caller that needs more threads gets a new, larger pool; the old one is never shut
+    down (another thread may be submitting to it at that moment): it is only dropped, and
+    its idle threads end once nothing refers to it.
+    """
     global _pool
-    # A forked child inherits the pool object but not its threads: make a new one there.
-    if _pool is None or _pool[0] != os.getpid() or _pool[1] < workers:
-        if _pool is not None and _pool[0] == os.getpid():
-            _pool[2].shutdown(wait=False)
-        _pool = (os.getpid(), workers, ThreadPoolExecutor(workers, thread_name_prefix="pool_env"))
-    return _pool[2]
+    with _pool_lock:
+        if _pool is None or _pool[0] != os.getpid() or _pool[1] < workers:
+            pool = ThreadPoolExecutor(workers, thread_name_prefix="pool_env")
+            _pool = (os.getpid(), workers, pool)
+        return _pool[2]
 
 
 def simulate_batch_threads(
@@ -188,7 +205,8 @@ def simulate_batch_threads(
 
     bounds = list(itertools.pairwise(edges))
     # The calling thread takes the last part itself instead of sleeping until the others end.
-    futures = [_thread_pool(parts - 1).submit(part, lo, hi) for lo, hi in bounds[:-1]]
+    pool = _thread_pool(parts - 1)
+    futures = [pool.submit(part, lo, hi) for lo, hi in bounds[:-1]]
     last = part(*bounds[-1])
     results = [f.result() for f in futures] + [last]
     return BatchResult(
