@@ -15,9 +15,17 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.sim.inputs import (
+    DEFAULT_MAX_EVENTS,
+    as_active,
+    as_batch_masses,
+    as_batch_points,
+    check_max_events,
+    check_table,
+    raise_invalid,
+)
 from pool_env.sim.kernels import batch as _batch
 from pool_env.sim.kernels import loop
-from pool_env.sim.simulate import DEFAULT_MAX_EVENTS, _raise_invalid
 from pool_env.sim.table import Table
 
 #: Batches this large and larger run in parallel by default.
@@ -79,34 +87,24 @@ def simulate_batch(
         ValueError: On malformed arrays, or naming the first invalid table and its problem
             (as :func:`pool_env.simulate` would); no table is simulated then.
     """
-    pos = np.ascontiguousarray(positions, dtype=np.float64)
-    vel = np.ascontiguousarray(velocities, dtype=np.float64)
-    if pos.ndim != 3 or pos.shape[2] != 2:
-        raise ValueError(f"positions must have shape (B, N, 2), got {pos.shape}")
-    if vel.shape != pos.shape:
-        raise ValueError(f"velocities must have shape {pos.shape}, got {vel.shape}")
+    table = check_table(table)
+    pos = as_batch_points("positions", positions)
+    vel = as_batch_points("velocities", velocities, pos.shape)
     n_tables, n_balls = pos.shape[:2]
-    if masses is None:
-        mass = np.full((n_tables, n_balls), table.ball_mass)
-    else:
-        mass = np.ascontiguousarray(
-            np.broadcast_to(np.asarray(masses, np.float64), (n_tables, n_balls))
-        )
-    on = np.ones((n_tables, n_balls), np.bool_) if active is None else np.asarray(active, np.bool_)
-    if on.shape != (n_tables, n_balls):
-        raise ValueError(f"active must have shape {(n_tables, n_balls)}, got {on.shape}")
+    mass = as_batch_masses(table, masses, n_tables, n_balls)
+    on = as_active(active, n_tables, n_balls)
+    max_events = check_max_events(max_events)
     if parallel is None:
         parallel = n_tables >= PARALLEL_FROM
     run = _batch.run_batch_parallel if parallel else _batch.run_batch
-    out = run(
-        pos, vel, mass, np.ascontiguousarray(on), table.params, table.pockets, int(max_events)
-    )
+    out = run(pos, vel, mass, on, table.params, table.pockets, max_events)
     error = out.error
     bad = np.flatnonzero(error[:, 0] != loop.OK)
     if bad.size:
         b = int(bad[0])
+        code, i, j = (int(v) for v in error[b])
         try:
-            _raise_invalid(int(error[b, 0]), int(error[b, 1]), int(error[b, 2]), pos[b], table)
+            raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
         except ValueError as exc:
             raise ValueError(f"table {b}: {exc}") from None
     return BatchResult(
@@ -160,9 +158,9 @@ def _thread_pool(workers: int) -> ThreadPoolExecutor:
 
 def simulate_batch_threads(
     table: Table,
-    positions: NDArray[np.float64],
-    velocities: NDArray[np.float64],
-    active: NDArray[np.bool_],
+    positions: ArrayLike,
+    velocities: ArrayLike,
+    active: ArrayLike,
     threads: int | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
 ) -> BatchResult:
@@ -175,10 +173,10 @@ def simulate_batch_threads(
 
     Args:
         table: The table.
-        positions: ``(B, N, 2)`` float64 ball centres.
-        velocities: ``(B, N, 2)`` float64 initial velocities.
+        positions: ``(B, N, 2)`` ball centres.
+        velocities: ``(B, N, 2)`` initial velocities.
         active: ``(B, N)`` which balls are on each table.
-        threads: Parts to split into (default: :func:`available_cpus`).
+        threads: Parts to split into, a positive integer (default: :func:`available_cpus`).
         max_events: Event cap per table.
 
     Returns:
@@ -187,7 +185,16 @@ def simulate_batch_threads(
     Raises:
         ValueError: As :func:`simulate_batch`, naming the table by its index in the batch.
     """
+    table = check_table(table)
+    positions = as_batch_points("positions", positions)
+    velocities = as_batch_points("velocities", velocities, positions.shape)
     n = positions.shape[0]
+    active = as_active(active, n, positions.shape[1])
+    max_events = check_max_events(max_events)
+    if threads is not None and (
+        isinstance(threads, bool) or not isinstance(threads, int | np.integer) or threads < 1
+    ):
+        raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
     parts = min(threads or available_cpus(), n)
     if parts <= 1:
         return simulate_batch(table, positions, velocities, active=active, max_events=max_events)

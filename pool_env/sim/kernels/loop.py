@@ -24,6 +24,7 @@ from collections import namedtuple
 import numpy as np
 
 from pool_env.sim.kernels._jit import inline_kernel, kernel
+from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, speed_allowed
 from pool_env.sim.kernels.motion import (
     MOVING,
     NCOL,
@@ -64,7 +65,7 @@ from pool_env.sim.kernels.roots import INF
 POS_TOL = 1e-9
 
 # Validation codes.
-OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET = range(7)
+OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAST = range(8)
 
 #: What :func:`run_shot` returns, by name.
 #:
@@ -118,7 +119,10 @@ def validate(positions, velocities, masses, params, pockets):
             return BAD_POSITION, i, -1
         if not (np.isfinite(velocities[i, 0]) and np.isfinite(velocities[i, 1])):
             return BAD_VELOCITY, i, -1
-        if masses.shape[0] and not (masses[i] > 0.0 and np.isfinite(masses[i])):
+        speed2 = velocities[i, 0] * velocities[i, 0] + velocities[i, 1] * velocities[i, 1]
+        if not speed_allowed(speed2, params[P_DECEL]):
+            return TOO_FAST, i, -1
+        if masses.shape[0] and not (MIN_MASS <= masses[i] <= MAX_MASS):  # also NaN
             return BAD_MASS, i, -1
     for i in range(n):
         x, y = positions[i, 0], positions[i, 1]
