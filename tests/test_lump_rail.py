@@ -175,3 +175,38 @@ def test_lump_off_rails_corner_and_jam() -> None:
     assert lump_off_rails(-1.0, 0.3, opposite, 2, 1.0) == (0.0, 0.0)
     # Touching a rail it leaves: unchanged.
     assert lump_off_rails(0.3, 0.2, corner, 2, 0.5) == (0.3, 0.2)
+
+
+@pytest.mark.parametrize("cap", [1, 3, 20])
+def test_the_cap_says_which_balls_it_stopped(cap: int) -> None:
+    """The cap never freezes a ball silently.
+
+    ``stopped_by_cap`` names every ball still moving at that instant (ball 2, rolling on
+    its own, included), with and without recording and in a batch.
+    """
+    table = Table(pockets="none", e_ball=1, e_cushion=1)
+    positions, velocities, masses = _driven_into_rail(table, 1000.0)
+    result = simulate(table, positions, velocities, masses=masses, max_events=cap)
+    assert result.hit_event_cap
+    # Independently, from the uncapped shot: the balls moving after its first `cap` events.
+    full = simulate(table, positions, velocities, masses=masses)
+    ball, seg_t, state, _ = full.segments
+    t_cap = full.event_times[cap - 1]
+    assert t_cap == result.duration
+    moving = np.zeros(3, bool)
+    for b in range(3):
+        last = np.flatnonzero(ball[: full.event_first_segment[cap]] == b)[-1]
+        speed = math.hypot(*state[last, 2:4])
+        moving[b] = speed - table.deceleration * (t_cap - seg_t[last]) > 0.0
+    assert moving[2]  # the unrelated ball was rolling when the cap stopped the table
+    np.testing.assert_array_equal(result.stopped_by_cap, moving)
+    quiet = simulate(table, positions, velocities, masses=masses, max_events=cap, record=False)
+    np.testing.assert_array_equal(quiet.stopped_by_cap, moving)
+    from pool_env.sim.batch import simulate_batch
+
+    batch = simulate_batch(
+        table, np.array([positions]), np.array([velocities]), masses, max_events=cap
+    )
+    np.testing.assert_array_equal(batch.stopped_by_cap[0], moving)
+    under = simulate(table, positions, velocities, masses=masses)
+    assert not under.stopped_by_cap.any()

@@ -47,6 +47,8 @@ class BatchResult:
             first ball-ball impact (see :attr:`pool_env.ShotResult.cushions_after_contact`).
         pocket_order: ``(B, N)`` the order in which each table's balls dropped (0 first),
             -1 on the table (or inactive).
+        stopped_by_cap: ``(B, N)`` the balls that were still moving when a table reached
+            ``max_events`` and were stopped there (all False on tables under the cap).
     """
 
     positions: NDArray[np.float64]
@@ -57,6 +59,7 @@ class BatchResult:
     first_hit: NDArray[np.int64]
     cushions_after_contact: NDArray[np.int64]
     pocket_order: NDArray[np.int64]
+    stopped_by_cap: NDArray[np.bool_]
 
 
 def simulate_batch(
@@ -116,6 +119,7 @@ def simulate_batch(
         first_hit=out.first_hit,
         cushions_after_contact=out.cushions_after_contact,
         pocket_order=out.pocket_order,
+        stopped_by_cap=out.stopped_by_cap,
     )
 
 

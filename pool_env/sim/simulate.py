@@ -42,8 +42,8 @@ def simulate(
             1e-9 m of rounding), not inside a pocket's capture circle.
         velocities: ``(N, 2)`` initial velocities (m/s).
         masses: ``(N,)`` masses (kg); defaults to ``table.ball_mass`` for every ball.
-        max_events: Event cap; a shot that reaches it stops every ball where it is and
-            sets ``hit_event_cap``.
+        max_events: Event cap; a shot that reaches it stops every ball where it is, sets
+            ``hit_event_cap`` and flags the balls it stopped in ``stopped_by_cap``.
         record: Keep the event list and the trajectories (for ``events`` and
             ``positions_at``). Training loops that only need the final state pass False.
 
