@@ -97,13 +97,17 @@ def as_masses(masses: ArrayLike | None, n: int) -> NDArray[np.float64]:
 
 
 def as_batch_masses(table: Table, masses: ArrayLike | None, n_tables: int, n_balls: int):
-    """``(B, N)`` masses of a batch from ``None``, ``(N,)`` or ``(B, N)``."""
+    """``(B, N)`` masses of a batch from ``None`` or anything that broadcasts to it."""
     if masses is None:
         return np.full((n_tables, n_balls), table.ball_mass)
     arr = kernel_array("masses", masses, "an (N,) or (B, N) array")
-    if arr.shape not in ((n_balls,), (n_tables, n_balls)):
-        raise ValueError(f"masses must have shape ({n_balls},) or {(n_tables, n_balls)}")
-    return np.ascontiguousarray(np.broadcast_to(arr, (n_tables, n_balls)))
+    try:
+        arr = np.broadcast_to(arr, (n_tables, n_balls))
+    except ValueError:
+        raise ValueError(
+            f"masses must have shape ({n_balls},) or {(n_tables, n_balls)}, got {arr.shape}"
+        ) from None
+    return np.ascontiguousarray(arr)
 
 
 def as_active(active: ArrayLike | None, n_tables: int, n_balls: int) -> NDArray[np.bool_]:
