@@ -106,3 +106,71 @@ def test_read_only_install_falls_back_to_memory() -> None:
         for path in [root, *root.rglob("*")]:
             path.chmod(0o755)
         shutil.rmtree(root)
+
+
+HEAL = """
+import hashlib, warnings
+warnings.simplefilter("always")
+from pool_env import Table, shoot
+from pool_env.sim.kernels import loop, timeline
+from pool_env.sim.layouts import break_scene
+t = Table()
+r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
+print(hashlib.sha256(r.positions.tobytes() + r.positions_at(0.1).tobytes()).hexdigest())
+for k in (loop.run_shot, loop.validate, timeline.positions_at):
+    print(k.__name__, sum(k.stats.cache_hits.values()), sum(k.stats.cache_misses.values()))
+"""
+
+
+def _warm_cache_copy(root: Path) -> Path:
+    """A copy of this process's compile cache, as ``$NUMBA_CACHE_DIR`` would hold it."""
+    from pool_env.sim.kernels import _jit
+
+    if _jit.CACHE_FOLDER is None:
+        pytest.skip("no on-disk compile cache in this process")
+    tag = _jit.CACHE_FOLDER.name.rsplit("-", 1)[-1]
+    out = subprocess.run([sys.executable, "-c", HEAL], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr  # the package's cache now holds every kernel used
+    shutil.copytree(_jit.CACHE_FOLDER, root / f"pool_env-{tag}")
+    return root / f"pool_env-{tag}"
+
+
+def _heal_run(env: dict[str, str]) -> tuple[str, dict[str, tuple[int, int]], str]:
+    proc = subprocess.run(
+        [sys.executable, "-c", HEAL], env=env, capture_output=True, text=True, timeout=900
+    )
+    assert proc.returncode == 0, proc.stderr
+    digest, *rows = proc.stdout.split("\n")[:4]
+    stats = {name: (int(hits), int(misses)) for name, hits, misses in (r.split() for r in rows)}
+    return digest, stats, proc.stderr
+
+
+def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
+    """An empty index, a truncated index and a garbage data file heal.
+
+    The next process warns once, recompiles those kernels and writes them back; the one
+    after loads them from disk.
+    """
+    folder = _warm_cache_copy(tmp_path)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    reference, stats, err = _heal_run(env)
+    assert all(hits > 0 and misses == 0 for hits, misses in stats.values()), (stats, err)
+
+    def only(pattern: str) -> Path:
+        (path,) = folder.rglob(pattern)
+        return path
+
+    only("loop.run_shot-*.nbi").write_bytes(b"")  # a process killed mid-write
+    index = only("loop.validate-*.nbi")
+    index.write_bytes(index.read_bytes()[: index.stat().st_size // 2])  # a full disk
+    only("timeline.positions_at-*.nbc").write_bytes(b"\x80\x05garbage" * 64)
+    digest, stats, err = _heal_run(env)
+    assert digest == reference
+    assert err.count("unreadable compile cache") == 1, err
+    assert all(misses == 1 for _, misses in stats.values()), stats  # each compiled once
+    # The next process loads every kernel from the cache the healing one wrote back.
+    digest, stats, err = _heal_run(env)
+    assert digest == reference
+    assert "unreadable compile cache" not in err
+    assert all(hits > 0 and misses == 0 for hits, misses in stats.values()), (stats, err)
+    assert not list(folder.rglob("*.tmp.*"))  # written through numba's atomic rename

@@ -8,15 +8,24 @@ from __future__ import annotations
 
 import itertools
 import os
+import threading
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.sim.inputs import (
+    DEFAULT_MAX_EVENTS,
+    as_active,
+    as_batch_masses,
+    as_batch_points,
+    check_max_events,
+    check_table,
+    raise_invalid,
+)
 from pool_env.sim.kernels import batch as _batch
 from pool_env.sim.kernels import loop
-from pool_env.sim.simulate import DEFAULT_MAX_EVENTS, _raise_invalid
 from pool_env.sim.table import Table
 
 #: Batches this large and larger run in parallel by default.
@@ -38,6 +47,8 @@ class BatchResult:
             first ball-ball impact (see :attr:`pool_env.ShotResult.cushions_after_contact`).
         pocket_order: ``(B, N)`` the order in which each table's balls dropped (0 first),
             -1 on the table (or inactive).
+        stopped_by_cap: ``(B, N)`` the balls that were still moving when a table reached
+            ``max_events`` and were stopped there (all False on tables under the cap).
     """
 
     positions: NDArray[np.float64]
@@ -48,6 +59,7 @@ class BatchResult:
     first_hit: NDArray[np.int64]
     cushions_after_contact: NDArray[np.int64]
     pocket_order: NDArray[np.int64]
+    stopped_by_cap: NDArray[np.bool_]
 
 
 def simulate_batch(
@@ -78,34 +90,24 @@ def simulate_batch(
         ValueError: On malformed arrays, or naming the first invalid table and its problem
             (as :func:`pool_env.simulate` would); no table is simulated then.
     """
-    pos = np.ascontiguousarray(positions, dtype=np.float64)
-    vel = np.ascontiguousarray(velocities, dtype=np.float64)
-    if pos.ndim != 3 or pos.shape[2] != 2:
-        raise ValueError(f"positions must have shape (B, N, 2), got {pos.shape}")
-    if vel.shape != pos.shape:
-        raise ValueError(f"velocities must have shape {pos.shape}, got {vel.shape}")
+    table = check_table(table)
+    pos = as_batch_points("positions", positions)
+    vel = as_batch_points("velocities", velocities, pos.shape)
     n_tables, n_balls = pos.shape[:2]
-    if masses is None:
-        mass = np.full((n_tables, n_balls), table.ball_mass)
-    else:
-        mass = np.ascontiguousarray(
-            np.broadcast_to(np.asarray(masses, np.float64), (n_tables, n_balls))
-        )
-    on = np.ones((n_tables, n_balls), np.bool_) if active is None else np.asarray(active, np.bool_)
-    if on.shape != (n_tables, n_balls):
-        raise ValueError(f"active must have shape {(n_tables, n_balls)}, got {on.shape}")
+    mass = as_batch_masses(table, masses, n_tables, n_balls)
+    on = as_active(active, n_tables, n_balls)
+    max_events = check_max_events(max_events)
     if parallel is None:
         parallel = n_tables >= PARALLEL_FROM
     run = _batch.run_batch_parallel if parallel else _batch.run_batch
-    out = run(
-        pos, vel, mass, np.ascontiguousarray(on), table.params, table.pockets, int(max_events)
-    )
+    out = run(pos, vel, mass, on, table.params, table.pockets, max_events)
     error = out.error
     bad = np.flatnonzero(error[:, 0] != loop.OK)
     if bad.size:
         b = int(bad[0])
+        code, i, j = (int(v) for v in error[b])
         try:
-            _raise_invalid(int(error[b, 0]), int(error[b, 1]), int(error[b, 2]), pos[b], table)
+            raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
         except ValueError as exc:
             raise ValueError(f"table {b}: {exc}") from None
     return BatchResult(
@@ -117,10 +119,22 @@ def simulate_batch(
         first_hit=out.first_hit,
         cushions_after_contact=out.cushions_after_contact,
         pocket_order=out.pocket_order,
+        stopped_by_cap=out.stopped_by_cap,
     )
 
 
 _pool: tuple[int, int, ThreadPoolExecutor] | None = None  # (owner pid, workers, pool)
+_pool_lock = threading.Lock()
+
+
+def _forget_pool_in_child() -> None:
+    """A forked child has none of the parent's threads, and maybe a lock held by one."""
+    global _pool, _pool_lock
+    _pool, _pool_lock = None, threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forget_pool_in_child)
 
 
 def available_cpus() -> int:
@@ -132,20 +146,25 @@ def available_cpus() -> int:
 
 
 def _thread_pool(workers: int) -> ThreadPoolExecutor:
+    """The process's shared pool, with at least ``workers`` threads.
+
+    A caller that needs more threads gets a new, larger pool; the old one is never shut
+    down (another thread may be submitting to it at that moment): it is only dropped, and
+    its idle threads end once nothing refers to it.
+    """
     global _pool
-    # A forked child inherits the pool object but not its threads: make a new one there.
-    if _pool is None or _pool[0] != os.getpid() or _pool[1] < workers:
-        if _pool is not None and _pool[0] == os.getpid():
-            _pool[2].shutdown(wait=False)
-        _pool = (os.getpid(), workers, ThreadPoolExecutor(workers, thread_name_prefix="pool_env"))
-    return _pool[2]
+    with _pool_lock:
+        if _pool is None or _pool[0] != os.getpid() or _pool[1] < workers:
+            pool = ThreadPoolExecutor(workers, thread_name_prefix="pool_env")
+            _pool = (os.getpid(), workers, pool)
+        return _pool[2]
 
 
 def simulate_batch_threads(
     table: Table,
-    positions: NDArray[np.float64],
-    velocities: NDArray[np.float64],
-    active: NDArray[np.bool_],
+    positions: ArrayLike,
+    velocities: ArrayLike,
+    active: ArrayLike,
     threads: int | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
 ) -> BatchResult:
@@ -158,10 +177,10 @@ def simulate_batch_threads(
 
     Args:
         table: The table.
-        positions: ``(B, N, 2)`` float64 ball centres.
-        velocities: ``(B, N, 2)`` float64 initial velocities.
+        positions: ``(B, N, 2)`` ball centres.
+        velocities: ``(B, N, 2)`` initial velocities.
         active: ``(B, N)`` which balls are on each table.
-        threads: Parts to split into (default: :func:`available_cpus`).
+        threads: Parts to split into, a positive integer (default: :func:`available_cpus`).
         max_events: Event cap per table.
 
     Returns:
@@ -170,7 +189,16 @@ def simulate_batch_threads(
     Raises:
         ValueError: As :func:`simulate_batch`, naming the table by its index in the batch.
     """
+    table = check_table(table)
+    positions = as_batch_points("positions", positions)
+    velocities = as_batch_points("velocities", velocities, positions.shape)
     n = positions.shape[0]
+    active = as_active(active, n, positions.shape[1])
+    max_events = check_max_events(max_events)
+    if threads is not None and (
+        isinstance(threads, bool) or not isinstance(threads, int | np.integer) or threads < 1
+    ):
+        raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
     parts = min(threads or available_cpus(), n)
     if parts <= 1:
         return simulate_batch(table, positions, velocities, active=active, max_events=max_events)
@@ -188,7 +216,8 @@ def simulate_batch_threads(
 
     bounds = list(itertools.pairwise(edges))
     # The calling thread takes the last part itself instead of sleeping until the others end.
-    futures = [_thread_pool(parts - 1).submit(part, lo, hi) for lo, hi in bounds[:-1]]
+    pool = _thread_pool(parts - 1)
+    futures = [pool.submit(part, lo, hi) for lo, hi in bounds[:-1]]
     last = part(*bounds[-1])
     results = [f.result() for f in futures] + [last]
     return BatchResult(

@@ -59,6 +59,9 @@ class ShotResult:
         recorded: Whether events and trajectories were kept (``simulate(record=...)``).
         hit_event_cap: True if the shot reached ``max_events``; every ball was then stopped
             where it was at that instant.
+        stopped_by_cap: ``(N,)`` booleans: the balls that were still moving when the cap
+            stopped them (all False under the cap). A ball far from the runaway cluster
+            that the cap froze mid-roll is flagged here, never silently.
         first_contact: ``(i, j)`` of the first ball-ball impact, or ``None``.
         first_hit: ``(N,)`` ints: the first ball each ball touched, -1 if none. For the
             struck ball (``first_hit[cue]``) that is the first contact the rules judge.
@@ -95,6 +98,7 @@ class ShotResult:
         "pocketed",
         "positions",
         "recorded",
+        "stopped_by_cap",
     )
 
     def __init__(self, raw: ShotOutput, deceleration: float, recorded: bool = True) -> None:
@@ -107,6 +111,7 @@ class ShotResult:
         self.n_events = int(raw.n_events)
         self.duration = float(raw.duration)
         self.hit_event_cap = bool(raw.capped)
+        self.stopped_by_cap = raw.stopped_by_cap.astype(np.bool_)
         first_i, first_j = int(raw.first_i), int(raw.first_j)
         self.first_contact = (first_i, first_j) if first_i >= 0 else None
         events, segments = raw.events, raw.segments
@@ -138,6 +143,7 @@ class ShotResult:
         self.pocket_order = balls[loop.BALL_POCKET_ORDER]
         self.first_hit = balls[loop.BALL_FIRST_HIT]
         self.cushions_after_contact = balls[loop.BALL_CUSHIONS]
+        self.stopped_by_cap = balls[loop.BALL_STOPPED].astype(np.bool_)
         counts = meta[loop.META_EVENTS : loop.META_FIRST_J + 1].tolist()
         self.n_events, capped, first_i, first_j = counts
         self.duration = duration

@@ -8,67 +8,22 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.sim.inputs import (
+    DEFAULT_MAX_EVENTS,
+    as_masses,
+    as_points,
+    check_angle,
+    check_cue,
+    check_max_events,
+    check_speed,
+    check_table,
+    raise_invalid,
+)
 from pool_env.sim.kernels import loop
 from pool_env.sim.result import ShotResult
 from pool_env.sim.table import Table
 
-#: Default event cap. A 16-ball break has a few hundred events; pooltool's FastFiz
-#: ancestor used 5,000. A shot that reaches the cap is reported, never hangs.
-DEFAULT_MAX_EVENTS = 10_000
-
-
-def _as_points(name: str, value: ArrayLike, n: int | None) -> NDArray[np.float64]:
-    try:
-        arr = np.ascontiguousarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be an (N, 2) array of numbers: {exc}") from None
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (N, 2), got {arr.shape}")
-    if n is not None and arr.shape[0] != n:
-        raise ValueError(f"{name} has {arr.shape[0]} rows for {n} balls")
-    return arr
-
-
-# Masses left to the kernels: every ball weighs the table's ball_mass.
-_TABLE_MASSES = np.empty(0, dtype=np.float64)
-_TABLE_MASSES.setflags(write=False)
-
-
-def _as_masses(masses: ArrayLike | None, n: int) -> NDArray[np.float64]:
-    if masses is None:
-        return _TABLE_MASSES
-    try:
-        arr = np.ascontiguousarray(masses, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise ValueError(f"masses must be a sequence of N numbers: {exc}") from None
-    if arr.shape != (n,):
-        raise ValueError(f"masses must have shape ({n},), got {arr.shape}")
-    return arr
-
-
-def _raise_invalid(code: int, i: int, j: int, positions: NDArray[np.float64], table: Table) -> None:
-    if code == loop.BAD_POSITION:
-        raise ValueError(f"ball {i} has a non-finite position {positions[i].tolist()}")
-    if code == loop.BAD_VELOCITY:
-        raise ValueError(f"ball {i} has a non-finite velocity")
-    if code == loop.BAD_MASS:
-        raise ValueError(f"ball {i} has a mass that is not a positive finite number")
-    if code == loop.OFF_TABLE:
-        r = table.ball_radius
-        raise ValueError(
-            f"ball {i} at {positions[i].tolist()} is off the table: centres must lie in "
-            f"[{r}, {table.length - r}] x [{r}, {table.width - r}]"
-        )
-    if code == loop.IN_POCKET:
-        raise ValueError(
-            f"ball {i} at {positions[i].tolist()} is inside pocket {j}'s capture circle"
-        )
-    if code == loop.OVERLAP:
-        d = float(np.hypot(*(positions[j] - positions[i])))
-        raise ValueError(
-            f"balls {i} and {j} overlap: centres {d:.12g} m apart, less than 2R = "
-            f"{2 * table.ball_radius} m"
-        )
+__all__ = ["DEFAULT_MAX_EVENTS", "shoot", "simulate"]
 
 
 def simulate(
@@ -87,8 +42,8 @@ def simulate(
             1e-9 m of rounding), not inside a pocket's capture circle.
         velocities: ``(N, 2)`` initial velocities (m/s).
         masses: ``(N,)`` masses (kg); defaults to ``table.ball_mass`` for every ball.
-        max_events: Event cap; a shot that reaches it stops every ball where it is and
-            sets ``hit_event_cap``.
+        max_events: Event cap; a shot that reaches it stops every ball where it is, sets
+            ``hit_event_cap`` and flags the balls it stopped in ``stopped_by_cap``.
         record: Keep the event list and the trajectories (for ``events`` and
             ``positions_at``). Training loops that only need the final state pass False.
 
@@ -99,9 +54,9 @@ def simulate(
         ValueError: On malformed, non-finite or out-of-table input, overlapping balls, a
             non-positive mass, or a bad ``max_events``. Inputs are never modified.
     """
-    pos = _as_points("positions", positions, None)
+    pos = as_points("positions", positions)
     return _run(
-        table, pos, _as_points("velocities", velocities, pos.shape[0]), masses, max_events, record
+        table, pos, as_points("velocities", velocities, pos.shape[0]), masses, max_events, record
     )
 
 
@@ -113,32 +68,26 @@ def _run(
     max_events: int,
     record: bool,
 ) -> ShotResult:
-    """:func:`simulate` once ``pos`` and ``vel`` are float64 arrays of matching shapes."""
-    if not isinstance(table, Table):
-        raise ValueError(f"table must be a pool_env.Table, got {type(table).__name__}")
+    """:func:`simulate` once ``pos`` and ``vel`` are kernel arrays of matching shapes."""
+    table = check_table(table)
+    mass = as_masses(masses, pos.shape[0])
+    max_events = check_max_events(max_events)
     n = pos.shape[0]
-    mass = _as_masses(masses, n)
-    if type(max_events) is not int and (
-        isinstance(max_events, bool) or not isinstance(max_events, np.integer)
-    ):
-        raise ValueError(f"max_events must be a non-negative integer, got {max_events!r}")
-    if max_events < 0:
-        raise ValueError(f"max_events must be a non-negative integer, got {max_events!r}")
     if not record:  # one compiled call: validation and the loop, final state only
         final = np.empty((n, 2))
         balls = np.empty((loop.N_BALL_ROWS, n), dtype=np.int64)
         meta = np.empty(loop.N_META, dtype=np.int64)
         duration = loop.shoot_final(
-            pos, vel, mass, table.params, table.pockets, int(max_events), final, balls, meta
+            pos, vel, mass, table.params, table.pockets, max_events, final, balls, meta
         )
         if meta[loop.META_CODE] != loop.OK:
             code, i, j = meta[loop.META_CODE : loop.META_J + 1].tolist()
-            _raise_invalid(code, i, j, pos, table)
+            raise_invalid(code, i, j, table, pos, vel, mass)
         return ShotResult.unrecorded(final, balls, meta, duration, table.deceleration)
     code, i, j = loop.validate(pos, vel, mass, table.params, table.pockets)
     if code != loop.OK:
-        _raise_invalid(code, i, j, pos, table)
-    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, int(max_events), True)
+        raise_invalid(code, i, j, table, pos, vel, mass)
+    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, max_events, True)
     return ShotResult(raw, table.deceleration, True)
 
 
@@ -171,16 +120,12 @@ def shoot(
         ValueError: On a non-finite angle, a negative or non-finite speed, a cue index out
             of range, or any problem :func:`simulate` rejects.
     """
-    pos = _as_points("positions", positions, None)
-    angle = float(angle)
-    speed = float(speed)
-    if angle - angle != 0.0:  # inf or NaN
-        raise ValueError(f"angle must be finite, got {angle!r}")
-    if not (math.isfinite(speed) and speed >= 0.0):
-        raise ValueError(f"speed must be a non-negative finite number, got {speed!r}")
+    table = check_table(table)
+    pos = as_points("positions", positions)
+    angle = check_angle(angle)
+    speed = check_speed(speed, table)
     n = pos.shape[0]
-    if (type(cue) is not int and not isinstance(cue, np.integer)) or not (0 <= cue < n):
-        raise ValueError(f"cue must be a ball index in [0, {n}), got {cue!r}")
+    cue = check_cue(cue, n)
     vel = np.zeros((n, 2))
     vel[cue] = (speed * math.cos(angle), speed * math.sin(angle))
     return _run(table, pos, vel, masses, max_events, record)

@@ -14,6 +14,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.sim.kernels import limits
 from pool_env.sim.kernels.params import (
     N_PARAMS,
     P_DECEL,
@@ -24,6 +25,7 @@ from pool_env.sim.kernels.params import (
     P_RADIUS,
     P_WIDTH,
 )
+from pool_env.sim.scalars import positive, real_number, within
 
 #: WPA equipment specification: corner pocket mouth 4.5-4.625 in, side pocket mouth
 #: 5-5.125 in, measured between the points where the cushion noses end. We take the
@@ -74,16 +76,9 @@ def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray
     )
 
 
-def _check_positive(name: str, value: float) -> float:
-    value = float(value)
-    if not math.isfinite(value) or value <= 0.0:
-        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
-    return value
-
-
-def _check_restitution(name: str, value: float) -> float:
-    value = float(value)
-    if not (0.0 <= value <= 1.0):  # also rejects NaN
+def _check_restitution(name: str, value: object) -> float:
+    value = real_number(name, value)
+    if not (0.0 <= value <= 1.0):
         raise ValueError(f"{name} must lie in [0, 1], got {value!r}")
     return value
 
@@ -107,9 +102,10 @@ class Table:
             sequence of ``(x, y, radius)`` capture circles.
 
     Raises:
-        ValueError: On a non-positive or non-finite size, mass, radius, ``mu_roll`` or
-            ``g``; a restitution outside [0, 1]; a table too small for one ball; or an
-            unknown or malformed pocket specification.
+        ValueError: On a size, radius, mass or deceleration ``mu_roll * g`` outside the
+            numeric limits of :mod:`pool_env.sim.kernels.limits` (or not a finite real
+            number); a non-positive ``mu_roll`` or ``g``; a restitution outside [0, 1]; a
+            table too small for one ball; or an unknown or malformed pocket specification.
     """
 
     length: float = 2.54
@@ -125,8 +121,15 @@ class Table:
 
     def __post_init__(self) -> None:
         setter = object.__setattr__  # frozen dataclass: set validated values once
-        for name in ("length", "width", "ball_radius", "ball_mass", "mu_roll", "g"):
-            setter(self, name, _check_positive(name, getattr(self, name)))
+        for name in ("length", "width", "ball_radius"):
+            value = within(name, getattr(self, name), limits.MIN_LENGTH, limits.MAX_LENGTH, "m")
+            setter(self, name, value)
+        mass = within("ball_mass", self.ball_mass, limits.MIN_MASS, limits.MAX_MASS, "kg")
+        setter(self, "ball_mass", mass)
+        for name in ("mu_roll", "g"):
+            setter(self, name, positive(name, getattr(self, name)))
+        low, high = limits.MIN_DECELERATION, limits.MAX_DECELERATION
+        within("the rolling deceleration mu_roll * g", self.mu_roll * self.g, low, high, "m/s^2")
         for name in ("e_ball", "e_cushion"):
             setter(self, name, _check_restitution(name, getattr(self, name)))
         if min(self.length, self.width) <= 2.0 * self.ball_radius:
@@ -168,6 +171,11 @@ class Table:
             raise ValueError(f"pockets must have shape (K, 3) of (x, y, radius), got {arr.shape}")
         if not np.all(np.isfinite(arr)):
             raise ValueError("pocket coordinates and radii must be finite")
+        if np.abs(arr).max() > limits.MAX_LENGTH:
+            raise ValueError(
+                f"pocket coordinates and radii must lie within {limits.MAX_LENGTH:g} m (the "
+                "simulator's numeric limits, see README 'Numeric limits')"
+            )
         if np.any(arr[:, 2] <= 0.0):
             raise ValueError("every pocket radius must be positive")
         return np.ascontiguousarray(arr)

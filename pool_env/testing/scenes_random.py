@@ -48,3 +48,60 @@ def random_layout(
     if len(placed) < n_balls:
         raise ValueError(f"could not place {n_balls} balls on the table in {max_tries} draws")
     return np.array(placed)
+
+
+def lump_at_rail(
+    table: Table,
+    rng: np.random.Generator,
+    n_pressed: int,
+    gap: float,
+    speed: float,
+    spread: float = 0.02,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """A chain of ``n_pressed`` touching balls on a random rail and a ball driven into it.
+
+    The chain starts touching the rail and runs inward along the rail's normal; the driver
+    (ball 0) waits ``gap`` behind it, up to ``R / 2`` off the chain's line, and rolls at
+    ``speed`` towards the rail, up to ``spread`` radians off the normal.
+
+    Args:
+        table: The table (large enough for the chain and the gap).
+        rng: Source of randomness.
+        n_pressed: Balls in the chain (ball 1 touches the rail).
+        gap: Distance from the driver to the chain (m).
+        speed: The driver's speed (m/s).
+        spread: Largest angle of the driver's path off the rail normal (radians).
+
+    Returns:
+        ``(positions, velocities)``, ``(n_pressed + 1, 2)`` each.
+    """
+    r = table.ball_radius
+    rail = int(rng.integers(4))
+    along = table.width if rail < 2 else table.length  # the rail's own direction
+    t = rng.uniform(2 * r, along - 2 * r)
+    depth = [2 * r * k for k in range(n_pressed)]  # distance from the rail line, inwards
+    depth = [depth[-1] + 2 * r + gap if n_pressed else gap, *depth]
+    offset = [rng.uniform(-0.5, 0.5) * r] + [0.0] * n_pressed
+    points = []
+    for u, dt in zip(depth, offset, strict=True):
+        if rail == 0:
+            points.append((r + u, t + dt))
+        elif rail == 1:
+            points.append((table.length - r - u, t + dt))
+        elif rail == 2:
+            points.append((t + dt, r + u))
+        else:
+            points.append((t + dt, table.width - r - u))
+    inward = [(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)][rail]
+    phi = np.arctan2(-inward[1], -inward[0]) + rng.uniform(-spread, spread)
+    velocities = np.zeros((n_pressed + 1, 2))
+    velocities[0] = speed * np.array([np.cos(phi), np.sin(phi)])
+    return np.array(points), velocities
+
+
+def log_uniform_masses(
+    rng: np.random.Generator, n: int, base: float, ratio: float
+) -> NDArray[np.float64]:
+    """``n`` masses spread log-uniformly over ``[base / sqrt(ratio), base * sqrt(ratio)]``."""
+    half = 0.5 * np.log10(ratio)
+    return base * 10.0 ** rng.uniform(-half, half, n)

@@ -12,6 +12,12 @@ is set), the package's ``__pycache__/numba-<hash>``, and ``~/.cache/pool_env/num
 With none writable (a read-only install and home), kernels compile in memory, with a
 warning. numba writes cache files through a temporary file and an atomic rename, so several
 processes compiling at once neither crash nor corrupt the cache.
+
+A cache file can still be damaged from outside (a full disk, a copy cut short, a bad
+sector): numba then raises from its loader (``EOFError``, ``UnpicklingError``) in this and
+every later process. Each kernel's cache is therefore a :class:`HealingCache`: a cache that
+cannot be read is deleted, the kernel compiles (one warning per process) and the fresh
+cache is written back through numba's atomic rename, for every later process to load.
 """
 
 from __future__ import annotations
@@ -25,6 +31,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 import numba
+from numba.core.caching import FunctionCache
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -74,6 +81,45 @@ def _cache_folder() -> Path | None:
 
 CACHE_FOLDER = _cache_folder()
 _warned = False
+_healed = False
+
+
+class HealingCache(FunctionCache):
+    """numba's on-disk cache of one kernel, deleting itself when it cannot be read."""
+
+    def load_overload(self, sig: Any, target_context: Any) -> Any:
+        """The cached compile result for ``sig``, or None (compile) if absent or unreadable."""
+        try:
+            return super().load_overload(sig, target_context)
+        except Exception as exc:  # any unreadable cache: compiling instead is always right
+            self._discard(exc)
+            return None
+
+    def save_overload(self, sig: Any, data: Any) -> None:
+        """Write the compile result, replacing an index damaged since it was read."""
+        try:
+            super().save_overload(sig, data)
+        except Exception as exc:  # the index cannot be read back: start it afresh
+            self._discard(exc)
+            super().save_overload(sig, data)
+
+    def _discard(self, exc: Exception) -> None:
+        """Delete this kernel's index and data files, warning once per process."""
+        global _healed
+        folder = Path(self._cache_path)
+        base = self._impl.filename_base
+        for path in folder.glob("*"):
+            name = path.name
+            if name == f"{base}.nbi" or (name.startswith(f"{base}.") and name.endswith(".nbc")):
+                path.unlink(missing_ok=True)
+        if not _healed:
+            warnings.warn(
+                f"pool_env: unreadable compile cache for {self._py_func.__qualname__} in {folder} "
+                f"({type(exc).__name__}: {exc}); discarded it and compiling afresh",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+            _healed = True
 
 
 def _compile(fn: F, options: dict[str, Any]) -> F:
@@ -84,7 +130,9 @@ def _compile(fn: F, options: dict[str, Any]) -> F:
         saved = numba.config.CACHE_DIR
         numba.config.CACHE_DIR = str(CACHE_FOLDER)
         try:
-            return numba.njit(cache=True, **options)(fn)  # type: ignore[no-any-return]
+            dispatcher = numba.njit(cache=True, **options)(fn)
+            dispatcher._cache = HealingCache(fn)
+            return dispatcher  # type: ignore[no-any-return]
         except RuntimeError:  # numba found the folder unwritable after all
             pass
         finally:

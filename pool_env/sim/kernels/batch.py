@@ -38,6 +38,7 @@ BatchOutput = namedtuple(
         "capped",
         "first_contact",
         "error",
+        "stopped_by_cap",
     ],
 )
 
@@ -55,6 +56,7 @@ def _allocate(positions):
         np.zeros(n_tables, dtype=np.bool_),
         np.full((n_tables, 2), -1, dtype=np.int64),
         np.zeros((n_tables, 3), dtype=np.int64),
+        np.zeros((n_tables, n_balls), dtype=np.bool_),
     )
 
 
@@ -84,6 +86,7 @@ def _one_table(b, positions, velocities, masses, active, params, pockets, max_ev
         hit = shot.first_hit[k]
         out.first_hit[b, ball] = index[hit] if hit >= 0 else -1
         out.cushions_after_contact[b, ball] = shot.cushions_after_contact[k]
+        out.stopped_by_cap[b, ball] = shot.stopped_by_cap[k] != 0
     out.n_events[b] = shot.n_events
     out.capped[b] = shot.capped
     if shot.first_i >= 0:
@@ -117,7 +120,7 @@ def run_batch(positions, velocities, masses, active, params, pockets, max_events
 @kernel
 def _fields(out):
     """``out`` as a plain tuple: numba's ``prange`` cannot hand a named tuple to its threads."""
-    return (out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7], out[8])
+    return (out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7], out[8], out[9])
 
 
 @kernel

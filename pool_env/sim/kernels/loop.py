@@ -14,7 +14,7 @@ not fix the outcome, so some such rule has to be chosen; this one conserves mome
 never adds energy.
 
 A hard cap on the number of events ends a pathological shot: every ball is stopped where it
-is at that instant, and the result reports it.
+is at that instant, and the result reports it and which balls were still moving then.
 """
 
 from __future__ import annotations
@@ -24,6 +24,7 @@ from collections import namedtuple
 import numpy as np
 
 from pool_env.sim.kernels._jit import inline_kernel, kernel
+from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, speed_allowed
 from pool_env.sim.kernels.motion import (
     MOVING,
     NCOL,
@@ -64,7 +65,7 @@ from pool_env.sim.kernels.roots import INF
 POS_TOL = 1e-9
 
 # Validation codes.
-OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET = range(7)
+OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAST = range(8)
 
 #: What :func:`run_shot` returns, by name.
 #:
@@ -78,6 +79,7 @@ OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET = range(
 #:   ball-ball impact (all zero if there was none). With one ball struck, that impact is the
 #:   cue ball's first contact: the "rail after contact" of the rules.
 #: * ``n_events``, ``duration`` (s), ``capped`` (the event cap was reached).
+#: * ``stopped_by_cap`` ``(N,)``: 1 for each ball still moving when the cap stopped it.
 #: * ``events``: an :data:`~pool_env.sim.kernels.record.EventLog`, ``segments``: a
 #:   :data:`~pool_env.sim.kernels.record.SegmentLog`, both chronological and empty unless
 #:   recorded.
@@ -94,14 +96,15 @@ ShotOutput = namedtuple(
         "n_events",
         "duration",
         "capped",
+        "stopped_by_cap",
         "events",
         "segments",
     ],
 )
 
 #: Rows of the per-ball output of :func:`shoot_final` (``N_BALL_ROWS`` of them).
-BALL_POCKET, BALL_POCKET_ORDER, BALL_FIRST_HIT, BALL_CUSHIONS = range(4)
-N_BALL_ROWS = 4
+BALL_POCKET, BALL_POCKET_ORDER, BALL_FIRST_HIT, BALL_CUSHIONS, BALL_STOPPED = range(5)
+N_BALL_ROWS = 5
 
 #: Slots of the ``meta`` output of :func:`shoot_final` (``N_META`` of them).
 META_CODE, META_I, META_J, META_EVENTS, META_CAPPED, META_FIRST_I, META_FIRST_J = range(7)
@@ -118,7 +121,10 @@ def validate(positions, velocities, masses, params, pockets):
             return BAD_POSITION, i, -1
         if not (np.isfinite(velocities[i, 0]) and np.isfinite(velocities[i, 1])):
             return BAD_VELOCITY, i, -1
-        if masses.shape[0] and not (masses[i] > 0.0 and np.isfinite(masses[i])):
+        speed2 = velocities[i, 0] * velocities[i, 0] + velocities[i, 1] * velocities[i, 1]
+        if not speed_allowed(speed2, params[P_DECEL]):
+            return TOO_FAST, i, -1
+        if masses.shape[0] and not (MIN_MASS <= masses[i] <= MAX_MASS):  # also NaN
             return BAD_MASS, i, -1
     for i in range(n):
         x, y = positions[i, 0], positions[i, 1]
@@ -242,6 +248,7 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
 
     balls = np.full((N_BALL_ROWS, n), -1, dtype=np.int64)  # one allocation for four rows
     balls[BALL_CUSHIONS] = 0
+    balls[BALL_STOPPED] = 0
     first_i = first_j = -1
 
     events = new_event_log(16 if record else 0)
@@ -329,6 +336,7 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
     if capped:
         for i in range(n):
             if status[i] == MOVING:
+                balls[BALL_STOPPED, i] = 1
                 x, y, _, _ = state_at(st, status, i, now, a)
                 set_anchor(st, status, i, now, x, y, 0.0, 0.0, a, V_REST)
                 if record:
@@ -351,6 +359,7 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         n_ev,
         now,
         capped,
+        balls[BALL_STOPPED],
         trim_events(events, n_ev),
         trim_segments(segments, n_seg),
     )
@@ -367,8 +376,8 @@ def shoot_final(positions, velocities, masses, params, pockets, max_events, fina
         positions, velocities, masses, params, pockets, max_events: As for :func:`run_shot`.
         final: ``(N, 2)`` output: final positions.
         balls: ``(N_BALL_ROWS, N)`` output: per-ball results in the rows ``BALL_POCKET``,
-            ``BALL_POCKET_ORDER``, ``BALL_FIRST_HIT`` and ``BALL_CUSHIONS`` (the
-            :data:`ShotOutput` fields of those names).
+            ``BALL_POCKET_ORDER``, ``BALL_FIRST_HIT``, ``BALL_CUSHIONS`` and
+            ``BALL_STOPPED`` (the :data:`ShotOutput` fields of those names).
         meta: ``(N_META,)`` output: ``META_CODE`` (the validation code: ``OK``, or the
             problem with balls ``META_I``, ``META_J``, and then nothing is simulated),
             ``META_EVENTS``, ``META_CAPPED``, ``META_FIRST_I``, ``META_FIRST_J``.
@@ -386,6 +395,7 @@ def shoot_final(positions, velocities, masses, params, pockets, max_events, fina
     balls[BALL_POCKET_ORDER] = out.pocket_order
     balls[BALL_FIRST_HIT] = out.first_hit
     balls[BALL_CUSHIONS] = out.cushions_after_contact
+    balls[BALL_STOPPED] = out.stopped_by_cap
     meta[META_EVENTS], meta[META_CAPPED] = out.n_events, out.capped
     meta[META_FIRST_I], meta[META_FIRST_J] = out.first_i, out.first_j
     return out.duration

@@ -200,7 +200,11 @@ def ray_circle_entry(px, py, ux, uy, qx, qy, radius2, capture_inside):
         return INF
     if b >= 0.0 or (not capture_inside and b >= -APPROACH_RTOL * math.sqrt(dx * dx + dy * dy)):
         return INF  # moving away, tangent, or (a ball) closing within rounding of zero
-    disc = b * b - cc
+    # b^2 - cc, written as radius^2 minus the squared distance of the centre from the line:
+    # the difference form cancels the rounding of |d|^2 (~1e-16 |d|^2) against the small
+    # discriminant of a grazing contact, which put a ball 3 km away 1e-8 m into its target.
+    cross = ux * dy - uy * dx
+    disc = radius2 - cross * cross
     if disc < 0.0:
         return INF
     return cc / (-b + math.sqrt(disc))

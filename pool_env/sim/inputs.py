@@ -1,0 +1,216 @@
+"""Argument checks shared by every simulator entry point, with one set of messages.
+
+``simulate``, ``shoot``, ``simulate_batch`` and ``simulate_batch_threads`` check their
+arguments here; the environment layer may call the same functions. Every problem is a
+``ValueError`` naming the argument. Arrays handed to the compiled kernels are normalised
+here to native-endian, C-contiguous, writable float64: numba compiles a separate version
+of a kernel for every array layout and flag it meets (a read-only positions array used to
+cost a second compile of the whole event loop), so there is exactly one.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from pool_env.sim.kernels import limits, loop
+from pool_env.sim.scalars import real_number
+from pool_env.sim.table import Table
+
+#: Default event cap. A 16-ball break has a few hundred events; pooltool's FastFiz
+#: ancestor used 5,000. A shot that reaches the cap is reported, never hangs.
+DEFAULT_MAX_EVENTS = 10_000
+
+_NUMERIC_KINDS = "iuf"  # integer, unsigned, float: no bools, complex, strings, objects
+
+
+def check_table(table: object) -> Table:
+    """``table`` itself if it is a :class:`Table`."""
+    if not isinstance(table, Table):
+        raise ValueError(f"table must be a pool_env.Table, got {type(table).__name__}")
+    return table
+
+
+def check_max_events(value: object) -> int:
+    """An event cap: a (numpy) integer, not a bool, in ``[0, 2**63 - 1]``."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
+        raise ValueError(f"max_events must be a non-negative integer, got {value!r}")
+    if not 0 <= value <= limits.MAX_EVENTS_LIMIT:
+        raise ValueError(
+            f"max_events must be a non-negative integer of at most 2**63 - 1, got {value!r}"
+        )
+    return int(value)
+
+
+def kernel_array(name: str, value: ArrayLike, what: str) -> NDArray[np.float64]:
+    """``value`` as the one float64 array layout the kernels are compiled for.
+
+    A copy only when needed (another dtype or byte order, not contiguous, read-only).
+
+    Args:
+        name: The argument's name, for messages.
+        value: Array-like of real numbers.
+        what: What the argument should be, for messages (e.g. ``"an (N, 2) array"``).
+    """
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be {what} of numbers: {exc}") from None
+    if arr.dtype.kind not in _NUMERIC_KINDS:
+        raise ValueError(f"{name} must be {what} of real numbers, got dtype {arr.dtype}")
+    return np.require(arr, dtype=np.float64, requirements=["C", "A", "W"])
+
+
+def as_points(name: str, value: ArrayLike, n: int | None = None) -> NDArray[np.float64]:
+    """``(N, 2)`` points (positions or velocities), ``N == n`` when given."""
+    arr = kernel_array(name, value, "an (N, 2) array")
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{name} must have shape (N, 2), got {arr.shape}")
+    if n is not None and arr.shape[0] != n:
+        raise ValueError(f"{name} has {arr.shape[0]} rows for {n} balls")
+    return arr
+
+
+def as_batch_points(name: str, value: ArrayLike, shape: tuple[int, ...] | None = None):
+    """``(B, N, 2)`` points of a batch, of ``shape`` when given."""
+    arr = kernel_array(name, value, "a (B, N, 2) array")
+    if shape is None and (arr.ndim != 3 or arr.shape[2] != 2):
+        raise ValueError(f"{name} must have shape (B, N, 2), got {arr.shape}")
+    if shape is not None and arr.shape != shape:
+        raise ValueError(f"{name} must have shape {shape}, got {arr.shape}")
+    return arr
+
+
+# Masses left to the kernels: every ball weighs the table's ball_mass. Writable like every
+# other array the kernels get (one compiled version); it is empty, so nothing can change.
+_TABLE_MASSES = np.empty(0, dtype=np.float64)
+
+
+def as_masses(masses: ArrayLike | None, n: int) -> NDArray[np.float64]:
+    """``(N,)`` per-ball masses, or an empty array for the table's ``ball_mass``."""
+    if masses is None:
+        return _TABLE_MASSES
+    arr = kernel_array("masses", masses, "a sequence of N")
+    if arr.shape != (n,):
+        raise ValueError(f"masses must have shape ({n},), got {arr.shape}")
+    return arr
+
+
+def as_batch_masses(table: Table, masses: ArrayLike | None, n_tables: int, n_balls: int):
+    """``(B, N)`` masses of a batch from ``None`` or anything that broadcasts to it."""
+    if masses is None:
+        return np.full((n_tables, n_balls), table.ball_mass)
+    arr = kernel_array("masses", masses, "an (N,) or (B, N) array")
+    try:
+        arr = np.broadcast_to(arr, (n_tables, n_balls))
+    except ValueError:
+        raise ValueError(
+            f"masses must have shape ({n_balls},) or {(n_tables, n_balls)}, got {arr.shape}"
+        ) from None
+    return np.ascontiguousarray(arr)
+
+
+def as_active(active: ArrayLike | None, n_tables: int, n_balls: int) -> NDArray[np.bool_]:
+    """``(B, N)`` booleans, which balls are on each table (default all)."""
+    if active is None:
+        return np.ones((n_tables, n_balls), np.bool_)
+    arr = np.asarray(active)
+    if arr.dtype.kind not in "biu":
+        raise ValueError(f"active must be booleans, got dtype {arr.dtype}")
+    if arr.shape != (n_tables, n_balls):
+        raise ValueError(f"active must have shape {(n_tables, n_balls)}, got {arr.shape}")
+    return np.require(arr, dtype=np.bool_, requirements=["C", "A", "W"])
+
+
+def check_angle(angle: object) -> float:
+    """A finite real angle (radians)."""
+    return real_number("angle", angle)
+
+
+def check_speed(speed: object, table: Table) -> float:
+    """A cue speed: real, non-negative, and within the limits (:func:`max_speed`)."""
+    try:
+        value = real_number("speed", speed)
+    except ValueError:
+        raise ValueError(f"speed must be a non-negative finite number, got {speed!r}") from None
+    if value < 0.0:
+        raise ValueError(f"speed must be a non-negative finite number, got {speed!r}")
+    if not limits.speed_allowed(value * value, table.deceleration):
+        raise ValueError(f"speed {value!r} m/s is beyond {_speed_limits(table)}")
+    return value
+
+
+def check_cue(cue: object, n: int) -> int:
+    """A ball index in ``[0, n)``."""
+    if isinstance(cue, bool | np.bool_) or not isinstance(cue, int | np.integer):
+        raise ValueError(f"cue must be a ball index in [0, {n}), got {cue!r}")
+    if not 0 <= cue < n:
+        raise ValueError(f"cue must be a ball index in [0, {n}), got {cue!r}")
+    return int(cue)
+
+
+def max_speed(table: Table) -> float:
+    """The fastest initial speed (m/s) the simulator accepts on ``table``.
+
+    ``MAX_SPEED``, or less where the free rolling distance ``v^2 / (2 mu_roll g)`` would
+    pass ``MAX_ROLL`` (see :mod:`pool_env.sim.kernels.limits`).
+    """
+    return min(limits.MAX_SPEED, (2.0 * table.deceleration * limits.MAX_ROLL) ** 0.5)
+
+
+def _speed_limits(table: Table) -> str:
+    return (
+        f"the simulator's numeric limits: speeds up to {limits.MAX_SPEED:g} m/s and a free "
+        f"rolling distance v^2 / (2 mu_roll g) up to {limits.MAX_ROLL:g} m, here "
+        f"{max_speed(table):.6g} m/s (see README 'Numeric limits')"
+    )
+
+
+def raise_invalid(
+    code: int,
+    i: int,
+    j: int,
+    table: Table,
+    positions: NDArray[np.float64],
+    velocities: NDArray[np.float64],
+    masses: NDArray[np.float64],
+) -> None:
+    """Raise the ``ValueError`` for validation code ``code`` of ``loop.validate``.
+
+    Args:
+        code: The code (``loop.OK`` raises nothing).
+        i: The ball the code names.
+        j: The other ball (overlaps) or the pocket (``IN_POCKET``).
+        table: The table.
+        positions: The validated positions.
+        velocities: The validated velocities.
+        masses: The validated masses (empty for the table's ball mass).
+    """
+    if code == loop.BAD_POSITION:
+        raise ValueError(f"ball {i} has a non-finite position {positions[i].tolist()}")
+    if code == loop.BAD_VELOCITY:
+        raise ValueError(f"ball {i} has a non-finite velocity")
+    if code == loop.TOO_FAST:
+        speed = float(np.hypot(*velocities[i]))
+        raise ValueError(f"ball {i} has speed {speed!r} m/s, beyond {_speed_limits(table)}")
+    if code == loop.BAD_MASS:
+        raise ValueError(
+            f"ball {i} has mass {float(masses[i])!r}: masses must be finite and lie in "
+            f"[{limits.MIN_MASS:g}, {limits.MAX_MASS:g}] kg (the simulator's numeric limits)"
+        )
+    if code == loop.OFF_TABLE:
+        r = table.ball_radius
+        raise ValueError(
+            f"ball {i} at {positions[i].tolist()} is off the table: centres must lie in "
+            f"[{r}, {table.length - r}] x [{r}, {table.width - r}]"
+        )
+    if code == loop.IN_POCKET:
+        raise ValueError(
+            f"ball {i} at {positions[i].tolist()} is inside pocket {j}'s capture circle"
+        )
+    if code == loop.OVERLAP:
+        d = float(np.hypot(*(positions[j] - positions[i])))
+        raise ValueError(
+            f"balls {i} and {j} overlap: centres {d:.12g} m apart, less than 2R = "
+            f"{2 * table.ball_radius} m"
+        )
