@@ -98,7 +98,13 @@ def simulate_batch(
         parallel = n_tables >= PARALLEL_FROM
     run = _batch.run_batch_parallel if parallel else _batch.run_batch
     out = run(
-        pos, vel, mass, np.ascontiguousarray(on), table.params, table.pockets, int(max_events)
+        pos,
+        vel,
+        mass,
+        np.ascontiguousarray(on),
+        table.params,
+        table.pocket_geometry,
+        int(max_events),
     )
     error = out.error
     bad = np.flatnonzero(error[:, 0] != loop.OK)

@@ -55,9 +55,18 @@ def _raise_invalid(code: int, i: int, j: int, positions: NDArray[np.float64], ta
         raise ValueError(f"ball {i} has a mass that is not a positive finite number")
     if code == loop.OFF_TABLE:
         r = table.ball_radius
+        throats = " or in a pocket's throat" if table.pocket_model == "jaws" else ""
         raise ValueError(
             f"ball {i} at {positions[i].tolist()} is off the table: centres must lie in "
-            f"[{r}, {table.length - r}] x [{r}, {table.width - r}]"
+            f"[{r}, {table.length - r}] x [{r}, {table.width - r}]{throats}"
+        )
+    if code == loop.IN_JAW:
+        raise ValueError(
+            f"ball {i} at {positions[i].tolist()} is inside a jaw (facing or point) of pocket {j}"
+        )
+    if code == loop.BEHIND_LINE:
+        raise ValueError(
+            f"ball {i} at {positions[i].tolist()} is on or behind pocket {j}'s fall line"
         )
     if code == loop.IN_POCKET:
         raise ValueError(
@@ -129,16 +138,16 @@ def _run(
         balls = np.empty((loop.N_BALL_ROWS, n), dtype=np.int64)
         meta = np.empty(loop.N_META, dtype=np.int64)
         duration = loop.shoot_final(
-            pos, vel, mass, table.params, table.pockets, int(max_events), final, balls, meta
+            pos, vel, mass, table.params, table.pocket_geometry, int(max_events), final, balls, meta
         )
         if meta[loop.META_CODE] != loop.OK:
             code, i, j = meta[loop.META_CODE : loop.META_J + 1].tolist()
             _raise_invalid(code, i, j, pos, table)
         return ShotResult.unrecorded(final, balls, meta, duration, table.deceleration)
-    code, i, j = loop.validate(pos, vel, mass, table.params, table.pockets)
+    code, i, j = loop.validate(pos, vel, mass, table.params, table.pocket_geometry)
     if code != loop.OK:
         _raise_invalid(code, i, j, pos, table)
-    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, int(max_events), True)
+    raw = loop.run_shot(pos, vel, mass, table.params, table.pocket_geometry, int(max_events), True)
     return ShotResult(raw, table.deceleration, True)
 
 

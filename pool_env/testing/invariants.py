@@ -3,7 +3,9 @@
 The named invariants of the design notes:
 
 * **G** (geometry): no two balls on the table overlap by more than ``tol`` at any event, at
-  rest, or at sampled instants between events; every ball stays inside the rails.
+  rest, or at sampled instants between events; every ball on the table stays inside the
+  playing region: the rails' rectangle and, on a jaw table, the pocket throats (clear of
+  every facing and point, in front of the fall line).
 * **P** (momentum): each ball-ball impact conserves the pair's momentum.
 * **E** (energy): kinetic energy never increases, across impacts or in between.
 * **T** (termination): the shot ends at rest without reaching the event cap.
@@ -16,6 +18,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.sim.kernels.jaws import LOC_CIRCLE, LOC_FREE, locate_many
 from pool_env.sim.kernels.resolve import V_REST, V_ZENO
 from pool_env.sim.result import ShotResult
 from pool_env.sim.table import Table
@@ -72,8 +75,10 @@ def check_momentum(result: ShotResult, masses: ArrayLike) -> list[str]:
 
     Up to rounding, and up to the documented rules: a ball that an impact leaves slower than
     ``V_REST`` is at rest, which may happen twice to a ball of a sticking impact (once for
-    the pair, once for its cluster), so at most ``2 * mass * V_REST`` per ball; and a
-    sticking lump against a rail loses its velocity into the rail if below ``V_ZENO``.
+    the pair, once for its cluster), so at most ``2 * mass * V_REST`` per ball; a sticking
+    lump against a rail or jaw loses its velocity into it if below ``V_ZENO``; and a lump
+    wedged between jaws and rails, pressing slowly into all of them, stops (see
+    :func:`pool_env.sim.kernels.jaws.unpress_lump`).
     """
     m = np.asarray(masses, dtype=np.float64)
     problems = []
@@ -85,6 +90,8 @@ def check_momentum(result: ShotResult, masses: ArrayLike) -> list[str]:
         allowed = MOMENTUM_RTOL * scale + 2.0 * V_REST * float(mb.sum())
         if len(balls) > 1 and np.all(after == after[0]):  # a sticking lump: a rail may
             allowed += V_ZENO * float(mb.sum())  # take a normal speed below V_ZENO
+            if np.all(after == 0.0):  # wedged between jaws and rails, the lump stops
+                allowed += float(np.abs(p0).max())
         if np.abs(p1 - p0).max() > allowed:
             problems.append(f"P: impact {k} (t={t}, balls {balls}) momentum {p0} -> {p1}")
     return problems
@@ -129,7 +136,7 @@ def check_energy(result: ShotResult, masses: ArrayLike) -> list[str]:
 def check_geometry(
     table: Table, result: ShotResult, samples: int = 2000, tol: float = GEOMETRY_TOL
 ) -> list[str]:
-    """G: no overlap beyond ``tol`` and nothing outside the rails.
+    """G: no overlap beyond ``tol`` and nothing outside the playing region.
 
     Checked at every event time, at rest, and at ``samples`` evenly spaced instants.
     """
@@ -141,12 +148,19 @@ def check_geometry(
     pos, potted = result.positions_at_many(times)
     r = table.ball_radius
     on = ~potted
-    x, y = pos[..., 0], pos[..., 1]
-    outside = on & (
-        (x < r - tol) | (x > table.length - r + tol) | (y < r - tol) | (y > table.width - r + tol)
+    flat = pos.reshape(-1, 2)
+    codes, _ = locate_many(
+        np.ascontiguousarray(flat[:, 0]),
+        np.ascontiguousarray(flat[:, 1]),
+        table.params,
+        table.pocket_geometry,
+        tol,
     )
+    # Entering a capture circle pots a ball, so only leaving the region is a violation.
+    codes = codes.reshape(potted.shape)
+    outside = on & (codes != LOC_FREE) & (codes != LOC_CIRCLE)
     escapes = [
-        f"G: ball {b} outside the rails at t={times[k]}: {pos[k, b].tolist()}"
+        f"G: ball {b} outside the playing region at t={times[k]}: {pos[k, b].tolist()}"
         for k, b in zip(*np.nonzero(outside), strict=True)
     ]
     overlaps = []
