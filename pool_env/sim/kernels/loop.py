@@ -97,8 +97,9 @@ OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, IN_JAW,
 #: * ``first_hit`` ``(N,)``: the first ball each ball touched, -1 if none. For the struck
 #:   ball of a shot that is the rules' first contact.
 #: * ``cushions_after_contact`` ``(N,)``: each ball's cushion impacts (rails, jaw facings and
-#:   points) after the shot's first ball-ball impact (all zero if there was none). With one ball struck, that impact is the
-#:   cue ball's first contact: the "rail after contact" of the rules.
+#:   points) after the shot's first ball-ball impact (all zero if there was none). With one
+#:   ball struck, that impact is the cue ball's first contact: the "rail after contact" of
+#:   the rules.
 #: * ``n_events``, ``duration`` (s), ``capped`` (the event cap was reached).
 #: * ``events``: an :data:`~pool_env.sim.kernels.record.EventLog`, ``segments``: a
 #:   :data:`~pool_env.sim.kernels.record.SegmentLog`, both chronological and empty unless
