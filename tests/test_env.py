@@ -340,7 +340,7 @@ def test_unwrapped_exposes_what_agents_need() -> None:
     assert raw.cue == 0
     assert raw.aim == "cut"
     assert raw.aim_range == (-1.0, 1.0)
-    assert raw.speed_range == (0.5, 10.0)
+    assert raw.speed_range == (0.45, 4.5)
     assert raw.n_object_balls == 1
     assert raw.positions.shape == (2, 2)
     raw.positions[0] = 0.0  # a copy: the state cannot be changed through it
