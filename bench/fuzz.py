@@ -4,9 +4,11 @@ Run: ``python bench/fuzz.py --shots 100000`` (the long run; CI runs a small samp
 ``tests/test_properties.py``). Prints the violation count and writes
 ``results/fuzz.md``. Scenes mix: random layouts of 2-16 balls (some touching), 9- and 15-ball
 breaks with jittered aim, random speeds from 1e-6 to 15 m/s, random restitutions and
-rolling resistances, standard and pocketless tables; and what issue 11 found: masses
-spread over ratios up to 1e6, lumps of light balls pressed into a rail by a heavy one, and
-tables, radii and speeds scaled to the edges of the numeric limits.
+rolling resistances; jaw tables (half of them; random jaw restitution including 0),
+capture-circle and pocketless tables, with shots aimed at a pocket's mouth one time in four
+so that jaws are hit often; and what issue 11 found: masses spread over ratios up to 1e6,
+lumps of light balls pressed into a rail by a heavy one, and tables, radii and speeds
+scaled to the edges of the numeric limits.
 
 Every invariant is checked on every shot. The termination target is no event-cap hit on a
 damped table (``mu_roll >= 1e-3``, both restitutions below 1); an undamped table (elastic,
@@ -50,7 +52,10 @@ def random_table(rng: np.random.Generator) -> tuple[Table, float]:
         low = np.log10(limits.MIN_LENGTH / DEFAULT.ball_radius)
         high = np.log10(limits.MAX_LENGTH / DEFAULT.length)
         scale = float(10 ** rng.uniform(low, high))
-    pockets = str(rng.choice(["standard", "none"]))
+    pockets = str(rng.choice(["jaws", "jaws", "circles", "none"]))
+    if pockets == "jaws" and scale != 1.0:  # regulation jaws are sized in inches
+        pockets = "circles"
+    e_cushion = float(rng.choice([1.0, 0.85, 0.65, rng.uniform(0, 1)]))
     u = rng.random()  # mostly damped; one in ten nearly frictionless
     mu_roll = (
         0.01
@@ -63,8 +68,9 @@ def random_table(rng: np.random.Generator) -> tuple[Table, float]:
         ball_radius=DEFAULT.ball_radius * scale,
         mu_roll=mu_roll,
         e_ball=float(rng.choice([1.0, 0.95, rng.uniform(0, 1), 0.0])),
-        e_cushion=float(rng.choice([1.0, 0.85, rng.uniform(0, 1)])),
-        pockets=DEFAULT.pockets * scale if pockets == "standard" else "none",
+        e_cushion=e_cushion,
+        pockets=DEFAULT.pockets * scale if pockets == "circles" else pockets,
+        e_jaw=float(rng.choice([e_cushion, rng.uniform(0, 1), 0.0])),
     )
     return table, scale
 
@@ -128,6 +134,10 @@ def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray
         else:
             speed = float(10 ** rng.uniform(-1, 0) * fastest)
         phi = rng.uniform(0, 2 * np.pi) if kind else rng.normal(0, 0.01)
+        if kind and table.n_pockets and rng.random() < 0.25:  # at a pocket's mouth, jittered
+            target = table.pockets[int(rng.integers(table.n_pockets)), :2]
+            aim = target - pos[i] + rng.normal(0.0, 0.03 * scale, 2)
+            phi = float(np.arctan2(aim[1], aim[0]))
         vel[i] = min(speed, 0.999 * fastest) * np.array([np.cos(phi), np.sin(phi)])
     u = rng.random()
     if u < 0.2:

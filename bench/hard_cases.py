@@ -64,7 +64,7 @@ def hard_cases() -> list[HardCase]:
     """The hard cases, in PHYSICS.md order."""
     open_t = Table(pockets="none")
     elastic = Table(pockets="none", e_ball=1.0)
-    std = Table()
+    std = Table(pockets="circles")  # the pocket model every engine here shares
     r, cy, length, width = std.ball_radius, std.width / 2.0, std.length, std.width
     cradle = [(0.5, cy)] + [(1.0 + 2.0 * r * k, cy) for k in range(5)]
     rack = break_scene(std, "eight")

@@ -155,12 +155,13 @@ def shot_suite(n: int, seed: int = 2024, table: Table | None = None) -> list[Sce
     Args:
         n: Number of scenes.
         seed: Seed of the generator.
-        table: The table (default: ``Table()``).
+        table: The table (default: ``Table(pockets="circles")``, the pocket model the
+            fixed-step and pymunk engines share).
 
     Returns:
         The scenes, ordered by index.
     """
-    table = Table() if table is None else table
+    table = Table(pockets="circles") if table is None else table
     rng = np.random.default_rng(seed)
     scenes: list[Scene] = []
     while len(scenes) < n:
@@ -186,12 +187,13 @@ def break_suite(n: int, seed: int = 7, table: Table | None = None) -> list[Scene
     Args:
         n: Number of breaks.
         seed: Seed of the generator.
-        table: The table (default: ``Table()``).
+        table: The table (default: ``Table(pockets="circles")``, the pocket model the
+            fixed-step and pymunk engines share).
 
     Returns:
         The scenes (ball 0 is the cue, ball 1 the apex).
     """
-    table = Table() if table is None else table
+    table = Table(pockets="circles") if table is None else table
     rng = np.random.default_rng(seed)
     scenes = []
     for k in range(n):

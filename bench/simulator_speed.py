@@ -93,6 +93,24 @@ def time_batched(table: Table, shots: list[Shot], repeats: int, size: int = 256)
     return np.array(per_shot)
 
 
+def jaws_against_circles(rng: np.random.Generator, n: int, repeats: int) -> str:
+    """The same one-ball shots on the jaw table and on capture circles, interleaved."""
+    jaws, circles = Table(), Table(pockets="circles")
+    shots = one_ball_shots(jaws, rng, n)
+    medians = {"jaws": [], "circles": []}
+    for _ in range(repeats):  # alternate, so load changes hit both alike
+        for name, table in (("jaws", jaws), ("circles", circles)):
+            times, _ = time_shots(table, shots, 1)
+            medians[name].append(np.median(times))
+    jaw_us = np.median(medians["jaws"]) * 1e6
+    circle_us = np.median(medians["circles"]) * 1e6
+    return (
+        f"- one-ball shots, jaws against capture circles (the same {n} shots, alternating, "
+        f"{repeats} passes): {jaw_us:.1f} us against {circle_us:.1f} us per shot, ratio "
+        f"{jaw_us / circle_us:.2f} (target <= 1.3); load {os.getloadavg()[0]:.1f}"
+    )
+
+
 def cold_start(cache_dir: str) -> float:
     """Seconds from spawning a fresh interpreter to its first shot done."""
     code = (
@@ -114,7 +132,13 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=5)
     parser.add_argument("--cold", type=int, default=3, help="cold starts of each kind")
     parser.add_argument("--out", type=Path, default=Path("results/simulator_speed.md"))
+    parser.add_argument(
+        "--jaws-only", action="store_true", help="only the jaws against capture circles line"
+    )
     args = parser.parse_args()
+    if args.jaws_only:
+        print(jaws_against_circles(np.random.default_rng(1), args.shots, args.repeats))
+        return
     table = Table()
     rng = np.random.default_rng(0)
     suites: dict[str, Callable[[], list[Shot]]] = {
@@ -144,6 +168,8 @@ def main() -> None:
         )
         print(rows[-1], flush=True)
 
+    batched.append(jaws_against_circles(np.random.default_rng(1), args.shots, args.repeats))
+    print(batched[-1], flush=True)
     with tempfile.TemporaryDirectory() as cache:
         empty = []
         for _ in range(args.cold):

@@ -80,7 +80,7 @@ def _warm_up() -> dict[str, float]:
     """First-call costs (numba compile or cache load), measured before anything is timed."""
     from pool_env import Table, shoot
 
-    table = Table()
+    table = Table(pockets="circles")  # the pocket model the fixed-step engine shares
     pos = np.array([[0.5, 0.6], [1.5, 0.6]])
     t0 = time.perf_counter()
     shoot(table, pos, 0.0, 1.0)

@@ -44,9 +44,9 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     | Num | Action | -1 maps to | +1 maps to | default range |
     |-----|--------|------------|------------|---------------|
     | 0   | aim    | ``aim_range[0]`` | ``aim_range[1]`` | by ``aim``, below |
-    | 1   | speed  | ``speed_range[0]`` | ``speed_range[1]`` | 0.5 .. 10 m/s |
+    | 1   | speed  | ``speed_range[0]`` | ``speed_range[1]`` | 0.45 .. 4.5 m/s |
 
-    The speed is the cue ball's, from a soft touch (it rolls ~1.3 m) to a hard break. The
+    The speed is the cue ball's, from a slow shot to a power shot (the speeds real play uses). The
     aim is relative to the nearest object ball on the table, or absolute, by ``aim``:
 
     * ``"cut"`` (default): where the cue ball meets the nearest object ball, as the offset
@@ -127,7 +127,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     | ``n_balls`` | int or None | scene's | object balls (``"random"``: 1..15, default 3) |
     | ``aim`` | str | ``"cut"`` | ``"cut"``, ``"relative"`` or ``"absolute"`` |
     | ``aim_range`` | (float, float) | by ``aim`` | what action[0] = -1 and +1 map to |
-    | ``speed_range`` | (float, float) | (0.5, 10.0) | m/s for action -1 and +1 |
+    | ``speed_range`` | (float, float) | (0.45, 4.5) | m/s for action -1 and +1 |
     | ``noise`` | (float, float) or None | None | execution noise sigmas (rad, m/s) |
     | ``end_on_miss`` | bool | False | a shot that pots nothing ends the episode |
     | ``max_shots`` | int or None | None | truncate the raw env after this many shots |
@@ -173,9 +173,9 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ``last_shot_balls``).
 
     Physics note: rolling resistance is low (``mu_roll = 0.01``: a ball at 3 m/s rolls 46 m
-    if nothing stops it) and pockets capture any ball whose centre enters them, so a hard
-    shot sends the cue ball around the table until it drops: a random policy scratches on
-    about half its shots, and good play uses moderate speeds.
+    if nothing stops it), but the pockets have jaws: a ball drops only through a pocket's
+    opening at an angle the jaws accept (about 8.5 cm straight into a side pocket, nothing
+    beyond ~70 degrees), so aiming and speed control are what pot balls.
 
     ## Version History
 

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.sim.pockets import PocketJaws
 from pool_env.sim.result import ShotResult
 from pool_env.sim.table import Table
 
@@ -132,9 +133,62 @@ class Renderer:
         hx = self.to_pixels(np.array([t.length / 4.0, 0.0]))[0]
         img[round(r0) : round(r1), int(hx)] = (CLOTH * 0.8 + 255 * 0.2).astype(np.uint8)
         self._disc(img, np.array([0.75 * t.length, t.width / 2.0]), 1.5 / self.scale, SIGHT)
-        for px, py, pr in t.pockets:
-            self._disc(img, np.array([px, py]), pr, POCKET)
+        if t.jaws:
+            for jaw in t.jaws:
+                self._draw_jaw(img, jaw)
+        else:
+            for px, py, pr in t.pockets:
+                self._disc(img, np.array([px, py]), pr, POCKET)
         return img
+
+    def _draw_jaw(self, img: Frame, jaw: PocketJaws) -> None:
+        """Draw one real pocket opening.
+
+        The throat between the facings is cloth up to the fall line (the shelf) and the hole
+        behind it; the round points are cushion.
+        """
+        corners = np.array(
+            [jaw.points[0], jaw.facings[0][1], jaw.facings[1][1], jaw.points[1]]
+        )  # a convex quadrilateral: the mouth, the two facings and their inner ends
+        # The rails stop at the points: cloth across the throat, then the hole behind the
+        # fall line.
+        self._fill(img, corners, CLOTH, None)
+        self._fill(img, corners, POCKET, (jaw.fall_line[0], jaw.fall_normal))
+        for side in range(2):
+            self._disc(img, jaw.tip_centres[side], jaw.tip_radius + 0.5 / self.scale, CUSHION)
+
+    def _fill(
+        self,
+        img: Frame,
+        polygon: NDArray[np.float64],
+        colour: NDArray[Any],
+        behind: tuple[NDArray[np.float64], NDArray[np.float64]] | None,
+    ) -> None:
+        """Paint the pixels inside a convex ``polygon`` (m).
+
+        With ``behind = (point, normal)``, only those behind that line (``(p - point) .
+        normal <= 0``).
+        """
+        px = self.to_pixels(polygon)
+        c0, c1 = max(int(px[:, 0].min()) - 1, 0), min(int(px[:, 0].max()) + 2, img.shape[1])
+        r0, r1 = max(int(px[:, 1].min()) - 1, 0), min(int(px[:, 1].max()) + 2, img.shape[0])
+        if r0 >= r1 or c0 >= c1:
+            return
+        rows, cols = np.mgrid[r0:r1, c0:c1]
+        x = (cols + 0.5 - self._ox) / self.scale
+        y = (self.size[1] - (rows + 0.5) - self._oy) / self.scale
+        inside = np.ones(x.shape, dtype=bool)
+        centre = polygon.mean(axis=0)
+        for k in range(len(polygon)):
+            a, b = polygon[k], polygon[(k + 1) % len(polygon)]
+            normal = np.array([a[1] - b[1], b[0] - a[0]])
+            if normal @ (centre - a) < 0:
+                normal = -normal  # pointing inside
+            inside &= (x - a[0]) * normal[0] + (y - a[1]) * normal[1] >= 0
+        if behind is not None:
+            point, normal = behind
+            inside &= (x - point[0]) * normal[0] + (y - point[1]) * normal[1] <= 0
+        img[r0:r1, c0:c1][inside] = colour
 
     def _disc(
         self, img: Frame, centre: NDArray[np.float64], radius: float, colour: NDArray[Any]

@@ -34,7 +34,7 @@ class ReferenceEnv:
 
     def __init__(self, max_episode_steps: int, scene: str = "random", n_balls: int | None = None,
                  aim: str = "cut", noise: tuple[float, float] | None = None,
-                 end_on_miss: bool = False, speed_range: tuple[float, float] = (0.5, 10.0),
+                 end_on_miss: bool = False, speed_range: tuple[float, float] = (0.45, 4.5),
                  reward_shaping: float = 0.0, reward_no_contact: float = 0.0) -> None:  # fmt: skip
         self.table = Table()
         self.scene = scene
@@ -114,7 +114,9 @@ class ReferenceEnv:
         for j in range(1, self.n + 1):
             if self.on[j]:
                 x, y = self.pos[j]
-                total += min(math.hypot(x - px, y - py) for px, py, _ in pockets)
+                total += min(
+                    math.sqrt((x - px) * (x - px) + (y - py) * (y - py)) for px, py, _ in pockets
+                )
         return -total / math.hypot(self.table.length, self.table.width)
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:

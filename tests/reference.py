@@ -16,6 +16,18 @@ Model (SI units):
 * Cushions: the rails are the centre lines ``x = R`` (0), ``x = L-R`` (1), ``y = R`` (2),
   ``y = W-R`` (3); only a ball moving into a rail bounces, ``v_n -> -e_cushion v_n``.
 * Pockets: capture circles; a ball is potted where its centre enters the circle.
+* Jaw tables (``table.jaws`` not empty): the rails are the finite segments
+  ``table.rails``; each pocket has two straight facings (``"jaw"`` events, ``j = 2 k +
+  side``) and two round points (``"point"``), and a fall line. A ball touches a segment
+  (rail or facing) when its centre is ``R`` from the segment's line on the table side with
+  the foot of the perpendicular inside the segment, and a point when its centre is
+  ``R + tip_radius`` from the tip centre; both reflect the normal component (the
+  segment's normal, or the line from the tip centre) with ``e_cushion`` (rails) or
+  ``e_jaw``. A ball is potted (``"pocket"``) when its centre reaches the fall line (the
+  segment across the throat between the two facings). Every
+  piece is checked for every ball (no culling): these are read from the table's
+  documented geometry (points, rail ends, tip centres, facings, fall lines) and offset by
+  ``R`` here, at 50 digits.
 
 Departures from the printed seed document (``seed/000_c5d533347adfb131.txt``), as required
 by PHYSICS.md:
@@ -102,7 +114,14 @@ TIE_TOLERANCE = "1e-30"
 INPUT_TOLERANCE = 1e-9
 
 #: Processing order of event kinds at equal times.
-KIND_ORDER: dict[str, int] = {"pocket": 0, "ball": 1, "cushion": 2, "stop": 3}
+KIND_ORDER: dict[str, int] = {
+    "pocket": 0,
+    "ball": 1,
+    "cushion": 2,
+    "stop": 3,
+    "jaw": 4,
+    "point": 5,
+}
 
 Vec = tuple[mpf, mpf]
 Event = tuple[mpf, str, int, int]
@@ -472,7 +491,19 @@ class _Simulator:
         self.decel = mpf(table.mu_roll) * mpf(table.g)
         self.e_ball = mpf(table.e_ball)
         self.e_cushion = mpf(table.e_cushion)
-        self.pockets = [tuple(mpf(float(x)) for x in row) for row in table.pockets]
+        self.e_jaw = mpf(table.e_jaw)
+        self.jaw_table = len(table.jaws) > 0
+        # Capture circles pot only on tables without jaws (on a jaw table they summarise).
+        circles = [] if self.jaw_table else table.pockets
+        self.pockets = [tuple(mpf(float(x)) for x in row) for row in circles]
+        # Finite segments (a ball-centre line R from the nose, on the free side):
+        # (kind, j, start, unit direction, free-side unit normal, length, restitution).
+        self.segments: list[tuple[str, int, Vec, Vec, Vec, mpf, mpf]] = []
+        self.tips: list[tuple[int, Vec, mpf]] = []  # (j, centre, contact radius)
+        # (pocket, middle of the fall line, unit normal to the table, half its length)
+        self.falls: list[tuple[int, Vec, Vec, mpf]] = []
+        if self.jaw_table:
+            self._build_jaws(table)
         # (rail index, axis, coordinate of the centre line, outward direction)
         self.rails = [
             (0, 0, self.R, -1),
@@ -489,6 +520,105 @@ class _Simulator:
             _anchor(ball, zero, p, v, self.decel)
             self.balls.append(ball)
         self.captures: list[tuple[mpf, Vec] | None] = [None] * len(self.balls)
+
+    def _build_jaws(self, table: Table) -> None:
+        """Rails, facings, points and fall lines of a jaw table, offset by ``R``."""
+        centre = (self.L / 2, self.W / 2)
+        for a, b in table.rails:
+            start = (mpf(float(a[0])), mpf(float(a[1])))
+            end = (mpf(float(b[0])), mpf(float(b[1])))
+            # Rail lines as the kernel numbers them: 0 x = R, 1 x = L - R, 2 y = R, 3 y = W - R.
+            axis = 1 if start[1] == end[1] else 0
+            index = (2 * axis) + (0 if start[axis] == 0 else 1)
+            # The free side of a rail faces the middle of the table.
+            self._add_segment("cushion", index, start, end, centre, self.e_cushion)
+        for k, jaw in enumerate(table.jaws):
+            pts = [(mpf(float(p[0])), mpf(float(p[1]))) for p in jaw.points]
+            for side in range(2):
+                a, b = jaw.facings[side]
+                start = (mpf(float(a[0])), mpf(float(a[1])))
+                end = (mpf(float(b[0])), mpf(float(b[1])))
+                # The free side of a facing faces the other point, across the throat.
+                self._add_segment("jaw", 2 * k + side, start, end, pts[1 - side], self.e_jaw)
+                c = jaw.tip_centres[side]
+                tip = (mpf(float(c[0])), mpf(float(c[1])))
+                self.tips.append((2 * k + side, tip, mpf(float(jaw.tip_radius)) + self.R))
+            f0, f1 = jaw.fall_line
+            end0 = (mpf(float(f0[0])), mpf(float(f0[1])))
+            end1 = (mpf(float(f1[0])), mpf(float(f1[1])))
+            point = ((end0[0] + end1[0]) / 2, (end0[1] + end1[1]) / 2)  # the middle
+            span = _sub(end1, end0)
+            norm = mp.sqrt(_dot(span, span))
+            normal = (-span[1] / norm, span[0] / norm)
+            # Towards the table: the side of the mouth's points.
+            if _dot(_sub(pts[0], point), normal) < 0:
+                normal = (-normal[0], -normal[1])
+            self.falls.append((k, point, normal, norm / 2))
+
+    def _add_segment(self, kind: str, j: int, start: Vec, end: Vec, free_side: Vec, e: mpf) -> None:
+        span = _sub(end, start)
+        length = mp.sqrt(_dot(span, span))
+        d = (span[0] / length, span[1] / length)
+        n = (-d[1], d[0])
+        if _dot(_sub(free_side, start), n) < 0:
+            n = (-n[0], -n[1])
+        self.segments.append((kind, j, _axpy(self.R, n, start), d, n, length, e))
+
+    def _jaw_events(self, i: int, t_now: mpf, p: Vec, w: mpf, u: Vec) -> list[_Candidate]:
+        """Rail, facing, point and fall-line candidates of a moving ball on a jaw table."""
+        out = []
+        s_rem = w * w / (2 * self.decel)
+        for kind, j, a, d, n, length, _ in self.segments:
+            un = _dot(u, n)
+            if un >= 0:
+                continue  # moving away from (or along) the segment
+            # On or a hair beyond the line while moving in: contact now (the clamp).
+            s = max(_dot(_sub(p, a), n) / -un, mpf(0))
+            along = _dot(_sub(_axpy(s, u, p), a), d)
+            if 0 <= along <= length and s < s_rem:
+                out.append(_Candidate(_time_for_distance(t_now, w, s, self.decel), kind, i, j))
+        for j, c, rho in self.tips:
+            q = _sub(p, c)
+            b = _dot(u, q)
+            if b >= 0:
+                continue
+            cc = _dot(q, q) - rho * rho
+            if cc <= 0:
+                s = mpf(0)
+            else:
+                disc = b * b - cc
+                if disc <= 0:
+                    continue  # a miss or an exact tangential graze (no impulse)
+                s = cc / (-b + mp.sqrt(disc))
+            if s < s_rem:
+                out.append(_Candidate(_time_for_distance(t_now, w, s, self.decel), "point", i, j))
+        for k, f, n, length in self.falls:
+            delta = _dot(_sub(p, f), n)
+            if delta <= 0:
+                s = mpf(0)
+            else:
+                un = _dot(u, n)
+                if un >= 0:
+                    continue
+                s = delta / -un
+            # The fall line is the segment across the throat, between the two facings.
+            along = _dot(_sub(_axpy(s, u, p), f), (n[1], -n[0]))
+            if abs(along) <= length and s <= s_rem:
+                out.append(_Candidate(_time_for_distance(t_now, w, s, self.decel), "pocket", i, k))
+        return out
+
+    def _normal_of(self, kind: str, j: int, p: Vec) -> tuple[Vec, mpf]:
+        """Free-side unit normal and restitution of the cushion piece ``(kind, j)`` at ``p``."""
+        if kind == "point":
+            for jj, c, _ in self.tips:
+                if jj == j:
+                    q = _sub(p, c)
+                    norm = mp.sqrt(_dot(q, q))
+                    return (q[0] / norm, q[1] / norm), self.e_jaw
+        for kk, jj, _, _, n, _, e in self.segments:
+            if kk == kind and jj == j:
+                return n, e
+        raise ReferenceSimulationError(f"no cushion piece {kind} {j}")
 
     # -- state -------------------------------------------------------------------------
 
@@ -514,6 +644,8 @@ class _Simulator:
         p, w, u = self.state(i, t_now)
         if w <= 0:
             return out
+        if self.jaw_table:
+            return out + self._jaw_events(i, t_now, p, w, u)
         s_rem = w * w / (2 * self.decel)
         for index, axis, line, outward in self.rails:
             # Only a ball moving into the rail can hit it (a ball rolling along it cannot).
@@ -616,6 +748,14 @@ class _Simulator:
         ball = self.balls[i]
         if ev.kind == "stop":
             _anchor(ball, t, ball.rest, (mpf(0), mpf(0)), self.decel)
+        elif ev.kind in ("jaw", "point") or (ev.kind == "cushion" and self.jaw_table):
+            p, w, u = self.state(i, t)
+            n, e = self._normal_of(ev.kind, ev.j, p)
+            v = (w * u[0], w * u[1])
+            vn = _dot(v, n)
+            if vn < 0:  # only a velocity into the cushion is reflected
+                v = _axpy(-(1 + e) * vn, n, v)
+            _anchor(ball, t, p, v, self.decel)
         elif ev.kind == "cushion":
             p, w, u = self.state(i, t)
             v = [w * u[0], w * u[1]]
@@ -767,11 +907,19 @@ def reference_simulate(
         v_mp = [(mpf(x), mpf(y)) for x, y in vel]
         r = mpf(table.ball_radius)
         tol = mpf(INPUT_TOLERANCE)
+        # A jaw table's throats lie beyond the rail lines, within a mouth's width of the
+        # middle of the mouth (a coarse check: the oracle is not a validator).
+        mouths = [
+            ((mpf(float(j.points[0][0])) + mpf(float(j.points[1][0]))) / 2,
+             (mpf(float(j.points[0][1])) + mpf(float(j.points[1][1]))) / 2,
+             mpf(float(math.dist(j.points[0], j.points[1]))))
+            for j in table.jaws
+        ]  # fmt: skip
         for k, (x, y) in enumerate(p_mp):
             if not (
                 r - tol <= x <= mpf(table.length) - r + tol
                 and r - tol <= y <= mpf(table.width) - r + tol
-            ):
+            ) and not any((x - mx) ** 2 + (y - my) ** 2 < w * w for mx, my, w in mouths):
                 raise ValueError(f"ball {k} at ({float(x)}, {float(y)}) is outside the rails")
         for i in range(len(p_mp)):
             for j in range(i + 1, len(p_mp)):

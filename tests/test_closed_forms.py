@@ -152,7 +152,8 @@ def test_45_degrees_into_a_square_corner(corner) -> None:
 
 
 @pytest.mark.parametrize("k", range(6))
-def test_straight_pot_into_every_pocket(table: Table, k: int) -> None:
+def test_straight_pot_into_every_pocket(k: int) -> None:
+    table = Table(pockets="circles")
     px, py, radius = table.pockets[k]
     centre = np.array([table.length / 2, table.width / 2 + 0.1])
     direction = np.array([px, py]) - centre
@@ -164,8 +165,9 @@ def test_straight_pot_into_every_pocket(table: Table, k: int) -> None:
 
 
 @pytest.mark.parametrize("side", [-1.0, 1.0])
-def test_just_missing_a_side_pocket(table: Table, side: float) -> None:
+def test_just_missing_a_side_pocket(side: float) -> None:
     """Rolling parallel to the rail past the side pocket: captured iff within its circle."""
+    table = Table(pockets="circles")
     _, py, radius = table.pockets[1]
     lane = py + radius + side * 1e-9  # centre line 1 nm outside (+) or inside (-) the circle
     result = shoot(table, [[0.6, lane]], 0.0, 3.0)

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 
 import pool_env
 from pool_env import PoolEnv, Table, check_layout
+from pool_env.game.config import DEFAULT_SPEED_RANGE
 from pool_env.registration import ENV_IDS
 from pool_env.sim.layouts import head_spot
 
@@ -23,11 +24,15 @@ HEAD = head_spot(TABLE)
 # Object ball 0.42 m from the bottom-left corner pocket, cue ball behind it on the diagonal.
 STRAIGHT_POT = np.array([[0.6, 0.6], [0.3, 0.3]])
 TO_CORNER = -0.75  # absolute aim: action -0.75 is -135 degrees, down the diagonal
-FIRM = -0.8  # speed action: 0.5 + 0.1 * 9.5 = 1.45 m/s
 
 
-def _speed_action(speed: float, low: float = 0.5, high: float = 10.0) -> float:
+def _speed_action(
+    speed: float, low: float = DEFAULT_SPEED_RANGE[0], high: float = DEFAULT_SPEED_RANGE[1]
+) -> float:
     return 2.0 * (speed - low) / (high - low) - 1.0
+
+
+FIRM = _speed_action(1.45)  # the speed action of 1.45 m/s
 
 
 def _env(**kwargs: object) -> PoolEnv:
@@ -83,9 +88,15 @@ def test_a_scratch_with_the_head_spot_taken_uses_the_nearest_free_point() -> Non
 
 def test_a_pot_and_a_scratch_in_one_shot_add_up() -> None:
     # A slight cut at 6 m/s: the object ball drops, the deflected cue ball finds a pocket too.
-    env = _env(scene=np.array([[0.6, 0.6], [0.3, 0.3], [2.2, 1.0]]), aim="absolute")
+    # The scene was laid out for the capture-circle table and the old speed range.
+    env = _env(
+        scene=np.array([[0.6, 0.6], [0.3, 0.3], [2.2, 1.0]]),
+        aim="absolute",
+        table={"pockets": "circles", "e_cushion": 0.85},
+        speed_range=(0.5, 10.0),
+    )
     env.reset(seed=0)
-    _, reward, terminated, _, info = env.step(np.array([-0.745, _speed_action(6.0)]))
+    _, reward, terminated, _, info = env.step(np.array([-0.745, _speed_action(6.0, 0.5, 10.0)]))
     assert info["potted"] == (1,)
     assert info["scratch"]
     assert reward == 0.0
@@ -339,7 +350,7 @@ def test_unwrapped_exposes_what_agents_need() -> None:
     assert raw.cue == 0
     assert raw.aim == "cut"
     assert raw.aim_range == (-1.0, 1.0)
-    assert raw.speed_range == (0.5, 10.0)
+    assert raw.speed_range == (0.45, 4.5)
     assert raw.n_object_balls == 1
     assert raw.positions.shape == (2, 2)
     raw.positions[0] = 0.0  # a copy: the state cannot be changed through it

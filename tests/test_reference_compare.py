@@ -1,7 +1,9 @@
 """The compiled simulator against the independent 50-digit reference (tests/reference.py).
 
-Random scenes of 2-4 balls with 1-3 ball-ball impacts (plus cushions, pockets and stops):
-pots and the event sequence must agree exactly, and final positions within 1e-9 m.
+Random scenes of 2-4 balls with 1-3 ball-ball impacts (plus cushions, pockets and stops) on
+jaw, capture-circle and pocketless tables, and random jaw-table scenes with 1-3 impacts that
+hit facings and points: pots and the event sequence must agree exactly, and final
+positions within 1e-9 m.
 
 Pool is chaotic: each impact multiplies a position error by up to ~distance / R. A few
 scenes with many cushions between their impacts amplify a one-ulp change of the *input* to
@@ -31,7 +33,7 @@ def _scene(seed: int) -> tuple[Table, np.ndarray, np.ndarray, np.ndarray] | None
     table = Table(
         e_ball=float(rng.choice([1.0, 0.95, rng.uniform(0.3, 1.0)])),
         e_cushion=float(rng.choice([1.0, 0.85, rng.uniform(0.3, 1.0)])),
-        pockets=str(rng.choice(["standard", "none"])),
+        pockets=str(rng.choice(["jaws", "circles", "none"])),
     )
     n = int(rng.integers(2, 5))
     pos = random_layout(table, n, rng, min_gap=1e-3)
@@ -86,6 +88,61 @@ def test_matches_reference(scene) -> None:
         assert error < TOLERANCE
     else:  # long chains of cushions between impacts: judged by backward stability
         assert error < max(TOLERANCE, ULPS_OF_INPUT * _sensitivity(table, pos, vel, masses))
+
+
+IMPACT_KINDS = ("ball", "cushion", "jaw", "point")
+
+
+def _jaw_scene(seed: int) -> tuple[Table, np.ndarray, np.ndarray] | None:
+    """A random jaw-table scene with 1-3 impacts, one at least on a facing or point.
+
+    Impacts are ball, rail, facing and point contacts; None if this seed gives another count.
+    """
+    rng = np.random.default_rng(seed)
+    e_cushion = float(rng.choice([0.7, 1.0, rng.uniform(0.3, 1.0)]))
+    table = Table(
+        e_ball=float(rng.choice([1.0, 0.95, rng.uniform(0.3, 1.0)])),
+        e_cushion=e_cushion,
+        e_jaw=float(rng.choice([e_cushion, rng.uniform(0.0, 1.0)])),
+    )
+    n = int(rng.integers(1, 4))
+    pos = random_layout(table, n, rng, min_gap=1e-3)
+    # Send one ball at a pocket's mouth, off its centre, so that facings and points are hit.
+    target = table.jaws[int(rng.integers(6))].points.mean(axis=0) + rng.normal(0, 0.04, 2)
+    mover = int(rng.integers(n))
+    aim = np.arctan2(*(target - pos[mover])[::-1])
+    vel = np.zeros((n, 2))
+    vel[mover] = rng.uniform(0.3, 4.0) * np.array([np.cos(aim), np.sin(aim)])
+    kinds = [e.kind for e in simulate(table, pos, vel).events]
+    impacts = sum(k in IMPACT_KINDS for k in kinds)
+    if not (1 <= impacts <= 3 and ("jaw" in kinds or "point" in kinds)):
+        return None
+    return table, pos, vel
+
+
+JAW_SCENES = [s for s in (_jaw_scene(seed) for seed in range(600)) if s is not None][:100]
+
+
+def test_enough_jaw_scenes() -> None:
+    assert len(JAW_SCENES) >= 80
+    kinds = {e.kind for table, pos, vel in JAW_SCENES for e in simulate(table, pos, vel).events}
+    assert {"jaw", "point", "pocket", "ball"} <= kinds
+
+
+@pytest.mark.parametrize("scene", JAW_SCENES, ids=lambda s: f"{len(s[1])}balls")
+def test_jaw_scenes_match_reference(scene) -> None:
+    """Facings, points and fall lines against the reference: events exact, 1e-9 m."""
+    table, pos, vel = scene
+    ours = simulate(table, pos, vel)
+    ref = reference_simulate(table, pos, vel, max_events=400)
+    assert ours.pocketed.tolist() == ref.pocketed
+    assert [(k, i, j) for _, k, i, j in ref.events] == [(e.kind, e.i, e.j) for e in ours.events]
+    with mp.workdps(50):
+        error = max(
+            float(mp.sqrt((mp.mpf(float(x)) - rx) ** 2 + (mp.mpf(float(y)) - ry) ** 2))
+            for (x, y), (rx, ry) in zip(ours.positions, ref.positions, strict=True)
+        )
+    assert error < TOLERANCE
 
 
 def test_most_scenes_meet_the_absolute_tolerance() -> None:

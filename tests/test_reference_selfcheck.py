@@ -358,7 +358,7 @@ def test_ball_touching_rail_moving_into_it_bounces_now() -> None:
 
 @pytest.mark.parametrize("k", range(6))
 def test_straight_shot_into_each_pocket(k: int) -> None:
-    table = Table()
+    table = Table(pockets="circles")
     cx, cy, cr = (float(x) for x in table.pockets[k])
     # Corners from the table centre; sides straight across from the centre line.
     p0 = (L / 2, W / 2) if k in (0, 2, 3, 5) else (L / 2, W / 2 + (0.3 if k == 1 else -0.3))
@@ -380,7 +380,7 @@ def test_straight_shot_into_each_pocket(k: int) -> None:
 @pytest.mark.parametrize(("offset", "potted"), [(-1e-9, True), (1e-9, False)])
 def test_side_pocket_mouth_edge(offset: float, potted: bool) -> None:
     """A ball rolling straight at the rail is potted exactly inside the side-pocket mouth."""
-    table = Table()
+    table = Table(pockets="circles")
     half_mouth = 2.5 * 0.0254  # side mouth 5 in (WPA), see pool_env.sim.table
     res = reference_simulate(table, [(L / 2 + half_mouth + offset, 0.4)], [(0.0, -1.5)])
     if potted:
@@ -554,7 +554,7 @@ def test_bad_input_is_rejected() -> None:
 
 
 def test_three_ball_three_collision_scene_is_fast() -> None:
-    table = Table()
+    table = Table(e_cushion=0.85, pockets="circles")  # the table it was made for
     pos = [(0.6, 0.5), (1.2, 0.6), (1.6, 0.7)]
     vel = [(1.5, 0.2), (-0.3, 0.1), (-0.8, -0.3)]
     t0 = time.perf_counter()

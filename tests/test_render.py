@@ -301,3 +301,25 @@ def test_headless_check_env_prints_no_display_error() -> None:
     output = done.stdout + done.stderr
     assert "XDG_RUNTIME_DIR" not in output
     assert "WARN" not in output
+
+
+def test_the_table_shows_the_real_pocket_openings() -> None:
+    """Jaws: cloth in the mouth, the hole behind the fall line, cushion beside the points.
+
+    Capture circles: the discs.
+    """
+    from pool_env.render import CLOTH, CUSHION, POCKET
+
+    renderer = Renderer(TABLE, width=1200)
+    side = TABLE.jaws[1]
+    behind = side.fall_line.mean(axis=0) - 0.01 * side.fall_normal
+    mouth = side.points.mean(axis=0) + 0.001 * side.fall_normal
+    beside = side.points[0] + np.array([-0.03, -0.01])  # under the rail, left of the point
+    assert np.array_equal(_pixel(renderer, renderer.background, behind), POCKET)
+    assert np.array_equal(_pixel(renderer, renderer.background, mouth), CLOTH)
+    assert np.array_equal(_pixel(renderer, renderer.background, beside), CUSHION)
+    corner = TABLE.jaws[0]
+    assert np.array_equal(_pixel(renderer, renderer.background, corner.fall_line.mean(axis=0)
+                                 - 0.01 * corner.fall_normal), POCKET)  # fmt: skip
+    circles = Renderer(Table(pockets="circles"), width=1200)
+    assert np.array_equal(_pixel(circles, circles.background, mouth - [0.0, 0.01]), POCKET)

@@ -174,7 +174,7 @@ def test_fixed_and_callable_scenes() -> None:
     [
         ([[0.5, 0.5], [0.51, 0.5]], "overlap"),
         ([[0.5, 0.5], [3.0, 0.5]], "off the table"),
-        ([[0.5, 0.5], [0.04, 0.04]], "pocket"),
+        ([[0.5, 0.5], [0.0, 0.0]], "pocket"),
         ([[0.5, 0.5]], "at least one object ball"),
     ],
 )

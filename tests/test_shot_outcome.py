@@ -15,6 +15,7 @@ import pytest
 from pool_env import Table, shoot, simulate
 from pool_env.sim.batch import simulate_batch
 from pool_env.sim.layouts import break_scene
+from pool_env.sim.result import CUSHION_KINDS
 from pool_env.testing.scenes_random import random_layout
 from tests.helpers_sim import speed_after
 
@@ -139,7 +140,7 @@ def _replay(result, n: int) -> tuple[list[int], list[int], list[int]]:
             for a, b in ((event.i, event.j), (event.j, event.i)):
                 if first_hit[a] < 0:
                     first_hit[a] = b
-        elif event.kind == "cushion" and contact:
+        elif event.kind in CUSHION_KINDS and contact:  # rails, jaw facings and points
             cushions[event.i] += 1
         elif event.kind == "pocket":
             order[event.i] = dropped

@@ -68,7 +68,11 @@ def test_bad_table_parameters(kwargs, message) -> None:
         ([[1.0, 2.0]], None, "off the table"),
         ([[float("nan"), 0.6]], None, "non-finite position"),
         ([[1.0, 0.6]], [[float("inf"), 0.0]], "non-finite velocity"),
-        ([[0.05, 0.05]], None, "inside pocket 0"),
+        ([[0.0, 0.0]], None, "behind pocket 0's fall line"),
+        ([[0.03, -0.012]], None, "inside a jaw .* of pocket 0"),
+        ([[1.27, -0.01]], None, "behind pocket 1's fall line"),
+        ([[1.22, -0.004]], None, "inside a jaw .* of pocket 1"),
+        ([[1.0, 0.02]], None, "off the table"),
         ([1.0, 0.6], None, "shape"),
         ([[1.0, 0.6, 0.0]], None, "shape"),
         ([["a", 0.6]], None, "numbers"),
@@ -79,6 +83,11 @@ def test_bad_scenes(table: Table, positions, velocities, message) -> None:
     velocities = np.zeros((len(positions), 2)) if velocities is None else velocities
     with pytest.raises(ValueError, match=message):
         simulate(table, positions, velocities)
+
+
+def test_inside_a_capture_circle_is_rejected() -> None:
+    with pytest.raises(ValueError, match="inside pocket 0"):
+        simulate(Table(pockets="circles"), [[0.05, 0.05]], [[0.0, 0.0]])
 
 
 def test_bad_masses_and_caps(table: Table) -> None:
@@ -123,7 +132,7 @@ def test_result_contract(table: Table) -> None:
     assert result.pocketed.shape == (10,)
     times = [e.time for e in result.events]
     assert times == sorted(times)
-    assert {e.kind for e in result.events} <= {"ball", "cushion", "pocket", "stop"}
+    assert {e.kind for e in result.events} <= {"ball", "cushion", "pocket", "stop", "jaw", "point"}
     assert result.duration == times[-1]
     np.testing.assert_array_equal(result.positions_at(0.0), positions)
     # positions_at(duration) is the final state, bit for bit.

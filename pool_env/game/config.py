@@ -43,8 +43,10 @@ DEFAULT_AIM_RANGE: dict[str, tuple[float, float]] = {
     "cut": (-1.0, 1.0),
 }
 
-#: Default cue speed range (m/s): from a soft touch (rolls ~1.3 m) to a hard break.
-DEFAULT_SPEED_RANGE = (0.5, 10.0)
+#: Default cue speed range (m/s): the shots real play uses, from Dr. Dave Alciatore's
+#: "typical speeds" FAQ (slow 0.45-0.89, medium 0.89-1.9, fast 1.9-3.2, power 3.2-4.5 m/s;
+#: research/REALISM.md). A soft touch rolls ~1 m, a power shot ~100 m if nothing stops it.
+DEFAULT_SPEED_RANGE = (0.45, 4.5)
 
 #: The cue ball's row in every layout (the rules' constant).
 CUE = RULES_CUE

@@ -100,7 +100,7 @@ def simulate_batch(
     if parallel is None:
         parallel = n_tables >= PARALLEL_FROM
     run = _batch.run_batch_parallel if parallel else _batch.run_batch
-    out = run(pos, vel, mass, on, table.params, table.pockets, max_events)
+    out = run(pos, vel, mass, on, table.params, table.pocket_geometry, max_events)
     error = out.error
     bad = np.flatnonzero(error[:, 0] != loop.OK)
     if bad.size:

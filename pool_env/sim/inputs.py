@@ -180,7 +180,7 @@ def raise_invalid(
     Args:
         code: The code (``loop.OK`` raises nothing).
         i: The ball the code names.
-        j: The other ball (overlaps) or the pocket (``IN_POCKET``).
+        j: The other ball (overlaps) or the pocket (``IN_POCKET``, ``IN_JAW``, ``BEHIND_LINE``).
         table: The table.
         positions: The validated positions.
         velocities: The validated velocities.
@@ -200,9 +200,18 @@ def raise_invalid(
         )
     if code == loop.OFF_TABLE:
         r = table.ball_radius
+        throats = " or in a pocket's throat" if table.pocket_model == "jaws" else ""
         raise ValueError(
             f"ball {i} at {positions[i].tolist()} is off the table: centres must lie in "
-            f"[{r}, {table.length - r}] x [{r}, {table.width - r}]"
+            f"[{r}, {table.length - r}] x [{r}, {table.width - r}]{throats}"
+        )
+    if code == loop.IN_JAW:
+        raise ValueError(
+            f"ball {i} at {positions[i].tolist()} is inside a jaw (facing or point) of pocket {j}"
+        )
+    if code == loop.BEHIND_LINE:
+        raise ValueError(
+            f"ball {i} at {positions[i].tolist()} is on or behind pocket {j}'s fall line"
         )
     if code == loop.IN_POCKET:
         raise ValueError(

@@ -13,7 +13,7 @@ from pool_env.sim.kernels.loop import ShotOutput
 from pool_env.sim.kernels.timeline import positions_at as _positions_at
 from pool_env.sim.kernels.timeline import positions_at_many as _positions_at_many
 
-EventKind = Literal["pocket", "ball", "cushion", "stop"]
+EventKind = Literal["pocket", "ball", "cushion", "stop", "jaw", "point"]
 
 # Shared read-only empty logs of unrecorded results (no allocation per shot).
 _EMPTY_F = np.empty(0, dtype=np.float64)
@@ -25,7 +25,9 @@ for _array in (_EMPTY_F, _EMPTY_I, _EMPTY_KIND, _EMPTY_STATE, _EMPTY_BOOL):
     _array.setflags(write=False)
 
 #: Event kind codes of the compiled loop, in tie-breaking order.
-KIND_NAMES: tuple[EventKind, ...] = ("pocket", "ball", "cushion", "stop")
+KIND_NAMES: tuple[EventKind, ...] = ("pocket", "ball", "cushion", "stop", "jaw", "point")
+#: Kinds that are cushion contacts for the rules (a rail, a jaw facing, a jaw point).
+CUSHION_KINDS: tuple[EventKind, ...] = ("cushion", "jaw", "point")
 
 
 @dataclass(frozen=True, slots=True)
@@ -36,8 +38,13 @@ class Event:
         time: Seconds since the shot began.
         kind: ``"ball"`` (impact of balls ``i`` and ``j``, ``i < j``), ``"cushion"`` (ball
             ``i`` hits rail ``j``: 0 is ``x = R``, 1 ``x = L - R``, 2 ``y = R``, 3
-            ``y = W - R``), ``"pocket"`` (ball ``i`` captured by pocket ``j``) or ``"stop"``
-            (ball ``i`` comes to rest; ``j = -1``).
+            ``y = W - R``; on a jaw table only the straight part of a rail between two
+            pockets), ``"jaw"`` (ball ``i`` hits the facing ``j = 2 k + side`` of pocket
+            ``k``, ``side`` 0 or 1 as in ``Table.jaws[k]``), ``"point"`` (ball ``i`` hits
+            the point (round tip) ``j = 2 k + side``), ``"pocket"`` (ball ``i`` captured by
+            pocket ``j``: its centre entered the capture circle or reached the fall line)
+            or ``"stop"`` (ball ``i`` comes to rest; ``j = -1``). Rails, facings and points
+            are all cushions for the rules (:data:`CUSHION_KINDS`).
         i: The ball.
         j: The other ball, the rail, the pocket, or -1.
     """

@@ -23,7 +23,7 @@ from pool_env.sim.kernels import loop
 from pool_env.sim.result import ShotResult
 from pool_env.sim.table import Table
 
-__all__ = ["DEFAULT_MAX_EVENTS", "shoot", "simulate"]
+__all__ = ["DEFAULT_MAX_EVENTS", "check_layout", "shoot", "simulate"]
 
 
 def simulate(
@@ -78,16 +78,16 @@ def _run(
         balls = np.empty((loop.N_BALL_ROWS, n), dtype=np.int64)
         meta = np.empty(loop.N_META, dtype=np.int64)
         duration = loop.shoot_final(
-            pos, vel, mass, table.params, table.pockets, max_events, final, balls, meta
+            pos, vel, mass, table.params, table.pocket_geometry, max_events, final, balls, meta
         )
         if meta[loop.META_CODE] != loop.OK:
             code, i, j = meta[loop.META_CODE : loop.META_J + 1].tolist()
             raise_invalid(code, i, j, table, pos, vel, mass)
         return ShotResult.unrecorded(final, balls, meta, duration, table.deceleration)
-    code, i, j = loop.validate(pos, vel, mass, table.params, table.pockets)
+    code, i, j = loop.validate(pos, vel, mass, table.params, table.pocket_geometry)
     if code != loop.OK:
         raise_invalid(code, i, j, table, pos, vel, mass)
-    raw = loop.run_shot(pos, vel, mass, table.params, table.pockets, max_events, True)
+    raw = loop.run_shot(pos, vel, mass, table.params, table.pocket_geometry, max_events, True)
     return ShotResult(raw, table.deceleration, True)
 
 
@@ -145,8 +145,10 @@ def check_layout(table: Table, positions: ArrayLike) -> NDArray[np.float64]:
         ValueError: As :func:`simulate` would, naming the first ball off the table, inside
             a pocket or overlapping another (nothing is simulated).
     """
-    pos = np.array(_as_points("positions", positions, None))
-    code, i, j = loop.validate(pos, np.zeros_like(pos), _TABLE_MASSES, table.params, table.pockets)
+    table = check_table(table)
+    pos = np.array(as_points("positions", positions))
+    vel, mass = np.zeros_like(pos), as_masses(None, pos.shape[0])
+    code, i, j = loop.validate(pos, vel, mass, table.params, table.pocket_geometry)
     if code != loop.OK:
-        _raise_invalid(code, i, j, pos, table)
+        raise_invalid(code, i, j, table, pos, vel, mass)
     return pos

@@ -20,24 +20,35 @@ from pool_env.sim.kernels.params import (
     P_DECEL,
     P_E_BALL,
     P_E_CUSHION,
+    P_E_JAW,
     P_LENGTH,
     P_MASS,
     P_RADIUS,
     P_WIDTH,
 )
+from pool_env.sim.pockets import (
+    CORNER_MOUTH,
+    SIDE_MOUTH,
+    JawSpec,
+    PocketJaws,
+    kernel_rows,
+    rail_segments,
+    regulation_jaws,
+)
 from pool_env.sim.scalars import positive, real_number, within
 
-#: WPA equipment specification: corner pocket mouth 4.5-4.625 in, side pocket mouth
-#: 5-5.125 in, measured between the points where the cushion noses end. We take the
-#: narrow end of each range.
-CORNER_MOUTH = 4.5 * 0.0254
-SIDE_MOUTH = 5.0 * 0.0254
+__all__ = ["CORNER_MOUTH", "SIDE_MOUTH", "JawSpec", "PocketJaws", "Table", "standard_pockets"]
 
-PocketSpec = Literal["standard", "none"] | Sequence[Sequence[float]] | NDArray[np.float64]
+PocketSpec = (
+    Literal["jaws", "standard", "circles", "none"]
+    | JawSpec
+    | Sequence[Sequence[float]]
+    | NDArray[np.float64]
+)
 
 
 def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray[np.float64]:
-    """Capture circles of a regulation 6-pocket table.
+    """Capture circles of a regulation 6-pocket table (the cheap pocket model).
 
     The rails run the full length, so a pocket is a capture circle that catches a ball whose
     centre reaches the rail line (``R`` from the cushion nose) inside the pocket mouth:
@@ -87,7 +98,17 @@ def _check_restitution(name: str, value: object) -> float:
 class Table:
     """A pool table: geometry, ball properties and the rolling/impact model parameters.
 
-    All values are SI units. The defaults describe a 9-ft table.
+    All values are SI units. The defaults describe a regulation 9-ft table, each measured
+    figure from the sources in ``research/REALISM.md``:
+
+    * ``mu_roll = 0.01``: rolling resistance of a pool ball on cloth, 0.005-0.015 (Dr. Dave
+      Alciatore's FAQ "physical properties"; pooltool 0.6 also uses 0.01).
+    * ``e_ball = 0.95``: ball-ball restitution, 0.92-0.98 (same FAQ).
+    * ``e_cushion = 0.65``: ball-rail restitution, 0.6-0.9 (same FAQ); "at steep angles a
+      ball typically loses about half its speed" in a cushion (FAQ "cushion efficiency"),
+      part of which is the sliding after the impact that this model leaves out, so we sit
+      near the low end of the range.
+    * pockets: the WPA regulation jaws (see :mod:`pool_env.sim.pockets`).
 
     Args:
         length: Playing length ``L`` between the cushion noses (m).
@@ -97,15 +118,34 @@ class Table:
         mu_roll: Coefficient of rolling resistance; balls decelerate at ``mu_roll * g``.
         g: Gravitational acceleration (m/s^2).
         e_ball: Ball-ball coefficient of restitution, in [0, 1].
-        e_cushion: Ball-cushion coefficient of restitution, in [0, 1].
-        pockets: ``"standard"`` (6 regulation pockets), ``"none"`` (a carom table), or a
-            sequence of ``(x, y, radius)`` capture circles.
+        e_cushion: Ball-rail coefficient of restitution, in [0, 1].
+        pockets: ``"jaws"`` (default; ``"standard"`` is the same): six regulation pockets
+            with jaws; a :class:`~pool_env.sim.pockets.JawSpec` for other jaw shapes;
+            ``"circles"``: the six pockets as capture circles with full-length rails (the
+            cheap model); ``"none"``: a carom table; or a sequence of ``(x, y, radius)``
+            capture circles.
+        e_jaw: Restitution of the jaw facings and points, in [0, 1]; ``None`` (default)
+            takes ``e_cushion``.
+
+    Attributes:
+        pockets: ``(K, 3)`` the pockets as ``(x, y, radius)`` capture circles. With
+            capture circles these pot; on a jaw table they are the same six circles as a
+            summary of where the pockets are (aim points), not used for potting.
+        pocket_model: ``"jaws"``, ``"circles"`` or ``"none"``.
+        jaws: One :class:`~pool_env.sim.pockets.PocketJaws` per pocket on a jaw table
+            (points, rail ends, tips, facings, fall line), empty otherwise.
+        rails: ``(M, 2, 2)`` the straight cushion noses as ``(start, end)`` segments: six
+            between the pockets of a jaw table, else the four full sides.
+        pocket_geometry: The array the compiled kernels read: the capture circles, or the
+            jaws offset by ``R`` (``(K, JAW_COLS)``, see
+            :func:`pool_env.sim.pockets.kernel_rows`).
 
     Raises:
         ValueError: On a size, radius, mass or deceleration ``mu_roll * g`` outside the
             numeric limits of :mod:`pool_env.sim.kernels.limits` (or not a finite real
             number); a non-positive ``mu_roll`` or ``g``; a restitution outside [0, 1]; a
-            table too small for one ball; or an unknown or malformed pocket specification.
+            table too small for one ball or for its pockets; or an unknown or malformed
+            pocket specification.
     """
 
     length: float = 2.54
@@ -115,9 +155,14 @@ class Table:
     mu_roll: float = 0.01
     g: float = 9.81
     e_ball: float = 0.95
-    e_cushion: float = 0.85
-    pockets: NDArray[np.float64] = field(default="standard")  # type: ignore[assignment]
+    e_cushion: float = 0.65
+    pockets: NDArray[np.float64] = field(default="jaws")  # type: ignore[assignment]
+    e_jaw: float | None = None
     params: NDArray[np.float64] = field(init=False, repr=False)
+    pocket_model: str = field(init=False, repr=False)
+    jaws: tuple[PocketJaws, ...] = field(init=False, repr=False)
+    rails: NDArray[np.float64] = field(init=False, repr=False)
+    pocket_geometry: NDArray[np.float64] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         setter = object.__setattr__  # frozen dataclass: set validated values once
@@ -132,14 +177,21 @@ class Table:
         within("the rolling deceleration mu_roll * g", self.mu_roll * self.g, low, high, "m/s^2")
         for name in ("e_ball", "e_cushion"):
             setter(self, name, _check_restitution(name, getattr(self, name)))
+        e_jaw = self.e_cushion if self.e_jaw is None else self.e_jaw
+        setter(self, "e_jaw", _check_restitution("e_jaw", e_jaw))
         if min(self.length, self.width) <= 2.0 * self.ball_radius:
             raise ValueError(
                 f"a {self.length} x {self.width} m table cannot hold a ball of radius "
                 f"{self.ball_radius} m"
             )
-        pockets = self._parse_pockets(self.pockets)
+        model, pockets, jaws = self._parse_pockets(self.pockets)
         pockets.setflags(write=False)
         setter(self, "pockets", pockets)
+        setter(self, "pocket_model", model)
+        setter(self, "jaws", jaws)
+        setter(self, "rails", rail_segments(self.length, self.width, jaws))
+        geometry = kernel_rows(jaws, self.ball_radius) if jaws else pockets
+        setter(self, "pocket_geometry", geometry)
         params = np.empty(N_PARAMS, dtype=np.float64)  # the layout the kernels read
         params[P_LENGTH] = self.length
         params[P_WIDTH] = self.width
@@ -148,25 +200,34 @@ class Table:
         params[P_E_BALL] = self.e_ball
         params[P_E_CUSHION] = self.e_cushion
         params[P_MASS] = self.ball_mass
+        params[P_E_JAW] = self.e_jaw
         params.setflags(write=False)
         setter(self, "params", params)
 
-    def _parse_pockets(self, spec: object) -> NDArray[np.float64]:
+    def _parse_pockets(
+        self, spec: object
+    ) -> tuple[str, NDArray[np.float64], tuple[PocketJaws, ...]]:
+        circles = standard_pockets(self.length, self.width, self.ball_radius)
+        if isinstance(spec, JawSpec):
+            return "jaws", circles, regulation_jaws(self.length, self.width, self.ball_radius, spec)
         if isinstance(spec, str):
-            if spec == "standard":
-                return standard_pockets(self.length, self.width, self.ball_radius)
+            if spec in ("jaws", "standard"):
+                jaws = regulation_jaws(self.length, self.width, self.ball_radius, JawSpec())
+                return "jaws", circles, jaws
+            if spec == "circles":
+                return "circles", circles, ()
             if spec == "none":
-                return np.zeros((0, 3), dtype=np.float64)
+                return "none", np.zeros((0, 3), dtype=np.float64), ()
             raise ValueError(
-                f"unknown pocket specification {spec!r}: use 'standard', 'none' or a "
-                "sequence of (x, y, radius)"
+                f"unknown pocket specification {spec!r}: use 'jaws', 'circles', 'none', a "
+                "JawSpec or a sequence of (x, y, radius)"
             )
         try:
             arr = np.array(spec, dtype=np.float64)
         except (TypeError, ValueError) as exc:
             raise ValueError(f"pockets must be a sequence of (x, y, radius): {exc}") from None
         if arr.size == 0:
-            return np.zeros((0, 3), dtype=np.float64)
+            return "none", np.zeros((0, 3), dtype=np.float64), ()
         if arr.ndim != 2 or arr.shape[1] != 3:
             raise ValueError(f"pockets must have shape (K, 3) of (x, y, radius), got {arr.shape}")
         if not np.all(np.isfinite(arr)):
@@ -178,7 +239,7 @@ class Table:
             )
         if np.any(arr[:, 2] <= 0.0):
             raise ValueError("every pocket radius must be positive")
-        return np.ascontiguousarray(arr)
+        return "circles", np.ascontiguousarray(arr), ()
 
     @property
     def deceleration(self) -> float:
@@ -202,5 +263,6 @@ class Table:
         return (
             f"Table(length={self.length}, width={self.width}, ball_radius={self.ball_radius}, "
             f"ball_mass={self.ball_mass}, mu_roll={self.mu_roll}, g={self.g}, "
-            f"e_ball={self.e_ball}, e_cushion={self.e_cushion}, pockets=<{self.n_pockets}>)"
+            f"e_ball={self.e_ball}, e_cushion={self.e_cushion}, e_jaw={self.e_jaw}, "
+            f"pockets=<{self.n_pockets} {self.pocket_model}>)"
         )

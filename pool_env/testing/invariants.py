@@ -3,7 +3,9 @@
 The named invariants of the design notes:
 
 * **G** (geometry): no two balls on the table overlap by more than ``tol`` at any event, at
-  rest, or at sampled instants between events; every ball stays inside the rails.
+  rest, or at sampled instants between events; every ball on the table stays inside the
+  playing region: the rails' rectangle and, on a jaw table, the pocket throats (clear of
+  every facing and point, in front of the fall line).
 * **P** (momentum): each ball-ball impact conserves the pair's momentum (a sticking lump
   touching a rail: up to the rail's impulse out of it).
 * **E** (energy): kinetic energy never increases, across impacts or in between.
@@ -17,6 +19,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.sim.kernels.jaws import LOC_CIRCLE, LOC_FREE, locate_many
 from pool_env.sim.kernels.resolve import CONTACT_TOL, V_REST, V_ZENO
 from pool_env.sim.result import ShotResult
 from pool_env.sim.table import Table
@@ -98,11 +101,13 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
 
     Up to rounding, and up to the documented rules: a ball that an impact leaves slower than
     ``V_REST`` is at rest, which may happen twice to a ball of a sticking impact (once for
-    the pair, once for its cluster), so at most ``2 * mass * V_REST`` per ball; and a
-    sticking lump that touches a rail meets it as one body, so the rail may change the
-    lump's momentum by an impulse out of the rail, at most ``(1 + e_cushion)`` times the
-    lump's momentum into it (any direction if ``table`` is not given, within
-    ``V_ZENO * mass``).
+    the pair, once for its cluster), so at most ``2 * mass * V_REST`` per ball; a sticking
+    lump that touches a rail meets it as one body, so the rail may change the lump's
+    momentum by an impulse out of the rail, at most ``(1 + e_cushion)`` times the lump's
+    momentum into it (any direction if ``table`` is not given, within ``V_ZENO * mass``); a
+    sticking lump against a jaw loses its velocity into it if below ``V_ZENO``; and a lump
+    wedged between jaws and rails, pressing slowly into all of them, stops (see
+    :func:`pool_env.sim.kernels.jaws.unpress_lump`).
     """
     m = np.asarray(masses, dtype=np.float64)
     problems = []
@@ -116,11 +121,13 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
         allowed = MOMENTUM_RTOL * scale + 2.0 * V_REST * float(mb.sum())
         if np.abs(p1 - p0).max() <= allowed:
             continue
-        if len(balls) > 1 and np.all(after == after[0]):  # a sticking lump at a rail
-            if table is None:
-                if np.abs(p1 - p0).max() <= allowed + V_ZENO * float(mb.sum()):
-                    continue
-            elif _rail_impulse_allowed(
+        if len(balls) > 1 and np.all(after == after[0]):  # a sticking lump at a rail or jaw
+            change = float(np.abs(p1 - p0).max())
+            if change <= allowed + V_ZENO * float(mb.sum()):  # a slow normal speed taken
+                continue
+            if np.all(after == 0.0) and change <= allowed + float(np.abs(p0).max()):
+                continue  # wedged between jaws and rails, the lump stops
+            if table is not None and _rail_impulse_allowed(
                 table, state[bounds[k] : bounds[k + 1], 0:2], p0, p1 - p0, allowed
             ):
                 continue
@@ -167,7 +174,7 @@ def check_energy(result: ShotResult, masses: ArrayLike) -> list[str]:
 def check_geometry(
     table: Table, result: ShotResult, samples: int = 2000, tol: float = GEOMETRY_TOL
 ) -> list[str]:
-    """G: no overlap beyond ``tol`` and nothing outside the rails.
+    """G: no overlap beyond ``tol`` and nothing outside the playing region.
 
     Checked at every event time, at rest, and at ``samples`` evenly spaced instants.
     """
@@ -179,12 +186,19 @@ def check_geometry(
     pos, potted = result.positions_at_many(times)
     r = table.ball_radius
     on = ~potted
-    x, y = pos[..., 0], pos[..., 1]
-    outside = on & (
-        (x < r - tol) | (x > table.length - r + tol) | (y < r - tol) | (y > table.width - r + tol)
+    flat = pos.reshape(-1, 2)
+    codes, _ = locate_many(
+        np.ascontiguousarray(flat[:, 0]),
+        np.ascontiguousarray(flat[:, 1]),
+        table.params,
+        table.pocket_geometry,
+        tol,
     )
+    # Entering a capture circle pots a ball, so only leaving the region is a violation.
+    codes = codes.reshape(potted.shape)
+    outside = on & (codes != LOC_FREE) & (codes != LOC_CIRCLE)
     escapes = [
-        f"G: ball {b} outside the rails at t={times[k]}: {pos[k, b].tolist()}"
+        f"G: ball {b} outside the playing region at t={times[k]}: {pos[k, b].tolist()}"
         for k, b in zip(*np.nonzero(outside), strict=True)
     ]
     overlaps = []

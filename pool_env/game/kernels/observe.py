@@ -61,8 +61,11 @@ def potential(positions, on_table, pockets, scale):
         if on_table[j]:
             best = np.inf
             for p in range(pockets.shape[0]):
-                d = math.hypot(positions[j, 0] - pockets[p, 0], positions[j, 1] - pockets[p, 1])
-                best = min(best, d)
+                # sqrt of a sum is correctly rounded everywhere; libm's hypot is not (it
+                # differs from CPython's in the last bits), and rewards must be reproducible.
+                dx = positions[j, 0] - pockets[p, 0]
+                dy = positions[j, 1] - pockets[p, 1]
+                best = min(best, math.sqrt(dx * dx + dy * dy))
             total += best
     return -total / scale
 

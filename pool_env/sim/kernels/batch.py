@@ -13,7 +13,7 @@ import numpy as np
 from numba import prange
 
 from pool_env.sim.kernels._jit import kernel, parallel_kernel
-from pool_env.sim.kernels.loop import IN_POCKET, OK, run_shot, validate
+from pool_env.sim.kernels.loop import BEHIND_LINE, IN_JAW, IN_POCKET, OK, run_shot, validate
 
 #: What :func:`run_batch` returns, by name; ball indices count all ``N`` balls of a table.
 #:
@@ -74,7 +74,8 @@ def _one_table(b, positions, velocities, masses, active, params, pockets, max_ev
     if code != OK:
         out.error[b, 0] = code
         out.error[b, 1] = index[i] if i >= 0 else -1
-        out.error[b, 2] = index[j] if j >= 0 and code != IN_POCKET else j  # a pocket index stays
+        pocket = (code == IN_POCKET) | (code == IN_JAW) | (code == BEHIND_LINE)
+        out.error[b, 2] = index[j] if j >= 0 and not pocket else j  # a pocket index stays
         return
     shot = run_shot(pos, vel, mass, params, pockets, max_events, False)
     for k in range(index.shape[0]):
@@ -105,7 +106,7 @@ def run_batch(positions, velocities, masses, active, params, pockets, max_events
         active: ``(B, N)`` booleans: which balls are on each table (others are ignored and
             keep their row as it is).
         params: The table's flat parameter array.
-        pockets: ``(K, 3)`` capture circles.
+        pockets: ``Table.pocket_geometry`` (capture circles or jaws).
         max_events: Event cap per table.
 
     Returns:

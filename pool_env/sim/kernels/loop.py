@@ -6,7 +6,8 @@ are re-predicted: their own events and their pairs with every other ball. A stop
 every prediction valid (the pair predictions already include each ball's rest phase).
 
 Simultaneous events are taken in the fixed total order (time, kind, first id, second id)
-with kinds ordered pocket < ball < cushion < stop, which makes reruns bit-for-bit identical.
+with kinds ordered pocket < ball < cushion < stop < jaw < point, which makes reruns
+bit-for-bit identical.
 A touching rack hit by the cue ball is therefore resolved as a deterministic sequence of
 pairwise impacts at the same instant, each re-predicting the balls it changed: the
 sequential-impulse rule. With three or more balls in contact, momentum and restitution do
@@ -24,6 +25,17 @@ from collections import namedtuple
 import numpy as np
 
 from pool_env.sim.kernels._jit import inline_kernel, kernel
+from pool_env.sim.kernels.jaws import (
+    JAW,
+    JAW_COLS,
+    LOC_CIRCLE,
+    LOC_FALL,
+    LOC_FREE,
+    POINT,
+    jaw_impact,
+    locate,
+    unpress_lump,
+)
 from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, speed_allowed
 from pool_env.sim.kernels.motion import (
     MOVING,
@@ -35,7 +47,7 @@ from pool_env.sim.kernels.motion import (
     set_anchor,
     state_at,
 )
-from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_MASS, P_RADIUS, P_WIDTH
+from pool_env.sim.kernels.params import P_DECEL, P_MASS, P_RADIUS
 from pool_env.sim.kernels.predict import (
     BALL,
     CUSHION,
@@ -57,7 +69,15 @@ from pool_env.sim.kernels.record import (
     trim_events,
     trim_segments,
 )
-from pool_env.sim.kernels.resolve import V_REST, ZENO_WINDOW, ball_ball, cushion, stick_cluster
+from pool_env.sim.kernels.resolve import (
+    CONTACT_TOL,
+    V_REST,
+    V_ZENO,
+    ZENO_WINDOW,
+    ball_ball,
+    cushion,
+    stick_cluster,
+)
 from pool_env.sim.kernels.roots import INF
 
 # Tolerance of input validation: rounding in a rack or a position read back from a result
@@ -66,6 +86,7 @@ POS_TOL = 1e-9
 
 # Validation codes.
 OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAST = range(8)
+IN_JAW, BEHIND_LINE = 8, 9
 
 #: What :func:`run_shot` returns, by name.
 #:
@@ -75,9 +96,10 @@ OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAS
 #: * ``first_i``, ``first_j``: the shot's first ball-ball impact (``i < j``), -1 if none.
 #: * ``first_hit`` ``(N,)``: the first ball each ball touched, -1 if none. For the struck
 #:   ball of a shot that is the rules' first contact.
-#: * ``cushions_after_contact`` ``(N,)``: each ball's cushion impacts after the shot's first
-#:   ball-ball impact (all zero if there was none). With one ball struck, that impact is the
-#:   cue ball's first contact: the "rail after contact" of the rules.
+#: * ``cushions_after_contact`` ``(N,)``: each ball's cushion impacts (rails, jaw facings and
+#:   points) after the shot's first ball-ball impact (all zero if there was none). With one
+#:   ball struck, that impact is the cue ball's first contact: the "rail after contact" of
+#:   the rules.
 #: * ``n_events``, ``duration`` (s), ``capped`` (the event cap was reached).
 #: * ``stopped_by_cap`` ``(N,)``: 1 for each ball still moving when the cap stopped it.
 #: * ``events``: an :data:`~pool_env.sim.kernels.record.EventLog`, ``segments``: a
@@ -114,7 +136,7 @@ N_META = 7
 @kernel
 def validate(positions, velocities, masses, params, pockets):
     """Check a scene; return ``(code, i, j)`` naming the first problem (``OK`` if none)."""
-    length, width, radius = params[P_LENGTH], params[P_WIDTH], params[P_RADIUS]
+    radius = params[P_RADIUS]
     n = positions.shape[0]
     for i in range(n):
         if not (np.isfinite(positions[i, 0]) and np.isfinite(positions[i, 1])):
@@ -127,19 +149,15 @@ def validate(positions, velocities, masses, params, pockets):
         if masses.shape[0] and not (MIN_MASS <= masses[i] <= MAX_MASS):  # also NaN
             return BAD_MASS, i, -1
     for i in range(n):
-        x, y = positions[i, 0], positions[i, 1]
-        if (
-            x < radius - POS_TOL
-            or x > length - radius + POS_TOL
-            or y < radius - POS_TOL
-            or y > width - radius + POS_TOL
-        ):
-            return OFF_TABLE, i, -1
-        for k in range(pockets.shape[0]):
-            dx = x - pockets[k, 0]
-            dy = y - pockets[k, 1]
-            if dx * dx + dy * dy <= pockets[k, 2] * pockets[k, 2]:
+        where, k = locate(positions[i, 0], positions[i, 1], params, pockets, POS_TOL)
+        if where != LOC_FREE:
+            if where == LOC_CIRCLE:
                 return IN_POCKET, i, k
+            if where == LOC_FALL:
+                return BEHIND_LINE, i, k
+            if k >= 0:
+                return IN_JAW, i, k
+            return OFF_TABLE, i, -1
     min_d2 = (2.0 * radius - POS_TOL) ** 2
     for i in range(n):
         for j in range(i + 1, n):
@@ -186,8 +204,8 @@ def _tally(kind, i, j, balls, first_i, first_j):
                 order += 1
         balls[BALL_POCKET, i] = j
         balls[BALL_POCKET_ORDER, i] = order
-    elif kind == CUSHION:
-        if first_i >= 0:
+    elif kind == CUSHION or kind == JAW or kind == POINT:  # noqa: SIM109 (numba)
+        if first_i >= 0:  # a jaw facing or point is a cushion for the rules
             balls[BALL_CUSHIONS, i] += 1
     elif kind == BALL:
         if first_i < 0:
@@ -208,7 +226,7 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         velocities: ``(N, 2)`` initial velocities.
         masses: ``(N,)`` masses, or an empty array for the table's ball mass.
         params: The table's flat parameter array (``Table.params``).
-        pockets: ``(K, 3)`` capture circles.
+        pockets: ``Table.pocket_geometry``: ``(K, 3)`` capture circles or the jaw rows.
         max_events: Event cap.
         record: Whether to log events and trajectory segments (off for batched training).
 
@@ -305,8 +323,11 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
                 pair[lo, hi] = INF
             changed[0] = bi
             n_changed = 1
-        elif bkind == CUSHION:
-            cushion(st, status, bi, bj, now, params)
+        elif bkind == CUSHION or bkind == JAW or bkind == POINT:  # noqa: SIM109 (numba)
+            if bkind == CUSHION:
+                cushion(st, status, bi, bj, now, params)
+            else:
+                jaw_impact(st, status, bi, bkind, bj, now, params, pockets, V_REST)
             predict_own(st, status, bi, params, pockets, own, caps)
             _repredict_pairs(st, status, bi, now, params, own, caps, pair)
             changed[0] = bi
@@ -319,6 +340,11 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
             pair_last[bi, bj] = now
             if ball_ball(st, status, masses, bi, bj, now, params, pair_repeats[bi, bj]):
                 n_changed = stick_cluster(st, status, masses, bi, now, params, changed)
+                if pockets.shape[1] == JAW_COLS:
+                    unpress_lump(
+                        st, status, changed, n_changed, now, params, pockets, V_ZENO,
+                        CONTACT_TOL, V_REST,
+                    )  # fmt: skip
             else:
                 changed[0] = bi
                 changed[1] = bj

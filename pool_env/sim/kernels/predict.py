@@ -1,8 +1,10 @@
 """Event prediction (compiled): a ball's own events and a pair's next impact.
 
-A ball's own events (cushion, pocket, stop) are computed once, when the ball is re-anchored,
-in arc length along its straight path: rails and capture circles are lines and circles, so
-each is a quadratic in ``s`` at most, and ``t`` follows from ``s = v t - a t^2 / 2``.
+A ball's own events (cushion, pocket, stop, and on a jaw table facing and point contacts)
+are computed once, when the ball is re-anchored, in arc length along its straight path:
+rails, facings, fall lines, capture circles and points are lines and circles, so each is a
+quadratic in ``s`` at most, and ``t`` follows from ``s = v t - a t^2 / 2`` (jaws:
+:mod:`pool_env.sim.kernels.jaws`).
 
 A pair's next impact is computed over the window in which both trajectories are fixed: until
 either ball's next cushion or pocket event (a stop does not change a trajectory, it ends a
@@ -23,6 +25,7 @@ from __future__ import annotations
 import math
 
 from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.jaws import JAW_COLS, opening_of, predict_pocket, throat_of
 from pool_env.sim.kernels.motion import (
     MOVING,
     POTTED,
@@ -57,7 +60,8 @@ def predict_own(st, status, i, params, pockets, own, caps):
     """Predict ball ``i``'s next own event and the capsule it sweeps until then.
 
     Writes ``own[i] = (time, kind, arg, end)`` where ``end`` is the time its trajectory next
-    changes (a cushion or pocket event; ``inf`` if it rolls to rest), and ``caps[i]``.
+    changes (a cushion, jaw, point or pocket event; ``inf`` if it rolls to rest), and
+    ``caps[i]``. ``pockets`` is the table's ``pocket_geometry``: capture circles, or jaws.
     """
     length, width = params[P_LENGTH], params[P_WIDTH]
     radius, a = params[P_RADIUS], params[P_DECEL]
@@ -81,14 +85,20 @@ def predict_own(st, status, i, params, pockets, own, caps):
     # rounding can never carry a ball through a rail; but a normal direction within
     # rounding of zero is no approach (a ball left rolling along the rail by an impact),
     # and it could not carry the ball more than ~1e-12 m past the line. Ties keep the
-    # lower rail index.
+    # lower rail index. On a jaw table a crossing inside a pocket's opening is no rail
+    # hit: it marks that pocket's jaws as reachable instead.
+    jaws = pockets.shape[1] == JAW_COLS
+    enter_a = -1
+    enter_b = -1
     if ux != 0.0:
         rail = 1 if ux > 0.0 else 0
         line = length - radius if ux > 0.0 else radius
         s = (line - x) / ux
         if s > 0.0 or abs(ux) > APPROACH_RTOL:
             s = max(s, 0.0)
-            if s < best_s or (s == best_s and best_kind > CUSHION):
+            if jaws:
+                enter_a = opening_of(pockets, rail, y + uy * s)
+            if enter_a < 0 and (s < best_s or (s == best_s and best_kind > CUSHION)):
                 best_s, best_kind, best_arg = s, CUSHION, rail
     if uy != 0.0:
         rail = 3 if uy > 0.0 else 2
@@ -96,13 +106,29 @@ def predict_own(st, status, i, params, pockets, own, caps):
         s = (line - y) / uy
         if s > 0.0 or abs(uy) > APPROACH_RTOL:
             s = max(s, 0.0)
-            if s < best_s or (s == best_s and best_kind > CUSHION):
+            if jaws:
+                enter_b = opening_of(pockets, rail, x + ux * s)
+            if enter_b < 0 and (s < best_s or (s == best_s and best_kind > CUSHION)):
                 best_s, best_kind, best_arg = s, CUSHION, rail
-    for k in range(pockets.shape[0]):
-        r = pockets[k, 2]
-        s = ray_circle_entry(x, y, ux, uy, pockets[k, 0], pockets[k, 1], r * r, True)
-        if s < best_s or (s == best_s and best_kind > POCKET):
-            best_s, best_kind, best_arg = s, POCKET, k
+    if jaws:
+        # The pockets whose jaws this path can reach: the throat the ball is in, and those
+        # whose openings it crosses.
+        here = throat_of(x, y, params, pockets)
+        if enter_a == here:
+            enter_a = -1
+        if enter_b == here or enter_b == enter_a:  # noqa: SIM109 (numba)
+            enter_b = -1
+        for k in (here, enter_a, enter_b):
+            if k >= 0:
+                best_s, best_kind, best_arg = predict_pocket(
+                    pockets, k, x, y, ux, uy, best_s, best_kind, best_arg
+                )
+    else:
+        for k in range(pockets.shape[0]):
+            r = pockets[k, 2]
+            s = ray_circle_entry(x, y, ux, uy, pockets[k, 0], pockets[k, 1], r * r, True)
+            if s < best_s or (s == best_s and best_kind > POCKET):
+                best_s, best_kind, best_arg = s, POCKET, k
     if best_kind == STOP:
         t_event = st[i, TSTOP]
         end = INF

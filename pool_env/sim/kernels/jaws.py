@@ -1,0 +1,360 @@
+"""Pocket jaws (compiled): events against facings, points and fall lines, and their impacts.
+
+The jaw array (``Table.pocket_geometry`` of a jaw table, one row per pocket, columns in
+:mod:`pool_env.sim.pockets`) holds every cushion piece already offset by ``R``, so each is
+a curve the ball *centre* touches:
+
+* a **facing** is a finite straight line: along a straight path the signed distance to it
+  is linear in arc length, ``delta(s) = delta0 + (u . n) s``; the contact must lie inside
+  the facing's extent (else the tip or nothing is hit);
+* a **point** (tip) is a circle of radius ``tip_radius + R``: a quadratic in arc length,
+  solved as a ray-circle entry;
+* the **fall line** is a half-plane: linear; a ball whose centre reaches it is potted.
+
+Contact rule, as for rails and balls: touching or a hair beyond while approaching is an
+impact now; separating (or a normal speed within rounding of zero) is none. Impacts reflect
+the normal component with restitution ``e_jaw``.
+
+Culling: every offset facing and tip lies outside the open rectangle of the rail lines, so
+a pocket's jaws matter only once a path leaves the rectangle through that pocket's opening
+(found from the rail-line crossing the predictor computes anyway) or while a ball is in
+its throat. A table without jaws never reaches this module.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.motion import set_anchor, state_at
+from pool_env.sim.kernels.params import P_DECEL, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
+from pool_env.sim.kernels.roots import APPROACH_RTOL, INF, ray_circle_entry
+
+# Event kinds of jaw contacts (after the kinds of predict.py: pocket 0, ball 1, cushion 2,
+# stop 3). A fall-line crossing is a "pocket" event.
+JAW, POINT = 4, 5
+
+# Columns of a jaw row (mirrors pool_env.sim.pockets, which builds the rows).
+J_FX, J_FY, J_FNX, J_FNY = 0, 1, 2, 3
+J_FACING0, J_FACING1 = 4, 11
+J_TIP0, J_TIP1 = 18, 21
+J_OPEN0, J_OPEN1 = 24, 27
+JAW_COLS = 30
+
+# Results of locate().
+LOC_FREE, LOC_OUTSIDE, LOC_CIRCLE, LOC_JAW, LOC_FALL = 0, 1, 2, 3, 4
+
+
+@kernel
+def opening_of(pockets, rail, coord):
+    """The pocket whose opening on rail line ``rail`` contains ``coord`` (-1: solid rail)."""
+    for k in range(pockets.shape[0]):
+        for col in (J_OPEN0, J_OPEN1):
+            if pockets[k, col] == rail and pockets[k, col + 1] < coord < pockets[k, col + 2]:
+                return k
+    return -1
+
+
+@kernel
+def throat_of(x, y, params, pockets):
+    """The pocket whose opening a centre on or beyond a rail line lies in (-1 if none)."""
+    length, width, radius = params[P_LENGTH], params[P_WIDTH], params[P_RADIUS]
+    if x <= radius:
+        k = opening_of(pockets, 0, y)
+        if k >= 0:
+            return k
+    if x >= length - radius:
+        k = opening_of(pockets, 1, y)
+        if k >= 0:
+            return k
+    if y <= radius:
+        k = opening_of(pockets, 2, x)
+        if k >= 0:
+            return k
+    if y >= width - radius:
+        k = opening_of(pockets, 3, x)
+        if k >= 0:
+            return k
+    return -1
+
+
+@kernel
+def _facing_entry(row, col, x, y, ux, uy):
+    """Arc length at which the ray ``(x, y) + u s`` meets a facing (``inf`` if never)."""
+    ax, ay = row[col], row[col + 1]
+    dx, dy = row[col + 2], row[col + 3]
+    nx, ny = row[col + 4], row[col + 5]
+    extent = row[col + 6]
+    delta = (x - ax) * nx + (y - ay) * ny
+    un = ux * nx + uy * ny
+    if un >= 0.0:
+        return INF  # moving away from the facing or along it
+    if delta <= 0.0:
+        # Touching or a hair beyond: approaching beyond rounding collides now.
+        if un >= -APPROACH_RTOL:
+            return INF
+        s = 0.0
+    else:
+        s = delta / -un
+    along = (x + ux * s - ax) * dx + (y + uy * s - ay) * dy
+    if along < 0.0 or along > extent:
+        return INF  # the contact would lie beyond the facing: its tip (or nothing)
+    return s
+
+
+@kernel
+def _fall_entry(row, x, y, ux, uy):
+    """Arc length at which the ray reaches the fall line (0 if on or behind it)."""
+    delta = (x - row[J_FX]) * row[J_FNX] + (y - row[J_FY]) * row[J_FNY]
+    if delta <= 0.0:
+        return 0.0
+    un = ux * row[J_FNX] + uy * row[J_FNY]
+    if un >= 0.0:
+        return INF
+    return delta / -un
+
+
+@kernel
+def predict_pocket(pockets, k, x, y, ux, uy, best_s, best_kind, best_arg):
+    """Fold pocket ``k``'s fall line, facings and points into the best own event so far.
+
+    Ties at equal arc length keep the lower kind (a fall before a jaw contact, a facing
+    before a point where they meet at a tip's tangent point).
+
+    Returns:
+        The updated ``(s, kind, arg)``; ``kind`` 0 (pocket, ``arg = k``), :data:`JAW` or
+        :data:`POINT` (``arg = 2 k + side``), or the input.
+    """
+    row = pockets[k]
+    s = _fall_entry(row, x, y, ux, uy)
+    if s <= best_s:
+        best_s, best_kind, best_arg = s, 0, k
+    for side in range(2):
+        s = _facing_entry(row, J_FACING0 + 7 * side, x, y, ux, uy)
+        if s < best_s or (s == best_s and best_kind > JAW):
+            best_s, best_kind, best_arg = s, JAW, 2 * k + side
+    for side in range(2):
+        col = J_TIP0 + 3 * side
+        rho = row[col + 2]
+        s = ray_circle_entry(x, y, ux, uy, row[col], row[col + 1], rho * rho, False)
+        if s < best_s or (s == best_s and best_kind > POINT):
+            best_s, best_kind, best_arg = s, POINT, 2 * k + side
+    return best_s, best_kind, best_arg
+
+
+@kernel
+def jaw_normal(pockets, kind, arg, x, y):
+    """Unit normal (to the free side) of facing or point ``arg`` at a centre ``(x, y)``."""
+    k, side = arg // 2, arg % 2
+    if kind == JAW:
+        col = J_FACING0 + 7 * side
+        return pockets[k, col + 4], pockets[k, col + 5]
+    col = J_TIP0 + 3 * side
+    nx, ny = x - pockets[k, col], y - pockets[k, col + 1]
+    norm = math.sqrt(nx * nx + ny * ny)
+    if norm == 0.0:  # cannot happen for a centre R + tip radius away; keep a valid normal
+        return 0.0, 0.0
+    return nx / norm, ny / norm
+
+
+@kernel
+def jaw_impact(st, status, i, kind, arg, t, params, pockets, v_rest):
+    """Resolve ball ``i`` hitting facing or point ``arg`` at time ``t`` and re-anchor it.
+
+    The normal component is reflected with restitution ``e_jaw`` (``params[P_E_JAW]``); only a
+    velocity into the jaw is reflected, so a stale or repeated hit changes nothing.
+    """
+    a, e = params[P_DECEL], params[P_E_JAW]
+    x, y, vx, vy = state_at(st, status, i, t, a)
+    nx, ny = jaw_normal(pockets, kind, arg, x, y)
+    vn = vx * nx + vy * ny
+    if vn < 0.0:
+        vx -= (1.0 + e) * vn * nx
+        vy -= (1.0 + e) * vn * ny
+    set_anchor(st, status, i, t, x, y, vx, vy, a, v_rest)
+
+
+@kernel
+def _free_of_point(row, side, x, y, tol):
+    """Whether a centre is clear (up to ``tol``) of one point: its tip and its facing."""
+    tip = J_TIP0 + 3 * side
+    col = J_FACING0 + 7 * side
+    cx, cy, rho = row[tip], row[tip + 1], row[tip + 2]
+    dx, dy = row[col + 2], row[col + 3]
+    # In the tip's normal cone (before the facing starts, beyond the rail's end) the tip
+    # decides; elsewhere along the throat the facing does.
+    along = (x - row[col]) * dx + (y - row[col + 1]) * dy
+    if along <= 0.0:
+        return (x - cx) ** 2 + (y - cy) ** 2 >= (rho - tol) ** 2
+    delta = (x - row[col]) * row[col + 4] + (y - row[col + 1]) * row[col + 5]
+    return delta >= -tol
+
+
+@kernel
+def locate(x, y, params, pockets, tol):
+    """Where a ball centre lies: ``(code, pocket)``.
+
+    ``LOC_FREE`` inside the playing region (up to ``tol``); ``LOC_OUTSIDE`` beyond the
+    rails; ``LOC_CIRCLE`` inside capture circle ``pocket``; ``LOC_JAW`` inside a facing or
+    point of pocket ``pocket``; ``LOC_FALL`` on or behind its fall line.
+    """
+    length, width, radius = params[P_LENGTH], params[P_WIDTH], params[P_RADIUS]
+    jaws = pockets.shape[1] == JAW_COLS
+    inside = (
+        radius - tol <= x <= length - radius + tol and radius - tol <= y <= width - radius + tol
+    )
+    if not jaws:
+        if not inside:
+            return LOC_OUTSIDE, -1
+        for k in range(pockets.shape[0]):
+            dx = x - pockets[k, 0]
+            dy = y - pockets[k, 1]
+            if dx * dx + dy * dy <= pockets[k, 2] * pockets[k, 2]:
+                return LOC_CIRCLE, k
+        return LOC_FREE, -1
+    if inside:
+        return LOC_FREE, -1  # every jaw lies outside the rectangle of the rail lines
+    # Beyond a rail line by more than tol: only a pocket's throat can hold the centre.
+    k = -1
+    if x < radius - tol:
+        k = opening_of(pockets, 0, y)
+    if k < 0 and x > length - radius + tol:
+        k = opening_of(pockets, 1, y)
+    if k < 0 and y < radius - tol:
+        k = opening_of(pockets, 2, x)
+    if k < 0 and y > width - radius + tol:
+        k = opening_of(pockets, 3, x)
+    if k < 0:
+        return LOC_OUTSIDE, -1
+    row = pockets[k]
+    if (x - row[J_FX]) * row[J_FNX] + (y - row[J_FY]) * row[J_FNY] <= 0.0:
+        return LOC_FALL, k
+    if not (_free_of_point(row, 0, x, y, tol) and _free_of_point(row, 1, x, y, tol)):
+        return LOC_JAW, k
+    return LOC_FREE, -1
+
+
+@kernel
+def locate_many(xs, ys, params, pockets, tol):
+    """:func:`locate` for arrays of centres: ``(codes, pockets)``."""
+    codes = np.empty(xs.shape[0], dtype=np.int64)
+    where = np.empty(xs.shape[0], dtype=np.int64)
+    for p in range(xs.shape[0]):
+        codes[p], where[p] = locate(xs[p], ys[p], params, pockets, tol)
+    return codes, where
+
+
+@kernel
+def _press_out(nx, ny, vx, vy, v_zeno):
+    """Drop a velocity component into a surface of normal ``n`` if slower than ``v_zeno``."""
+    vn = vx * nx + vy * ny
+    if vn < 0.0 and -vn < v_zeno:
+        return vx - vn * nx, vy - vn * ny, True
+    return vx, vy, False
+
+
+@kernel
+def _slide(normals, count, vx, vy, v_below, v_rest):
+    """The nearest velocity free of the contacts pressed slower than ``v_below``.
+
+    It drops one such component (the input comes back if none is pressed or none can go).
+    """
+    best_x, best_y, best_drop = vx, vy, math.inf
+    for m in range(count):
+        vn = vx * normals[m, 0] + vy * normals[m, 1]
+        if not (vn < 0.0 and -vn < v_below):
+            continue
+        wx, wy = vx - vn * normals[m, 0], vy - vn * normals[m, 1]
+        feasible = True
+        for q in range(count):
+            vq = vx * normals[q, 0] + vy * normals[q, 1]
+            if vq < 0.0 and -vq < v_below and wx * normals[q, 0] + wy * normals[q, 1] < -v_rest:
+                feasible = False
+        if feasible and -vn < best_drop:
+            best_x, best_y, best_drop = wx, wy, -vn
+    return best_x, best_y
+
+
+@kernel
+def _wedged(normals, count, vx, vy, v_below, v_rest):
+    """Whether contacts pressed slower than ``v_below`` leave no single one to slide along."""
+    pressed = 0
+    for m in range(count):
+        vn = vx * normals[m, 0] + vy * normals[m, 1]
+        if vn < 0.0 and -vn < v_below:
+            pressed += 1
+    if pressed < 2:
+        return False
+    wx, wy = _slide(normals, count, vx, vy, v_below, v_rest)
+    return wx == vx and wy == vy
+
+
+@kernel
+def unpress_lump(st, status, changed, size, t, params, pockets, v_zeno, contact_tol, v_rest):
+    """A stuck lump of balls stops pressing slowly into the jaws and rails it touches.
+
+    The jaw counterpart of the rail rule of :func:`pool_env.sim.kernels.resolve.stick_cluster`
+    (which has just given the ``size`` balls in ``changed`` one common velocity): a velocity
+    component slower than ``v_zeno`` into a facing, point or rail that one of the lump's
+    balls touches (within ``contact_tol``) is removed, as the cushion's impulse would;
+    otherwise the lump would bounce off the jaw and re-stick forever at one instant (a ball
+    wedged between a facing and a ball). Removing components only lowers the kinetic
+    energy. A lump wedged between contacts (it cannot slide along any one of them without
+    pressing into another) stops.
+    """
+    a, radius = params[P_DECEL], params[P_RADIUS]
+    length, width = params[P_LENGTH], params[P_WIDTH]
+    _, _, vx, vy = state_at(st, status, changed[0], t, a)
+    # The normals of every contact of the lump (at most a few per ball).
+    normals = np.zeros((4 * size + 4, 2))
+    count = 0
+    for c in range(size):
+        k = changed[c]
+        x, y, _, _ = state_at(st, status, k, t, a)
+        if x <= radius + contact_tol:
+            normals[count] = (1.0, 0.0)
+            count += 1
+        if x >= length - radius - contact_tol:
+            normals[count] = (-1.0, 0.0)
+            count += 1
+        if y <= radius + contact_tol:
+            normals[count] = (0.0, 1.0)
+            count += 1
+        if y >= width - radius - contact_tol:
+            normals[count] = (0.0, -1.0)
+            count += 1
+        p = throat_of(x, y, params, pockets)
+        if p < 0:
+            continue
+        row = pockets[p]
+        for side in range(2):
+            col = J_FACING0 + 7 * side
+            delta = (x - row[col]) * row[col + 4] + (y - row[col + 1]) * row[col + 5]
+            along = (x - row[col]) * row[col + 2] + (y - row[col + 1]) * row[col + 3]
+            if delta <= contact_tol and 0.0 <= along <= row[col + 6]:
+                normals[count] = (row[col + 4], row[col + 5])
+                count += 1
+            tip = J_TIP0 + 3 * side
+            dx, dy = x - row[tip], y - row[tip + 1]
+            dist = math.sqrt(dx * dx + dy * dy)
+            if dist > 0.0 and dist <= row[tip + 2] + contact_tol:
+                normals[count] = (dx / dist, dy / dist)
+                count += 1
+            if count > normals.shape[0] - 3:
+                break
+    # Wedged: pressing into contacts (at any speed) so that it cannot slide along any one
+    # of them without pressing into another (two balls jammed across a narrowing throat).
+    # Sequential impulses would shed that motion only geometrically, over thousands of
+    # events at one instant; the jam stops the lump, the cushions taking its momentum.
+    if _wedged(normals, count, vx, vy, math.inf, v_rest) or _wedged(
+        normals, count, vx, vy, v_zeno, v_rest
+    ):
+        vx, vy = 0.0, 0.0
+    else:
+        vx, vy = _slide(normals, count, vx, vy, v_zeno, v_rest)
+    for c in range(size):
+        k = changed[c]
+        x, y, _, _ = state_at(st, status, k, t, a)
+        set_anchor(st, status, k, t, x, y, vx, vy, a, v_rest)
