@@ -1,0 +1,198 @@
+"""The geometric ghost-ball agent: aim and speed from geometry alone, checked on the simulator.
+
+Constructed layouts (a straight-in shot, a 30-degree cut) name the pocket that must take the
+ball; the speed model (distances, rolling resistance, ball restitution) is checked against
+the simulator by playing just below and just above the speed at which the object ball
+arrives at rest; and the agent must never call the simulator.
+"""
+
+from __future__ import annotations
+
+import math
+
+import gymnasium as gym
+import numpy as np
+import pytest
+
+import pool_env
+from agents import GhostBallAgent, RandomAgent, SearchAgent, run_episodes
+from agents.geometry import cue_speed, pocket_mouths
+from pool_env.sim.kernels import loop
+from pool_env.sim.table import CORNER_MOUTH, SIDE_MOUTH
+
+ONE = "pool_env/OneBall-v0"
+R = 0.028575
+L, W = 2.54, 1.27
+#: Bottom-left corner (pocket 0) and bottom side (pocket 1) mouth midpoints, derived from
+#: the capture circles in ball-centre coordinates (see ``pocket_mouths``).
+CORNER_TARGET = np.array([(R + CORNER_MOUTH / math.sqrt(2)) / 2] * 2)
+SIDE_TARGET = np.array([L / 2, R])
+
+
+def _one_ball_env(**kwargs: object) -> gym.Env:
+    return gym.make("pool_env/Pool-v0", n_balls=1, **kwargs)
+
+
+def _cut_layout(ball: np.ndarray, target: np.ndarray, cut_deg: float, cue_dist: float):
+    """Cue placed so that sending ``ball`` at ``target`` is a cut of ``cut_deg`` degrees."""
+    u = (target - ball) / np.hypot(*(target - ball))
+    ghost = ball - 2 * R * u
+    c, s = math.cos(math.radians(-cut_deg)), math.sin(math.radians(-cut_deg))
+    d = np.array([c * u[0] - s * u[1], s * u[0] + c * u[1]])  # u turned by -cut
+    return np.array([ghost - cue_dist * d, ball])
+
+
+def _play(env: gym.Env, positions: np.ndarray, agent: GhostBallAgent | None = None):
+    obs, _ = env.reset(seed=0, options={"positions": positions})
+    agent = agent or GhostBallAgent(env)
+    action, _ = agent.predict(obs)
+    _, _, _, _, info = env.step(action)
+    return agent, info, env.unwrapped.last_shot
+
+
+def test_mouths_from_capture_circles_match_hand_values() -> None:
+    mouths = pocket_mouths(pool_env.Table())
+    assert np.allclose(mouths.targets[0], CORNER_TARGET, atol=1e-12)
+    assert np.allclose(mouths.targets[1], SIDE_TARGET, atol=1e-12)
+    # A corner circle cuts the rail lines at w / sqrt(2) from the corner; a side circle
+    # cuts its rail line over the whole mouth width.
+    assert mouths.widths[0] == pytest.approx(CORNER_MOUTH - math.sqrt(2) * R, abs=1e-12)
+    assert mouths.widths[1] == pytest.approx(SIDE_MOUTH, abs=1e-12)
+    assert np.allclose(mouths.inward[0], [-math.sqrt(0.5)] * 2)
+    assert np.allclose(mouths.inward[1], [0.0, -1.0])
+
+
+def test_straight_in_shot_drops_in_the_side_pocket(monkeypatch: pytest.MonkeyPatch) -> None:
+    env = _one_ball_env()
+    positions = np.array([[L / 2, 0.8], [L / 2, 0.4]])
+    env.reset(seed=0, options={"positions": positions})
+    agent = GhostBallAgent(env)
+    with monkeypatch.context() as m:  # geometry only: the simulator must not be called
+        m.setattr(loop, "run_shot", _forbidden)
+        m.setattr(loop, "shoot_final", _forbidden)
+        action, _ = agent.predict(env.unwrapped._observation())
+    shot = agent.last_plan["shot"]
+    assert shot.pocket == 1 and shot.cut == pytest.approx(0.0, abs=1e-12)
+    assert shot.cue_distance == pytest.approx(0.4 - 2 * R, abs=1e-12)
+    _, _, _, _, info = env.step(action)
+    assert info["potted"] == (1,) and not info["scratch"]
+    assert env.unwrapped.last_shot.pocketed[1] == 1
+
+
+def _forbidden(*args: object, **kwargs: object) -> None:
+    raise AssertionError("the geometric agent called the simulator")
+
+
+@pytest.mark.parametrize("cut_deg", [30.0, -30.0])
+def test_thirty_degree_cut_drops_in_the_named_corner(cut_deg: float) -> None:
+    positions = _cut_layout(np.array([0.6, 0.5]), CORNER_TARGET, cut_deg, 0.5)
+    agent, info, result = _play(_one_ball_env(), positions)
+    shot = agent.last_plan["shot"]
+    assert shot.pocket == 0
+    assert math.degrees(shot.cut) == pytest.approx(cut_deg, abs=1e-9)
+    assert info["potted"] == (1,)
+    assert result.pocketed[1] == 0  # the bottom-left corner
+
+
+def test_speed_reaches_the_pocket_but_is_not_maximal() -> None:
+    env = _one_ball_env()
+    table = env.unwrapped.table
+    positions = _cut_layout(np.array([0.6, 0.5]), CORNER_TARGET, 30.0, 0.5)
+    agent, info, _ = _play(env, positions)
+    shot, speed = agent.last_plan["shot"], agent.last_plan["speed"]
+    # The closed form of the docstring, by hand: roll, collide, roll.
+    a, e = table.deceleration, table.e_ball
+    v_ball = math.sqrt(agent.arrival_speed**2 + 2 * a * shot.travel)
+    v_contact = v_ball / ((1 + e) / 2 * math.cos(math.radians(30.0)))
+    assert speed == pytest.approx(math.sqrt(v_contact**2 + 2 * a * shot.cue_distance), 1e-12)
+    assert info["speed"] == pytest.approx(speed, rel=1e-6)
+    assert info["potted"] == (1,)
+    assert speed < 0.25 * env.unwrapped.speed_range[1]
+
+
+@pytest.mark.parametrize("cut_deg", [0.0, 30.0])
+def test_speed_model_matches_the_simulator(cut_deg: float) -> None:
+    """The ball must just drop at 1.02x the zero-arrival speed and stop short at 0.98x."""
+    table = pool_env.Table()
+    positions = _cut_layout(np.array([1.0, 0.6]), CORNER_TARGET, cut_deg, 0.6)
+    env = _one_ball_env()
+    env.reset(seed=0, options={"positions": positions})
+    agent = GhostBallAgent(env)
+    shot, _, _ = agent.best_shot(positions, np.ones(2, dtype=bool))
+    assert shot is not None and shot.pocket == 0
+    v_rest = cue_speed(table, shot, 0.0)
+    short = pool_env.shoot(table, positions, shot.angle, 0.98 * v_rest)
+    long = pool_env.shoot(table, positions, shot.angle, 1.02 * v_rest)
+    assert short.pocketed[1] == -1 and long.pocketed[1] == 0
+    entry = np.array(table.pockets[0, :2])
+    gap = np.hypot(*(short.positions[1] - entry)) - table.pockets[0, 2]
+    assert 0.0 < gap < 0.1 * shot.travel  # stopped just outside the capture circle
+
+
+@pytest.mark.parametrize("aim", ["cut", "relative", "absolute"])
+@pytest.mark.parametrize("noise", [None, (0.003, 0.05)])
+def test_ghost_pots_in_every_aim_mode_with_and_without_noise(aim: str, noise) -> None:
+    env = gym.make(ONE, aim=aim, noise=noise)
+    ghost = run_episodes(GhostBallAgent(env), env, 100, seed=7).summary()
+    rand = run_episodes(RandomAgent(env, seed=0), env, 100, seed=7).summary()
+    floor = 0.9 if noise is None else 0.6
+    assert ghost["pots_per_shot"].value >= floor
+    assert ghost["clean_pot_rate"].value - rand["clean_pot_rate"].value >= 0.3
+
+
+def test_search_beats_or_matches_ghost_on_a_seeded_sample() -> None:
+    env = gym.make(ONE)
+    ghost = run_episodes(GhostBallAgent(env), env, 150, seed=500).summary()
+    search = run_episodes(SearchAgent(env), env, 150, seed=500).summary()
+    for key in ("pots_per_shot", "clean_pot_rate", "episode_reward"):
+        assert search[key].value >= ghost[key].value
+
+
+@pytest.mark.parametrize(
+    ("env_id", "episodes"),
+    [("pool_env/Pool-v0", 20), ("pool_env/NineBall-v0", 10), ("pool_env/EightBall-v0", 5)],
+)
+def test_ghost_outplays_random_on_every_rack_id(env_id: str, episodes: int) -> None:
+    env = gym.make(env_id)
+    ghost = run_episodes(GhostBallAgent(env), env, episodes, seed=3).summary()
+    rand = run_episodes(RandomAgent(env, seed=0), env, episodes, seed=3).summary()
+    assert ghost["pots_per_turn"].value > 1.5 * rand["pots_per_turn"].value
+    assert ghost["shots_per_episode"].value < rand["shots_per_episode"].value
+
+
+def test_legal_targets_is_the_one_rule_to_override() -> None:
+    env = gym.make("pool_env/Pool-v0", n_balls=2, aim="absolute")
+    # Ball 1 lines up straight into the side pocket, ball 2 into the corner.
+    positions = np.array([[1.27, 0.9], [1.27, 0.5], [0.4, 0.4]])
+    env.reset(seed=0, options={"positions": positions})
+    on = np.ones(3, dtype=bool)
+    free = GhostBallAgent(env)
+    free.plan(positions, on)
+    assert free.last_plan["shot"].ball == 1
+    only_two = GhostBallAgent(env, legal_targets=lambda pos, on: [2])
+    only_two.plan(positions, on)
+    assert only_two.last_plan["shot"].ball == 2
+    none = GhostBallAgent(env, legal_targets=lambda pos, on: [])
+    action = none.plan(positions, on)
+    assert none.last_plan["kind"] == "fallback"
+    assert action[1] == 1.0  # a full-speed hit on the nearest ball
+
+
+def test_predict_batches_like_sb3() -> None:
+    from stable_baselines3.common.env_util import make_vec_env
+
+    vec = make_vec_env(ONE, n_envs=3, seed=0)
+    obs = vec.reset()
+    agent = GhostBallAgent(vec)
+    batch, state = agent.predict(obs, deterministic=True)
+    assert batch.shape == (3, 2) and batch.dtype == np.float32 and state is None
+    layouts = zip(vec.get_attr("positions"), vec.get_attr("on_table"), strict=True)
+    expected = np.stack([agent.plan(pos, on) for pos, on in layouts])
+    assert np.array_equal(batch, expected)
+    single, _ = agent.predict(obs[0])
+    assert single.shape == (2,)
+
+
+def test_bad_arrival_speed_is_a_clear_error() -> None:
+    with pytest.raises(ValueError, match="arrival_speed"):
+        GhostBallAgent(gym.make(ONE), arrival_speed=-1.0)
