@@ -196,3 +196,35 @@ def test_predict_batches_like_sb3() -> None:
 def test_bad_arrival_speed_is_a_clear_error() -> None:
     with pytest.raises(ValueError, match="arrival_speed"):
         GhostBallAgent(gym.make(ONE), arrival_speed=-1.0)
+
+
+def test_ghost_ball_features_by_hand() -> None:
+    from agents.features import GhostBallFeatures
+
+    env = GhostBallFeatures(_one_ball_env())
+    positions = np.array([[L / 2, 1.2], [L / 2, 0.8]])  # straight in, side pocket 1
+    obs, _ = env.reset(seed=0, options={"positions": positions})
+    assert env.observation_space.contains(obs)
+    per = GhostBallFeatures.PER_SHOT
+    rows = obs[6:].reshape(6, per)
+    diag = math.hypot(L, W)
+    table = env.unwrapped.table
+    side_r = math.hypot(2 * R, SIDE_MOUTH / 2)
+    travel = 0.8 - (side_r - R)  # down to the side circle centred R behind the rail
+    a, e = table.deceleration, table.e_ball
+    v_contact = math.sqrt(0.3**2 + 2 * a * travel) / ((1 + e) / 2)
+    speed = math.sqrt(v_contact**2 + 2 * a * (0.4 - 2 * R))
+    lo, hi = env.unwrapped.speed_range
+    assert lo < speed < hi
+    expected = [1, 1, 0, 1, (0.4 - 2 * R) / diag, (0.8 - R + 2 * R) / diag, 1,
+                2 * (speed - lo) / (hi - lo) - 1]  # fmt: skip
+    assert np.allclose(rows[0], expected, atol=1e-6)
+    assert np.all(rows[1:, 0] <= 1) and np.all(rows[1:, 2] ** 2 + rows[1:, 3] ** 2 <= 1 + 1e-6)
+    # The valid rows come first, the rest are zero; a 30-degree cut reads sin = 0.5.
+    valid = rows[:, 0] == 1.0
+    assert not np.any(rows[~valid]) and np.all(np.diff(valid.astype(int)) <= 0)
+    cut = _cut_layout(np.array([0.6, 0.5]), CORNER_TARGET, 30.0, 0.5)
+    obs, _ = env.reset(seed=0, options={"positions": cut})
+    first = obs[6:].reshape(6, per)[0]
+    assert first[2] == pytest.approx(0.5, abs=1e-6)
+    assert first[3] == pytest.approx(math.sqrt(3) / 2, abs=1e-6)
