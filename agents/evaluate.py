@@ -188,10 +188,10 @@ def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
 
 
 def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
-    """``pots per shot: ppo 74.0% (clean 65.6%) | random 56.0% (clean 29.6%) | ...``."""
+    """``pots per shot: ppo 74.0% (clean 65.6%, scratch 17.1%) | random ... | ...``."""
     parts = [
         f"{name.split(' ')[0]} {stats['pots_per_shot'].value:.1%} "
-        f"(clean {stats['clean_pot_rate'].value:.1%})"
+        f"(clean {stats['clean_pot_rate'].value:.1%}, scratch {stats['scratch_rate'].value:.1%})"
         for name, stats in rows.items()
     ]
     return "pots per shot: " + " | ".join(parts)

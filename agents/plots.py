@@ -24,7 +24,7 @@ def learning_curve(
     Args:
         path: Output PNG.
         history: ``(timesteps, seconds, summary)`` of each periodic evaluation.
-        final: Final evaluation rows by agent (``random`` and ``ghost`` drawn as lines).
+        final: Final evaluation rows by agent (the baselines among them drawn as lines).
         config: The run's config (title).
     """
     fig, ax = plt.subplots(figsize=(7, 4.2), dpi=110)
@@ -41,8 +41,10 @@ def learning_curve(
         ax.fill_between(steps, [e.low for e in est], [e.high for e in est], color=color, alpha=0.15)
     for name, label, style in (
         ("random", "random", ":"),
-        ("const", "full hit, hardest (const)", "-."),
-        ("ghost", "ghost-ball", "--"),
+        ("const", "full hit, hardest (const)", (0, (1, 3))),
+        ("best-const", "best constant action", "-."),
+        ("ghost", "ghost-ball (geometric)", "--"),
+        ("search", "search (simulator, oracle)", (0, (5, 1))),
     ):
         if name in final:
             value = final[name]["pots_per_shot"].value
