@@ -76,14 +76,14 @@ class PocketMouths:
     def travel(self, k: int, start: NDArray[np.float64], u: NDArray[np.float64]) -> float:
         """Distance a ball from ``start`` along ``u`` rolls until it drops in pocket ``k``.
 
-        The entry into the capture circle, ``inf`` if the line misses it.
+        The entry into the capture circle, ``inf`` if the ray misses it (or it lies behind).
         """
         cx, cy, r = self.capture[k]
         w = start - np.array([cx, cy])
         b = float(w @ u)
         c = float(w @ w) - r * r
         disc = b * b - c
-        if disc < 0.0:
+        if disc < 0.0 or -b + math.sqrt(disc) < 0.0:
             return math.inf
         return max(-b - math.sqrt(disc), 0.0)
 
@@ -295,3 +295,58 @@ def path_clear(
     closest = start + t[:, None] * seg
     gap = np.hypot(*(balls - closest).T)
     return bool(np.all(gap > reach))
+
+
+#: Most cushions followed when tracing the cue ball after contact (on a low-friction table
+#: it may run around the table several times before it stops).
+TRACE_CUSHIONS = 20
+
+
+def cue_ball_scratches(table: Table, mouths: PocketMouths, shot: GhostShot, speed: float) -> bool:
+    """Whether the cue ball, alone on the table after contact, would roll into a pocket.
+
+    The tangent-line rule: at contact the cue ball keeps its velocity across the line of
+    centres and ``(1 - e_ball) / 2`` of the part along it; it then rolls straight, losing
+    speed at ``mu_roll g``, off the rails (the normal part times ``e_cushion``) for up to
+    :data:`TRACE_CUSHIONS` cushions. Other balls are ignored: a first-order look, as a
+    player takes it, not a simulation.
+
+    Args:
+        table: The table.
+        mouths: Its pockets.
+        shot: The shot.
+        speed: The cue speed it is played at (m/s).
+    """
+    a, e_ball, e_rail = table.deceleration, table.e_ball, table.e_cushion
+    d = np.array([math.cos(shot.angle), math.sin(shot.angle)])
+    c, s = math.cos(shot.cut), math.sin(shot.cut)
+    u = np.array([c * d[0] - s * d[1], s * d[0] + c * d[1]])  # the object ball's direction
+    v2_contact = speed * speed - 2.0 * a * shot.cue_distance
+    if v2_contact <= 0.0:
+        return False
+    vel = math.sqrt(v2_contact) * ((d - c * u) + c * (1.0 - e_ball) / 2.0 * u)
+    pos = np.array(shot.ghost)
+    r = table.ball_radius
+    lo, hi = np.array([r, r]), np.array([table.length - r, table.width - r])
+    for _ in range(TRACE_CUSHIONS + 1):
+        v = float(np.hypot(*vel))
+        if v <= 1e-12:
+            return False
+        w = vel / v
+        reach = v * v / (2.0 * a)
+        to_rail = np.full(2, math.inf)
+        for axis in range(2):
+            if w[axis] > 1e-15:
+                to_rail[axis] = (hi[axis] - pos[axis]) / w[axis]
+            elif w[axis] < -1e-15:
+                to_rail[axis] = (lo[axis] - pos[axis]) / w[axis]
+        axis = int(np.argmin(to_rail))
+        leg = min(max(float(to_rail[axis]), 0.0), reach)
+        if any(mouths.travel(k, pos, w) <= leg for k in range(mouths.n)):
+            return True
+        if reach <= leg:
+            return False
+        pos = pos + leg * w
+        vel = w * math.sqrt(max(v * v - 2.0 * a * leg, 0.0))
+        vel[axis] = -e_rail * vel[axis]
+    return False

@@ -4,7 +4,9 @@ For every legal object ball and pocket it puts the cue ball on the ghost-ball po
 behind the object ball on the line to the pocket's mouth), keeps the shots whose paths are
 clear of the other balls and whose pocket is open to the object ball's path, and plays the
 easiest: the one that forgives the largest aim error (thin cuts, long distances and a mouth
-seen at an angle all shrink it; :func:`agents.geometry.ghost_shots`). The speed comes from
+seen at an angle all shrink it; :func:`agents.geometry.ghost_shots`) among those whose cue
+ball, followed along the tangent line and off the cushions, stays out of the pockets
+(:func:`agents.geometry.cue_ball_scratches`). The speed comes from
 the distances, the rolling resistance and the ball-ball restitution
 (:func:`agents.geometry.cue_speed`) so that the object ball drops at a gentle
 :data:`ARRIVAL_SPEED`. When no direct shot exists (a rack, a ball in the way) it hits the
@@ -29,6 +31,7 @@ from agents.geometry import (
     GhostShot,
     LegalTargets,
     any_object_ball,
+    cue_ball_scratches,
     cue_speed,
     ghost_shots,
     pocket_mouths,
@@ -95,14 +98,20 @@ class GhostBallAgent(BaselineAgent):
         shots = [
             s for s in ghost_shots(table, self.mouths, positions, on_table, targets) if s.clear
         ]
+        playable = []
         for shot in sorted(shots, key=lambda s: -s.tolerance):
             speed = cue_speed(table, shot, self.arrival_speed)
             if speed > top:
                 continue
             action = shot_to_action(shot.angle, speed, positions, on_table, self.spec)
             if action is not None:
+                playable.append((shot, speed, action))
+        # The easiest shot whose cue ball stays out of the pockets, else the easiest.
+        for shot, speed, action in playable:
+            played = max(speed, self.spec.speed_range[0])  # a softer shot is not available
+            if not cue_ball_scratches(table, self.mouths, shot, played):
                 return shot, speed, action
-        return None, math.nan, None
+        return playable[0] if playable else (None, math.nan, None)
 
     def _fallback(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
         """A full hit on the nearest legal ball at the top speed (the nearest ball if it fails)."""

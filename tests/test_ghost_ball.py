@@ -228,3 +228,25 @@ def test_ghost_ball_features_by_hand() -> None:
     first = obs[6:].reshape(6, per)[0]
     assert first[2] == pytest.approx(0.5, abs=1e-6)
     assert first[3] == pytest.approx(math.sqrt(3) / 2, abs=1e-6)
+
+
+def test_cue_ball_trace_predicts_the_simulators_scratches() -> None:
+    """Tangent line and cushions, cue ball alone: it must agree with the full simulation."""
+    from agents.geometry import cue_ball_scratches, ghost_shots
+
+    env = gym.make(ONE)
+    table = env.unwrapped.table
+    mouths = pocket_mouths(table)
+    agree = scratches = n = 0
+    for seed in range(120):
+        env.reset(seed=seed)
+        positions, on = env.unwrapped.positions, env.unwrapped.on_table
+        for shot in ghost_shots(table, mouths, positions, on, [1]):
+            for arrival in (0.3, 1.5):
+                speed = cue_speed(table, shot, arrival)
+                real = pool_env.shoot(table, positions, shot.angle, speed).pocketed[0] >= 0
+                agree += cue_ball_scratches(table, mouths, shot, speed) == real
+                scratches += real
+                n += 1
+    assert n > 200 and scratches > 40
+    assert agree / n >= 0.97
