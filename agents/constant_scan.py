@@ -39,7 +39,7 @@ class ConstantScan:
 
 
 def scan_constant_actions(
-    env: Any, grid: int = 9, episodes: int = 200, seed: int = SCAN_SEED
+    env: Any, grid: int = 9, episodes: int = 1000, seed: int = SCAN_SEED
 ) -> ConstantScan:
     """Play every action of a ``grid x grid`` lattice on ``env`` and keep the best.
 
@@ -71,6 +71,6 @@ def scan_constant_actions(
     return ConstantScan(best[0], best[1], table)
 
 
-def best_constant_agent(env: Any, grid: int = 9, episodes: int = 200) -> ConstantAgent:
+def best_constant_agent(env: Any, grid: int = 9, episodes: int = 1000) -> ConstantAgent:
     """A :class:`ConstantAgent` playing the best action of :func:`scan_constant_actions`."""
     return ConstantAgent(env, scan_constant_actions(env, grid, episodes).action)

@@ -39,20 +39,38 @@ def any_object_ball(positions: NDArray[np.float64], on_table: NDArray[np.bool_])
 
 @dataclass(frozen=True)
 class PocketMouths:
-    """Each pocket as the segment a ball centre crosses to drop, and how it captures.
+    """Each pocket as the opening a ball centre crosses, and where the ball drops.
+
+    Two pocket models are read (:func:`pocket_mouths`): capture circles (a ball drops when
+    its centre enters the circle) and jaws (it drops when its centre reaches the pocket's
+    fall line, behind the mouth between the two cushion points).
 
     Attributes:
-        targets: ``(K, 2)`` mouth midpoints: where a ghost-ball shot aims.
-        inward: ``(K, 2)`` unit normals of the mouths, pointing into the pocket (zero for a
-            pocket that takes a ball from any direction).
-        widths: ``(K,)`` mouth widths for a ball centre crossing square to the mouth.
-        capture: ``(K, 3)`` capture circles ``(x, y, r)``: a ball centre entering one drops.
+        model: ``"circles"`` or ``"jaws"``.
+        targets: ``(K, 2)`` opening midpoints: where a ghost-ball shot aims.
+        inward: ``(K, 2)`` unit normals of the openings, pointing into the pocket (zero for
+            a pocket that takes a ball from any direction).
+        openings: ``(K, 2, 2)`` the opening as a segment in ball-centre coordinates (on the
+            lines ``R`` from the cushion noses): a ball centre crossing it enters the pocket.
+        widths: ``(K,)`` the mouth's width: between the cushion points (jaws) or the
+            opening itself (circles).
+        clearance: ``(K,)`` how far a ball centre must pass inside each end of the mouth:
+            ``R`` from a cushion point (jaws), 0 for an opening already in centre
+            coordinates (circles).
+        capture: ``(K, 3)`` capture circles ``(x, y, r)`` (``"circles"``).
+        drop_points: ``(K, 2)`` a point of each fall line (``"jaws"``).
+        drop_normals: ``(K, 2)`` unit normals of the fall lines towards the table (``"jaws"``).
     """
 
+    model: str
     targets: NDArray[np.float64]
     inward: NDArray[np.float64]
+    openings: NDArray[np.float64]
     widths: NDArray[np.float64]
+    clearance: NDArray[np.float64]
     capture: NDArray[np.float64]
+    drop_points: NDArray[np.float64]
+    drop_normals: NDArray[np.float64]
 
     @property
     def n(self) -> int:
@@ -62,49 +80,91 @@ class PocketMouths:
     def half_tolerance(self, k: int, u: NDArray[np.float64]) -> float:
         """How far (m) sideways a path along ``u`` may pass the target of pocket ``k`` and drop.
 
-        The mouth seen along the path: half its width times the cosine of the approach
-        angle; 0 when the path runs (nearly) along the mouth or away from the pocket.
+        The mouth seen along the path, ``width cos(approach) / 2``, less the clearance;
+        0 when the path runs (nearly) along the mouth or away from the pocket. (On a jaw
+        table this gives a side pocket 7.0 cm straight in, 3.3 cm at 45 degrees and nothing
+        beyond 63 degrees: the shape of Dr. Dave Alciatore's tolerance curves, a little
+        narrower, since it ignores the balls that rattle in off a facing.)
         """
         normal = self.inward[k]
-        if not normal.any():
-            return float(self.widths[k]) / 2.0
-        cos_a = float(u @ normal)
+        cos_a = 1.0 if not normal.any() else float(u @ normal)
         if cos_a < MIN_APPROACH_COS:
             return 0.0
-        return float(self.widths[k]) / 2.0 * cos_a
+        return max(float(self.widths[k]) / 2.0 * cos_a - float(self.clearance[k]), 0.0)
 
     def travel(self, k: int, start: NDArray[np.float64], u: NDArray[np.float64]) -> float:
         """Distance a ball from ``start`` along ``u`` rolls until it drops in pocket ``k``.
 
-        The entry into the capture circle, ``inf`` if the ray misses it (or it lies behind).
+        To the capture circle's edge, or to the fall line; ``inf`` if the ray misses it (or
+        it lies behind).
         """
-        cx, cy, r = self.capture[k]
-        w = start - np.array([cx, cy])
-        b = float(w @ u)
-        c = float(w @ w) - r * r
-        disc = b * b - c
-        if disc < 0.0 or -b + math.sqrt(disc) < 0.0:
+        if self.model == "jaws":
+            normal = self.drop_normals[k]
+            closing = -float(u @ normal)  # how fast the fall line comes nearer
+            height = float((start - self.drop_points[k]) @ normal)
+            return height / closing if closing > 0.0 and height >= 0.0 else math.inf
+        return _ray_circle(start, u, self.capture[k])
+
+    def entry(self, k: int, start: NDArray[np.float64], u: NDArray[np.float64]) -> float:
+        """Distance along the ray from ``start`` to where it enters pocket ``k`` (``inf``: never).
+
+        Circles: the circle's edge. Jaws: the opening, where the ball leaves the rails' reach.
+        """
+        if self.model != "jaws":
+            return _ray_circle(start, u, self.capture[k])
+        a, b = self.openings[k]
+        seg = b - a
+        denom = float(u[0] * seg[1] - u[1] * seg[0])
+        if abs(denom) < 1e-15:
             return math.inf
-        return max(-b - math.sqrt(disc), 0.0)
+        w = a - start
+        t = float(w[0] * seg[1] - w[1] * seg[0]) / denom  # along the ray
+        s = float(w[0] * u[1] - w[1] * u[0]) / denom  # along the opening
+        return t if t >= -1e-12 and 0.0 <= s <= 1.0 else math.inf
+
+
+def _ray_circle(start: NDArray[np.float64], u: NDArray[np.float64], circle: NDArray) -> float:
+    """Distance along the ray to a circle's edge (0 from inside, ``inf`` when it misses)."""
+    cx, cy, r = circle
+    w = start - np.array([cx, cy])
+    b = float(w @ u)
+    c = float(w @ w) - r * r
+    disc = b * b - c
+    if disc < 0.0 or -b + math.sqrt(disc) < 0.0:
+        return math.inf
+    return max(-b - math.sqrt(disc), 0.0)
+
+
+#: Inward normal of each rail line of :attr:`PocketJaws.rails` (x = R, x = L - R, y = R,
+#: y = W - R).
+_RAIL_INWARD = np.array([(1.0, 0.0), (-1.0, 0.0), (0.0, 1.0), (0.0, -1.0)])
 
 
 def pocket_mouths(table: Table) -> PocketMouths:
     """The pockets of ``table`` as mouths, from its public pocket geometry.
 
-    Today's pockets are capture circles (``table.pockets``, rows ``(x, y, r)``): a circle
-    that reaches into the table cuts the boundary of the ball-centre rectangle in two points,
-    and the chord between them is the mouth (a ball centre crossing it is inside the circle
-    without having touched a cushion). A circle wholly inside the table takes a ball from
-    any direction: its target is its centre and its width its diameter.
+    A jaw table (``table.pocket_model == "jaws"``) lists for each pocket in ``table.jaws``
+    its two cushion points and its fall line: the opening runs between the points moved
+    ``R`` into the table along their rails' normals, the mouth between the points, and the
+    ball drops at the fall line. Otherwise the pockets are capture circles
+    (``table.pockets``, rows ``(x, y, r)``): a circle that reaches into the table cuts the
+    boundary of the ball-centre rectangle in two points, and the chord between them is the
+    opening (a ball centre crossing it is inside the circle without having touched a
+    cushion). A circle wholly inside the table takes a ball from any direction: its target
+    is its centre and its width its diameter.
     """
+    if getattr(table, "pocket_model", "circles") == "jaws":
+        return _jaw_mouths(table)
     pockets = np.asarray(table.pockets, dtype=np.float64).reshape(-1, 3)
     k = pockets.shape[0]
     targets, inward, widths = np.empty((k, 2)), np.zeros((k, 2)), np.empty(k)
+    openings = np.empty((k, 2, 2))
     centre = np.array([table.length, table.width]) / 2.0
     for p, (cx, cy, r) in enumerate(pockets.tolist()):
         ends = _circle_on_centre_box(cx, cy, r, table)
         if len(ends) == 2:
             a, b = np.array(ends[0]), np.array(ends[1])
+            openings[p] = (a, b)
             targets[p] = (a + b) / 2.0
             widths[p] = float(np.hypot(*(b - a)))
             along = (b - a) / widths[p]
@@ -114,8 +174,41 @@ def pocket_mouths(table: Table) -> PocketMouths:
             inward[p] = normal
         else:
             targets[p] = (cx, cy)
+            openings[p] = ((cx, cy), (cx, cy))
             widths[p] = 2.0 * r
-    return PocketMouths(targets, inward, widths, pockets.copy())
+    none = np.zeros((k, 2))
+    return PocketMouths(
+        "circles", targets, inward, openings, widths, np.zeros(k), pockets.copy(), none, none
+    )
+
+
+def _jaw_mouths(table: Table) -> PocketMouths:
+    """:class:`PocketMouths` of a jaw table, from its ``jaws`` (points, rails, fall lines)."""
+    r = table.ball_radius
+    jaws = table.jaws
+    k = len(jaws)
+    targets, inward, widths = np.empty((k, 2)), np.empty((k, 2)), np.empty(k)
+    openings, drop_points, drop_normals = np.empty((k, 2, 2)), np.empty((k, 2)), np.empty((k, 2))
+    for p, jaw in enumerate(jaws):
+        points = np.asarray(jaw.points, dtype=np.float64)
+        for end in range(2):
+            openings[p, end] = points[end] + r * _RAIL_INWARD[jaw.rails[end]]
+        targets[p] = openings[p].mean(axis=0)
+        widths[p] = float(np.hypot(*(points[1] - points[0])))
+        drop_normals[p] = np.asarray(jaw.fall_normal, dtype=np.float64)
+        drop_points[p] = np.asarray(jaw.fall_line, dtype=np.float64).mean(axis=0)
+        inward[p] = -drop_normals[p]
+    return PocketMouths(
+        "jaws",
+        targets,
+        inward,
+        openings,
+        widths,
+        np.full(k, r),
+        np.asarray(table.pockets, dtype=np.float64).reshape(-1, 3).copy(),
+        drop_points,
+        drop_normals,
+    )
 
 
 def _circle_on_centre_box(
@@ -342,7 +435,7 @@ def cue_ball_scratches(table: Table, mouths: PocketMouths, shot: GhostShot, spee
                 to_rail[axis] = (lo[axis] - pos[axis]) / w[axis]
         axis = int(np.argmin(to_rail))
         leg = min(max(float(to_rail[axis]), 0.0), reach)
-        if any(mouths.travel(k, pos, w) <= leg for k in range(mouths.n)):
+        if any(mouths.entry(k, pos, w) <= leg + 1e-9 for k in range(mouths.n)):
             return True
         if reach <= leg:
             return False

@@ -250,3 +250,34 @@ def test_cue_ball_trace_predicts_the_simulators_scratches() -> None:
                 n += 1
     assert n > 200 and scratches > 40
     assert agree / n >= 0.97
+
+
+def test_mouths_of_a_jaw_table_by_hand() -> None:
+    """The jaw branch reads ``table.jaws`` (points, rails, fall line), as the jaw table has it."""
+    from types import SimpleNamespace
+
+    s, shelf = SIDE_MOUTH / 2, 0.005
+    side = SimpleNamespace(
+        points=np.array([(L / 2 - s, 0.0), (L / 2 + s, 0.0)]),
+        rails=(2, 2),
+        fall_line=np.array([(L / 2 - s + 0.002, -shelf), (L / 2 + s - 0.002, -shelf)]),
+        fall_normal=np.array([0.0, 1.0]),
+    )
+    table = SimpleNamespace(
+        length=L, width=W, ball_radius=R, pocket_model="jaws", jaws=(side,),
+        pockets=np.array([(L / 2, -R, 0.08)]),
+    )  # fmt: skip
+    mouths = pocket_mouths(table)
+    assert mouths.model == "jaws"
+    assert np.allclose(mouths.targets[0], (L / 2, R))
+    assert np.allclose(mouths.openings[0], [(L / 2 - s, R), (L / 2 + s, R)])
+    assert mouths.widths[0] == pytest.approx(SIDE_MOUTH)
+    down, slant = np.array([0.0, -1.0]), np.array([math.sqrt(0.5), -math.sqrt(0.5)])
+    assert mouths.half_tolerance(0, down) == pytest.approx(s - R)
+    assert mouths.half_tolerance(0, slant) == pytest.approx(s * math.sqrt(0.5) - R)
+    assert mouths.half_tolerance(0, np.array([math.sin(1.2), -math.cos(1.2)])) == 0.0  # 69 deg
+    start = np.array([L / 2, 0.5])
+    assert mouths.travel(0, start, down) == pytest.approx(0.5 + shelf)  # to the fall line
+    assert mouths.entry(0, start, down) == pytest.approx(0.5 - R)  # into the opening
+    assert mouths.entry(0, start + (s + 0.01, 0.0), down) == math.inf  # onto the rail
+    assert mouths.travel(0, start, -down) == math.inf
