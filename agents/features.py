@@ -81,7 +81,7 @@ class GhostBallFeatures(gym.ObservationWrapper):
 
     The reference ball is the one the action aims relative to (the nearest object ball;
     :func:`agents.aiming.nearest_object_ball`). For each direct shot of
-    :func:`agents.geometry.ghost_shots` on it (a cut under 80 degrees, the mouth open to
+    :func:`agents.geometry.ghost_shots` on it (a cut under 85 degrees, the mouth open to
     the ball's path, the ghost-ball point on the table), easiest first (largest aim
     tolerance), :data:`PER_SHOT` features:
 

@@ -26,8 +26,9 @@ from pool_env import Table
 #: A rules game replaces the default (any object ball on the table) with its own.
 LegalTargets = Callable[[NDArray[np.float64], NDArray[np.bool_]], list[int]]
 
-#: Cuts thinner than this need more speed than the cue ball keeps control of.
-MAX_CUT = math.radians(80.0)
+#: Cuts thinner than this need more speed than the cue ball keeps control of, and a contact
+#: too thin to trust (85 degrees: the thinnest that pots more on the jaw table than on 80).
+MAX_CUT = math.radians(85.0)
 #: A path this close to parallel with the mouth does not go in (cos of 85 degrees).
 MIN_APPROACH_COS = math.cos(math.radians(85.0))
 

