@@ -18,7 +18,7 @@ import pool_env
 from agents import GhostBallAgent, RandomAgent, SearchAgent, run_episodes
 from agents.geometry import cue_speed, pocket_mouths
 from pool_env.sim.kernels import loop
-from pool_env.sim.table import CORNER_MOUTH, SIDE_MOUTH
+from pool_env.sim.table import CORNER_MOUTH, SIDE_MOUTH, standard_pockets
 
 ONE = "pool_env/OneBall-v0"
 R = 0.028575
@@ -51,7 +51,7 @@ def _play(env: gym.Env, positions: np.ndarray, agent: GhostBallAgent | None = No
 
 
 def test_mouths_from_capture_circles_match_hand_values() -> None:
-    mouths = pocket_mouths(pool_env.Table())
+    mouths = pocket_mouths(pool_env.Table(pockets=standard_pockets(L, W, R)))
     assert np.allclose(mouths.targets[0], CORNER_TARGET, atol=1e-12)
     assert np.allclose(mouths.targets[1], SIDE_TARGET, atol=1e-12)
     # A corner circle cuts the rail lines at w / sqrt(2) from the corner; a side circle
