@@ -27,6 +27,8 @@ L, W = 2.54, 1.27
 #: the capture circles in ball-centre coordinates (see ``pocket_mouths``).
 CORNER_TARGET = np.array([(R + CORNER_MOUTH / math.sqrt(2)) / 2] * 2)
 SIDE_TARGET = np.array([L / 2, R])
+#: The capture-circle table, spelled out (the default table's pockets may change).
+CIRCLES = pool_env.Table(pockets=standard_pockets(L, W, R))
 
 
 def _one_ball_env(**kwargs: object) -> gym.Env:
@@ -51,7 +53,7 @@ def _play(env: gym.Env, positions: np.ndarray, agent: GhostBallAgent | None = No
 
 
 def test_mouths_from_capture_circles_match_hand_values() -> None:
-    mouths = pocket_mouths(pool_env.Table(pockets=standard_pockets(L, W, R)))
+    mouths = pocket_mouths(CIRCLES)
     assert np.allclose(mouths.targets[0], CORNER_TARGET, atol=1e-12)
     assert np.allclose(mouths.targets[1], SIDE_TARGET, atol=1e-12)
     # A corner circle cuts the rail lines at w / sqrt(2) from the corner; a side circle
@@ -203,7 +205,7 @@ def test_bad_arrival_speed_is_a_clear_error() -> None:
 def test_ghost_ball_features_by_hand() -> None:
     from agents.features import GhostBallFeatures
 
-    env = GhostBallFeatures(_one_ball_env())
+    env = GhostBallFeatures(_one_ball_env(table=CIRCLES))  # hand values for capture circles
     positions = np.array([[L / 2, 1.2], [L / 2, 0.8]])  # straight in, side pocket 1
     obs, _ = env.reset(seed=0, options={"positions": positions})
     assert env.observation_space.contains(obs)
@@ -236,7 +238,7 @@ def test_cue_ball_trace_predicts_the_simulators_scratches() -> None:
     """Tangent line and cushions, cue ball alone: it must agree with the full simulation."""
     from agents.geometry import cue_ball_scratches, ghost_shots
 
-    env = gym.make(ONE)
+    env = gym.make(ONE, table=CIRCLES)  # rails the whole length, as the trace assumes
     table = env.unwrapped.table
     mouths = pocket_mouths(table)
     agree = scratches = n = 0
