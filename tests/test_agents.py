@@ -131,3 +131,13 @@ def test_pocket_features_bounded_and_aligned() -> None:
     feats = obs[-(1 + 3 * 6) :]
     assert feats[0] == pytest.approx(np.hypot(*(pos[1] - pos[0])) / np.hypot(2.54, 1.27), 1e-5)
     assert np.allclose(feats[1::3] ** 2 + feats[2::3] ** 2, 1.0, atol=1e-5)
+
+
+def test_search_with_execution_noise_and_on_pool_v0() -> None:
+    env = gym.make(ONE, noise=(0.003, 0.05))
+    search = run_episodes(SearchAgent(env), env, 60, seed=11).summary()
+    rand = run_episodes(RandomAgent(env, seed=0), env, 60, seed=11).summary()
+    assert search["clean_pot_rate"].value - rand["clean_pot_rate"].value >= 0.3
+    pool = gym.make("pool_env/Pool-v0")
+    stats = run_episodes(SearchAgent(pool), pool, 4, seed=2).summary()
+    assert stats["clear_rate"].value == 1.0 and stats["pots_per_turn"].value >= 2.0
