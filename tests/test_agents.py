@@ -137,7 +137,7 @@ def test_search_with_execution_noise_and_on_pool_v0() -> None:
     env = gym.make(ONE, noise=(0.003, 0.05))
     search = run_episodes(SearchAgent(env), env, 60, seed=11).summary()
     rand = run_episodes(RandomAgent(env, seed=0), env, 60, seed=11).summary()
-    assert search["clean_pot_rate"].value - rand["clean_pot_rate"].value >= 0.3
+    assert search["clean_pot_rate"].value - rand["clean_pot_rate"].value >= 0.15
     pool = gym.make("pool_env/Pool-v0")
     stats = run_episodes(SearchAgent(pool), pool, 4, seed=2).summary()
     assert stats["clear_rate"].value == 1.0 and stats["pots_per_turn"].value >= 2.0
