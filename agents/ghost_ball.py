@@ -127,7 +127,8 @@ class GhostBallAgent(BaselineAgent):
             action = shot_to_action(math.atan2(d[1], d[0]), speed, positions, on_table, self.spec)
             if action is not None:
                 return action
-        # A legal ball the aim mode cannot reach: a full hit on the reference ball.
+        # A legal ball that cut or relative aim cannot reach: a full hit on their reference
+        # ball (the nearest), which action[0] = "aim parameter 0" is in both modes.
         aim_lo, aim_hi = self.spec.aim_range
         zero = (
             0.0
