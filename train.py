@@ -71,7 +71,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument(
         "--env-kwargs", help='gymnasium.make kwargs as YAML, e.g. "{noise: [0.003, 0.05]}"'
     )
-    p.add_argument("--wrapper", help="observation wrapper: pocket_features, or none")
+    p.add_argument(
+        "--wrapper", help="observation wrapper: pocket_features, ghost_features, or none"
+    )
     p.add_argument("--hyperparams", help="YAML file (default: agents/hyperparams.yml)")
     p.add_argument("--runs", default="runs", help="parent folder of run folders")
     p.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="algorithm kwargs")

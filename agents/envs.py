@@ -13,10 +13,13 @@ from typing import Any
 import gymnasium as gym
 
 import pool_env  # noqa: F401  (registers the ids)
-from agents.features import PocketFeatures
+from agents.features import GhostBallFeatures, PocketFeatures
 
 #: Observation wrappers by name (``wrapper:`` in ``hyperparams.yml``).
-WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {"pocket_features": PocketFeatures}
+WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {
+    "pocket_features": PocketFeatures,
+    "ghost_features": GhostBallFeatures,
+}
 
 
 def worker_id(env_id: str) -> str:

@@ -2,13 +2,19 @@
 
 Usage::
 
-    python -m agents.evaluate --env pool_env/OneBall-v0 --agent random ghost --episodes 1000
+    python -m agents.evaluate --env pool_env/OneBall-v0 --agent random best-const ghost search
     python -m agents.evaluate --env pool_env/OneBall-v0 --agent models/ppo_oneball.zip
 
 Episode ``k`` is reset with seed ``seed + k``, so every agent sees the same layouts. A model
 ``.zip`` is loaded with the SB3 algorithm its name or saved config names; its environment
 settings (``env_kwargs``, ``wrapper``) come from a ``config.yaml`` next to it, or from a
 sidecar ``<name>_config.yaml``.
+
+Agents by name: ``random`` (uniform actions), ``const[:a0,a1]`` (one action, default the
+full hit ``0,1``), ``best-const`` (the best action of a grid scan, see
+:mod:`agents.constant_scan`), ``ghost`` (the geometric ghost-ball heuristic, no simulation,
+:mod:`agents.ghost_ball`) and ``search`` (candidate shots checked on the simulator: the
+oracle upper bound, :mod:`agents.search`).
 """
 
 from __future__ import annotations
@@ -22,6 +28,10 @@ from agents.envs import make_env
 from agents.ghost_ball import GhostBallAgent
 from agents.metrics import EpisodeLog, Estimate
 from agents.random_agent import ConstantAgent, RandomAgent
+from agents.search import SearchAgent
+
+#: The baselines by name (``const`` also takes ``const:a0,a1``).
+BASELINES = ("random", "const", "best-const", "ghost", "search")
 
 #: Statistics printed, with their labels; rates are shown as percentages.
 COLUMNS: tuple[tuple[str, str, bool], ...] = (
@@ -109,11 +119,17 @@ def load_model(path: str | Path, algo: str | None = None) -> Any:
 
 
 def make_agent(name: str, env: Any, seed: int = 0) -> Any:
-    """``"random"``, ``"ghost"``, ``"const[:a0,a1]"`` or an SB3 ``.zip`` path, playing ``env``."""
+    """One of :data:`BASELINES` (``"const:a0,a1"`` too) or an SB3 ``.zip`` path, playing ``env``."""
     if name == "random":
         return RandomAgent(env, seed=seed)
     if name == "ghost":
-        return GhostBallAgent(env, seed=seed)
+        return GhostBallAgent(env)
+    if name == "search":
+        return SearchAgent(env, seed=seed)
+    if name == "best-const":
+        from agents.constant_scan import best_constant_agent  # it imports this module
+
+        return best_constant_agent(env)
     if name.startswith("const"):  # "const" (full hit, hardest) or "const:a0,a1"
         _, _, values = name.partition(":")
         action = tuple(float(v) for v in values.split(",")) if values else (0.0, 1.0)
@@ -121,7 +137,7 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Any:
     if name.endswith(".zip"):
         return load_model(name)
     raise ValueError(
-        f"unknown agent {name!r}: use 'random', 'ghost', 'const[:a0,a1]' or a model .zip path"
+        f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1' or a model .zip"
     )
 
 
@@ -172,10 +188,10 @@ def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
 
 
 def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
-    """``pots per shot: ppo 74.0% (clean 65.6%) | random 56.0% (clean 29.6%) | ...``."""
+    """``pots per shot: ppo 74.0% (clean 65.6%, scratch 17.1%) | random ... | ...``."""
     parts = [
         f"{name.split(' ')[0]} {stats['pots_per_shot'].value:.1%} "
-        f"(clean {stats['clean_pot_rate'].value:.1%})"
+        f"(clean {stats['clean_pot_rate'].value:.1%}, scratch {stats['scratch_rate'].value:.1%})"
         for name, stats in rows.items()
     ]
     return "pots per shot: " + " | ".join(parts)
@@ -189,7 +205,7 @@ def main(argv: list[str] | None = None) -> int:
         "--agent",
         nargs="+",
         default=["random", "ghost"],
-        help="random, ghost, const[:a0,a1] or a model .zip",
+        help="random, const[:a0,a1], best-const, ghost, search or a model .zip",
     )
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=10_000)
@@ -212,7 +228,15 @@ def main(argv: list[str] | None = None) -> int:
         kwargs["aim"] = args.aim
     rows = {}
     for name in args.agent:
-        rows[name] = evaluate_agent(name, args.env, args.episodes, args.seed, kwargs or None)
+        agent, label = None, name
+        if name == "best-const":  # scanned once, then labelled with the action it found
+            scan_env = make_env(args.env, kwargs or None)
+            agent = make_agent(name, scan_env)
+            scan_env.close()
+            label = f"best-const ({agent.action[0]:+.2f}, {agent.action[1]:+.2f})"
+        rows[label] = evaluate_agent(
+            name, args.env, args.episodes, args.seed, kwargs or None, agent=agent
+        )
     table = format_table(rows, args.episodes)
     print(f"{args.env} {kwargs or ''}, seeds {args.seed}..{args.seed + args.episodes - 1}")
     print(table)

@@ -1,4 +1,10 @@
-"""PocketFeatures: the raw observation plus the pockets as seen along the aim line.
+"""Observation wrappers that add what a player looks at: pockets, cut angles, distances.
+
+``PocketFeatures`` appends the pockets as seen along the aim line; ``GhostBallFeatures``
+appends, per pocket, the ghost-ball shot on the env's reference ball (cut, distances,
+approach, whether the paths are clear, the speed the geometric model asks for).
+
+PocketFeatures: the raw observation plus the pockets as seen along the aim line.
 
 The environment's default action aims relative to the line from the cue ball to the nearest
 object ball (its ``cut`` offset). The raw observation gives absolute coordinates, so a
@@ -21,6 +27,8 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import NDArray
 
+from agents.geometry import cue_speed, ghost_shots, pocket_mouths
+from agents.ghost_ball import ARRIVAL_SPEED
 from pool_env import nearest_object_ball
 
 
@@ -66,3 +74,67 @@ class PocketFeatures(gym.ObservationWrapper):
         out[2::3] = np.sin(bearing[order])
         out[3::3] = np.hypot(w[order, 0], w[order, 1]) / self._diagonal
         return np.clip(out, -1.0, 1.0)
+
+
+class GhostBallFeatures(gym.ObservationWrapper):
+    """Append the ghost-ball shot into each pocket on the env's reference ball.
+
+    The reference ball is the one the action aims relative to (the nearest object ball;
+    :func:`agents.aiming.nearest_object_ball`). For each direct shot of
+    :func:`agents.geometry.ghost_shots` on it (a cut under 85 degrees, the mouth open to
+    the ball's path, the ghost-ball point on the table), easiest first (largest aim
+    tolerance), :data:`PER_SHOT` features:
+
+    ``valid`` (1), ``clear`` (1 when no ball is in either path), ``sin(cut)`` (the cut
+    offset in ball diameters: the ``cut`` aim's action before scaling), ``cos(cut)``, the
+    cue-to-ghost-point distance and the ghost-point-to-pocket distance over the table
+    diagonal, the cosine of the approach to the mouth, and the speed the geometric model
+    asks for (:func:`agents.geometry.cue_speed` at the ghost-ball agent's arrival speed)
+    on the env's speed action scale (clipped to ``[-1, 1]``). Pockets without a direct shot
+    give zero rows at the end. Everything comes from the layout and the table's public
+    geometry.
+
+    Args:
+        env: A (wrapped) ``PoolEnv``.
+    """
+
+    #: Features per shot (see above).
+    PER_SHOT = 8
+
+    def __init__(self, env: gym.Env) -> None:
+        super().__init__(env)
+        unwrapped = env.unwrapped
+        self.table = unwrapped.table
+        self.mouths = pocket_mouths(self.table)
+        self.speed_range = tuple(float(v) for v in unwrapped.speed_range)
+        self._diagonal = math.hypot(self.table.length, self.table.width)
+        n = env.observation_space.shape[0] + self.PER_SHOT * self.mouths.n
+        self.observation_space = gym.spaces.Box(-1.0, 1.0, (n,), np.float32)
+
+    def observation(self, observation: NDArray[np.float32]) -> NDArray[np.float32]:
+        """The raw observation followed by the ghost-ball features."""
+        env = self.env.unwrapped
+        return np.concatenate([observation, self.features(env.positions, env.on_table)])
+
+    def features(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
+        """The appended features for one layout (cue first)."""
+        out = np.zeros((self.mouths.n, self.PER_SHOT), dtype=np.float64)
+        j = nearest_object_ball(positions, on_table, 0)[0]
+        if j < 0:
+            return out.ravel().astype(np.float32)
+        shots = ghost_shots(self.table, self.mouths, positions, on_table, [j])
+        lo, hi = self.speed_range
+        r2 = 2.0 * self.table.ball_radius
+        for row, shot in enumerate(sorted(shots, key=lambda s: -s.tolerance)):
+            speed = cue_speed(self.table, shot, ARRIVAL_SPEED)
+            out[row] = (
+                1.0,
+                float(shot.clear),
+                math.sin(shot.cut),
+                math.cos(shot.cut),
+                shot.cue_distance / self._diagonal,
+                (shot.ball_distance + r2) / self._diagonal,
+                shot.approach_cos,
+                2.0 * (speed - lo) / (hi - lo) - 1.0 if hi > lo else 0.0,
+            )
+        return np.clip(out, -1.0, 1.0).ravel().astype(np.float32)

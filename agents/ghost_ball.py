@@ -1,219 +1,138 @@
-"""GhostBallAgent: the classic aiming heuristic, checked shot by shot with the simulator.
+"""GhostBallAgent: the geometric ghost-ball heuristic of the pool literature; no simulation.
 
-For every object ball and pocket the agent aims the object ball at a few points of the
-pocket's capture circle, puts the cue ball where it must be at contact (the *ghost ball*,
-``2R`` behind the object ball on that line), checks that both paths are clear, and picks a
-speed from the known rolling deceleration so that the object ball arrives with a margin.
-Each candidate is then played on :func:`pool_env.shoot` (a shot costs ~10-20 us): the ones
-that pot without scratching are replayed with small aim and speed errors, and the most
-forgiving one wins (ties: the softer and straighter shot). When no candidate pots (a rack, a
-blocked ball), a random search over actions, also simulated, picks the best shot it finds.
+For every legal object ball and pocket it puts the cue ball on the ghost-ball point (``2R``
+behind the object ball on the line to the pocket's mouth), keeps the shots whose paths are
+clear of the other balls and whose pocket is open to the object ball's path, and plays the
+easiest: the one that forgives the largest aim error (thin cuts, long distances and a mouth
+seen at an angle all shrink it; :func:`agents.geometry.ghost_shots`) among those whose cue
+ball, followed along the tangent line and off the cushions, stays out of the pockets
+(:func:`agents.geometry.cue_ball_scratches`). The speed comes from
+the distances, the rolling resistance and the ball-ball restitution
+(:func:`agents.geometry.cue_speed`) so that the object ball drops at a gentle
+:data:`ARRIVAL_SPEED`. When no direct shot exists (a rack, a ball in the way) it hits the
+nearest legal ball full at the top speed: the break, or a shot that opens the table.
 
-Simulating candidates is legitimate for a planner: it is what a player does in their head,
-and the environment's state is fully observed. With execution noise on, the agent aims at
-the noiseless optimum, but prefers shots that survive errors of the noise's size.
+It never calls the simulator: everything it knows is the table's public geometry and
+constants and the layout. Compare :class:`agents.search.SearchAgent`, which checks
+candidate shots on the simulator (the oracle upper bound).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.aiming import decode, shot_to_action
+from agents.aiming import shot_to_action
 from agents.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
-from pool_env import shoot
+from agents.geometry import (
+    GhostShot,
+    LegalTargets,
+    any_object_ball,
+    cue_ball_scratches,
+    cue_speed,
+    ghost_shots,
+    pocket_mouths,
+)
+from pool_env import nearest_object_ball
 
-#: Speeds (m/s) at which the object ball should reach the capture circle: softer shots keep
-#: the cue ball under control, harder ones forgive more of the deceleration model.
-ARRIVAL_SPEEDS = (0.3, 0.7, 1.2, 2.0)
-#: Aim points across the capture circle, as fractions of its radius sideways from the centre.
-AIM_OFFSETS = (0.0, -0.4, 0.4)
-#: Cuts beyond this need more speed than a cue ball keeps control of (and thin contact).
-MAX_CUT = math.radians(85.0)
-
-
-@dataclass
-class Shot:
-    """A candidate shot and what the simulator says it does.
-
-    Attributes:
-        action: The float32 action that plays it.
-        angle: Executed direction (radians from +x).
-        speed: Executed cue speed (m/s).
-        difficulty: Heuristic cost for ties (longer and thinner shots cost more).
-        value: Outcome of the nominal shot: clean pots, minus scratches.
-        robustness: How many perturbed replays also pot cleanly.
-    """
-
-    action: NDArray[np.float32]
-    angle: float
-    speed: float
-    difficulty: float
-    value: float = 0.0
-    robustness: int = 0
+#: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
+#: error of the deceleration model, soft enough that the cue ball stays out of the pockets.
+ARRIVAL_SPEED = 0.3
 
 
 class GhostBallAgent(BaselineAgent):
-    """Ghost-ball aiming, verified with the simulator; SB3's ``predict`` signature.
+    """Geometric ghost-ball aiming and speed from the distances; SB3's ``predict`` signature.
 
     Args:
         env: The environment it plays (``gym.Env``, wrapped or not, or an SB3 ``VecEnv`` of
-            ``PoolEnv``): the table and action decoding are read from it, and its exact layout
-            when it matches the observation.
-        seed: Seed for the fallback random search.
-        n_search: Random actions tried when no ghost-ball shot pots.
-        n_robust: Best ghost-ball shots replayed with errors to rank them.
+            ``PoolEnv``): the table and the action decoding are read from it, and its exact
+            layout when it matches the observation.
+        arrival_speed: Speed (m/s) at which the object ball should drop.
+        legal_targets: Which object balls may be aimed at (default: any on the table; a
+            rules game passes its own).
     """
 
     def __init__(
-        self, env: Any, seed: int | None = 0, n_search: int = 128, n_robust: int = 12
+        self,
+        env: Any,
+        arrival_speed: float = ARRIVAL_SPEED,
+        legal_targets: LegalTargets = any_object_ball,
     ) -> None:
+        if not (math.isfinite(arrival_speed) and arrival_speed >= 0.0):
+            raise ValueError(f"arrival_speed must be a finite speed >= 0, got {arrival_speed!r}")
         self.spec: EnvSpec = env_spec(env)
         self.source = LayoutSource(env, self.spec.table)
-        self.rng = np.random.default_rng(seed)
-        self.n_search = n_search
-        self.n_robust = n_robust
+        self.mouths = pocket_mouths(self.spec.table)
+        self.arrival_speed = float(arrival_speed)
+        self.legal_targets = legal_targets
         self.last_plan: dict[str, Any] = {}
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
         """The planned action for each observation's layout."""
         return np.stack([self.plan(pos, on) for pos, on in self.source.layouts(observations)])
 
-    # -- planning -------------------------------------------------------------------------
-
     def plan(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
         """The action for one layout (``(N, 2)`` centres, cue first; ``(N,)`` on the table)."""
-        rows = on_table.nonzero()[0]
-        sub = np.ascontiguousarray(positions[rows])
-        shots = self._ghost_shots(positions, on_table, sub)
-        for shot in shots:
-            shot.value = self._outcome(sub, shot.angle, shot.speed)
-        good = sorted((s for s in shots if s.value >= 1.0), key=lambda s: (-s.value, s.difficulty))
-        if good:
-            for shot in good[: self.n_robust]:
-                shot.robustness = self._robustness(sub, shot)
-            best = max(good[: self.n_robust], key=lambda s: (s.value, s.robustness, -s.difficulty))
-            self.last_plan = {"kind": "ghost", "candidates": len(shots), "shot": best}
-            return best.action
-        best = self._search(positions, on_table, sub)
-        self.last_plan = {"kind": "search", "candidates": len(shots), "shot": best}
-        return best.action
+        shot, speed, action = self.best_shot(positions, on_table)
+        if action is not None:
+            self.last_plan = {"kind": "ghost", "shot": shot, "speed": speed}
+            return action
+        self.last_plan = {"kind": "fallback", "shot": None, "speed": self.spec.speed_range[1]}
+        return self._fallback(positions, on_table)
 
-    def _ghost_shots(
-        self, positions: NDArray[np.float64], on_table: NDArray[np.bool_], sub: NDArray
-    ) -> list[Shot]:
-        """Every ghost-ball shot (ball, pocket, aim point, speed) with clear paths."""
+    def best_shot(
+        self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """The most forgiving clear shot the action space can play: ``(shot, speed, action)``.
+
+        A shot is skipped when it needs more than the top speed or when the aim mode cannot
+        express its direction (``cut`` and ``relative`` aim relative to the nearest ball).
+        ``(None, nan, None)`` when no shot is left.
+        """
         table = self.spec.table
-        r, decel, e = table.ball_radius, table.deceleration, table.e_ball
-        cue = sub[0]
-        planned: list[tuple[float, float, float]] = []  # (angle, speed, difficulty)
-        for b in range(1, sub.shape[0]):
-            ball = sub[b]
-            others_ob = np.delete(sub, [0, b], axis=0)  # what the object ball must miss
-            for px, py, pr in table.pockets.tolist():
-                to_pocket = np.array([px, py]) - ball
-                side = np.array([-to_pocket[1], to_pocket[0]]) / np.hypot(*to_pocket)
-                for frac in AIM_OFFSETS:
-                    target = np.array([px, py]) + frac * pr * side
-                    u = target - ball
-                    d_ob = float(np.hypot(*u))
-                    u /= d_ob
-                    ghost = ball - 2.0 * r * u
-                    v = ghost - cue
-                    d_cue = float(np.hypot(*v))
-                    d = u if d_cue < 1e-12 else v / d_cue
-                    cos_cut = float(d @ u)
-                    if cos_cut < math.cos(MAX_CUT):
-                        continue
-                    if not (_clear(cue, ghost, others_ob, 2.0 * r)):
-                        continue
-                    if not _clear(ball, target, others_ob, 2.0 * r):
-                        continue
-                    angle = math.atan2(d[1], d[0])
-                    travel = max(d_ob - pr, 0.0)
-                    difficulty = (d_cue + d_ob) / cos_cut
-                    for v_arrive in ARRIVAL_SPEEDS:
-                        v_ball = math.sqrt(v_arrive**2 + 2.0 * decel * travel)
-                        v_contact = v_ball / ((1.0 + e) / 2.0 * cos_cut)
-                        speed = math.sqrt(v_contact**2 + 2.0 * decel * d_cue)
-                        planned.append((angle, speed, difficulty + 0.01 * v_arrive))
-        return self._to_shots(planned, positions, on_table)
-
-    def _to_shots(
-        self,
-        planned: list[tuple[float, float, float]],
-        positions: NDArray[np.float64],
-        on_table: NDArray[np.bool_],
-    ) -> list[Shot]:
-        """Representable shots, with the direction and speed the env will really execute."""
-        kept, actions = [], []
-        for angle, speed, difficulty in planned:
-            action = shot_to_action(angle, speed, positions, on_table, self.spec)
-            if action is not None:
-                kept.append(difficulty)
-                actions.append(action)
-        if not actions:
-            return []
-        acts = np.stack(actions)
-        angles, speeds = decode(acts, positions, on_table, self.spec)
-        return [
-            Shot(acts[k], float(angles[k]), float(speeds[k]), kept[k]) for k in range(len(kept))
+        top = self.spec.speed_range[1]
+        targets = self.legal_targets(positions, on_table)
+        shots = [
+            s for s in ghost_shots(table, self.mouths, positions, on_table, targets) if s.clear
         ]
+        playable = []
+        for shot in sorted(shots, key=lambda s: -s.tolerance):
+            speed = cue_speed(table, shot, self.arrival_speed)
+            if speed > top:
+                continue
+            action = shot_to_action(shot.angle, speed, positions, on_table, self.spec)
+            if action is not None:
+                playable.append((shot, speed, action))
+        # The easiest shot whose cue ball stays out of the pockets, else the easiest.
+        for shot, speed, action in playable:
+            played = max(speed, self.spec.speed_range[0])  # a softer shot is not available
+            if not cue_ball_scratches(table, self.mouths, shot, played):
+                return shot, speed, action
+        return playable[0] if playable else (None, math.nan, None)
 
-    def _outcome(self, sub: NDArray, angle: float, speed: float) -> float:
-        """Clean pots of the shot (0 if it scratches, -1 if it scratches without a pot)."""
-        pocketed = shoot(self.spec.table, sub, angle, speed).pocketed
-        pots = int(np.count_nonzero(pocketed[1:] >= 0))
-        if pocketed[0] >= 0:
-            return -1.0 if pots == 0 else 0.0
-        return float(pots)
-
-    def _robustness(self, sub: NDArray, shot: Shot) -> int:
-        """How many of a few perturbed replays (aim, speed) still pot cleanly."""
-        noise = self.spec.noise
-        d_angle = max(noise[0], 5e-4) if noise else 1.5e-3
-        speeds = (
-            (shot.speed - noise[1], shot.speed + noise[1])
-            if noise and noise[1] > 0.0
-            else (0.9 * shot.speed, 1.1 * shot.speed)
+    def _fallback(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
+        """A full hit on the nearest legal ball at the top speed (the nearest ball if it fails)."""
+        cue = positions[0]
+        targets = self.legal_targets(positions, on_table)
+        if targets:
+            j = min(targets, key=lambda b: float(np.hypot(*(positions[b] - cue))))
+        else:
+            j = nearest_object_ball(positions, on_table, 0)[0]
+        speed = self.spec.speed_range[1]
+        if j >= 0:
+            d = positions[j] - cue
+            action = shot_to_action(math.atan2(d[1], d[0]), speed, positions, on_table, self.spec)
+            if action is not None:
+                return action
+        # A legal ball that cut or relative aim cannot reach: a full hit on their reference
+        # ball (the nearest), which action[0] = "aim parameter 0" is in both modes.
+        aim_lo, aim_hi = self.spec.aim_range
+        zero = (
+            0.0
+            if aim_hi == aim_lo
+            else float(np.clip(-(aim_lo + aim_hi) / (aim_hi - aim_lo), -1, 1))
         )
-        trials = [(shot.angle + k * d_angle, shot.speed) for k in (-2, -1, 1, 2)]
-        trials += [(shot.angle, max(s, 0.0)) for s in speeds]
-        return sum(self._outcome(sub, a, s) >= 1.0 for a, s in trials)
-
-    def _search(
-        self, positions: NDArray[np.float64], on_table: NDArray[np.bool_], sub: NDArray
-    ) -> Shot:
-        """The best of ``n_search`` random actions: pots first, then no scratch, then soft."""
-        acts = self.rng.uniform(-1.0, 1.0, size=(self.n_search, 2)).astype(np.float32)
-        angles, speeds = decode(acts, positions, on_table, self.spec)
-        best, best_key = None, None
-        for k in range(self.n_search):
-            result = shoot(self.spec.table, sub, float(angles[k]), float(speeds[k]))
-            pocketed = result.pocketed
-            pots = int(np.count_nonzero(pocketed[1:] >= 0))
-            scratch = bool(pocketed[0] >= 0)
-            contact = result.first_contact is not None
-            key = (0 if scratch else pots, pots, not scratch, contact, -float(speeds[k]))
-            if best_key is None or key > best_key:
-                best_key = key
-                best = Shot(acts[k], float(angles[k]), float(speeds[k]), 0.0, float(key[0]))
-        assert best is not None
-        return best
-
-
-def _clear(start: NDArray, end: NDArray, balls: NDArray, reach: float) -> bool:
-    """Whether a ball moving from ``start`` to ``end`` stays ``reach`` from every ball."""
-    if balls.shape[0] == 0:
-        return True
-    seg = end - start
-    length2 = float(seg @ seg)
-    rel = balls - start
-    t = np.clip(rel @ seg / length2, 0.0, 1.0) if length2 > 0.0 else np.zeros(len(balls))
-    closest = start + t[:, None] * seg
-    gap = np.hypot(*(balls - closest).T)
-    return bool(np.all(gap > reach))
+        return np.array([zero, 1.0], dtype=np.float32)

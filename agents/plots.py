@@ -24,7 +24,7 @@ def learning_curve(
     Args:
         path: Output PNG.
         history: ``(timesteps, seconds, summary)`` of each periodic evaluation.
-        final: Final evaluation rows by agent (``random`` and ``ghost`` drawn as lines).
+        final: Final evaluation rows by agent (the baselines among them drawn as lines).
         config: The run's config (title).
     """
     fig, ax = plt.subplots(figsize=(7, 4.2), dpi=110)
@@ -39,14 +39,16 @@ def learning_curve(
         est = [h[2][key] for h in history]
         ax.plot(steps, [e.value for e in est], marker="o", ms=3, color=color, label=label)
         ax.fill_between(steps, [e.low for e in est], [e.high for e in est], color=color, alpha=0.15)
-    for name, label, style in (
-        ("random", "random", ":"),
-        ("const", "full hit, hardest (const)", "-."),
-        ("ghost", "ghost-ball", "--"),
+    for name, label, style, color in (
+        ("random", "random", ":", "gray"),
+        ("const", "full hit, hardest (const)", (0, (1, 3)), "gray"),
+        ("best-const", "best constant action", "-.", "tab:purple"),
+        ("ghost", "ghost-ball (geometric)", "--", "black"),
+        ("search", "search (simulator, oracle)", (0, (5, 1)), "tab:brown"),
     ):
         if name in final:
             value = final[name]["pots_per_shot"].value
-            ax.axhline(value, color="gray", ls=style, lw=1, label=f"{label}: {value:.0%} pots")
+            ax.axhline(value, color=color, ls=style, lw=1, label=f"{label}: {value:.0%} pots")
     ax.set_xlabel("environment steps")
     ax.set_ylabel("rate (periodic evaluation)")
     ax.set_ylim(0.0, 1.05)

@@ -5,7 +5,11 @@
 with SB3's progress bar and tensorboard logging, evaluates every ``eval_freq`` steps (pot
 rate, clean pots, scratches on fixed seeds), and writes into its run folder: ``config.yaml``,
 ``command.txt``, ``model.zip``, ``evaluation.md`` / ``evaluation.json`` (the model next to
-the random and ghost-ball baselines, same seeds), ``curve.csv`` and ``learning_curve.png``.
+the baselines on the same seeds: random, the best constant action, the geometric ghost-ball
+agent and the simulator search), ``curve.csv`` and ``learning_curve.png`` (the baselines
+drawn as horizontal lines). The kernels are compiled (or loaded from numba's cache) before
+the clock starts, and periodic evaluations are timed apart, so the reported training time
+is learning only.
 """
 
 from __future__ import annotations
@@ -16,6 +20,7 @@ from dataclasses import asdict, dataclass, field
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import yaml
 from stable_baselines3 import A2C, PPO, SAC, TD3
 from stable_baselines3.common.base_class import BaseAlgorithm
@@ -39,6 +44,9 @@ VEC_KINDS = ("dummy", "subproc", "native")
 EVAL_SEED = 20_000
 FINAL_SEED = 10_000
 
+#: Baselines of the final evaluation, in the order printed (see :mod:`agents.evaluate`).
+FINAL_BASELINES = ("random", "best-const", "ghost", "search")
+
 
 @dataclass
 class TrainConfig:
@@ -55,7 +63,7 @@ class TrainConfig:
         eval_freq: Environment steps between evaluations (0: none during training).
         eval_episodes: Episodes per periodic evaluation.
         final_episodes: Episodes of the final evaluation (model and baselines).
-        baselines: Evaluate random and ghost-ball next to the model at the end.
+        baselines: Evaluate the baselines (:data:`FINAL_BASELINES`) next to the model.
         progress_bar: Show SB3's progress bar.
         policy: SB3 policy name.
         env_kwargs: ``gymnasium.make`` keyword arguments.
@@ -123,9 +131,12 @@ class PeriodicEval(BaseCallback):
         self.env = make_env(config.env_id, config.env_kwargs, config.wrapper)
         self.next_eval = 0
         self.start = time.perf_counter()
+        self.eval_seconds = 0.0  # spent evaluating, to keep out of the training time
 
     def _evaluate(self) -> None:
+        t0 = time.perf_counter()
         summary = run_episodes(self.model, self.env, self.config.eval_episodes, EVAL_SEED).summary()
+        self.eval_seconds += time.perf_counter() - t0
         self.history.append((self.num_timesteps, time.perf_counter() - self.start, summary))
         for key in ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward"):
             self.logger.record(f"eval/{key}", summary[key].value)
@@ -175,6 +186,24 @@ def run_folder(root: str | Path, config: TrainConfig) -> Path:
     return runs.run_folder(root, config.env_id, config.algo, config.seed, config.n_timesteps)
 
 
+def warm_up(config: TrainConfig) -> float:
+    """Compile (or load from numba's cache) every kernel a run uses; return the seconds.
+
+    One step of a throwaway training env and of an evaluation env, with their own seeds,
+    so the run's own environments and random streams are untouched.
+    """
+    t0 = time.perf_counter()
+    vec = make_vec(config, n_envs=1, seed=config.seed + 1_000_003)
+    vec.reset()
+    vec.step(np.zeros((1, *vec.action_space.shape), dtype=np.float32))
+    vec.close()
+    env = make_env(config.env_id, config.env_kwargs, config.wrapper)
+    env.reset(seed=0)
+    env.step(np.zeros(env.action_space.shape, dtype=np.float32))
+    env.close()
+    return time.perf_counter() - t0
+
+
 def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -> Path:
     """Train, evaluate and write a run folder; return its path.
 
@@ -198,6 +227,17 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     (out / "config.yaml").write_text(yaml.safe_dump(asdict(config), sort_keys=False))
     runs.write_command(out)
 
+    if not quiet:
+        print(
+            "Preparing the simulator: numba compiles its kernels on a first run (about a "
+            "minute on 2 cores, not counted as training), later runs load them from its cache",
+            flush=True,
+        )
+    compile_seconds = warm_up(config)
+    if not quiet:
+        print(
+            f"Ready in {compile_seconds:.1f} s; training {config.n_timesteps:,} steps", flush=True
+        )
     env = make_vec(config)
     model = ALGOS[config.algo](
         config.policy,
@@ -212,11 +252,12 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     callback = PeriodicEval(config, history) if config.eval_freq > 0 else None
     t_train = time.perf_counter()
     model.learn(config.n_timesteps, callback=callback, progress_bar=config.progress_bar)
-    train_seconds = time.perf_counter() - t_train
+    eval_seconds = callback.eval_seconds if callback is not None else 0.0
+    train_seconds = time.perf_counter() - t_train - eval_seconds
     env.close()
     model.save(out / "model.zip")
 
-    rows = _final_evaluation(config, model)
+    rows, best_const = _final_evaluation(config, model)
     from agents.plots import learning_curve  # matplotlib only now
 
     _write_curve(out, history)
@@ -228,7 +269,10 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
         "algo": config.algo,
         "n_timesteps": config.n_timesteps,
         "train_seconds": round(train_seconds, 1),
+        "periodic_eval_seconds": round(eval_seconds, 1),
+        "compile_seconds": round(compile_seconds, 1),
         "total_seconds": round(total, 1),
+        "best_const_action": best_const,
         "final_seed": FINAL_SEED,
         "episodes": config.final_episodes,
         "results": {agent: _as_dict(stats) for agent, stats in rows.items()},
@@ -237,25 +281,52 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     (out / "evaluation.md").write_text(
         f"# {config.algo.upper()} on {config.env_id}, {config.n_timesteps:,} steps\n\n"
         f"Command: `{(out / 'command.txt').read_text().strip()}`\n\n{table}\n\n"
-        f"Training {train_seconds:.0f} s, total {total:.0f} s.\n"
+        f"Training {train_seconds:.0f} s (periodic evaluation {eval_seconds:.0f} s, compiling "
+        f"{compile_seconds:.0f} s), total {total:.0f} s.{_best_const_note(best_const)}\n"
     )
     print(f"\n{config.algo.upper()} on {config.env_id} after {config.n_timesteps:,} steps")
     print(table)
+    print(_best_const_note(best_const).strip())
     print("\n" + one_line(rows))
     if not quiet:
-        print(f"\nTraining took {train_seconds:.0f} s ({total:.0f} s in all). Run folder: {out}")
+        print(
+            f"\nTraining took {train_seconds:.0f} s (plus {eval_seconds:.0f} s of periodic "
+            f"evaluation and {compile_seconds:.0f} s compiling; {total:.0f} s in all). "
+            f"Run folder: {out}"
+        )
     return out
 
 
-def _final_evaluation(config: TrainConfig, model: BaseAlgorithm) -> dict[str, dict]:
-    """The model and (optionally) both baselines on the same final seeds."""
+def _final_evaluation(
+    config: TrainConfig, model: BaseAlgorithm
+) -> tuple[dict[str, dict], list[float] | None]:
+    """The model and (optionally) :data:`FINAL_BASELINES` on the same final seeds.
+
+    Returns:
+        The rows by agent name, and the best constant action (``None`` without baselines).
+    """
+    from agents.constant_scan import best_constant_agent
+
     n, kw, wrap = config.final_episodes, config.env_kwargs, config.wrapper
     name = f"{config.algo} (this run)"
     rows = {name: evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, wrap, agent=model)}
+    best_const = None
     if config.baselines:  # baselines read the raw observation: no wrapper, same layouts
-        for name in ("random", "const", "ghost"):
-            rows[name] = evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, None)
-    return rows
+        for name in FINAL_BASELINES:
+            agent = None
+            if name == "best-const":  # scanned on its own seeds, then evaluated on these
+                scan_env = make_env(config.env_id, kw)
+                agent = best_constant_agent(scan_env, episodes=min(n, 1000))
+                scan_env.close()
+                best_const = [float(v) for v in agent.action]
+            rows[name] = evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, None, agent=agent)
+    return rows, best_const
+
+
+def _best_const_note(action: list[float] | None) -> str:
+    if action is None:
+        return ""
+    return f" best-const: the action ({action[0]:+.2f}, {action[1]:+.2f}) of a 9 x 9 grid scan."
 
 
 def _as_dict(stats: dict[str, Estimate]) -> dict[str, list[float]]:

@@ -1,4 +1,7 @@
-"""Baseline agents: the ghost-ball planner, the action inversion, SB3 compatibility."""
+"""Baseline agents: the search planner, the action inversion, SB3 compatibility.
+
+The geometric ghost-ball agent has its own tests in ``test_ghost_ball.py``.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +12,7 @@ import numpy as np
 import pytest
 
 import pool_env
-from agents import GhostBallAgent, RandomAgent, run_episodes
+from agents import GhostBallAgent, RandomAgent, SearchAgent, run_episodes
 from agents.aiming import decode, shot_to_action
 from agents.base import decode_observation, env_spec
 from agents.features import PocketFeatures
@@ -18,9 +21,9 @@ from agents.random_agent import ConstantAgent
 ONE = "pool_env/OneBall-v0"
 
 
-def test_ghost_beats_random_by_a_wide_margin() -> None:
+def test_search_beats_random_by_a_wide_margin() -> None:
     env = gym.make(ONE)
-    ghost = run_episodes(GhostBallAgent(env), env, 100, seed=123).summary()
+    ghost = run_episodes(SearchAgent(env), env, 100, seed=123).summary()
     rand = run_episodes(RandomAgent(env, seed=0), env, 100, seed=123).summary()
     assert ghost["pots_per_shot"].value >= 0.95
     assert ghost["scratch_rate"].value <= 0.03
@@ -29,22 +32,22 @@ def test_ghost_beats_random_by_a_wide_margin() -> None:
 
 
 @pytest.mark.parametrize("aim", ["relative", "absolute"])
-def test_ghost_pots_in_every_aim_mode(aim: str) -> None:
+def test_search_pots_in_every_aim_mode(aim: str) -> None:
     env = gym.make(ONE, aim=aim)
-    stats = run_episodes(GhostBallAgent(env), env, 40, seed=7).summary()
+    stats = run_episodes(SearchAgent(env), env, 40, seed=7).summary()
     assert stats["clean_pot_rate"].value >= 0.9
 
 
-def test_ghost_clears_a_nine_ball_rack() -> None:
+def test_search_clears_a_nine_ball_rack() -> None:
     env = gym.make("pool_env/NineBall-v0")
-    stats = run_episodes(GhostBallAgent(env), env, 2, seed=0).summary()
+    stats = run_episodes(SearchAgent(env), env, 2, seed=0).summary()
     assert stats["pots_per_shot"].value > 0.5
     assert stats["clear_rate"].value > 0.0
 
 
-def test_ghost_decodes_observations_without_the_env_state() -> None:
+def test_search_decodes_observations_without_the_env_state() -> None:
     env = gym.make(ONE)
-    agent = GhostBallAgent(env)
+    agent = SearchAgent(env)
     agent.source.env = None  # observations only: float32 positions
     stats = run_episodes(agent, env, 30, seed=3).summary()
     assert stats["clean_pot_rate"].value >= 0.9
@@ -55,7 +58,7 @@ def test_baselines_work_with_sb3_evaluate_policy() -> None:
     from stable_baselines3.common.evaluation import evaluate_policy
 
     vec = make_vec_env(ONE, n_envs=2, seed=0)
-    ghost_mean, _ = evaluate_policy(GhostBallAgent(vec), vec, n_eval_episodes=20)
+    ghost_mean, _ = evaluate_policy(SearchAgent(vec), vec, n_eval_episodes=20)
     random_mean, _ = evaluate_policy(RandomAgent(vec, seed=0), vec, n_eval_episodes=20)
     assert ghost_mean >= 0.9
     assert ghost_mean > random_mean
@@ -102,7 +105,8 @@ def test_decode_observation_round_trip() -> None:
 def test_predict_shapes_and_state() -> None:
     env = gym.make(ONE)
     obs, _ = env.reset(seed=0)
-    for agent in (RandomAgent(env, seed=1), GhostBallAgent(env), ConstantAgent(env)):
+    agents = (RandomAgent(env, seed=1), SearchAgent(env), GhostBallAgent(env), ConstantAgent(env))
+    for agent in agents:
         action, state = agent.predict(obs, state=None, deterministic=True)
         assert action.shape == (2,) and action.dtype == np.float32
         assert state is None
@@ -127,3 +131,13 @@ def test_pocket_features_bounded_and_aligned() -> None:
     feats = obs[-(1 + 3 * 6) :]
     assert feats[0] == pytest.approx(np.hypot(*(pos[1] - pos[0])) / np.hypot(2.54, 1.27), 1e-5)
     assert np.allclose(feats[1::3] ** 2 + feats[2::3] ** 2, 1.0, atol=1e-5)
+
+
+def test_search_with_execution_noise_and_on_pool_v0() -> None:
+    env = gym.make(ONE, noise=(0.003, 0.05))
+    search = run_episodes(SearchAgent(env), env, 60, seed=11).summary()
+    rand = run_episodes(RandomAgent(env, seed=0), env, 60, seed=11).summary()
+    assert search["clean_pot_rate"].value - rand["clean_pot_rate"].value >= 0.15
+    pool = gym.make("pool_env/Pool-v0")
+    stats = run_episodes(SearchAgent(pool), pool, 4, seed=2).summary()
+    assert stats["clear_rate"].value == 1.0 and stats["pots_per_turn"].value >= 2.0

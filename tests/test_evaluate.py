@@ -90,3 +90,25 @@ def test_unknown_agent_is_a_clear_error() -> None:
         evaluate_agent("nonsense", ONE, 1, seed=0)
     with pytest.raises(FileNotFoundError):
         load_model("missing_ppo.zip")
+
+
+def test_best_constant_scan_keeps_the_best_of_the_grid() -> None:
+    from agents.constant_scan import scan_constant_actions
+
+    env = gym.make(ONE)
+    scan = scan_constant_actions(env, grid=3, episodes=40, seed=100)
+    assert len(scan.table) == 9 and {a for a, _ in scan.table} >= {(0.0, 1.0), (-1.0, -1.0)}
+    assert scan.pots_per_shot.value == max(rate for _, rate in scan.table)
+    replay = run_episodes(ConstantAgent(env, scan.action), env, 40, seed=100).summary()
+    assert replay["pots_per_shot"].value == scan.pots_per_shot.value
+    full_hit = dict(scan.table)[(0.0, 1.0)]
+    assert scan.pots_per_shot.value >= full_hit
+    with pytest.raises(ValueError, match="grid"):
+        scan_constant_actions(env, grid=1)
+
+
+def test_cli_names_every_baseline(capsys: pytest.CaptureFixture[str]) -> None:
+    argv = ["--env", ONE, "--agent", "best-const", "search", "--episodes", "10", "--seed", "5"]
+    assert main(argv) == 0
+    text = capsys.readouterr().out
+    assert "| best-const (" in text and "| search |" in text

@@ -6,6 +6,7 @@ import json
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 import yaml
 
@@ -20,10 +21,16 @@ TINY = [
 ]  # fmt: skip
 
 
-def test_train_py_writes_a_complete_run_folder(tmp_path: Path) -> None:
+def test_train_py_writes_a_complete_run_folder(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     assert (
         train.main([*TINY, "--runs", str(tmp_path), "--set", "n_steps=128", "batch_size=64"]) == 0
     )
+    printed = capsys.readouterr().out
+    # The compile notice comes before training; the last lines set the run beside the baselines.
+    assert printed.index("Preparing the simulator") < printed.index("pots per shot: ppo")
+    assert all(f"| {name} " in printed for name in ("random", "best-const", "ghost", "search"))
     (run,) = (tmp_path / "OneBall-v0").iterdir()
     for name in ("config.yaml", "command.txt", "model.zip", "evaluation.md", "evaluation.json",
                  "curve.csv", "learning_curve.png"):  # fmt: skip
@@ -33,8 +40,10 @@ def test_train_py_writes_a_complete_run_folder(tmp_path: Path) -> None:
     assert config["algo"] == "ppo" and config["n_timesteps"] == 512
     assert config["algo_kwargs"]["n_steps"] == 128
     report = json.loads((run / "evaluation.json").read_text())
-    assert set(report["results"]) == {"ppo (this run)", "random", "const", "ghost"}
-    assert report["results"]["ghost"]["pots_per_shot"][0] >= 0.9
+    assert set(report["results"]) == {"ppo (this run)", "random", "best-const", "ghost", "search"}
+    assert report["results"]["search"]["pots_per_shot"][0] >= 0.9
+    grid = np.linspace(-1.0, 1.0, 9).tolist()
+    assert all(v in grid for v in report["best_const_action"])
     assert len((run / "curve.csv").read_text().splitlines()) >= 3  # header, start, end
     stats = evaluate_agent(str(run / "model.zip"), "pool_env/OneBall-v0", 10, seed=0)
     assert 0.0 <= stats["pots_per_shot"].value <= 1.0

@@ -1,0 +1,202 @@
+"""SearchAgent: ghost-ball candidate shots, checked shot by shot on the simulator.
+
+The oracle upper bound among the baselines (it was called ``GhostBallAgent`` before the
+geometric heuristic of :mod:`agents.ghost_ball` took that name). For every legal object ball
+and pocket it aims at a few points across the pocket's mouth (:func:`agents.geometry.
+ghost_shots`), keeps the shots whose paths are clear, and takes a few speeds from the known
+rolling deceleration (:func:`agents.geometry.cue_speed`) so that the object ball arrives
+with a margin. Each candidate is then played on :func:`pool_env.shoot` (a shot costs ~10-20
+us): the ones that pot without scratching are replayed with small aim and speed errors, and
+the most forgiving one wins (ties: the softer and straighter shot). When no candidate pots
+(a rack, a blocked ball), a random search over actions, also simulated, picks the best shot
+it finds.
+
+Simulating candidates is what a planner with a perfect model does; the environment's state
+is fully observed. With execution noise on, the agent aims at the noiseless optimum, but
+prefers shots that survive errors of the noise's size.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from agents.aiming import decode, shot_to_action
+from agents.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
+from agents.geometry import (
+    MAX_CUT,
+    LegalTargets,
+    any_object_ball,
+    cue_speed,
+    ghost_shots,
+    pocket_mouths,
+)
+from pool_env import shoot
+
+#: Speeds (m/s) at which the object ball should reach the pocket: softer shots keep the cue
+#: ball under control, harder ones forgive more of the deceleration model.
+ARRIVAL_SPEEDS = (0.3, 0.7, 1.2, 2.0)
+#: Aim points across the mouth, as fractions of its half-width sideways from its middle.
+AIM_OFFSETS = (0.0, -0.4, 0.4)
+
+
+@dataclass
+class Shot:
+    """A candidate shot and what the simulator says it does.
+
+    Attributes:
+        action: The float32 action that plays it.
+        angle: Executed direction (radians from +x).
+        speed: Executed cue speed (m/s).
+        difficulty: Heuristic cost for ties (longer and thinner shots cost more).
+        value: Outcome of the nominal shot: clean pots, minus scratches.
+        robustness: How many perturbed replays also pot cleanly.
+    """
+
+    action: NDArray[np.float32]
+    angle: float
+    speed: float
+    difficulty: float
+    value: float = 0.0
+    robustness: int = 0
+
+
+class SearchAgent(BaselineAgent):
+    """Ghost-ball candidates, verified with the simulator; SB3's ``predict`` signature.
+
+    Args:
+        env: The environment it plays (``gym.Env``, wrapped or not, or an SB3 ``VecEnv`` of
+            ``PoolEnv``): the table and action decoding are read from it, and its exact layout
+            when it matches the observation.
+        seed: Seed for the fallback random search.
+        n_search: Random actions tried when no ghost-ball shot pots.
+        n_robust: Best ghost-ball shots replayed with errors to rank them.
+        legal_targets: Which object balls may be aimed at (default: any on the table).
+    """
+
+    def __init__(
+        self,
+        env: Any,
+        seed: int | None = 0,
+        n_search: int = 128,
+        n_robust: int = 12,
+        legal_targets: LegalTargets = any_object_ball,
+    ) -> None:
+        self.spec: EnvSpec = env_spec(env)
+        self.source = LayoutSource(env, self.spec.table)
+        self.mouths = pocket_mouths(self.spec.table)
+        self.legal_targets = legal_targets
+        self.rng = np.random.default_rng(seed)
+        self.n_search = n_search
+        self.n_robust = n_robust
+        self.last_plan: dict[str, Any] = {}
+
+    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
+        """The planned action for each observation's layout."""
+        return np.stack([self.plan(pos, on) for pos, on in self.source.layouts(observations)])
+
+    # -- planning -------------------------------------------------------------------------
+
+    def plan(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
+        """The action for one layout (``(N, 2)`` centres, cue first; ``(N,)`` on the table)."""
+        rows = on_table.nonzero()[0]
+        sub = np.ascontiguousarray(positions[rows])
+        shots = self._ghost_shots(positions, on_table, sub)
+        for shot in shots:
+            shot.value = self._outcome(sub, shot.angle, shot.speed)
+        good = sorted((s for s in shots if s.value >= 1.0), key=lambda s: (-s.value, s.difficulty))
+        if good:
+            for shot in good[: self.n_robust]:
+                shot.robustness = self._robustness(sub, shot)
+            best = max(good[: self.n_robust], key=lambda s: (s.value, s.robustness, -s.difficulty))
+            self.last_plan = {"kind": "ghost", "candidates": len(shots), "shot": best}
+            return best.action
+        best = self._search(positions, on_table, sub)
+        self.last_plan = {"kind": "search", "candidates": len(shots), "shot": best}
+        return best.action
+
+    def _ghost_shots(
+        self, positions: NDArray[np.float64], on_table: NDArray[np.bool_], sub: NDArray
+    ) -> list[Shot]:
+        """Every clear ghost-ball shot (ball, pocket, aim point, arrival speed)."""
+        table = self.spec.table
+        targets = self.legal_targets(positions, on_table)
+        planned: list[tuple[float, float, float]] = []  # (angle, speed, difficulty)
+        for offset in AIM_OFFSETS:
+            for shot in ghost_shots(
+                table, self.mouths, positions, on_table, targets, offset, MAX_CUT
+            ):
+                if not shot.clear:
+                    continue
+                cos_cut = math.cos(shot.cut)
+                difficulty = (shot.cue_distance + shot.ball_distance) / cos_cut
+                for v_arrive in ARRIVAL_SPEEDS:
+                    speed = cue_speed(table, shot, v_arrive)
+                    planned.append((shot.angle, speed, difficulty + 0.01 * v_arrive))
+        return self._to_shots(planned, positions, on_table)
+
+    def _to_shots(
+        self,
+        planned: list[tuple[float, float, float]],
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+    ) -> list[Shot]:
+        """Representable shots, with the direction and speed the env will really execute."""
+        kept, actions = [], []
+        for angle, speed, difficulty in planned:
+            action = shot_to_action(angle, speed, positions, on_table, self.spec)
+            if action is not None:
+                kept.append(difficulty)
+                actions.append(action)
+        if not actions:
+            return []
+        acts = np.stack(actions)
+        angles, speeds = decode(acts, positions, on_table, self.spec)
+        return [
+            Shot(acts[k], float(angles[k]), float(speeds[k]), kept[k]) for k in range(len(kept))
+        ]
+
+    def _outcome(self, sub: NDArray, angle: float, speed: float) -> float:
+        """Clean pots of the shot (0 if it scratches, -1 if it scratches without a pot)."""
+        pocketed = shoot(self.spec.table, sub, angle, speed).pocketed
+        pots = int(np.count_nonzero(pocketed[1:] >= 0))
+        if pocketed[0] >= 0:
+            return -1.0 if pots == 0 else 0.0
+        return float(pots)
+
+    def _robustness(self, sub: NDArray, shot: Shot) -> int:
+        """How many of a few perturbed replays (aim, speed) still pot cleanly."""
+        noise = self.spec.noise
+        d_angle = max(noise[0], 5e-4) if noise else 1.5e-3
+        speeds = (
+            (shot.speed - noise[1], shot.speed + noise[1])
+            if noise and noise[1] > 0.0
+            else (0.9 * shot.speed, 1.1 * shot.speed)
+        )
+        trials = [(shot.angle + k * d_angle, shot.speed) for k in (-2, -1, 1, 2)]
+        trials += [(shot.angle, max(s, 0.0)) for s in speeds]
+        return sum(self._outcome(sub, a, s) >= 1.0 for a, s in trials)
+
+    def _search(
+        self, positions: NDArray[np.float64], on_table: NDArray[np.bool_], sub: NDArray
+    ) -> Shot:
+        """The best of ``n_search`` random actions: pots first, then no scratch, then soft."""
+        acts = self.rng.uniform(-1.0, 1.0, size=(self.n_search, 2)).astype(np.float32)
+        angles, speeds = decode(acts, positions, on_table, self.spec)
+        best, best_key = None, None
+        for k in range(self.n_search):
+            result = shoot(self.spec.table, sub, float(angles[k]), float(speeds[k]))
+            pocketed = result.pocketed
+            pots = int(np.count_nonzero(pocketed[1:] >= 0))
+            scratch = bool(pocketed[0] >= 0)
+            contact = result.first_contact is not None
+            key = (0 if scratch else pots, pots, not scratch, contact, -float(speeds[k]))
+            if best_key is None or key > best_key:
+                best_key = key
+                best = Shot(acts[k], float(angles[k]), float(speeds[k]), 0.0, float(key[0]))
+        assert best is not None
+        return best
