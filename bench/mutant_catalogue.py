@@ -45,6 +45,7 @@ SIM = (
     "tests/test_zeno_rules.py",
     "tests/test_closed_forms.py",
     "tests/test_hard_cases.py",
+    "tests/test_pinned_hard_cases.py",
 )
 SIM_AND_REFERENCE = (*SIM, "tests/test_reference_compare.py")
 SIM_AND_PROPERTIES = (*SIM, "tests/test_properties.py")
@@ -53,7 +54,8 @@ POCKETS = (
     "tests/test_closed_forms.py",
     "tests/test_reference_compare.py",
 )
-DECISION = ("tests/test_mdp.py", "tests/test_env.py", "tests/test_env_expectations.py")
+# The most focused files come first: with -x a killed mutant stops at its first failure.
+DECISION = ("tests/test_env_expectations.py", "tests/test_mdp.py", "tests/test_env.py")
 VECTOR = ("tests/test_env_expectations.py", "tests/test_vector.py")
 SB3 = ("tests/test_native_vec_expectations.py", "tests/test_native_vec.py")
 

@@ -159,3 +159,28 @@ def test_an_isolated_slow_impact_keeps_its_restitution(approach: float) -> None:
     # The separation is far above the tolerance: a lump would rest this much nearer.
     lump = _rest_x(table, _row(2)[:, 0], [mean, mean])
     assert result.positions[1, 0] - lump[1] > 100 * 1e-12
+
+
+def test_a_lump_takes_only_the_balls_touching_it() -> None:
+    """e = 0: the struck row sticks as a lump; a ball 1/1024 m beyond joins only on impact.
+
+    At t = 0 the cue (0.6 m/s) and the touching balls 1, 2 leave as one lump at 0.2 m/s.
+    Ball 3, 0.98 mm past ball 2, is not touching: the lump reaches it after rolling the gap,
+    at ``w = sqrt(0.2^2 - 2 a g)``; that impact is inelastic too and the four leave at the
+    centre-of-mass speed ``(3 w + 0) / 4``.
+    """
+    table = _table(0.0)
+    gap = 1.0 / 1024.0
+    positions = _row(4)
+    positions[3, 0] += gap
+    velocities = np.zeros((4, 2))
+    velocities[0, 0] = 0.6
+    result = simulate(table, positions, velocities)
+    a = table.deceleration
+    w = np.sqrt(0.2**2 - 2 * a * gap)
+    travel = (0.75 * w) ** 2 / (2 * a)
+    expected = positions[:, 0] + travel + np.array([gap, gap, gap, 0.0])
+    np.testing.assert_allclose(result.positions[:, 0], expected, rtol=0, atol=1e-12)
+    hits = [(ev.i, ev.j) for ev in result.events if ev.kind == "ball"]
+    assert hits == [(0, 1), (2, 3)]
+    assert result.events[1].time == pytest.approx((0.2 - w) / a, rel=1e-12)
