@@ -82,7 +82,9 @@ class Shot:
 def _straight_pot(name: str, object_ball: int, n_balls: int, shaping: float) -> Shot:
     """A full hit sends the object ball along the line cue -> corner (L, 0) into the pocket.
 
-    The cue ball stops ``((1 - e) / 2 v_hit)^2 / 2a`` past the contact point.
+    The cue ball stops ``((1 - e) / 2 v_hit)^2 / 2a`` past the contact point. With two
+    object balls, ball 1 is already potted and the shot is the last allowed one: the
+    episode terminates (cleared) and is truncated at once.
     """
     cue = np.array([1.8, 0.5])
     u = (np.array([L, 0.0]) - cue) / math.hypot(L - 1.8, 0.5)
@@ -106,7 +108,7 @@ def _straight_pot(name: str, object_ball: int, n_balls: int, shaping: float) -> 
     return Shot(
         name,
         "pool_env/OneBall-v0" if n_balls == 1 else "pool_env/Pool-v0",
-        {"reward_shaping": shaping} if n_balls == 1 else {"n_balls": n_balls, "max_shots": 5},
+        {"reward_shaping": shaping} if n_balls == 1 else {"n_balls": n_balls, "max_shots": 1},
         positions,
         on,
         (0.0, speed_action),
@@ -114,8 +116,34 @@ def _straight_pot(name: str, object_ball: int, n_balls: int, shaping: float) -> 
         final,
         final_on,
         terminated=cleared,
-        truncated=False,
+        truncated=n_balls > 1,
         info={"potted": (object_ball,), "scratch": False, "first_contact": object_ball},
+    )
+
+
+def _pot_and_scratch() -> Shot:
+    """With e_ball = 0 the full hit leaves cue and object ball together: both drop in.
+
+    The pair sticks (an inelastic impact leaves them pressed together) and rolls along the
+    line into corner (L, 0): ball 1 is potted (+1) and the cue ball follows (-1) and goes
+    back to the head spot; ball 2 stays. ``end_on_miss``: the scratch ends the episode.
+    """
+    cue = np.array([1.8, 0.5])
+    u = (np.array([L, 0.0]) - cue) / math.hypot(L - 1.8, 0.5)
+    positions = [tuple(cue), tuple(cue + 0.3 * u), (0.3, 1.0)]
+    return Shot(
+        "pot-and-scratch",
+        "pool_env/Pool-v0",
+        {"n_balls": 2, "end_on_miss": True, "table": {"e_ball": 0.0}},
+        positions,
+        [True, True, True],
+        (0.0, action_for_speed(2.0)),
+        0.0,
+        [HEAD_SPOT, positions[1], (0.3, 1.0)],
+        [True, False, True],
+        terminated=True,
+        truncated=False,
+        info={"potted": (1,), "scratch": True, "first_contact": 1},
     )
 
 
@@ -163,6 +191,7 @@ SHOTS = [
     _straight_pot("pot", 1, 1, 0.0),
     _straight_pot("pot-shaped", 1, 1, 1.0),
     _straight_pot("pot-after-a-pot", 2, 2, 0.0),
+    _pot_and_scratch(),
     _scratch(),
     _miss(),
 ]

@@ -162,7 +162,7 @@ def test_an_isolated_slow_impact_keeps_its_restitution(approach: float) -> None:
 
 
 def test_a_lump_takes_only_the_balls_touching_it() -> None:
-    """e = 0: the struck row sticks as a lump; a ball 1/1024 m beyond joins only on impact.
+    """With e = 0 the struck row sticks as a lump; a ball 1/1024 m beyond joins on impact.
 
     At t = 0 the cue (0.6 m/s) and the touching balls 1, 2 leave as one lump at 0.2 m/s.
     Ball 3, 0.98 mm past ball 2, is not touching: the lump reaches it after rolling the gap,
