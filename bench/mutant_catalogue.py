@@ -59,6 +59,20 @@ DECISION = ("tests/test_env_expectations.py", "tests/test_mdp.py", "tests/test_e
 VECTOR = ("tests/test_env_expectations.py", "tests/test_vector.py")
 SB3 = ("tests/test_native_vec_expectations.py", "tests/test_native_vec.py")
 
+#: Test files that never reach the vector env's compiled random-number intrinsics, so they
+#: can run with the kernels interpreted (``NUMBA_DISABLE_JIT=1``): a mutant whose subset is
+#: all such files skips the ~25 s of compiling a fresh kernel cache.
+INTERPRETABLE = frozenset(
+    {
+        *SIM,
+        "tests/test_reference_compare.py",
+        "tests/test_properties.py",
+        "tests/test_pocket_geometry.py",
+        "tests/test_batch.py",
+        "tests/test_mdp.py",
+    }
+)
+
 CATALOGUE: tuple[Mutant, ...] = (
     # -- ball-ball impacts ---------------------------------------------------------------
     Mutant(

@@ -14,6 +14,12 @@ mutant whose snippet no longer occurs exactly once is *stale* (the code moved: r
 it) and is reported, never skipped silently. The unmutated tree runs the union of all
 subsets first: if that baseline fails, no kill means anything and the run says so.
 
+Interpreted kernels: a mutant whose subset only uses the simulator (the files of
+:data:`bench.mutant_catalogue.INTERPRETABLE`) runs with ``NUMBA_DISABLE_JIT=1``: the same
+kernels as plain Python, so no ~25 s compile of a fresh cache per mutant (the suite's
+simulator tests pass that way too: that is its baseline). ``--compiled`` compiles every
+mutant instead.
+
 Compiled kernels: every scratch worker has its own numba cache (``NUMBA_CACHE_DIR`` inside
 the scratch folder). ``pool_env``'s cache folder is named after a hash of the compiled
 modules' sources, so a mutated kernel compiles into a folder of its own and can never be
@@ -37,7 +43,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from bench.mutant_catalogue import CATALOGUE, Mutant
+from bench.mutant_catalogue import CATALOGUE, INTERPRETABLE, Mutant
 
 ROOT = Path(__file__).resolve().parents[1]
 #: Default limit on one mutant's subset (s); the baseline, the union of all subsets, gets
@@ -49,12 +55,27 @@ FAILED_LINE = re.compile(r"^(FAILED|ERROR) (\S+)", re.MULTILINE)
 
 @dataclass
 class Outcome:
-    """The verdict on one mutant (or on the baseline, ``mutant=None``)."""
+    """The verdict on one mutant (or on a baseline, ``mutant=None``)."""
 
     mutant: Mutant | None
     status: str  # "killed", "survived", "stale", "timeout", "error"
     detail: str  # the killing test, the reason for stale/error, or ""
     seconds: float
+    interpreted: bool = False
+
+
+@dataclass(frozen=True)
+class Job:
+    """A mutant to run (``None``: a baseline of ``tests``), and how."""
+
+    mutant: Mutant | None
+    tests: tuple[str, ...]
+    interpreted: bool
+
+
+def interpretable(mutant: Mutant) -> bool:
+    """Whether every file of the mutant's subset can run with the kernels interpreted."""
+    return all(t.split("::")[0] in INTERPRETABLE for t in mutant.tests)
 
 
 def occurrences(mutant: Mutant, root: Path = ROOT) -> int:
@@ -95,7 +116,9 @@ def apply(mutant: Mutant, tree: Path) -> None:
     path.write_text(source.replace(mutant.original, mutant.mutated))
 
 
-def run_tests(tree: Path, cache: Path, tests: Sequence[str], timeout: float) -> tuple[str, str]:
+def run_tests(
+    tree: Path, cache: Path, tests: Sequence[str], timeout: float, interpreted: bool
+) -> tuple[str, str]:
     """Run ``tests`` in ``tree``; return ``(verdict, first failure)``.
 
     The verdict is ``"passed"``, ``"failed"``, ``"timeout"`` or ``"error"``.
@@ -107,6 +130,10 @@ def run_tests(tree: Path, cache: Path, tests: Sequence[str], timeout: float) -> 
         "HYPOTHESIS_PROFILE": "ci",
         "PYTHONDONTWRITEBYTECODE": "1",
     }
+    if interpreted:
+        env["NUMBA_DISABLE_JIT"] = "1"
+    else:
+        env.pop("NUMBA_DISABLE_JIT", None)
     command = [sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "-rfE"]
     try:
         proc = subprocess.run(
@@ -130,41 +157,46 @@ def run_tests(tree: Path, cache: Path, tests: Sequence[str], timeout: float) -> 
 
 
 def _worker(
-    jobs: queue.Queue[Mutant | None],
+    jobs: queue.Queue[Job],
     results: list[Outcome],
     lock: threading.Lock,
     scratch: Path,
     files: list[str],
-    baseline_tests: tuple[str, ...],
     timeout: float,
 ) -> None:
     tree, cache = scratch / "tree", scratch / "numba"
     while True:
         try:
-            mutant = jobs.get_nowait()
+            job = jobs.get_nowait()
         except queue.Empty:
             return
         start = time.perf_counter()
         fresh_copy(ROOT, files, tree)
-        if mutant is None:
-            verdict, where = run_tests(tree, cache, baseline_tests, 4 * timeout)
-            status = {"passed": "survived"}.get(verdict, verdict)  # baseline: should pass
-            outcome = Outcome(None, status, where, time.perf_counter() - start)
-        else:
+        mutant = job.mutant
+        if mutant is not None:
             apply(mutant, tree)
-            verdict, where = run_tests(tree, cache, mutant.tests, timeout)
-            status = {"passed": "survived", "failed": "killed"}.get(verdict, verdict)
-            outcome = Outcome(mutant, status, where, time.perf_counter() - start)
+        limit = timeout if mutant is not None else 4 * timeout
+        verdict, where = run_tests(tree, cache, job.tests, limit, job.interpreted)
+        # A baseline must pass ("survived"); a mutant should fail ("killed").
+        status = {"passed": "survived", "failed": "killed"}.get(verdict, verdict)
+        if mutant is None and status == "killed":
+            status = "failed"
+        outcome = Outcome(mutant, status, where, time.perf_counter() - start, job.interpreted)
         with lock:
             results.append(outcome)
             label = "baseline" if mutant is None else mutant.name
+            label += " (interpreted)" if job.interpreted else ""
             print(f"{label:28s} {outcome.status:9s} {outcome.seconds:6.1f} s  {where}", flush=True)
 
 
 def run(
-    mutants: Sequence[Mutant], workers: int, timeout: float = TIMEOUT
-) -> tuple[Outcome, list[Outcome]]:
-    """Run the baseline and every mutant; return ``(baseline, outcomes in catalogue order)``."""
+    mutants: Sequence[Mutant], workers: int, timeout: float = TIMEOUT, compiled: bool = False
+) -> tuple[list[Outcome], list[Outcome]]:
+    """Run the baselines and every mutant; return ``(baselines, outcomes in catalogue order)``.
+
+    Mutants whose subsets are all :data:`INTERPRETABLE` run with the kernels interpreted
+    unless ``compiled``; each mode has its own baseline (the union of its subsets).
+    """
     results: list[Outcome] = []
     runnable = []
     for m in mutants:
@@ -174,11 +206,16 @@ def run(
         else:
             where = "file missing" if not (ROOT / m.file).is_file() else f"{count} occurrences"
             results.append(Outcome(m, "stale", f"snippet not found once ({where})", 0.0))
-    baseline_tests = tuple(dict.fromkeys(t for m in runnable for t in m.tests))
-    jobs: queue.Queue[Mutant | None] = queue.Queue()
-    jobs.put(None)  # the baseline first
+    mode = {m.name: not compiled and interpretable(m) for m in runnable}
+    jobs: queue.Queue[Job] = queue.Queue()
+    for interpreted in (False, True):  # the baselines first
+        union = tuple(
+            dict.fromkeys(t for m in runnable if mode[m.name] == interpreted for t in m.tests)
+        )
+        if union:
+            jobs.put(Job(None, union, interpreted))
     for m in runnable:
-        jobs.put(m)
+        jobs.put(Job(m, m.tests, mode[m.name]))
     files = tracked_files(ROOT)
     lock = threading.Lock()
     root = Path(tempfile.mkdtemp(prefix="pool_env-mutants-"))
@@ -186,7 +223,7 @@ def run(
         threads = [
             threading.Thread(
                 target=_worker,
-                args=(jobs, results, lock, root / f"w{k}", files, baseline_tests, timeout),
+                args=(jobs, results, lock, root / f"w{k}", files, timeout),
             )
             for k in range(workers)
         ]
@@ -196,14 +233,14 @@ def run(
             t.join()
     finally:
         shutil.rmtree(root, ignore_errors=True)
-    baseline = next(r for r in results if r.mutant is None)
+    baselines = [r for r in results if r.mutant is None]
     order = {m.name: k for k, m in enumerate(mutants)}
     mutated = [r for r in results if r.mutant is not None]
     outcomes = sorted(mutated, key=lambda r: order[r.mutant.name])  # type: ignore[union-attr]
-    return baseline, outcomes
+    return baselines, outcomes
 
 
-def report(baseline: Outcome, outcomes: list[Outcome], command: str, wall: float) -> str:
+def report(baselines: list[Outcome], outcomes: list[Outcome], command: str, wall: float) -> str:
     """The Markdown table of a run."""
     killed = sum(o.status == "killed" for o in outcomes)
     total = len(outcomes)
@@ -216,9 +253,13 @@ def report(baseline: Outcome, outcomes: list[Outcome], command: str, wall: float
         f"`{_commit()}`; load average {os.getloadavg()[0]:.2f} at the end; wall time "
         f"{wall / 60:.1f} min.",
         "",
-        f"Baseline (the unmutated tree, union of all subsets): **{baseline.status}**"
-        + ("" if baseline.status == "survived" else f" ({baseline.detail})")
-        + " (`survived` means it passed, as it must).",
+        "Baselines (the unmutated tree, the union of the subsets of each mode): "
+        + "; ".join(
+            f"{'interpreted' if b.interpreted else 'compiled'} "
+            + ("**passed**" if b.status == "survived" else f"**{b.status}** ({b.detail})")
+            for b in baselines
+        )
+        + ".",
         "",
         f"**Killed {killed} of {total} ({100.0 * killed / max(total, 1):.1f}%)**; "
         f"survived {sum(o.status == 'survived' for o in outcomes)}, "
@@ -227,16 +268,19 @@ def report(baseline: Outcome, outcomes: list[Outcome], command: str, wall: float
         f"error {sum(o.status == 'error' for o in outcomes)}.",
         "",
         "Each mutant runs in a scratch copy of the tree with its own numba cache; the "
-        "catalogue is `bench/mutant_catalogue.py`.",
+        "catalogue is `bench/mutant_catalogue.py`. Mode `interp.`: the subset ran with the "
+        "kernels interpreted (`NUMBA_DISABLE_JIT=1`, no compile); `jit`: compiled afresh "
+        "(`--compiled` forces it for all).",
         "",
-        "| mutant | area | file | models | result | killed by | s |",
-        "|---|---|---|---|---|---|---|",
+        "| mutant | area | file | models | mode | result | killed by | s |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for o in outcomes:
         m = o.mutant
         assert m is not None
         lines.append(
-            f"| `{m.name}` | {m.area} | `{m.file}` | {m.models} | {o.status} | "
+            f"| `{m.name}` | {m.area} | `{m.file}` | {m.models} | "
+            f"{'interp.' if o.interpreted else 'jit'} | {o.status} | "
             f"{o.detail.replace('|', '/') or '-'} | {o.seconds:.0f} |"
         )
     return "\n".join(lines) + "\n"
@@ -255,6 +299,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument("--workers", type=int, default=2, help="parallel scratch copies")
     parser.add_argument("--out", default="results/mutants.md", help="Markdown table ('' none)")
     parser.add_argument("--timeout", type=float, default=TIMEOUT, help="seconds per mutant")
+    parser.add_argument(
+        "--compiled", action="store_true", help="compile every mutant (no interpreted runs)"
+    )
     args = parser.parse_args(argv)
     names = {m.name for m in CATALOGUE}
     unknown = set(args.only or ()) - names
@@ -262,19 +309,20 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.error(f"unknown mutants {sorted(unknown)}")
     mutants = [m for m in CATALOGUE if not args.only or m.name in args.only]
     start = time.perf_counter()
-    baseline, outcomes = run(mutants, max(1, args.workers), args.timeout)
+    baselines, outcomes = run(mutants, max(1, args.workers), args.timeout, args.compiled)
     wall = time.perf_counter() - start
     command = "python -m bench.mutants" + (" " + " ".join(argv) if argv else "")
     if argv is None:
         command = "python -m bench.mutants " + " ".join(sys.argv[1:])
-    text = report(baseline, outcomes, command.strip(), wall)
+    text = report(baselines, outcomes, command.strip(), wall)
     print(text)
     if args.out:
         out = ROOT / args.out
         out.parent.mkdir(parents=True, exist_ok=True)
         out.write_text(text)
-    if baseline.status != "survived":
-        print(f"baseline failed ({baseline.detail}): the kills mean nothing", file=sys.stderr)
+    failed = [b for b in baselines if b.status != "survived"]
+    if failed:
+        print(f"a baseline failed ({failed[0].detail}): the kills mean nothing", file=sys.stderr)
         return 2
     return 0
 
