@@ -49,6 +49,7 @@ SIM = (
 )
 SIM_AND_REFERENCE = (*SIM, "tests/test_reference_compare.py")
 SIM_AND_PROPERTIES = (*SIM, "tests/test_properties.py")
+OUTCOME = ("tests/test_shot_outcome.py", "tests/test_batch.py")
 POCKETS = (
     "tests/test_pocket_geometry.py",
     "tests/test_closed_forms.py",
@@ -70,6 +71,7 @@ INTERPRETABLE = frozenset(
         "tests/test_pocket_geometry.py",
         "tests/test_batch.py",
         "tests/test_mdp.py",
+        "tests/test_shot_outcome.py",
     }
 )
 
@@ -125,8 +127,8 @@ CATALOGUE: tuple[Mutant, ...] = (
         "cushion-e-ball",
         "cushions",
         _K + "resolve.py",
-        "a, e = params[3], params[5]",
-        "a, e = params[3], params[4]",
+        "a, e = params[P_DECEL], params[P_E_CUSHION]",
+        "a, e = params[P_DECEL], params[P_E_BALL]",
         SIM,
         "cushion restitution taken from e_ball",
     ),
@@ -153,8 +155,8 @@ CATALOGUE: tuple[Mutant, ...] = (
         "motion-decel-1pct",
         "motion",
         "pool_env/sim/table.py",
-        "self.mu_roll * self.g,",
-        "1.01 * self.mu_roll * self.g,",
+        "params[P_DECEL] = self.mu_roll * self.g",
+        "params[P_DECEL] = 1.01 * self.mu_roll * self.g",
         SIM,
         "rolling deceleration 1% off in the kernels' parameters",
     ),
@@ -205,13 +207,13 @@ CATALOGUE: tuple[Mutant, ...] = (
         "a ball-ball or pocket entry 0.1 um late along the path",
     ),
     Mutant(
-        "roots-quartic-curvature",
+        "roots-inflection-points",
         "roots",
         _K + "roots.py",
-        "half_curv = ex * ex + ey * ey + 2.0 * (dx * cx + dy * cy)",
-        "half_curv = ex * ex + ey * ey + (dx * cx + dy * cy)",
+        "quadratic_roots(6.0 * c2, 6.0 * wc,",
+        "quadratic_roots(6.0 * c2, 3.0 * wc,",
         SIM_AND_PROPERTIES,
-        "a factor 2 dropped in D'' (Newton steps and the pressed test go wrong)",
+        "a factor 2 lost in the derivative of D'': closest approaches bracketed wrongly",
     ),
     Mutant(
         "predict-cull-radius",
@@ -291,11 +293,38 @@ CATALOGUE: tuple[Mutant, ...] = (
         "pairs not re-predicted after a cushion (stale impact times)",
     ),
     Mutant(
+        "tally-rail-before-contact",
+        "rules",
+        _K + "loop.py",
+        "        if first_i >= 0:\n            balls[BALL_CUSHIONS, i] += 1",
+        "        if True:\n            balls[BALL_CUSHIONS, i] += 1",
+        OUTCOME,
+        "rails before the shot's first contact counted for the rules",
+    ),
+    Mutant(
+        "tally-first-hit-overwritten",
+        "rules",
+        _K + "loop.py",
+        "        if balls[BALL_FIRST_HIT, j] < 0:\n            balls[BALL_FIRST_HIT, j] = i",
+        "        if True:\n            balls[BALL_FIRST_HIT, j] = i",
+        OUTCOME,
+        "a ball's first hit overwritten by every later hit",
+    ),
+    Mutant(
+        "tally-pocket-order",
+        "rules",
+        _K + "loop.py",
+        "            if balls[BALL_POCKET, k] >= 0:",
+        "            if balls[BALL_POCKET, k] > 0:",
+        OUTCOME,
+        "the drop order misses balls in pocket 0",
+    ),
+    Mutant(
         "batch-first-contact-index",
         "loop",
         _K + "batch.py",
-        "first[b, 1] = index[shot[6]]",
-        "first[b, 1] = shot[6]",
+        "out.first_contact[b, 1] = index[shot.first_j]",
+        "out.first_contact[b, 1] = shot.first_j",
         ("tests/test_batch.py", "tests/test_env_expectations.py"),
         "the batch's first contact in active-ball rows, not ball numbers",
     ),

@@ -184,3 +184,29 @@ def test_a_lump_takes_only_the_balls_touching_it() -> None:
     hits = [(ev.i, ev.j) for ev in result.events if ev.kind == "ball"]
     assert hits == [(0, 1), (2, 3)]
     assert result.events[1].time == pytest.approx((0.2 - w) / a, rel=1e-12)
+
+
+@pytest.mark.parametrize(("vx", "pressed"), [(0.08, True), (0.4, False)])
+def test_an_inelastic_glancing_pair_sticks_only_when_pressed_together(vx, pressed) -> None:
+    """With e = 0, the cue moving (vx, 0.001) into a ball touching it along +x.
+
+    The impact equalises the x speeds (vx / 2 each) and the cue keeps ``vy``. The cue then
+    decelerates along its own direction ``u0`` and ball 1 along +x, so the squared gap
+    curves as ``vy^2 - 2 a R (1 - u0x)`` (half of ``D''``, with ``d = 2R`` along x). Slow
+    (vx = 0.08) that is negative: the pair is pressed together and sticks at once, one
+    impact, the lump at the centre-of-mass velocity (vx / 2, vy / 2). Faster (0.4) it is
+    positive and the two separate, each on its own.
+    """
+    vy = 0.001
+    table = _table(0.0)
+    a = table.deceleration
+    u0x = (vx / 2) / np.hypot(vx / 2, vy)
+    assert (vy**2 - 2 * a * R * (1 - u0x) < 0) == pressed
+    result = simulate(table, _row(2), [[vx, vy], [0.0, 0.0]])
+    lump, apart = [(vx / 2, vy / 2)] * 2, [(vx / 2, vy), (vx / 2, 0.0)]
+    velocities = lump if pressed else apart
+    expected = [
+        p + np.array(v) * np.hypot(*v) / (2 * a) for p, v in zip(_row(2), velocities, strict=True)
+    ]
+    np.testing.assert_allclose(result.positions, expected, rtol=0, atol=1e-12)
+    assert [ev.kind for ev in result.events] == ["ball", "stop", "stop"]
