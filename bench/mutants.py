@@ -33,6 +33,7 @@ import argparse
 import os
 import queue
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -311,10 +312,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     start = time.perf_counter()
     baselines, outcomes = run(mutants, max(1, args.workers), args.timeout, args.compiled)
     wall = time.perf_counter() - start
-    command = "python -m bench.mutants" + (" " + " ".join(argv) if argv else "")
-    if argv is None:
-        command = "python -m bench.mutants " + " ".join(sys.argv[1:])
-    text = report(baselines, outcomes, command.strip(), wall)
+    given = sys.argv[1:] if argv is None else list(argv)
+    command = shlex.join(["python", "-m", "bench.mutants", *given])
+    text = report(baselines, outcomes, command, wall)
     print(text)
     if args.out:
         out = ROOT / args.out

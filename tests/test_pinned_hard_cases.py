@@ -86,3 +86,19 @@ def test_random_touching_scenes_match_the_reference(seed, n, gap, e_ball, speed)
         for (x, y), (rx, ry) in zip(ours.positions, ref.positions, strict=True):
             assert abs(mp.mpf(float(x)) - rx) < 1e-9
             assert abs(mp.mpf(float(y)) - ry) < 1e-9
+
+
+def test_a_slow_curving_approach_is_bracketed_right() -> None:
+    """Both balls slow and on different headings: the relative path curves (quartic gap).
+
+    Found by a search over slow two-ball scenes for one where a wrongly placed inflection
+    point of the gap (the roots of D'') hides the contact from the bracketing; the
+    reference has the impact, then both stops.
+    """
+    table = Table(e_ball=0.95, pockets="none")
+    positions = [[1.0, 0.6], [1.0519219053091213, 0.6369854060750171]]
+    velocities = [
+        [0.1272905709221757, 0.054336801083148395],
+        [0.019041959817394614, 0.10879259152830122],
+    ]
+    _assert_matches_reference(table, positions, velocities, 1e-12)
