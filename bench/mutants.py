@@ -162,6 +162,7 @@ def _worker(
     results: list[Outcome],
     lock: threading.Lock,
     scratch: Path,
+    snapshot: Path,
     files: list[str],
     timeout: float,
 ) -> None:
@@ -172,7 +173,7 @@ def _worker(
         except queue.Empty:
             return
         start = time.perf_counter()
-        fresh_copy(ROOT, files, tree)
+        fresh_copy(snapshot, files, tree)
         mutant = job.mutant
         if mutant is not None:
             apply(mutant, tree)
@@ -221,10 +222,14 @@ def run(
     lock = threading.Lock()
     root = Path(tempfile.mkdtemp(prefix="pool_env-mutants-"))
     try:
+        # One snapshot of the tree at the start: edits made while the run goes on do not
+        # leak into later mutants.
+        snapshot = root / "snapshot"
+        fresh_copy(ROOT, files, snapshot)
         threads = [
             threading.Thread(
                 target=_worker,
-                args=(jobs, results, lock, root / f"w{k}", files, timeout),
+                args=(jobs, results, lock, root / f"w{k}", snapshot, files, timeout),
             )
             for k in range(workers)
         ]
