@@ -1,10 +1,16 @@
 """Mutation runner: plant each bug of the catalogue, run its tests, see whether they notice.
 
-Usage (from the repository root, ~5-10 minutes on 2 cores)::
+Usage (from the repository root)::
 
     python -m bench.mutants                       # every mutant, 2 workers
     python -m bench.mutants --only tie-kind-order zeno-threshold-1e-3
     python -m bench.mutants --workers 1 --out results/mutants.md
+
+Cost, measured on the shared 2-core machine at load average 13: the 29 simulator mutants
+(interpreted) take 13-35 s each and their baseline 2.5 min, about 6 min in all on 2
+workers; a compiled mutant recompiles the kernels (~25 s of CPU) before its tests, and the
+compiled baseline (the env, vector env and SB3 files) took 11 min. Most mutants die in
+the first seconds of their subset (``-x``); a survivor runs all of it.
 
 Each mutant of :data:`bench.mutant_catalogue.CATALOGUE` is applied to a fresh scratch copy
 of the tracked tree (never to the tree itself), and its focused test subset runs there with
