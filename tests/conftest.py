@@ -1,10 +1,13 @@
-"""Shared fixtures."""
+"""Shared fixtures; loads the hypothesis profile (``tests/profiles.py``)."""
 
 from __future__ import annotations
 
 import pytest
 
 from pool_env import Table
+from tests import profiles
+
+profiles.load()
 
 
 @pytest.fixture

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from hypothesis import HealthCheck, given, settings
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pool_env import Table, shoot, simulate
@@ -18,6 +18,7 @@ from pool_env.sim.kernels import limits
 from pool_env.sim.layouts import break_scene
 from pool_env.testing.invariants import check_shot, check_termination
 from pool_env.testing.scenes_random import log_uniform_masses, lump_at_rail, random_layout
+from tests.profiles import examples
 
 tables = st.builds(
     Table,
@@ -29,7 +30,7 @@ speeds = st.one_of(st.floats(0.05, 15.0), st.floats(1e-6, 0.05), st.sampled_from
 angles = st.floats(-math.pi, math.pi)
 
 
-@settings(max_examples=400, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(400))
 @given(
     table=tables,
     n=st.integers(1, 10),
@@ -53,7 +54,7 @@ def test_random_shot_invariants(table, n, seed, gap, speed, angle) -> None:
     assert np.all(on_table == ~result.pocketed_at(result.duration))
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=examples(100))
 @given(
     table=tables,
     rack=st.sampled_from(["nine", "eight"]),
@@ -72,7 +73,7 @@ def test_random_breaks(table, rack, speed, angle, masses_seed) -> None:
     assert check_shot(table, result, masses, samples=300) == []
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=examples(200))
 @given(table=tables, n=st.integers(2, 8), seed=st.integers(0, 2**32 - 1))
 def test_all_balls_moving(table, n, seed) -> None:
     """Several balls moving at once, some touching: the quartic path and the contact rule."""

@@ -1,0 +1,342 @@
+"""Mutation runner: plant each bug of the catalogue, run its tests, see whether they notice.
+
+Usage (from the repository root)::
+
+    python -m bench.mutants                       # every mutant, 2 workers
+    python -m bench.mutants --only tie-kind-order zeno-threshold-1e-3
+    python -m bench.mutants --workers 1 --out results/mutants.md
+
+Cost, measured on the shared 2-core machine at load average 13: the 29 simulator mutants
+(interpreted) take 13-35 s each and their baseline 2.5 min, about 6 min in all on 2
+workers; a compiled mutant recompiles the kernels (~25 s of CPU) before its tests, and the
+compiled baseline (the env, vector env and SB3 files) took 11 min. Most mutants die in
+the first seconds of their subset (``-x``); a survivor runs all of it.
+
+Each mutant of :data:`bench.mutant_catalogue.CATALOGUE` is applied to a fresh scratch copy
+of the tracked tree (never to the tree itself), and its focused test subset runs there with
+``pytest -x`` and the derandomized hypothesis profile ``ci``. A failing subset *kills* the
+mutant (the table names the first failing test); a passing one lets it *survive*. A
+mutant whose snippet no longer occurs exactly once is *stale* (the code moved: re-anchor
+it) and is reported, never skipped silently. The unmutated tree runs the union of all
+subsets first: if that baseline fails, no kill means anything and the run says so.
+
+Interpreted kernels: a mutant whose subset only uses the simulator (the files of
+:data:`bench.mutant_catalogue.INTERPRETABLE`) runs with ``NUMBA_DISABLE_JIT=1``: the same
+kernels as plain Python, so no ~25 s compile of a fresh cache per mutant (the suite's
+simulator tests pass that way too: that is its baseline). ``--compiled`` compiles every
+mutant instead.
+
+Compiled kernels: every scratch worker has its own numba cache (``NUMBA_CACHE_DIR`` inside
+the scratch folder). ``pool_env``'s cache folder is named after a hash of the compiled
+modules' sources, so a mutated kernel compiles into a folder of its own and can never be
+loaded by another mutant, the baseline or the real tree; a mutant of plain Python reuses
+the worker's baseline kernels (the scratch copy keeps the files' time stamps).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import queue
+import re
+import shlex
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+from bench.mutant_catalogue import CATALOGUE, INTERPRETABLE, Mutant
+
+ROOT = Path(__file__).resolve().parents[1]
+#: Default limit on one mutant's subset (s); the baseline, the union of all subsets, gets
+#: four times as long. Past it the verdict is "timeout": neither killed nor survived (on a
+#: loaded machine, raise it with --timeout).
+TIMEOUT = 900.0
+FAILED_LINE = re.compile(r"^(FAILED|ERROR) (\S+)", re.MULTILINE)
+
+
+@dataclass
+class Outcome:
+    """The verdict on one mutant (or on a baseline, ``mutant=None``)."""
+
+    mutant: Mutant | None
+    status: str  # "killed", "survived", "stale", "timeout", "error"
+    detail: str  # the killing test, the reason for stale/error, or ""
+    seconds: float
+    interpreted: bool = False
+
+
+@dataclass(frozen=True)
+class Job:
+    """A mutant to run (``None``: a baseline of ``tests``), and how."""
+
+    mutant: Mutant | None
+    tests: tuple[str, ...]
+    interpreted: bool
+
+
+def interpretable(mutant: Mutant) -> bool:
+    """Whether every file of the mutant's subset can run with the kernels interpreted."""
+    return all(t.split("::")[0] in INTERPRETABLE for t in mutant.tests)
+
+
+def occurrences(mutant: Mutant, root: Path = ROOT) -> int:
+    """How often the mutant's snippet occurs in its file under ``root`` (0 if no file)."""
+    path = root / mutant.file
+    if not path.is_file():
+        return 0
+    return path.read_text().count(mutant.original)
+
+
+def tracked_files(root: Path) -> list[str]:
+    """Files of the working tree that git tracks or would track (not ignored)."""
+    out = subprocess.run(
+        ["git", "ls-files", "--cached", "--others", "--exclude-standard", "-z"],
+        cwd=root,
+        check=True,
+        capture_output=True,
+    ).stdout.decode()
+    return [f for f in out.split("\0") if f and (root / f).is_file()]
+
+
+def fresh_copy(root: Path, files: Sequence[str], dest: Path) -> None:
+    """Copy ``files`` from ``root`` to an empty ``dest``, keeping their time stamps."""
+    if dest.exists():
+        shutil.rmtree(dest)
+    for name in files:
+        target = dest / name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(root / name, target)
+
+
+def apply(mutant: Mutant, tree: Path) -> None:
+    """Write the mutant into the copy ``tree`` (its snippet must occur exactly once)."""
+    path = tree / mutant.file
+    source = path.read_text()
+    if source.count(mutant.original) != 1:
+        raise ValueError(f"{mutant.name}: snippet occurs {source.count(mutant.original)} times")
+    path.write_text(source.replace(mutant.original, mutant.mutated))
+
+
+def run_tests(
+    tree: Path, cache: Path, tests: Sequence[str], timeout: float, interpreted: bool
+) -> tuple[str, str]:
+    """Run ``tests`` in ``tree``; return ``(verdict, first failure)``.
+
+    The verdict is ``"passed"``, ``"failed"``, ``"timeout"`` or ``"error"``.
+    """
+    env = {
+        **os.environ,
+        "PYTHONPATH": str(tree),
+        "NUMBA_CACHE_DIR": str(cache),
+        "HYPOTHESIS_PROFILE": "ci",
+        "PYTHONDONTWRITEBYTECODE": "1",
+    }
+    if interpreted:
+        env["NUMBA_DISABLE_JIT"] = "1"
+    else:
+        env.pop("NUMBA_DISABLE_JIT", None)
+    command = [sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "-rfE"]
+    try:
+        proc = subprocess.run(
+            [*command, *tests],
+            cwd=tree,
+            env=env,
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+        )
+    except subprocess.TimeoutExpired:
+        return "timeout", f"no verdict after {timeout:.0f} s"
+    output = proc.stdout + proc.stderr
+    first = FAILED_LINE.search(output)
+    where = first.group(2) if first else ""
+    if proc.returncode == 0:
+        return "passed", ""
+    if proc.returncode in (1, 2):  # tests failed, or collection/import failed
+        return "failed", where or "collection error: " + output.strip().splitlines()[-1]
+    return "error", f"pytest exit code {proc.returncode}: " + output.strip()[-300:]
+
+
+def _worker(
+    jobs: queue.Queue[Job],
+    results: list[Outcome],
+    lock: threading.Lock,
+    scratch: Path,
+    snapshot: Path,
+    files: list[str],
+    timeout: float,
+) -> None:
+    tree, cache = scratch / "tree", scratch / "numba"
+    while True:
+        try:
+            job = jobs.get_nowait()
+        except queue.Empty:
+            return
+        start = time.perf_counter()
+        fresh_copy(snapshot, files, tree)
+        mutant = job.mutant
+        if mutant is not None:
+            apply(mutant, tree)
+        limit = timeout if mutant is not None else 4 * timeout
+        verdict, where = run_tests(tree, cache, job.tests, limit, job.interpreted)
+        # A baseline must pass ("survived"); a mutant should fail ("killed").
+        status = {"passed": "survived", "failed": "killed"}.get(verdict, verdict)
+        if mutant is None and status == "killed":
+            status = "failed"
+        outcome = Outcome(mutant, status, where, time.perf_counter() - start, job.interpreted)
+        with lock:
+            results.append(outcome)
+            label = "baseline" if mutant is None else mutant.name
+            label += " (interpreted)" if job.interpreted else ""
+            print(f"{label:28s} {outcome.status:9s} {outcome.seconds:6.1f} s  {where}", flush=True)
+
+
+def run(
+    mutants: Sequence[Mutant], workers: int, timeout: float = TIMEOUT, compiled: bool = False
+) -> tuple[list[Outcome], list[Outcome]]:
+    """Run the baselines and every mutant; return ``(baselines, outcomes in catalogue order)``.
+
+    Mutants whose subsets are all :data:`INTERPRETABLE` run with the kernels interpreted
+    unless ``compiled``; each mode has its own baseline (the union of its subsets).
+    """
+    results: list[Outcome] = []
+    runnable = []
+    for m in mutants:
+        count = occurrences(m)
+        if count == 1:
+            runnable.append(m)
+        else:
+            where = "file missing" if not (ROOT / m.file).is_file() else f"{count} occurrences"
+            results.append(Outcome(m, "stale", f"snippet not found once ({where})", 0.0))
+    mode = {m.name: not compiled and interpretable(m) for m in runnable}
+    jobs: queue.Queue[Job] = queue.Queue()
+    for interpreted in (False, True):  # the baselines first
+        union = tuple(
+            dict.fromkeys(t for m in runnable if mode[m.name] == interpreted for t in m.tests)
+        )
+        if union:
+            jobs.put(Job(None, union, interpreted))
+    for m in runnable:
+        jobs.put(Job(m, m.tests, mode[m.name]))
+    files = tracked_files(ROOT)
+    lock = threading.Lock()
+    root = Path(tempfile.mkdtemp(prefix="pool_env-mutants-"))
+    try:
+        # One snapshot of the tree at the start: edits made while the run goes on do not
+        # leak into later mutants.
+        snapshot = root / "snapshot"
+        fresh_copy(ROOT, files, snapshot)
+        threads = [
+            threading.Thread(
+                target=_worker,
+                args=(jobs, results, lock, root / f"w{k}", snapshot, files, timeout),
+            )
+            for k in range(workers)
+        ]
+        for t in threads:
+            t.start()
+        for t in threads:
+            t.join()
+    finally:
+        shutil.rmtree(root, ignore_errors=True)
+    baselines = [r for r in results if r.mutant is None]
+    order = {m.name: k for k, m in enumerate(mutants)}
+    mutated = [r for r in results if r.mutant is not None]
+    outcomes = sorted(mutated, key=lambda r: order[r.mutant.name])  # type: ignore[union-attr]
+    return baselines, outcomes
+
+
+def report(baselines: list[Outcome], outcomes: list[Outcome], command: str, wall: float) -> str:
+    """The Markdown table of a run."""
+    killed = sum(o.status == "killed" for o in outcomes)
+    total = len(outcomes)
+    lines = [
+        "# Mutation testing: planted bugs and the tests that catch them",
+        "",
+        f"Command: `{command}`",
+        "",
+        f"Made {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit "
+        f"`{_commit()}`; load average {os.getloadavg()[0]:.2f} at the end; wall time "
+        f"{wall / 60:.1f} min.",
+        "",
+        "Baselines (the unmutated tree, the union of the subsets of each mode): "
+        + "; ".join(
+            f"{'interpreted' if b.interpreted else 'compiled'} "
+            + ("**passed**" if b.status == "survived" else f"**{b.status}** ({b.detail})")
+            for b in baselines
+        )
+        + ".",
+        "",
+        f"**Killed {killed} of {total} ({100.0 * killed / max(total, 1):.1f}%)**; "
+        f"survived {sum(o.status == 'survived' for o in outcomes)}, "
+        f"stale {sum(o.status == 'stale' for o in outcomes)}, "
+        f"timeout {sum(o.status == 'timeout' for o in outcomes)}, "
+        f"error {sum(o.status == 'error' for o in outcomes)}.",
+        "",
+        "Each mutant runs in a scratch copy of the tree with its own numba cache; the "
+        "catalogue is `bench/mutant_catalogue.py`. Mode `interp.`: the subset ran with the "
+        "kernels interpreted (`NUMBA_DISABLE_JIT=1`, no compile); `jit`: compiled afresh "
+        "(`--compiled` forces it for all).",
+        "",
+        "| mutant | area | file | models | mode | result | killed by | s |",
+        "|---|---|---|---|---|---|---|---|",
+    ]
+    for o in outcomes:
+        m = o.mutant
+        assert m is not None
+        lines.append(
+            f"| `{m.name}` | {m.area} | `{m.file}` | {m.models} | "
+            f"{'interp.' if o.interpreted else 'jit'} | {o.status} | "
+            f"{o.detail.replace('|', '/') or '-'} | {o.seconds:.0f} |"
+        )
+    return "\n".join(lines) + "\n"
+
+
+def _commit() -> str:
+    out = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True)
+    dirty = subprocess.run(["git", "status", "--porcelain"], cwd=ROOT, capture_output=True)
+    return out.stdout.decode().strip() + (" + uncommitted changes" if dirty.stdout.strip() else "")
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Command line: run the catalogue (or ``--only`` some), write the table."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--only", nargs="+", metavar="NAME", help="run only these mutants")
+    parser.add_argument("--workers", type=int, default=2, help="parallel scratch copies")
+    parser.add_argument("--out", default="results/mutants.md", help="Markdown table ('' none)")
+    parser.add_argument("--timeout", type=float, default=TIMEOUT, help="seconds per mutant")
+    parser.add_argument(
+        "--compiled", action="store_true", help="compile every mutant (no interpreted runs)"
+    )
+    args = parser.parse_args(argv)
+    names = {m.name for m in CATALOGUE}
+    unknown = set(args.only or ()) - names
+    if unknown:
+        parser.error(f"unknown mutants {sorted(unknown)}")
+    mutants = [m for m in CATALOGUE if not args.only or m.name in args.only]
+    start = time.perf_counter()
+    baselines, outcomes = run(mutants, max(1, args.workers), args.timeout, args.compiled)
+    wall = time.perf_counter() - start
+    given = sys.argv[1:] if argv is None else list(argv)
+    command = shlex.join(["python", "-m", "bench.mutants", *given])
+    text = report(baselines, outcomes, command, wall)
+    print(text)
+    if args.out:
+        out = ROOT / args.out
+        out.parent.mkdir(parents=True, exist_ok=True)
+        out.write_text(text)
+    failed = [b for b in baselines if b.status != "survived"]
+    if failed:
+        print(f"a baseline failed ({failed[0].detail}): the kills mean nothing", file=sys.stderr)
+        return 2
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
