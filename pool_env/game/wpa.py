@@ -1,0 +1,397 @@
+"""The rules of 9-ball and 8-ball as pure functions of a shot's outcome (WPA standardized).
+
+Ball ``k`` is numbered ``k``: row 0 is the cue ball, rows 1-9 (9-ball) or 1-15 (8-ball) the
+object balls, as in :func:`pool_env.sim.layouts.break_scene`. Players are 0 and 1 (a
+single-agent env plays both seats, or lets its own next shot be the "incoming player").
+
+:func:`judge` takes the rack's :class:`RackState` before a shot and the shot's
+:class:`ShotOutcome` (built from a :class:`~pool_env.ShotResult` by :func:`outcome_of`,
+from a batch row by :func:`batch_outcome`) and returns the :class:`Verdict` and the next state. It
+never simulates, never draws random numbers and never mutates its inputs.
+
+9-ball (WPA rules 1-2): the cue ball must first contact the lowest-numbered ball on the
+table; then a ball must be potted or some ball (the cue ball included) must touch a
+cushion; a scratch and a shot that touches no ball are fouls. Legal break: the 1 first,
+and a ball potted or at least four object balls driven to a cushion. The 9 potted on a legal
+shot wins (the break and combinations included); potted on a foul it is re-spotted (see
+:mod:`pool_env.game.placement`), other balls potted on a foul stay down. A player who
+fouls on three successive shots loses the rack. After a foul the incoming player has the
+cue ball in hand anywhere on the table.
+
+8-ball (WPA rules 1, 3): the break is legal if a ball is potted or at least four object
+balls touch a cushion. The table is open after the break; the first legal shot after the
+break that pots an object ball other than the 8 assigns its group (solids 1-7 or stripes
+9-15) to the shooter, the other group to the opponent. The shooter must first contact a
+ball of their group (open table: any ball but the 8; group cleared: the 8), then pot a ball
+or make a ball touch a cushion. A shooter who has cleared their group wins by potting the 8
+in the called pocket on a legal shot; potting the 8 before the group is cleared (not on the
+break), into another pocket, or on a foul (a scratch included) loses. A scratch on the
+break gives the incoming player ball in hand behind the head string; every other foul,
+ball in hand anywhere. The shooter keeps the table after a legal shot that pots a ball of
+their group (open table: any ball but the 8).
+
+Simplifications, all deliberate:
+
+* No push-out (9-ball rule 1.7), no called shots other than the 8's pocket (so "pot a
+  ball" means any object ball; on an open table the group goes to the ball that dropped
+  first), no safeties called, no warning before the third foul, no jump, masse or
+  "bad cue ball" fouls (the simulator has none of them), and no stalemate rule.
+* An illegal break is a foul ("illegal_break"): the incoming player takes ball in hand on
+  the table as it lies, rather than choosing to re-rack or to have the breaker break again.
+  On an 8-ball break a scratch is reported as "scratch" (ball in hand behind the head
+  string); a break that also fails the four-rails test is still reported as "scratch".
+* The 8 potted on the break is re-spotted and the break judged as any other; groups are
+  never assigned on the break (the table is open after it).
+* Balls potted on a foul stay down (WPA 9-ball 1.4 and 8-ball 3.3), except the 9 (re-spotted)
+  and the 8 (the rack is lost, or re-spotted on the break).
+* A pocket jaw counts as a cushion: every cushion impact the simulator reports after the
+  first contact satisfies "a ball touched a rail".
+* One foul reason is reported per shot, the first that applies in the order scratch,
+  no_contact, wrong_ball_first, no_rail (on a break: scratch, then illegal_break).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from pool_env.sim.batch import BatchResult
+from pool_env.sim.result import ShotResult
+
+Game = Literal["nine", "eight"]
+FoulReason = Literal["scratch", "wrong_ball_first", "no_rail", "no_contact", "illegal_break"]
+
+#: Group codes of 8-ball: the table is open, solids (1-7), stripes (9-15).
+OPEN, SOLIDS, STRIPES = 0, 1, 2
+#: Balls per game, cue ball included.
+N_BALLS: dict[str, int] = {"nine": 10, "eight": 16}
+#: Object balls driven to a cushion that make a break legal without a pot.
+BREAK_RAILS = 4
+
+
+def group_of(ball: int) -> int:
+    """The 8-ball group of object ball ``ball`` (``SOLIDS``, ``STRIPES``; the 8 is neither)."""
+    if 1 <= ball <= 7:
+        return SOLIDS
+    if 9 <= ball <= 15:
+        return STRIPES
+    return OPEN
+
+
+@dataclass(frozen=True, slots=True)
+class ShotOutcome:
+    """What the rules read from one shot, by ball number.
+
+    Attributes:
+        first_hit: The ball the cue ball touched first, -1 if none.
+        potted: Object balls potted, in the order they dropped.
+        pockets: The pocket each of :attr:`potted` dropped into (same order).
+        scratch: Whether the cue ball was potted.
+        rail_after_contact: Whether any ball (the cue ball included) touched a cushion
+            after the cue ball's first contact.
+        object_balls_to_rail: How many object balls touched a cushion after that contact.
+    """
+
+    first_hit: int
+    potted: tuple[int, ...]
+    pockets: tuple[int, ...]
+    scratch: bool
+    rail_after_contact: bool
+    object_balls_to_rail: int
+
+    @classmethod
+    def from_arrays(
+        cls,
+        first_hit: ArrayLike,
+        cushions_after_contact: ArrayLike,
+        pocketed: ArrayLike,
+        pocket_order: ArrayLike,
+        balls: ArrayLike | None = None,
+    ) -> ShotOutcome:
+        """The outcome from a shot's per-ball tallies (a ``ShotResult`` or a batch row).
+
+        Args:
+            first_hit: The first ball each row touched (``ShotResult.first_hit``).
+            cushions_after_contact: Each row's cushion impacts after the first contact.
+            pocketed: Each row's pocket, -1 if none.
+            pocket_order: The order in which the rows dropped, -1 if not.
+            balls: The ball number of each simulated row, when only some balls were
+                simulated (ball-number order, the cue ball first); default: row ``k`` is
+                ball ``k``.
+
+        Raises:
+            ValueError: If the arrays disagree in length or ``balls`` does not start with
+                the cue ball.
+        """
+        hit = np.asarray(first_hit, dtype=np.int64)
+        rails = np.asarray(cushions_after_contact, dtype=np.int64)
+        pocket = np.asarray(pocketed, dtype=np.int64)
+        order = np.asarray(pocket_order, dtype=np.int64)
+        number = np.arange(hit.shape[0]) if balls is None else np.asarray(balls, np.int64)
+        if not (hit.shape == rails.shape == pocket.shape == order.shape == number.shape):
+            raise ValueError("the per-ball arrays and balls must all have one entry per ball")
+        if number.shape[0] == 0 or number[0] != 0:
+            raise ValueError("row 0 must be the cue ball (ball number 0)")
+        dropped = [k for k in np.argsort(order, kind="stable") if order[k] >= 0 and k != 0]
+        cue_hit = int(hit[0])
+        return cls(
+            first_hit=int(number[cue_hit]) if cue_hit >= 0 else -1,
+            potted=tuple(int(number[k]) for k in dropped),
+            pockets=tuple(int(pocket[k]) for k in dropped),
+            scratch=bool(pocket[0] >= 0),
+            rail_after_contact=bool(np.any(rails > 0)),
+            object_balls_to_rail=int(np.count_nonzero(rails[1:] > 0)),
+        )
+
+
+def outcome_of(result: ShotResult, balls: ArrayLike | None = None) -> ShotOutcome:
+    """The :class:`ShotOutcome` of a simulated shot (recorded or not).
+
+    Args:
+        result: The shot, the cue ball in row 0.
+        balls: The ball number of each row (see :meth:`ShotOutcome.from_arrays`).
+    """
+    return ShotOutcome.from_arrays(
+        result.first_hit,
+        result.cushions_after_contact,
+        result.pocketed,
+        result.pocket_order,
+        balls,
+    )
+
+
+def batch_outcome(batch: BatchResult, b: int) -> ShotOutcome:
+    """The :class:`ShotOutcome` of table ``b`` of a batch whose rows are ball numbers."""
+    return ShotOutcome.from_arrays(
+        batch.first_hit[b],
+        batch.cushions_after_contact[b],
+        batch.pocketed[b],
+        batch.pocket_order[b],
+    )
+
+
+@dataclass(frozen=True, slots=True)
+class RackState:
+    """Everything the rules need to judge the next shot (the Markov part of the game).
+
+    Attributes:
+        game: ``"nine"`` or ``"eight"``.
+        on_table: Per ball number, whether the object ball is on the table (index 0, the
+            cue ball, is always True: a scratched cue ball comes back in hand).
+        shooter: The player at the table (0 or 1).
+        breaking: The next shot is the break.
+        fouls: Successive fouls of each player (9-ball's three-foul rule).
+        groups: Each player's 8-ball group (``OPEN`` until assigned).
+        ball_in_hand: The shooter places the cue ball before shooting.
+        behind_head_string: ... and only behind the head string (after an 8-ball break
+            scratch).
+        winner: The player who won the rack, or None while it is being played.
+    """
+
+    game: Game
+    on_table: tuple[bool, ...]
+    shooter: int = 0
+    breaking: bool = True
+    fouls: tuple[int, int] = (0, 0)
+    groups: tuple[int, int] = (OPEN, OPEN)
+    ball_in_hand: bool = False
+    behind_head_string: bool = False
+    winner: int | None = None
+
+    def __post_init__(self) -> None:
+        if self.game not in N_BALLS:
+            raise ValueError(f"game must be 'nine' or 'eight', got {self.game!r}")
+        if len(self.on_table) != N_BALLS[self.game] or not self.on_table[0]:
+            raise ValueError(
+                f"on_table must have {N_BALLS[self.game]} flags for {self.game} (cue ball True)"
+            )
+        if self.shooter not in (0, 1) or self.winner not in (None, 0, 1):
+            raise ValueError("shooter (and winner, if any) must be player 0 or 1")
+
+    @classmethod
+    def new_rack(cls, game: Game, shooter: int = 0) -> RackState:
+        """A racked table: every ball on, ``shooter`` to break."""
+        if game not in N_BALLS:
+            raise ValueError(f"game must be 'nine' or 'eight', got {game!r}")
+        return cls(game=game, on_table=(True,) * N_BALLS[game], shooter=shooter)
+
+    @property
+    def ball_on(self) -> int | None:
+        """The ball the shooter must hit first, if it is a single one.
+
+        9-ball: the lowest-numbered ball on the table; 8-ball: the 8 once the shooter's
+        group is cleared, else None (any ball of the group, or of either on an open table).
+        """
+        if self.game == "nine":
+            return next((b for b in range(1, len(self.on_table)) if self.on_table[b]), None)
+        group = self.groups[self.shooter]
+        if group != OPEN and not any(self.on_table[b] for b in _members(group)):
+            return 8
+        return None
+
+    def legal_first_balls(self) -> tuple[int, ...]:
+        """The balls the cue ball may touch first on the next shot."""
+        on = self.ball_on
+        if self.game == "nine" or on == 8:
+            return () if on is None else (on,)
+        group = self.groups[self.shooter]
+        if group == OPEN:
+            return tuple(b for b in range(1, 16) if b != 8 and self.on_table[b])
+        return tuple(b for b in _members(group) if self.on_table[b])
+
+
+def _members(group: int) -> range:
+    return range(1, 8) if group == SOLIDS else range(9, 16)
+
+
+@dataclass(frozen=True, slots=True)
+class Verdict:
+    """The rules' judgement of one shot.
+
+    Attributes:
+        foul: None, or the reason: ``"scratch"``, ``"wrong_ball_first"``, ``"no_rail"``,
+            ``"no_contact"``, ``"illegal_break"``.
+        legal: Whether the shot was legal (no foul).
+        ball_on: The ball on before the shot (see :attr:`RackState.ball_on`).
+        respot: Balls to put back on the table (the 9 potted on a foul, the 8 on a break).
+        winner: The player who won the rack with this shot, or None.
+        loss: Why the shooter lost, if they did: ``"eight_early"``,
+            ``"eight_wrong_pocket"``, ``"eight_on_foul"``, ``"three_fouls"``.
+        shooter_continues: Whether the same player shoots next.
+    """
+
+    foul: FoulReason | None
+    legal: bool
+    ball_on: int | None
+    respot: tuple[int, ...]
+    winner: int | None
+    loss: str | None
+    shooter_continues: bool
+
+
+def _foul(state: RackState, shot: ShotOutcome) -> FoulReason | None:
+    """The first foul reason that applies to ``shot`` from ``state``, or None."""
+    if shot.scratch:
+        return "scratch"
+    if state.breaking:
+        legal_first = state.game == "eight" or shot.first_hit == 1
+        spread = bool(shot.potted) or shot.object_balls_to_rail >= BREAK_RAILS
+        return None if (shot.first_hit >= 0 and legal_first and spread) else "illegal_break"
+    if shot.first_hit < 0:
+        return "no_contact"
+    if shot.first_hit not in state.legal_first_balls():
+        return "wrong_ball_first"
+    if not shot.potted and not shot.rail_after_contact:
+        return "no_rail"
+    return None
+
+
+def judge(
+    state: RackState, shot: ShotOutcome, called_pocket: int | None = None
+) -> tuple[Verdict, RackState]:
+    """Judge one shot and move the rack on.
+
+    Args:
+        state: The rack before the shot (not finished: ``state.winner is None``).
+        shot: What happened.
+        called_pocket: The pocket called for the 8 (read only when the shooter is on the 8;
+            None there means no call, and the 8 then drops in an uncalled pocket).
+
+    Returns:
+        The :class:`Verdict` and the rack after the shot (re-spotted balls back on; the
+        next shooter, ball in hand, groups and foul counts updated).
+
+    Raises:
+        ValueError: If the rack is already decided, or the shot pots a ball that is not
+            on the table.
+    """
+    if state.winner is not None:
+        raise ValueError(f"the rack is over: player {state.winner} won it")
+    for ball in shot.potted:
+        if not (0 < ball < len(state.on_table) and state.on_table[ball]):
+            raise ValueError(f"ball {ball} was potted but is not on the table")
+    if state.game == "nine":
+        return _judge_nine(state, shot)
+    return _judge_eight(state, shot, called_pocket)
+
+
+def _next_turn(state: RackState, foul: FoulReason | None, keeps: bool, **changes) -> RackState:
+    """The state after a shot: who shoots, with the cue ball in hand or not."""
+    shooter = state.shooter if keeps else 1 - state.shooter
+    fouls = list(state.fouls)
+    fouls[state.shooter] = fouls[state.shooter] + 1 if foul else 0
+    behind = foul == "scratch" and state.breaking and state.game == "eight"
+    return replace(
+        state,
+        shooter=shooter,
+        breaking=False,
+        fouls=(fouls[0], fouls[1]),
+        ball_in_hand=foul is not None,
+        behind_head_string=behind,
+        **changes,
+    )
+
+
+def _off(
+    on_table: tuple[bool, ...], potted: tuple[int, ...], respot: tuple[int, ...]
+) -> tuple[bool, ...]:
+    down = set(potted) - set(respot)
+    return tuple(on and b not in down for b, on in enumerate(on_table))
+
+
+def _judge_nine(state: RackState, shot: ShotOutcome) -> tuple[Verdict, RackState]:
+    ball_on = state.ball_on
+    foul = _foul(state, shot)
+    respot = (9,) if foul and 9 in shot.potted else ()
+    winner = state.shooter if foul is None and 9 in shot.potted else None
+    loss = None
+    if foul and state.fouls[state.shooter] + 1 >= 3:
+        winner, loss = 1 - state.shooter, "three_fouls"
+    keeps = foul is None and bool(shot.potted)
+    on_table = _off(state.on_table, shot.potted, respot)
+    after = _next_turn(state, foul, keeps, on_table=on_table, winner=winner)
+    return Verdict(
+        foul, foul is None, ball_on, respot, winner, loss, keeps and winner is None
+    ), after
+
+
+def _judge_eight(
+    state: RackState, shot: ShotOutcome, called: int | None
+) -> tuple[Verdict, RackState]:
+    ball_on = state.ball_on
+    foul = _foul(state, shot)
+    on_eight = ball_on == 8
+    respot: tuple[int, ...] = ()
+    winner = loss = None
+    if 8 in shot.potted:
+        if state.breaking:
+            respot = (8,)
+        elif foul:
+            loss = "eight_on_foul"
+        elif not on_eight:
+            loss = "eight_early"
+        elif called is None or shot.pockets[shot.potted.index(8)] != called:
+            loss = "eight_wrong_pocket"
+        else:
+            winner = state.shooter
+        if loss:
+            winner = 1 - state.shooter
+    groups = state.groups
+    group = groups[state.shooter]
+    objects = [b for b in shot.potted if b != 8]
+    if foul is None and not state.breaking and group == OPEN and objects:
+        group = group_of(objects[0])
+        mine = [OPEN, OPEN]
+        mine[state.shooter], mine[1 - state.shooter] = group, SOLIDS + STRIPES - group
+        groups = (mine[0], mine[1])
+    if state.breaking or group == OPEN:
+        keeps = foul is None and bool(objects)
+    else:
+        keeps = foul is None and any(group_of(b) == group for b in objects)
+    on_table = _off(state.on_table, shot.potted, respot)
+    after = _next_turn(state, foul, keeps, on_table=on_table, winner=winner, groups=groups)
+    verdict = Verdict(foul, foul is None, ball_on, respot, winner, loss, keeps and winner is None)
+    return verdict, after
