@@ -30,7 +30,10 @@ from pool_env.game.wpa import (
 from pool_env.sim.batch import simulate_batch
 from pool_env.sim.layouts import break_scene, foot_spot
 
-TABLE = Table()
+# The table these scenes were laid out and aimed for: capture circles and the earlier
+# cushion restitution. The rules are pure functions of a shot's outcome, so the cases pin the
+# rules on one fixed table (each still asserts its physical premise).
+TABLE = Table(pockets="circles", e_cushion=0.85)
 R = TABLE.ball_radius
 TOWARD_CORNER = -3 * math.pi / 4  # along the diagonal into pocket 0 at (0, 0)
 FAR = (1.9, 0.9)  # a parking place far from every shot below
