@@ -6,7 +6,7 @@ rules (README, PoolEnv's docstring) and the closed forms of the physics, never a
 another front built from the same code.
 
 Documented rules used: action ``a`` in [-1, 1] maps linearly to ``low + (a + 1) / 2 *
-(high - low)``; speeds 0.5 .. 10 m/s; absolute aim -pi .. pi; cut aim 0 is a full hit on
+(high - low)``; speeds 0.5 .. 10 m/s (set explicitly: see ``TABLE_KWARGS``); absolute aim -pi .. pi; cut aim 0 is a full hit on
 the nearest object ball. Observation per ball ``(2 x / L - 1, 2 y / W - 1, 1)``, a potted
 ball ``(0, 0, 0)``. Reward ``+1`` per object ball potted, ``-1`` for a scratch, plus the
 optional ``reward_no_contact`` and ``reward_shaping`` times the change of ``-sum(distance
@@ -26,6 +26,13 @@ L, W, R = 2.54, 1.27, 0.028575
 A = 0.01 * 9.81  # rolling deceleration mu g
 E_BALL = 0.95
 SPEED_LOW, SPEED_HIGH = 0.5, 10.0
+# The table and speed range these outcomes were worked out on: capture circles (a ball is
+# potted when its centre enters the circle) and the earlier cushion restitution. They are
+# passed to every env explicitly, so the expectations pin the decision process, not defaults.
+TABLE_KWARGS: dict[str, Any] = {
+    "table": {"pockets": "circles", "e_cushion": 0.85},
+    "speed_range": (SPEED_LOW, SPEED_HIGH),
+}
 HEAD_SPOT = (L / 4, W / 2)
 CORNERS = [(0.0, 0.0), (L, 0.0), (0.0, W), (L, W)]
 # Capture circles' centres (for the shaping potential): corners and sides R behind the rail.
@@ -73,6 +80,9 @@ class Shot:
     terminated: bool
     truncated: bool
     info: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.kwargs = {**TABLE_KWARGS, **self.kwargs}
 
     @property
     def observation(self) -> np.ndarray:
