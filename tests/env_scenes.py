@@ -5,13 +5,13 @@ the SB3 adapter), so that each is checked against numbers derived from the docum
 rules (README, PoolEnv's docstring) and the closed forms of the physics, never against
 another front built from the same code.
 
-Documented rules used: action ``a`` in [-1, 1] maps linearly to ``low + (a + 1) / 2 *
-(high - low)``; speeds 0.5 .. 10 m/s (set explicitly: see ``TABLE_KWARGS``); absolute aim
--pi .. pi; cut aim 0 is a full hit on the nearest object ball. Observation per ball
-``(2 x / L - 1, 2 y / W - 1, 1)``, a potted ball ``(0, 0, 0)``. Reward ``+1`` per object ball potted, ``-1`` for a scratch, plus the
-optional ``reward_no_contact`` and ``reward_shaping`` times the change of ``-sum(distance
-of each object ball to its nearest pocket) / diagonal``. A scratched cue ball goes back to
-the head spot ``(L / 4, W / 2)``.
+Documented rules used: action ``a`` in [-1, 1] maps linearly to ``low + (a + 1) / 2 * (high
+- low)``; speeds 0.5 .. 10 m/s (set explicitly: see ``TABLE_KWARGS``); absolute aim -pi ..
+pi; cut aim 0 is a full hit on the nearest object ball. Observation per ball ``(2 x / L -
+1, 2 y / W - 1, 1)``, a potted ball ``(0, 0, 0)``. Reward ``+1`` per object ball potted,
+``-1`` for a scratch, plus the optional ``reward_no_contact`` and ``reward_shaping`` times
+the change of ``-sum(distance of each object ball to its nearest pocket) / diagonal``. A
+scratched cue ball goes back to the head spot ``(L / 4, W / 2)``.
 """
 
 from __future__ import annotations
