@@ -15,7 +15,14 @@ from numpy.typing import ArrayLike, NDArray
 
 from pool_env.game import step as game
 from pool_env.game.checks import check_actions, check_render, check_seed
-from pool_env.game.config import CUE, DEFAULT_SPEED_RANGE, AimMode, GameConfig, make_config
+from pool_env.game.config import (
+    CUE,
+    DEFAULT_BREAK_SPEED_RANGE,
+    DEFAULT_SPEED_RANGE,
+    AimMode,
+    GameConfig,
+    make_config,
+)
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.rules import TERMINATED, TRUNCATED
 from pool_env.game.scenes import SceneSpec
@@ -202,6 +209,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         reward_scratch: float = -1.0,
         reward_no_contact: float = 0.0,
         reward_shaping: float = 0.0,
+        game: str = "solitaire",
+        end_on_foul: bool = False,
+        break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE,
+        reward_foul: float = -1.0,
+        reward_win: float = 1.0,
         render_mode: str | None = None,
         render_width: int = 800,
     ) -> None:
@@ -213,9 +225,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             self.metadata = {**self.metadata, "render_fps": RENDER_FPS[render_mode]}
         self.config: GameConfig = make_config(
             table, scene, n_balls, aim, aim_range, speed_range, noise, end_on_miss, max_shots,
-            reward_pot, reward_scratch, reward_no_contact, reward_shaping,
+            reward_pot, reward_scratch, reward_no_contact, reward_shaping, game, 1, end_on_foul,
+            break_speed_range, reward_foul, reward_win,
         )  # fmt: skip
         config = self.config
+        self.game, self.end_on_foul = config.game, config.end_on_foul
         self.table = config.table
         self.aim: AimMode = config.aim
         self.aim_range, self.speed_range = config.aim_range, config.speed_range
@@ -224,8 +238,10 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self.n_object_balls = config.n_object_balls
         self.cue = CUE
         n = config.n_balls
-        self.observation_space = gym.spaces.Box(-1.0, 1.0, (3 * n,), np.float32)
-        self.action_space = gym.spaces.Box(-1.0, 1.0, (2,), np.float32)
+        self.observation_space = gym.spaces.Box(
+            -1.0, 1.0, (config.observation_size,), np.float32
+        )
+        self.action_space = gym.spaces.Box(-1.0, 1.0, (config.action_size,), np.float32)
         self._record = render_mode is not None  # trajectories only when something draws them
         self._state: GameState = new_state(1, n)
         self._started = False
@@ -261,7 +277,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         """Play one shot to rest; see the class docstring for the action, reward and end."""
         if not self._started:
             raise RuntimeError("call reset() before step()")
-        actions = check_actions(action, 1, single=True)
+        actions = check_actions(action, 1, single=True, width=self.config.action_size)
         self._use_generator()
         result = game.step(self.config, self._state, _ONE, actions, record=self._record)
         self._last_shot, self._shot_balls = result.shot, result.balls
@@ -307,6 +323,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     def shots(self) -> int:
         """Shots played in this episode."""
         return int(self._state.shots[0])
+
+    @property
+    def rack(self) -> dict[str, Any]:
+        """Under rules: the rack state (:func:`pool_env.game.step.rack_dict`), a new dict."""
+        return game.rack_dict(self.config, self._state.rack[0])
 
     @property
     def last_shot(self) -> ShotResult | None:

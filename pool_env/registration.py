@@ -22,6 +22,11 @@ ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {
     # Break, then keep shooting until the table is clear: 50 shots is ~5 a ball.
     "pool_env/NineBall-v0": ({"scene": "nine_ball"}, 50),
     "pool_env/EightBall-v0": ({"scene": "eight_ball"}, 80),
+    # The games under their rules (pool_env.game.kernels.wpa), one agent at the table:
+    # fouls, ball in hand (Box(5) actions), a break at break speed; the episode ends when
+    # the rack is won or lost (end_on_foul=True: at the first foul or missed turn).
+    "pool_env/NineBallGame-v0": ({"scene": "nine_ball", "game": "nine"}, 100),
+    "pool_env/EightBallGame-v0": ({"scene": "eight_ball", "game": "eight"}, 150),
 }
 
 
@@ -36,3 +41,8 @@ def register_envs() -> None:
                 kwargs=kwargs,
                 max_episode_steps=max_steps,
             )
+
+
+#: The ids played under the 9-ball or 8-ball rules (``Box(5)`` actions); the others are
+#: solitaire (``Box(2)``).
+GAME_IDS: tuple[str, ...] = tuple(k for k, (kw, _) in ENV_IDS.items() if "game" in kw)

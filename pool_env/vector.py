@@ -125,14 +125,19 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self.aim, self.aim_range = config.aim, config.aim_range
         self.speed_range, self.noise = config.speed_range, config.noise
         self.end_on_miss, self.max_shots = config.end_on_miss, config.max_shots
+        self.game, self.end_on_foul = config.game, config.end_on_foul
         self.reward_weights = config.reward_weights
         self.n_object_balls = config.n_object_balls
         self.cue = CUE
 
         self.num_envs = int(num_envs)
         n = config.n_balls
-        self.single_observation_space = gym.spaces.Box(-1.0, 1.0, (3 * n,), np.float32)
-        self.single_action_space = gym.spaces.Box(-1.0, 1.0, (2,), np.float32)
+        self.single_observation_space = gym.spaces.Box(
+            -1.0, 1.0, (config.observation_size,), np.float32
+        )
+        self.single_action_space = gym.spaces.Box(
+            -1.0, 1.0, (config.action_size,), np.float32
+        )
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
 
@@ -207,6 +212,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         acts = check_actions(
             actions, self.num_envs, single=False,
             tables=None if shooting.size == self.num_envs else shooting,
+            width=self.config.action_size,
         )  # fmt: skip
         b = self.num_envs
         rewards, terminated, truncated = np.zeros(b), np.zeros(b, np.bool_), np.zeros(b, np.bool_)
@@ -258,6 +264,11 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     def on_table(self) -> NDArray[np.bool_]:
         """``(num_envs, N)`` which balls are on each table (a copy)."""
         return self._state.on_table.copy()
+
+    @property
+    def rack(self) -> tuple[dict[str, Any], ...]:
+        """Under rules: each table's rack state (as ``PoolEnv.rack``)."""
+        return tuple(game.rack_dict(self.config, row) for row in self._state.rack)
 
     @property
     def shots(self) -> NDArray[np.int64]:

@@ -14,7 +14,7 @@ from hypothesis import strategies as st
 import pool_env
 from pool_env import PoolEnv, Table, check_layout
 from pool_env.game.config import DEFAULT_SPEED_RANGE
-from pool_env.registration import ENV_IDS
+from pool_env.registration import ENV_IDS, GAME_IDS
 from pool_env.sim.layouts import head_spot
 
 TABLE = Table()
@@ -297,7 +297,7 @@ def test_same_seed_same_rollout_exactly(env_id: str) -> None:
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     seed=st.integers(0, 2**31 - 1),
-    env_id=st.sampled_from(list(ENV_IDS)),
+    env_id=st.sampled_from([i for i in ENV_IDS if i not in GAME_IDS]),  # solitaire rewards
     aim=st.sampled_from(["relative", "cut", "absolute"]),
 )
 def test_long_random_rollouts_stay_in_the_observation_space(

@@ -1,6 +1,9 @@
 """Rule cases: a constructed layout, a shot simulated by the real physics, the verdict.
 
-Every case shoots with :func:`pool_env.shoot` and judges the simulated outcome. Pots are
+Every case shoots with :func:`pool_env.shoot` and judges the simulated outcome with the
+plain-Python reference (:mod:`tests.wpa_reference`), whose verdict the case asserts, and
+with the product's compiled rules (:func:`pool_env.game.rules.judge_rules`), which must
+agree with it on the verdict and the rack after the shot. Pots are
 straight in along a corner pocket's diagonal from close range (the most forgiving pot on any
 pocket model); each case also asserts its premise (what the physics did), so that a change
 of the pocket model shows up as a broken premise, not as a wrong verdict.
@@ -14,9 +17,12 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from pool_env import Table, shoot
-from pool_env.game.placement import nearest_free_point, respot_point
-from pool_env.game.wpa import (
+from pool_env import Table, free_spot, shoot
+from pool_env.game.scenes import CLEARANCE
+from pool_env.sim.batch import simulate_batch
+from pool_env.sim.layouts import break_scene, foot_spot
+from tests.rules_harness import compiled_judge, same_verdict
+from tests.wpa_reference import (
     N_BALLS,
     OPEN,
     SOLIDS,
@@ -27,8 +33,6 @@ from pool_env.game.wpa import (
     judge,
     outcome_of,
 )
-from pool_env.sim.batch import simulate_batch
-from pool_env.sim.layouts import break_scene, foot_spot
 
 # The table these scenes were laid out and aimed for: capture circles and the earlier
 # cushion restitution. The rules are pure functions of a shot's outcome, so the cases pin the
@@ -65,6 +69,12 @@ def play(
         on = tuple(b in balls for b in range(N_BALLS[game]))
         state = RackState(game=game, on_table=on, breaking=False)
     verdict, after = judge(state, outcome, called)
+    # The product's compiled rules judge the same outcome alike.
+    got, got_after = compiled_judge(
+        TABLE, state, result.positions, numbers, result.first_contact,
+        result.cushions_after_contact, result.pocketed, result.pocket_order, called,
+    )  # fmt: skip
+    same_verdict(verdict, after, got, got_after)
     return verdict, after, outcome
 
 
@@ -418,49 +428,62 @@ def _shoot_from(balls: dict[int, tuple[float, float]]) -> None:
     shoot(TABLE, [balls[b] for b in sorted(balls)], 0.0, 0.0)
 
 
+REACH = 2 * R + CLEARANCE  # the distance free_spot keeps between centres
+
+
+def _free(positions, on, target, behind: bool = False) -> np.ndarray:
+    pos = np.asarray(positions, dtype=np.float64).reshape(-1, 2)
+    return free_spot(TABLE, pos, np.asarray(on, dtype=bool), np.asarray(target, float), behind)
+
+
 def test_ball_in_hand_onto_an_occupied_spot_moves_to_the_nearest_free_point() -> None:
     ball = np.array([1.0, 0.6])
     target = ball + [0.01, 0.0]
-    got = nearest_free_point(TABLE, [ball], [True], target)
-    np.testing.assert_allclose(got, ball + [2 * R, 0.0], rtol=0, atol=1e-8)
+    got = _free([ball], [True], target)
+    np.testing.assert_allclose(got, ball + [REACH, 0.0], rtol=0, atol=1e-12)
     _shoot_from({0: tuple(got), 1: tuple(ball)})
 
 
 def test_ball_in_hand_between_two_balls_goes_to_their_circles_crossing() -> None:
     a, b = np.array([1.0, 0.6]), np.array([1.0 + 3 * R, 0.6])
     target = (a + b) / 2 + [0.0, 1e-4]
-    got = nearest_free_point(TABLE, [a, b], [True, True], target)
-    want = (a + b) / 2 + [0.0, math.sqrt(4 * R**2 - (1.5 * R) ** 2)]
-    np.testing.assert_allclose(got, want, rtol=0, atol=1e-8)
+    got = _free([a, b], [True, True], target)
+    h = math.sqrt(REACH**2 - (1.5 * R) ** 2)
+    # free_spot lifts the crossing 1e-6 (relative) off both circles, so rounding cannot
+    # put it inside either: the crossing's height h, times 1.000001.
+    want = (a + b) / 2 + [0.0, h * 1.000001]
+    np.testing.assert_allclose(got, want, rtol=0, atol=1e-12)
     _shoot_from({0: tuple(got), 1: tuple(a), 2: tuple(b)})
 
 
 def test_ball_in_hand_in_a_pocket_or_off_the_table() -> None:
-    corner = nearest_free_point(TABLE, np.zeros((0, 2)), [], [0.01, 0.01])
+    none = np.zeros((0, 2))
+    corner = _free(none, [], [0.03, 0.03])
     r = TABLE.pockets[0, 2]
-    assert math.isclose(math.hypot(*corner), r, rel_tol=1e-8)  # on the capture circle
-    off = nearest_free_point(TABLE, np.zeros((0, 2)), [], [1.0, -0.5])
+    # radially out of the capture circle, by the placement clearance (2 CLEARANCE)
+    np.testing.assert_allclose(corner, [(r + 2 * CLEARANCE) / math.sqrt(2)] * 2, atol=1e-12)
+    off = _free(none, [], [1.0, -0.5])
     np.testing.assert_allclose(off, [1.0, R])
-    behind = nearest_free_point(TABLE, np.zeros((0, 2)), [], [1.5, 0.6], behind_head_string=True)
+    behind = _free(none, [], [1.5, 0.6], behind=True)
     np.testing.assert_allclose(behind, [TABLE.length / 4, 0.6])
     _shoot_from({0: tuple(corner)})
 
 
 def test_ball_in_hand_is_deterministic_and_ignores_balls_off_the_table() -> None:
     ball = np.array([1.0, 0.6])
-    first = nearest_free_point(TABLE, [ball], [False], ball)
+    first = _free([ball], [False], ball)
     np.testing.assert_array_equal(first, ball)
-    a = nearest_free_point(TABLE, [ball], [True], ball)
-    b = nearest_free_point(TABLE, [ball], [True], ball)
+    a = _free([ball], [True], ball)
+    b = _free([ball], [True], ball)
     np.testing.assert_array_equal(a, b)
-    assert math.isclose(np.hypot(*(a - ball)), 2 * R, rel_tol=1e-8)
+    assert math.isclose(np.hypot(*(a - ball)), REACH, rel_tol=1e-12)
 
 
 def test_respotted_nine_goes_behind_a_ball_on_the_foot_spot() -> None:
     spot = foot_spot(TABLE)
-    got = respot_point(TABLE, [spot], [True], spot)
-    np.testing.assert_allclose(got, spot + [2 * R, 0.0], rtol=0, atol=1e-8)
-    free = respot_point(TABLE, [spot], [False], spot)
+    got = _free([spot], [True], spot)
+    np.testing.assert_allclose(got, spot + [REACH, 0.0], rtol=0, atol=1e-12)
+    free = _free([spot], [False], spot)
     np.testing.assert_array_equal(free, spot)
 
 

@@ -86,9 +86,13 @@ def parse_count(name: str, value: object) -> int | None:
 
 
 def check_actions(
-    actions: object, n: int, single: bool, tables: NDArray[np.intp] | None = None
+    actions: object,
+    n: int,
+    single: bool,
+    tables: NDArray[np.intp] | None = None,
+    width: int = 2,
 ) -> NDArray[np.float64]:
-    """Actions as a ``(n, 2)`` float64 array, checked alike for every front.
+    """Actions as a ``(n, width)`` float64 array, checked alike for every front.
 
     Every real dtype is accepted and converted to float64 (exact for float16 and float32;
     long double rounds to the nearest double), whatever its byte order; complex numbers,
@@ -102,15 +106,16 @@ def check_actions(
         single: Whether this is the single environment's one action.
         tables: The tables whose actions are played (``None``: all); only their rows are
             returned and checked for NaN (the others are ignored, as an autoreset does).
+        width: Action components (2; 5 under rules).
 
     Returns:
-        ``(K, 2)`` float64 for the ``K`` tables, a new array (the caller's is never kept).
+        ``(K, width)`` float64 for the ``K`` tables, a new array (the caller's is never kept).
 
     Raises:
         ValueError: On a bad shape, a non-real dtype, or a NaN (naming the table).
     """
     what = "the action" if single else "actions"
-    shape = (2,) if single else (n, 2)
+    shape = (width,) if single else (n, width)
     arr = actions if isinstance(actions, np.ndarray) else None
     if arr is None:
         try:
@@ -121,10 +126,10 @@ def check_actions(
         raise ValueError(f"{what} must be real numbers of shape {shape}, got dtype {arr.dtype}")
     if arr.shape != shape:
         raise ValueError(f"{what} must have shape {shape}, got {arr.shape}")
-    out = np.array(arr, dtype=np.float64, order="C").reshape(n, 2)
+    out = np.array(arr, dtype=np.float64, order="C").reshape(n, width)
     if tables is not None:
         out = out[tables]
-    if single:  # two Python floats test faster than numpy's reductions
+    if single and width == 2:  # two Python floats test faster than numpy's reductions
         x, y = out[0].tolist()
         nan = x != x or y != y
     else:

@@ -16,8 +16,10 @@ from numpy.typing import NDArray
 
 from pool_env.game import checks
 from pool_env.game.kernels import params as kp
+from pool_env.game.kernels.observe import N_RULE_FEATURES
 from pool_env.game.rules import CUE as RULES_CUE
 from pool_env.game.scenes import ScenePlan, SceneSpec, placement, plan_scene
+from pool_env.sim.layouts import foot_spot
 from pool_env.sim.table import Table
 
 AimMode = Literal["absolute", "relative", "cut"]
@@ -48,6 +50,16 @@ DEFAULT_AIM_RANGE: dict[str, tuple[float, float]] = {
 #: research/REALISM.md). A soft touch rolls ~1 m, a power shot ~100 m if nothing stops it.
 DEFAULT_SPEED_RANGE = (0.45, 4.5)
 
+#: Default break speed range (m/s) of the rules' break shot: a pro breaks at 11-13 m/s,
+#: amateurs lower (Dr. Dave's "typical speeds" FAQ; research/REALISM.md).
+DEFAULT_BREAK_SPEED_RANGE = (8.0, 12.0)
+
+#: The rules, in the order of their codes in the kernels (:mod:`.kernels.wpa`).
+GAMES: tuple[str, ...] = ("solitaire", "nine", "eight")
+
+#: The named scene each game needs (its balls are numbered as the game's).
+GAME_SCENE_BALLS: dict[str, int] = {"nine": 9, "eight": 15}
+
 #: The cue ball's row in every layout (the rules' constant).
 CUE = RULES_CUE
 
@@ -68,6 +80,12 @@ class GameConfig:
         shot_limit: Shots after which an episode is truncated (0: never): ``max_shots``,
             or the vector env's smaller of it and ``max_episode_steps``.
         reward_weights: ``(pot, scratch, no contact, shaping)``.
+        game: The rule: ``"solitaire"``, ``"nine"`` or ``"eight"``.
+        players: 1 (one agent shoots every shot) or 2 (the turn passes by the rules).
+        end_on_foul: Rules only: a foul, or a shot that does not keep the table, ends the
+            episode (run-out mode).
+        break_speed_range: Rules only: speeds (m/s) of action[1] = -1 and +1 on a break.
+        rule_rewards: Rules only: ``(foul, win)`` (a lost rack gives ``-win``).
         params: All of the above that the kernels read, as one read-only float64 array
             (:mod:`pool_env.game.kernels.params` names its entries).
     """
@@ -83,6 +101,28 @@ class GameConfig:
     shot_limit: int
     reward_weights: tuple[float, float, float, float]
     params: NDArray[np.float64]
+    game: str = "solitaire"
+    players: int = 1
+    end_on_foul: bool = False
+    break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
+    rule_rewards: tuple[float, float] = (-1.0, 1.0)
+
+    @property
+    def rules(self) -> bool:
+        """Whether a game's rules (9-ball or 8-ball) apply, not solitaire."""
+        return self.game != "solitaire"
+
+    @property
+    def observation_size(self) -> int:
+        """Observation entries: ``3 N``, under rules plus ``N - 1`` legal-ball flags and
+        the rule features (:func:`pool_env.game.kernels.observe.encode_rule_observations`)."""
+        n = self.n_balls
+        return 3 * n + (n - 1 + N_RULE_FEATURES if self.rules else 0)
+
+    @property
+    def action_size(self) -> int:
+        """Action components: 2 (aim, speed), or 5 under rules (and placement, pocket)."""
+        return 5 if self.rules else 2
 
     @property
     def n_object_balls(self) -> int:
@@ -142,6 +182,12 @@ def make_config(
     reward_scratch: float = -1.0,
     reward_no_contact: float = 0.0,
     reward_shaping: float = 0.0,
+    game: str = "solitaire",
+    players: int = 1,
+    end_on_foul: bool = False,
+    break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE,
+    reward_foul: float = -1.0,
+    reward_win: float = 1.0,
 ) -> GameConfig:
     """Parse and check the environment arguments (see :class:`pool_env.PoolEnv`).
 
@@ -166,9 +212,38 @@ def make_config(
             ("reward_shaping", reward_shaping),
         )
     )
+    if game not in GAMES:
+        raise ValueError(f"game must be one of {list(GAMES)}, got {game!r}")
+    if players not in (1, 2) or isinstance(players, bool):
+        raise ValueError(f"players must be 1 or 2, got {players!r}")
+    foul_ends = checks.parse_bool("end_on_foul", end_on_foul)
+    breaks = checks.parse_range("break_speed_range", break_speed_range, 0.0)
+    rule_rewards = (
+        checks.parse_float("reward_foul", reward_foul),
+        checks.parse_float("reward_win", reward_win),
+    )
+    plan = plan_scene(scene, parsed_table, n_balls)
+    if game == "solitaire":
+        if foul_ends or players != 1:
+            raise ValueError("end_on_foul and players need game='nine' or game='eight'")
+    else:
+        if plan.n_objects != GAME_SCENE_BALLS[game]:
+            raise ValueError(
+                f"game={game!r} needs {GAME_SCENE_BALLS[game]} object balls numbered as the "
+                f"game's, got a scene with {plan.n_objects}"
+            )
+        if miss:
+            raise ValueError("end_on_miss is solitaire's: under rules use end_on_foul")
+        if parsed_table.n_pockets == 0:
+            raise ValueError(f"game={game!r} needs a table with pockets")
+    params = kernel_params(
+        parsed_table, aim, aims, speeds, sigmas, weights, miss, shots or 0  # type: ignore[arg-type]
+    )
+    if game != "solitaire":
+        params = rule_params(params, parsed_table, game, players, foul_ends, breaks, rule_rewards)
     return GameConfig(
         table=parsed_table,
-        scene=plan_scene(scene, parsed_table, n_balls),
+        scene=plan,
         aim=aim,
         aim_range=aims,
         speed_range=speeds,
@@ -177,5 +252,32 @@ def make_config(
         max_shots=shots,
         shot_limit=shots or 0,
         reward_weights=weights,  # type: ignore[arg-type]
-        params=kernel_params(parsed_table, aim, aims, speeds, sigmas, weights, miss, shots or 0),  # type: ignore[arg-type]
+        params=params,
+        game=game,
+        players=players,
+        end_on_foul=foul_ends,
+        break_speed_range=breaks,
+        rule_rewards=rule_rewards,
     )
+
+
+def rule_params(
+    params: NDArray[np.float64],
+    table: Table,
+    game: str,
+    players: int,
+    end_on_foul: bool,
+    break_speed_range: tuple[float, float],
+    rule_rewards: tuple[float, float],
+) -> NDArray[np.float64]:
+    """A read-only copy of ``params`` with the rules' entries set."""
+    out = params.copy()
+    out[kp.GAME] = GAMES.index(game)
+    out[kp.PLAYERS] = players
+    out[kp.END_ON_FOUL] = float(end_on_foul)
+    out[[kp.BREAK_LOW, kp.BREAK_HIGH]] = break_speed_range
+    out[[kp.W_FOUL, kp.W_WIN]] = rule_rewards
+    out[kp.HEAD_X] = table.length / 4.0
+    out[[kp.FOOT_X, kp.FOOT_Y]] = foot_spot(table)
+    out.setflags(write=False)
+    return out

@@ -15,7 +15,17 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
+from pool_env.game.kernels.wpa import FOUL_NAMES, LOSS_NAMES
+from pool_env.game.rules import (
+    BALL_ON,
+    CLEARED,
+    FIRST_BALL,
+    FOUL,
+    LOSS,
+    POTTED_BITS,
+    SCRATCH,
+    WINNER,
+)
 
 if TYPE_CHECKING:
     from pool_env.game.step import StepResult
@@ -35,6 +45,21 @@ COLUMNS: dict[str, tuple[str, int | None, type]] = {
 
 #: Every key of a step's ``info``.
 INFO_KEYS: tuple[str, ...] = ("potted", *COLUMNS)
+
+#: The rules' integer keys: the ball on before the shot (-1: not a single ball, 8-ball
+#: before the group is cleared) and the winner (-1 while undecided; integers rather than
+#: None, so that Gymnasium's vector info has one dtype per key).
+RULE_COLUMNS: dict[str, tuple[str, int, type]] = {
+    "ball_on": ("hits", BALL_ON, np.int64),
+    "winner": ("hits", WINNER, np.int64),
+}
+
+#: Every key a step adds under rules: ``foul`` (None or its name), ``legal``, ``loss``
+#: (None or why the shooter lost the rack) and :data:`RULE_COLUMNS`.
+RULE_KEYS: tuple[str, ...] = ("foul", "legal", "loss", *RULE_COLUMNS)
+
+_FOULS = np.array(FOUL_NAMES, dtype=object)
+_LOSSES = np.array(LOSS_NAMES, dtype=object)
 
 #: Object balls up to which the potted tuples come from a lookup table (``2^n`` entries).
 LOOKUP_MAX_BALLS = 16
@@ -81,6 +106,13 @@ def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str,
         if row is None:
             row = rows[name] = getattr(result, name)[0].tolist()
         info[key] = row[column]
+    if result.hits.shape[1] > FOUL:
+        hits = rows.get("hits") or result.hits[0].tolist()
+        info["foul"] = FOUL_NAMES[hits[FOUL]]
+        info["legal"] = hits[FOUL] == 0
+        info["loss"] = LOSS_NAMES[hits[LOSS]]
+        for key, (_, column, _) in RULE_COLUMNS.items():
+            info[key] = hits[column]
     return info
 
 
@@ -114,4 +146,22 @@ def batch_info(
         values[tables] = (source if column is None else source[:, column])[rows]
         info[key] = values
         info[f"_{key}"] = present.copy()
+    if result.hits.shape[1] > FOUL:
+        codes = result.hits[rows, FOUL]
+        for key, values in (
+            ("foul", np.full(n_envs, None, dtype=object)),
+            ("legal", np.zeros(n_envs, dtype=np.bool_)),
+            ("loss", np.full(n_envs, None, dtype=object)),
+        ):
+            if key == "foul":
+                values[tables] = _FOULS[codes]
+            elif key == "legal":
+                values[tables] = codes == 0
+            else:
+                values[tables] = _LOSSES[result.hits[rows, LOSS]]
+            info[key], info[f"_{key}"] = values, present.copy()
+        for key, (_, column, dtype) in RULE_COLUMNS.items():
+            values = np.zeros(n_envs, dtype=dtype)
+            values[tables] = result.hits[rows, column]
+            info[key], info[f"_{key}"] = values, present.copy()
     return info

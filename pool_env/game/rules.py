@@ -19,12 +19,14 @@ order and any pocket.
 * The episode terminates when the table is cleared, and with ``end_on_miss`` after a shot
   that pots nothing or scratches; it is truncated after ``shot_limit`` shots.
 
-Where game rules go (fouls, ball in hand, turns, two players): here. A new rule is a
-function beside :func:`_solitaire` reading the same outcome (``potted``, ``scratch``,
-``first_ball``; the shot's events if it needs them) and the state it keeps in
-:class:`pool_env.game.state.GameState` (whose turn, ball in hand), selected by a
-:class:`pool_env.game.config.GameConfig` field; :func:`pool_env.game.step.step` and the
-fronts do not change.
+The rules of 9-ball and 8-ball (``GameConfig.game`` ``"nine"`` / ``"eight"``) are
+:func:`judge_rules`: the same outcome plus what the rules read (the cushions each ball
+touched after the first contact, the order the balls dropped, the called pocket), judged
+by :func:`pool_env.game.kernels.wpa.judge_rack` (the one copy of those rules, whose
+docstring lists them and every simplification) on the rack state each table keeps in
+``GameState.rack``. Practice reward: ``reward_pot`` per object ball potted on a legal shot
+(a re-spotted ball not counted), ``reward_foul`` for a foul, ``reward_win`` for winning the
+rack and minus it for losing it.
 """
 
 from __future__ import annotations
@@ -33,9 +35,15 @@ import numpy as np
 
 from pool_env.game.kernels.layout import point_free
 from pool_env.game.kernels.observe import potential
+from pool_env.game.kernels import wpa
 from pool_env.game.kernels.params import (
     DIAGONAL,
+    END_ON_FOUL,
     END_ON_MISS,
+    FOOT_X,
+    FOOT_Y,
+    GAME,
+    PLAYERS,
     REACH,
     SHOT_LIMIT,
     SPOT_X,
@@ -43,17 +51,21 @@ from pool_env.game.kernels.params import (
     W_NO_CONTACT,
     W_POT,
     W_SCRATCH,
+    W_FOUL,
     W_SHAPING,
+    W_WIN,
 )
 from pool_env.sim.kernels._jit import kernel
 
 CUE = 0  # the cue ball's row in every layout
 
-#: Columns of :func:`judge`'s boolean results.
-TERMINATED, TRUNCATED, CLEARED, SCRATCH, SPOT_TAKEN = range(5)
+#: Columns of :func:`judge`'s boolean results (:func:`judge_rules` adds RESPOT_TAKEN).
+TERMINATED, TRUNCATED, CLEARED, SCRATCH, SPOT_TAKEN, RESPOT_TAKEN = range(6)
 
-#: Columns of :func:`judge`'s integer results.
-POTTED_BITS, FIRST_BALL = range(2)
+#: Columns of :func:`judge`'s integer results (:func:`judge_rules` adds the rest): the
+#: foul code, the ball on before the shot, the winner (-1: undecided), why the rack was
+#: lost, the re-spotted ball (-1: none) and whether the shooter's turn goes on.
+POTTED_BITS, FIRST_BALL, FOUL, BALL_ON, WINNER, LOSS, RESPOT, KEEPS = range(8)
 
 
 @kernel
@@ -177,3 +189,125 @@ def _solitaire(params, pockets, positions, on_table, shots, n_potted, scratch, f
     limit = params[SHOT_LIMIT]
     truncated = limit > 0.0 and shots >= limit
     return reward, terminated, truncated, cleared, spot_taken
+
+
+@kernel
+def _spot(positions, on_table, ball, x, y, params, pockets, others):
+    """Put ``ball`` back on ``(x, y)`` if free; False when something covers the point."""
+    on_table[ball] = True
+    count = 0
+    for j in range(on_table.shape[0]):
+        if j != ball and on_table[j]:
+            others[count] = positions[j]
+            count += 1
+    reach = params[REACH]
+    if point_free(x, y, params, pockets, others, count, reach * reach):
+        positions[ball, 0], positions[ball, 1] = x, y
+        return True
+    return False
+
+
+@kernel
+def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack, final,
+                pocketed, first, cushions, order, called):  # fmt: skip
+    """Apply a batch of simulated shots to the tables by the 9-ball or 8-ball rules.
+
+    Args:
+        params: The config's numbers; ``params[GAME]`` selects the game.
+        pockets: ``(P, 3)`` capture circles.
+        tables: ``(K,)`` tables that shot.
+        balls: ``(M,)`` ball number of each column of the results.
+        positions: ``(B, N, 2)`` state, updated in place.
+        on_table: ``(B, N)`` state, updated in place.
+        shots: ``(B,)`` shots of each episode, counted up in place.
+        rack: ``(B, N_RACK)`` rack states (:mod:`pool_env.game.kernels.wpa`), updated.
+        final: ``(K, M, 2)`` simulated final positions.
+        pocketed: ``(K, M)`` pocket of each ball, -1 for none.
+        first: ``(K, 2)`` result columns of the first ball-ball impact, -1 for none.
+        cushions: ``(K, M)`` each ball's cushion impacts after the first contact.
+        order: ``(K, M)`` the order the balls dropped (0 first), -1 if they did not.
+        called: ``(K,)`` the pocket called for the 8.
+
+    Returns:
+        ``(rewards, flags, hits)``: ``(K,)``; ``(K, 6)`` booleans (:data:`TERMINATED` ..
+        :data:`RESPOT_TAKEN`: the foot spot is covered, the re-spotted ball is on the table
+        but not yet placed); ``(K, 8)`` integers (:data:`POTTED_BITS` .. :data:`KEEPS`).
+        ``CLEARED`` is set when the shooter won the rack with the shot.
+    """
+    n_shots, n_cols = pocketed.shape
+    n_balls = on_table.shape[1]
+    game, players = int(params[GAME]), int(params[PLAYERS])
+    rewards = np.empty(n_shots)
+    flags = np.zeros((n_shots, 6), dtype=np.bool_)
+    hits = np.zeros((n_shots, 8), dtype=np.int64)
+    others = np.empty((n_balls, 2))
+    before = np.empty(n_balls, dtype=np.bool_)
+    potted = np.zeros(n_balls, dtype=np.bool_)
+    for k in range(n_shots):
+        b = tables[k]
+        before[:] = on_table[b]
+        potted[:] = False
+        bits, scratch, rail, to_rail = np.int64(0), False, False, 0
+        first_dropped, first_order, eight_pocket = -1, n_cols + 1, -1
+        for c in range(n_cols):
+            j = balls[c]
+            positions[b, j, 0] = final[k, c, 0]
+            positions[b, j, 1] = final[k, c, 1]
+            if cushions[k, c] > 0:
+                rail = True
+                if j != CUE:
+                    to_rail += 1
+            if pocketed[k, c] >= 0:
+                on_table[b, j] = False
+                if j == CUE:
+                    scratch = True
+                else:
+                    potted[j] = True
+                    if j <= 63:
+                        bits |= np.int64(1) << (j - 1)
+                    if j == 8 and game == wpa.EIGHT:
+                        eight_pocket = pocketed[k, c]
+                    elif order[k, c] < first_order:
+                        first_order, first_dropped = order[k, c], j
+        shots[b] += 1
+        first_ball = -1
+        if first[k, 0] >= 0:
+            i, j = balls[first[k, 0]], balls[first[k, 1]]
+            first_ball = j if i == CUE else i
+        shooter = rack[b, wpa.SHOOTER]
+        foul, on, respot, loss, keeps = wpa.judge_rack(
+            game, players, rack[b], before, first_ball, scratch, potted, first_dropped,
+            eight_pocket, called[k], rail, to_rail,
+        )  # fmt: skip
+        winner = rack[b, wpa.WINNER]
+        legal_pots = 0
+        if foul == wpa.NO_FOUL:
+            for j in range(1, n_balls):
+                if potted[j] and j != respot:
+                    legal_pots += 1
+        reward = params[W_POT] * legal_pots
+        if foul != wpa.NO_FOUL:
+            reward += params[W_FOUL]
+        if winner >= 0:
+            reward += params[W_WIN] if winner == shooter else -params[W_WIN]
+        rewards[k] = reward
+        if respot >= 0:  # on the foot spot when it is free
+            flags[k, RESPOT_TAKEN] = not _spot(
+                positions[b], on_table[b], respot, params[FOOT_X], params[FOOT_Y], params,
+                pockets, others,
+            )  # fmt: skip
+        if scratch:  # on the head spot while in hand (the next shot places it)
+            flags[k, SPOT_TAKEN] = not _spot(
+                positions[b], on_table[b], CUE, params[SPOT_X], params[SPOT_Y], params,
+                pockets, others,
+            )  # fmt: skip
+        turn_over = foul != wpa.NO_FOUL or not keeps
+        limit = params[SHOT_LIMIT]
+        flags[k, TERMINATED] = winner >= 0 or (params[END_ON_FOUL] != 0.0 and turn_over)
+        flags[k, TRUNCATED] = limit > 0.0 and shots[b] >= limit
+        flags[k, CLEARED] = winner >= 0 and winner == shooter
+        flags[k, SCRATCH] = scratch
+        hits[k, POTTED_BITS], hits[k, FIRST_BALL], hits[k, FOUL] = bits, first_ball, foul
+        hits[k, BALL_ON], hits[k, WINNER], hits[k, LOSS] = on, winner, loss
+        hits[k, RESPOT], hits[k, KEEPS] = respot, 1 if keeps else 0
+    return rewards, flags, hits

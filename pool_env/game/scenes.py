@@ -259,11 +259,17 @@ def free_spot(
     positions: NDArray[np.float64],
     occupied: NDArray[np.bool_],
     target: NDArray[np.float64] | None = None,
+    behind_head_string: bool = False,
 ) -> NDArray[np.float64]:
-    """The free point nearest to ``target`` (the head spot by default) for a re-spotted ball.
+    """The free point nearest to ``target`` (the head spot by default) for a placed ball.
+
+    The one placement search of the package: a scratched cue ball whose head spot is
+    covered, a re-spotted 9 (or 8) whose foot spot is covered, and a cue ball in hand
+    placed on an occupied or forbidden point all go here, deterministically.
 
     A point is free when :func:`pool_env.game.kernels.layout.point_free` says so: inside
-    the rails, outside every capture circle and at least ``2R`` from every occupied ball.
+    the rails (and behind the head string, ``x <= L / 4``, when ``behind_head_string``),
+    outside every capture circle and at least ``2R`` from every occupied ball.
     The nearest free point is the target itself, the radial projection of the target onto
     the ``2R`` circle of one ball, or an intersection of two such circles; these candidates
     are checked exactly. A ring search around the target is the fallback for the rare case
@@ -273,7 +279,9 @@ def free_spot(
         table: The table.
         positions: ``(N, 2)`` centres.
         occupied: ``(N,)`` which rows are balls on the table (the ball to place excluded).
-        target: The preferred point.
+        target: The preferred point (anywhere, even off the table).
+        behind_head_string: Only centres with ``x <= L / 4`` are free (ball in hand after a
+            scratch on an 8-ball break).
 
     Returns:
         The ``(2,)`` free point.
@@ -282,13 +290,22 @@ def free_spot(
         ValueError: If the table has no free point at all.
     """
     params, pockets = placement(table), table.pockets
+    if behind_head_string:
+        params[kp.X_HIGH] = table.length / 4.0
     target = head_spot(table) if target is None else np.array(target, dtype=np.float64)
     balls = np.ascontiguousarray(positions[occupied], dtype=np.float64)
     reach = float(params[kp.REACH])
     tx, ty = target.tolist()
     if point_free(tx, ty, params, pockets, balls, balls.shape[0], reach * reach):
         return target
-    cands = [target[None, :]]
+    box = params[[kp.X_LOW, kp.X_HIGH, kp.Y_LOW, kp.Y_HIGH]]
+    clamped = np.array([min(max(tx, box[0]), box[1]), min(max(ty, box[2]), box[3])])
+    cands = [target[None, :], clamped[None, :]]
+    if pockets.shape[0]:  # out of a pocket the target (clamped) is in, radially
+        d = clamped - pockets[:, :2]
+        norm = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)
+        pad = (pockets[:, 2] + 2.0 * CLEARANCE) / norm
+        cands.append(pockets[:, :2] + d * pad[:, None])
     if balls.shape[0]:
         d = target - balls
         norm = np.hypot(d[:, 0], d[:, 1])

@@ -16,6 +16,8 @@ import numpy as np
 from gymnasium.utils import seeding
 from numpy.typing import NDArray
 
+from pool_env.game.kernels.wpa import N_RACK
+
 
 @dataclass
 class GameState:
@@ -26,6 +28,9 @@ class GameState:
             where it was captured.
         on_table: ``(B, N)`` which balls are on each table.
         shots: ``(B,)`` shots played in each table's episode.
+        rack: ``(B, N_RACK)`` int64 rack states of the 9-ball and 8-ball rules (who
+            shoots, ball in hand, the break, groups, successive fouls, the winner; columns
+            named in :mod:`pool_env.game.kernels.wpa`); unused by solitaire.
         generators: Each table's generator (``None`` until first seeded).
         seeds: The seed each generator was made from (``None``: not from an int).
         ptrs: ``(B, 3)`` addresses of each generator's state and draw functions.
@@ -34,6 +39,7 @@ class GameState:
     positions: NDArray[np.float64]
     on_table: NDArray[np.bool_]
     shots: NDArray[np.int64]
+    rack: NDArray[np.int64]
     generators: list[np.random.Generator | None]
     seeds: list[int | None]
     ptrs: NDArray[np.uintp]
@@ -73,6 +79,7 @@ def new_state(n_tables: int, n_balls: int) -> GameState:
         positions=np.zeros((n_tables, n_balls, 2)),
         on_table=np.ones((n_tables, n_balls), dtype=np.bool_),
         shots=np.zeros(n_tables, dtype=np.int64),
+        rack=np.zeros((n_tables, N_RACK), dtype=np.int64),
         generators=[None] * n_tables,
         seeds=[None] * n_tables,
         ptrs=np.zeros((n_tables, 3), dtype=np.uintp),

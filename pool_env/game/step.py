@@ -21,18 +21,23 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.game.config import CUE, GameConfig
-from pool_env.game.kernels.actions import executed_shots
+from pool_env.game.kernels import params as kp
+from pool_env.game.kernels import wpa
+from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, place_in_hand
 from pool_env.game.kernels.layout import sample_layouts
-from pool_env.game.kernels.observe import encode_observations
+from pool_env.game.kernels.observe import encode_observations, encode_rule_observations
 from pool_env.game.rules import (
     CLEARED,
     FIRST_BALL,
     POTTED_BITS,
+    RESPOT,
+    RESPOT_TAKEN,
     SCRATCH,
     SPOT_TAKEN,
     TERMINATED,
     TRUNCATED,
     judge,
+    judge_rules,
 )
 from pool_env.game.scenes import check_layout, free_spot
 from pool_env.game.state import GameState
@@ -145,6 +150,8 @@ class _Outcome(NamedTuple):
     final: NDArray[np.float64]
     pocketed: NDArray[np.int64]
     first: NDArray[np.int64]
+    cushions: NDArray[np.int64]
+    order: NDArray[np.int64]
     n_events: NDArray[np.int64] | None  # None: read from shot
     capped: NDArray[np.bool_] | None
     balls: NDArray[np.intp]
@@ -173,6 +180,8 @@ def step(
         The :class:`StepResult`.
     """
     table = config.table
+    if config.rules:
+        return _step_rules(config, state, tables, actions, record, parallel)
     shots, velocities = executed_shots(
         config.params, actions, tables, state.positions, state.on_table, state.ptrs
     )
@@ -183,10 +192,60 @@ def step(
     )  # fmt: skip
     if flags[:, SPOT_TAKEN].any():  # rare: something covers the head spot
         for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
+            _place(config, state, int(tables[k]), CUE, None)
+    return StepResult(tables, rewards, flags, hits, shots, out)
+
+
+def _place(
+    config: GameConfig,
+    state: GameState,
+    b: int,
+    ball: int,
+    target: NDArray[np.float64] | None,
+    behind: bool = False,
+) -> None:
+    """Move ``ball`` of table ``b`` to the free point nearest ``target`` (head spot: None)."""
+    occupied = state.on_table[b].copy()
+    occupied[ball] = False
+    state.positions[b, ball] = free_spot(
+        config.table, state.positions[b], occupied, target, behind_head_string=behind
+    )
+
+
+def _step_rules(
+    config: GameConfig,
+    state: GameState,
+    tables: NDArray[np.intp],
+    actions: NDArray[np.float64],
+    record: bool,
+    parallel: bool | None,
+) -> StepResult:
+    """:func:`step` under the 9-ball or 8-ball rules (``Box(5)`` actions)."""
+    table, params, rack = config.table, config.params, state.rack
+    unplaced = place_in_hand(
+        params, table.pockets, actions, tables, state.positions, state.on_table, rack
+    )
+    if unplaced.any():  # the requested point is covered: the nearest free one
+        for k in np.flatnonzero(unplaced).tolist():
             b = int(tables[k])
-            occupied = state.on_table[b].copy()
-            occupied[CUE] = False
-            state.positions[b, CUE] = free_spot(table, state.positions[b], occupied)
+            target = state.positions[b, CUE].copy()
+            _place(config, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))
+    shots, velocities, called = executed_rule_shots(
+        params, table.pockets, actions, tables, state.positions, state.on_table, state.ptrs,
+        rack,
+    )  # fmt: skip
+    out = _simulate(table, state, tables, velocities, record, parallel)
+    rewards, flags, hits = judge_rules(
+        params, table.pockets, tables, out.balls, state.positions, state.on_table,
+        state.shots, rack, out.final, out.pocketed, out.first, out.cushions, out.order, called,
+    )  # fmt: skip
+    if flags[:, RESPOT_TAKEN].any():  # something covers the foot spot
+        foot = params[[kp.FOOT_X, kp.FOOT_Y]].copy()
+        for k in np.flatnonzero(flags[:, RESPOT_TAKEN]).tolist():
+            _place(config, state, int(tables[k]), int(hits[k, RESPOT]), foot)
+    if flags[:, SPOT_TAKEN].any():
+        for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
+            _place(config, state, int(tables[k]), CUE, None)
     return StepResult(tables, rewards, flags, hits, shots, out)
 
 
@@ -214,7 +273,10 @@ def _simulate(
         contact = shot.first_contact
         first = _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64)
         final, pocketed = shot.positions, shot.pocketed
-        return _Outcome(final[None], pocketed[None], first, None, None, balls, shot)
+        return _Outcome(
+            final[None], pocketed[None], first, shot.cushions_after_contact[None],
+            shot.pocket_order[None], None, None, balls, shot,
+        )  # fmt: skip
     every = n_shots == state.n_tables
     pos = state.positions if every else state.positions[tables]
     on = state.on_table if every else state.on_table[tables]
@@ -226,7 +288,8 @@ def _simulate(
     else:
         result = simulate_batch(table, pos, vel, active=on, parallel=False)
     return _Outcome(
-        result.positions, result.pocketed, result.first_contact, result.n_events,
+        result.positions, result.pocketed, result.first_contact,
+        result.cushions_after_contact, result.pocket_order, result.n_events,
         result.hit_event_cap, np.arange(n_balls), None,
     )  # fmt: skip
 
@@ -251,6 +314,12 @@ def reset(
     Raises:
         ValueError: On bad options, naming them; the state is then unchanged.
     """
+    if config.rules and "rules" not in option_names:
+        option_names = (*option_names, "rules")
+    options = dict(options or {})
+    rack = None
+    if config.rules:
+        rack = rack_option(config, options.pop("rules", None), rack_scene=not options)
     if options:
         positions, on_table = option_layouts(config, options, tables, state.n_tables, option_names)
         state.positions[tables], state.on_table[tables] = positions, on_table
@@ -258,6 +327,75 @@ def reset(
         _lay_out(config, state, tables)
         state.on_table[tables] = True
     state.shots[tables] = 0
+    if rack is not None:
+        state.rack[tables] = rack
+
+
+#: ``options["rules"]`` group names, by code.
+GROUP_NAMES = ("open", "solids", "stripes")
+
+
+def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.int64]:
+    """The rack-state row an episode starts from, from ``options["rules"]`` if given.
+
+    Without it: a named rack scene starts with the break (player 0, the cue ball in hand
+    behind the head string); any other layout with player 0 to shoot, the cue ball where it
+    lies, an open table and no fouls. ``options["rules"]`` (a dict) sets any of ``break``
+    (bool), ``ball_in_hand`` (bool), ``behind_head_string`` (bool), ``groups`` (two of
+    ``"open"``, ``"solids"``, ``"stripes"``, players 0 and 1), ``fouls`` (each player's
+    successive fouls, 0-2) and, with two players, ``shooter`` (0 or 1).
+
+    Raises:
+        ValueError: On an unknown key or a bad value, naming it.
+    """
+    row = np.zeros(wpa.N_RACK, dtype=np.int64)
+    breaking = rack_scene and isinstance(config.scene.spec, str) and config.scene.n_new == 1
+    wpa.new_rack(row, breaking)
+    if given is None:
+        return row
+    if not isinstance(given, dict):
+        raise ValueError(f"options['rules'] must be a dict, got {given!r}")
+    keys = ("break", "ball_in_hand", "behind_head_string", "groups", "fouls", "shooter")
+    unknown = set(given) - set(keys)
+    if unknown:
+        raise ValueError(f"unknown options['rules'] keys {sorted(unknown)}: use {list(keys)}")
+    for key, column in (("break", wpa.BREAKING), ("ball_in_hand", wpa.IN_HAND),
+                        ("behind_head_string", wpa.BEHIND)):  # fmt: skip
+        if key in given:
+            if not isinstance(given[key], bool | np.bool_):
+                raise ValueError(f"options['rules'][{key!r}] must be a bool, got {given[key]!r}")
+            row[column] = int(given[key])
+    if "groups" in given:
+        groups = given["groups"]
+        if (
+            config.game != "eight"
+            or not isinstance(groups, tuple | list)
+            or len(groups) != 2
+            or any(g not in GROUP_NAMES for g in groups)
+            or (groups[0] == "open") != (groups[1] == "open")
+            or (groups[0] != "open" and groups[0] == groups[1])
+        ):
+            raise ValueError(
+                "options['rules']['groups'] (8-ball only) must be ('open', 'open') or one "
+                f"player 'solids' and the other 'stripes', got {groups!r}"
+            )
+        row[wpa.GROUP_0], row[wpa.GROUP_1] = (GROUP_NAMES.index(g) for g in groups)
+    if "fouls" in given:
+        fouls = given["fouls"]
+        if not (isinstance(fouls, tuple | list) and len(fouls) == 2
+                and all(isinstance(f, int) and 0 <= f <= 2 for f in fouls)):  # fmt: skip
+            raise ValueError(f"options['rules']['fouls'] must be two ints in 0..2, got {fouls!r}")
+        row[wpa.FOULS_0], row[wpa.FOULS_1] = fouls
+    if "shooter" in given:
+        if given["shooter"] not in (0, 1) or (config.players == 1 and given["shooter"] != 0):
+            raise ValueError(
+                f"options['rules']['shooter'] must be 0 or 1 (0 with one player), got "
+                f"{given['shooter']!r}"
+            )
+        row[wpa.SHOOTER] = int(given["shooter"])
+    if row[wpa.BEHIND] and not row[wpa.IN_HAND]:
+        raise ValueError("options['rules']: behind_head_string needs ball_in_hand")
+    return row
 
 
 def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> None:
@@ -336,8 +474,39 @@ def option_layouts(
     return pos, on
 
 
-def observe(config: GameConfig, state: GameState) -> NDArray[np.float32]:
-    """``(B, 3 N)`` observations of every table (see :class:`pool_env.PoolEnv`)."""
+def observe(
+    config: GameConfig, state: GameState, viewers: NDArray[np.int64] | None = None
+) -> NDArray[np.float32]:
+    """``(B, obs)`` observations of every table (see :class:`pool_env.PoolEnv`).
+
+    Under rules, ``viewers`` (``(B,)``, default: each table's shooter) says whose
+    perspective the rule features take (the two-player front observes for each agent).
+    """
+    if config.rules:
+        if viewers is None:
+            viewers = state.rack[:, wpa.SHOOTER]
+        return encode_rule_observations(
+            config.params, state.positions, state.on_table, state.rack, viewers,
+            config.table.length, config.table.width,
+        )  # fmt: skip
     return encode_observations(
         state.positions, state.on_table, config.table.length, config.table.width
     )
+
+
+def rack_dict(config: GameConfig, row: NDArray[np.int64]) -> dict[str, Any]:
+    """A rack-state row as a dict of the keys of ``options["rules"]`` and ``winner``.
+
+    ``winner`` is -1 while the rack is undecided; ``groups`` are names (8-ball).
+    """
+    if not config.rules:
+        raise ValueError("the rack state exists under rules only (game='nine' or 'eight')")
+    return {
+        "shooter": int(row[wpa.SHOOTER]),
+        "break": bool(row[wpa.BREAKING]),
+        "ball_in_hand": bool(row[wpa.IN_HAND]),
+        "behind_head_string": bool(row[wpa.BEHIND]),
+        "groups": (GROUP_NAMES[row[wpa.GROUP_0]], GROUP_NAMES[row[wpa.GROUP_1]]),
+        "fouls": (int(row[wpa.FOULS_0]), int(row[wpa.FOULS_1])),
+        "winner": int(row[wpa.WINNER]),
+    }

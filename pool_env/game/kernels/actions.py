@@ -10,18 +10,29 @@ import math
 
 import numpy as np
 
+from pool_env.game.kernels.layout import point_free
 from pool_env.game.kernels.params import (
     AIM_HIGH,
     AIM_LOW,
     AIM_MODE,
+    BREAK_HIGH,
+    BREAK_LOW,
+    GAME,
+    HEAD_X,
     NOISE,
     RADIUS,
+    REACH,
     SIGMA_ANGLE,
     SIGMA_SPEED,
     SPEED_HIGH,
     SPEED_LOW,
+    X_HIGH,
+    X_LOW,
+    Y_HIGH,
+    Y_LOW,
 )
 from pool_env.game.kernels.rng import standard_normal
+from pool_env.game.kernels.wpa import BEHIND, BREAKING, IN_HAND, SHOOTER, legal_targets
 from pool_env.sim.kernels._jit import kernel
 
 
@@ -164,20 +175,135 @@ def executed_shots(params, actions, tables, positions, on_table, ptrs):
     )
     shots = np.empty((n_shots, 2))
     velocities = np.zeros((n_shots, n_balls, 2))
-    mode, radius = int(params[AIM_MODE]), params[RADIUS]
     for k in range(n_shots):
         b = tables[k]
-        angle = aims[k]  # absolute aim: the parameter is the angle
-        if mode != 0:
-            j, dist, base = nearest_object_ball(positions[b], on_table[b], 0)
-            angle = _aim_angle(aims[k], mode, radius, j, dist, base)
-        speed = speeds[k]
-        if params[NOISE] != 0.0:
-            p = ptrs[b]
-            angle = angle + params[SIGMA_ANGLE] * standard_normal(p)
-            s = speed + params[SIGMA_SPEED] * standard_normal(p)
-            speed = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
-        shots[k, 0], shots[k, 1] = angle, speed
-        velocities[k, 0, 0] = speed * math.cos(angle)
-        velocities[k, 0, 1] = speed * math.sin(angle)
+        _strike(params, aims[k], speeds[k], positions[b], on_table[b], ptrs[b], shots[k],
+                velocities[k])  # fmt: skip
     return shots, velocities
+
+
+@kernel
+def _strike(params, aim, speed, positions, targets, ptrs, shot, velocity):
+    """One shot: aim (at the nearest of ``targets`` unless absolute), noise, velocity.
+
+    Args:
+        params: The config's numbers.
+        aim: Decoded aim parameter.
+        speed: Decoded speed (m/s).
+        positions: ``(N, 2)`` the table's balls.
+        targets: ``(N,)`` the balls relative and cut aim may refer to (the nearest one).
+        ptrs: The table's generator addresses.
+        shot: ``(2,)`` written: the executed ``(angle, speed)``.
+        velocity: ``(N, 2)`` written: the cue ball's initial velocity (others stay 0).
+    """
+    angle = aim  # absolute aim: the parameter is the angle
+    mode = int(params[AIM_MODE])
+    if mode != 0:
+        j, dist, base = nearest_object_ball(positions, targets, 0)
+        angle = _aim_angle(aim, mode, params[RADIUS], j, dist, base)
+    if params[NOISE] != 0.0:
+        angle = angle + params[SIGMA_ANGLE] * standard_normal(ptrs)
+        s = speed + params[SIGMA_SPEED] * standard_normal(ptrs)
+        speed = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
+    shot[0], shot[1] = angle, speed
+    velocity[0, 0] = speed * math.cos(angle)
+    velocity[0, 1] = speed * math.sin(angle)
+
+
+@kernel
+def _unit(value):
+    """An action component clipped to ``[-1, 1]`` and mapped to ``[0, 1]``."""
+    return (min(max(float(value), -1.0), 1.0) + 1.0) * 0.5
+
+
+@kernel
+def place_in_hand(params, pockets, actions, tables, positions, on_table, rack):
+    """Put the cue ball of each table in hand where ``actions[:, 2:4]`` ask.
+
+    The two components map linearly onto the allowed centres: inside the cushions by a
+    ball radius (``[R, L - R] x [R, W - R]``), and only behind the head string
+    (``x <= L / 4``) when the rack state says so (after a scratch on an 8-ball break, and
+    on every break). The cue ball is moved to that point, free or not.
+
+    Args:
+        params: The config's numbers.
+        pockets: ``(P, 3)`` capture circles.
+        actions: ``(K, 5)`` actions.
+        tables: ``(K,)`` the tables that shoot.
+        positions: ``(B, N, 2)`` ball centres, the cue balls in hand moved in place.
+        on_table: ``(B, N)`` which balls are on each table.
+        rack: ``(B, N_RACK)`` rack states.
+
+    Returns:
+        ``(K,)`` booleans: the requested point is not free (on or next to a ball, in a
+        pocket): the caller moves the cue ball to the free point nearest to it
+        (:func:`pool_env.game.scenes.free_spot`).
+    """
+    n_shots, n_balls = tables.shape[0], on_table.shape[1]
+    unplaced = np.zeros(n_shots, dtype=np.bool_)
+    others = np.empty((n_balls, 2))
+    reach = params[REACH]
+    for k in range(n_shots):
+        b = tables[k]
+        if rack[b, IN_HAND] == 0:
+            continue
+        x_high = params[HEAD_X] if rack[b, BEHIND] != 0 else params[X_HIGH]
+        x = params[X_LOW] + _unit(actions[k, 2]) * (x_high - params[X_LOW])
+        y = params[Y_LOW] + _unit(actions[k, 3]) * (params[Y_HIGH] - params[Y_LOW])
+        count = 0
+        for j in range(1, n_balls):
+            if on_table[b, j]:
+                others[count] = positions[b, j]
+                count += 1
+        positions[b, 0, 0], positions[b, 0, 1] = x, y
+        free = point_free(x, y, params, pockets, others, count, reach * reach)
+        unplaced[k] = not (free and x <= x_high)
+    return unplaced
+
+
+@kernel
+def executed_rule_shots(params, pockets, actions, tables, positions, on_table, ptrs, rack):
+    """The shots of the rules' ``Box(5)`` actions, the cue ball placed: call, aim, strike.
+
+    ``actions[:, 4]`` calls pocket ``min(floor(P (a + 1) / 2), P - 1)`` (``P = 6``: six
+    equal bins over ``[-1, 1]``, in ``table.pockets`` order; read by the rules only when
+    the shooter is on the 8). The speed maps onto the break range on a break. Relative and
+    cut aim refer to the nearest ball the shooter may hit first
+    (:func:`pool_env.game.kernels.wpa.legal_targets`), not to the nearest ball.
+
+    Args:
+        params: The config's numbers.
+        pockets: ``(P, 3)`` capture circles.
+        actions: ``(K, 5)`` actions.
+        tables: ``(K,)`` the tables that shoot.
+        positions: ``(B, N, 2)`` ball centres.
+        on_table: ``(B, N)`` which balls are on each table.
+        ptrs: ``(B, 3)`` generator addresses (noise as :func:`executed_shots`).
+        rack: ``(B, N_RACK)`` rack states.
+
+    Returns:
+        ``(shots, velocities, called)``: as :func:`executed_shots`, and the called pockets.
+    """
+    n_shots, n_balls = tables.shape[0], on_table.shape[1]
+    game = int(params[GAME])
+    aims, speeds = decode_actions(
+        actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
+    )
+    shots = np.empty((n_shots, 2))
+    velocities = np.zeros((n_shots, n_balls, 2))
+    called = np.empty(n_shots, dtype=np.int64)
+    targets = np.empty(n_balls, dtype=np.bool_)
+    n_pockets = pockets.shape[0]
+    for k in range(n_shots):
+        b = tables[k]
+        row = rack[b]
+        called[k] = min(int(_unit(actions[k, 4]) * n_pockets), n_pockets - 1)
+        speed = speeds[k]
+        if row[BREAKING] != 0:
+            speed = params[BREAK_LOW] + _unit(actions[k, 1]) * (
+                params[BREAK_HIGH] - params[BREAK_LOW]
+            )
+        legal_targets(game, row, on_table[b], row[SHOOTER], targets)
+        _strike(params, aims[k], speed, positions[b], targets, ptrs[b], shots[k],
+                velocities[k])  # fmt: skip
+    return shots, velocities, called

@@ -6,6 +6,18 @@ import math
 
 import numpy as np
 
+from pool_env.game.kernels.params import GAME
+from pool_env.game.kernels.wpa import (
+    BEHIND,
+    BREAKING,
+    EIGHT,
+    FOULS_0,
+    GROUP_0,
+    IN_HAND,
+    OPEN,
+    SHOOTER,
+    legal_targets,
+)
 from pool_env.sim.kernels._jit import kernel
 
 
@@ -76,4 +88,60 @@ def pocket_potentials(positions, on_table, pockets, scale):
     out = np.zeros(on_table.shape[0])
     for k in range(on_table.shape[0]):
         out[k] = potential(positions[k], on_table[k], pockets, scale)
+    return out
+
+
+#: Rule features after the balls' and the legal-ball flags, in this order.
+RULE_FEATURES: tuple[str, ...] = (
+    "ball_in_hand", "behind_head_string", "break", "open_table", "fouls", "opponent_fouls",
+    "to_shoot",
+)  # fmt: skip
+N_RULE_FEATURES = 7
+
+
+@kernel
+def encode_rule_observations(params, positions, on_table, rack, viewers, length, width):
+    """Observation under rules: the balls, the balls the viewer may hit first, the rack.
+
+    Per table: :func:`encode_observations`' ``3 N`` entries; then for each object ball
+    ``1..N-1`` whether the viewer may hit it first (9-ball: the ball on, one-hot; 8-ball:
+    the viewer's group, every ball but the 8 on an open table, the 8 once the group is
+    cleared, any ball on the break); then :data:`RULE_FEATURES`: the cue ball in hand,
+    only behind the head string, the next shot is a break, the 8-ball table is open, the
+    viewer's and the opponent's successive fouls / 2 (at most 1), and whether the viewer
+    shoots next (always 1 with one player).
+
+    Args:
+        params: The config's numbers (``params[GAME]``).
+        positions: ``(B, N, 2)`` centres (m).
+        on_table: ``(B, N)`` which balls are on the table.
+        rack: ``(B, N_RACK)`` rack states.
+        viewers: ``(B,)`` whose perspective (player 0 or 1).
+        length: Table length (m).
+        width: Table width (m).
+
+    Returns:
+        ``(B, 3 N + N - 1 + 7)`` float32.
+    """
+    b, n = on_table.shape
+    balls = encode_observations(positions, on_table, length, width)
+    n_rules = N_RULE_FEATURES
+    out = np.zeros((b, 3 * n + n - 1 + n_rules), dtype=np.float32)
+    out[:, : 3 * n] = balls
+    game = int(params[GAME])
+    legal = np.empty(n, dtype=np.bool_)
+    for k in range(b):
+        viewer = viewers[k]
+        row = rack[k]
+        legal_targets(game, row, on_table[k], viewer, legal)
+        for j in range(1, n):
+            out[k, 3 * n + j - 1] = 1.0 if legal[j] else 0.0
+        base = 4 * n - 1
+        out[k, base] = 1.0 if row[IN_HAND] != 0 else 0.0
+        out[k, base + 1] = 1.0 if row[BEHIND] != 0 else 0.0
+        out[k, base + 2] = 1.0 if row[BREAKING] != 0 else 0.0
+        out[k, base + 3] = 1.0 if game == EIGHT and row[GROUP_0 + viewer] == OPEN else 0.0
+        out[k, base + 4] = min(row[FOULS_0 + viewer], 2) * 0.5
+        out[k, base + 5] = min(row[FOULS_0 + 1 - viewer], 2) * 0.5
+        out[k, base + 6] = 1.0 if row[SHOOTER] == viewer else 0.0
     return out

@@ -34,5 +34,15 @@ from __future__ import annotations
     DIAGONAL,  # the table's diagonal (m), the shaping potential's scale
     TRIES,  # failed random draws in a row that end an attempt at a layout
     RESTARTS,  # attempts at a random layout before the scene's fallback layout
+    GAME,  # the rule: 0 solitaire, 1 9-ball, 2 8-ball (pool_env.game.kernels.wpa)
+    PLAYERS,  # 1: one agent shoots every shot (practice), 2: the turn passes
+    END_ON_FOUL,  # 1.0: a foul or a shot that pots nothing legally ends the episode
+    BREAK_LOW,  # speed (m/s) of action[1] = -1 on a break
+    BREAK_HIGH,  # ... and of +1
+    W_FOUL,  # reward for a foul (rules)
+    W_WIN,  # reward for winning the rack (its negative for losing it)
+    HEAD_X,  # x of the head string (L / 4): ball in hand behind it after an 8-ball break scratch
+    FOOT_X,  # the foot spot, where the 9 (or the 8 on a break) is re-spotted
+    FOOT_Y,
     N_PARAMS,
-) = range(27)
+) = range(37)

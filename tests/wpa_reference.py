@@ -1,4 +1,8 @@
-"""The rules of 9-ball and 8-ball as pure functions of a shot's outcome (WPA standardized).
+"""A plain-Python reference of the 9-ball and 8-ball rules (WPA standardized): tests only.
+
+The product's one copy of the rules is compiled, :mod:`pool_env.game.kernels.wpa`; this
+file shares no code with it and is what ``tests/test_wpa.py`` and ``tests/test_games.py``
+check it against (on the rule-case table and on random outcomes).
 
 Ball ``k`` is numbered ``k``: row 0 is the cue ball, rows 1-9 (9-ball) or 1-15 (8-ball) the
 object balls, as in :func:`pool_env.sim.layouts.break_scene`. Players are 0 and 1 (a
@@ -13,10 +17,10 @@ never simulates, never draws random numbers and never mutates its inputs.
 table; then a ball must be potted or some ball (the cue ball included) must touch a
 cushion; a scratch and a shot that touches no ball are fouls. Legal break: the 1 first,
 and a ball potted or at least four object balls driven to a cushion. The 9 potted on a legal
-shot wins (the break and combinations included); potted on a foul it is re-spotted (see
-:mod:`pool_env.game.placement`), other balls potted on a foul stay down. A player who
+shot wins (the break and combinations included); potted on a foul it is re-spotted, other balls potted on a foul stay down. A player who
 fouls on three successive shots loses the rack. After a foul the incoming player has the
-cue ball in hand anywhere on the table.
+cue ball in hand anywhere on the table. (Re-spotting and ball-in-hand placement are
+:func:`pool_env.game.scenes.free_spot`'s, not this file's.)
 
 8-ball (WPA rules 1, 3): the break is legal if a ball is potted or at least four object
 balls touch a cushion. The table is open after the break; the first legal shot after the

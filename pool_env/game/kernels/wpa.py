@@ -1,0 +1,271 @@
+"""9-ball and 8-ball (WPA world standardized rules), compiled: one table's shot judged.
+
+The rules read a shot's outcome by ball number (ball ``k`` is numbered ``k``, the cue ball
+0, as in :func:`pool_env.sim.layouts.break_scene`) and the table's *rack state*, one int64
+row of :data:`N_RACK` columns (``GameState.rack``): who shoots, ball in hand (behind the
+head string or anywhere), the break pending, each player's 8-ball group and successive
+fouls, and the winner. :func:`judge_rack` updates that row in place.
+
+9-ball (WPA rules 1-2): the cue ball must first contact the lowest-numbered ball on the
+table; then a ball must be potted or some ball (the cue ball included) must touch a
+cushion; a scratch and a shot that touches no ball are fouls. Legal break: the 1 first,
+and a ball potted or at least four object balls driven to a cushion. The 9 potted on a
+legal shot wins (the break and combinations included); potted on a foul it is re-spotted.
+A player who fouls on three successive shots loses the rack. After a foul the incoming
+player has the cue ball in hand anywhere on the table.
+
+8-ball (WPA rules 1, 3): the break is legal if a ball is potted or at least four object
+balls touch a cushion (any first contact). The table is open after the break; the first
+legal shot after the break that pots an object ball other than the 8 assigns that ball's
+group (solids 1-7 or stripes 9-15; the first to drop) to the shooter, the other group to
+the opponent. The shooter must first contact a ball of their group (open table: any ball
+but the 8; group cleared: the 8), then pot a ball or make a ball touch a cushion. A
+shooter who has cleared their group wins by potting the 8 in the called pocket on a legal
+shot; potting the 8 before the group is cleared (not on the break), into another pocket,
+or on a foul (a scratch included) loses. A scratch on the break gives the incoming player
+ball in hand behind the head string; every other foul, ball in hand anywhere. The shooter
+keeps the table after a legal shot that pots a ball of their group (open table and break:
+any ball but the 8).
+
+Simplifications, all deliberate:
+
+* No push-out (9-ball rule 1.7), no called shots other than the 8's pocket (so "pot a
+  ball" means any object ball), no safeties called, no warning before the third foul, no
+  jump, masse or "bad cue ball" fouls (the simulator has none of them), no stalemate rule,
+  no three-foul rule in 8-ball (WPA has none either).
+* An illegal break is a foul (``illegal_break``): the incoming player takes ball in hand on
+  the table as it lies, rather than choosing to re-rack or to have the breaker break again.
+  A scratch on a break is reported as ``scratch`` even if the break also failed otherwise.
+* The 8 potted on the break is re-spotted and the break judged as any other; groups are
+  never assigned on the break (the table is open after it).
+* Balls potted on a foul stay down, except the 9 (re-spotted) and the 8 (the rack is lost,
+  or re-spotted on the break). A re-spotted ball goes on the foot spot, or on the free
+  point nearest to it (WPA: on the long string behind it).
+* A pocket jaw counts as a cushion: every cushion impact the simulator reports after the
+  first contact satisfies "a ball touched a rail".
+* One foul reason is reported per shot, the first that applies in the order scratch,
+  no_contact, wrong_ball_first, no_rail (on a break: scratch, then illegal_break).
+* With one player (practice), the shooter never changes: after a foul the agent itself is
+  the incoming player, with ball in hand; a lost rack (three fouls, the 8 lost) is a
+  win of the absent opponent, player 1.
+"""
+
+from __future__ import annotations
+
+from pool_env.sim.kernels._jit import kernel
+
+#: Rule codes of ``params[GAME]``.
+SOLITAIRE, NINE, EIGHT = 0, 1, 2
+
+#: Columns of a rack-state row: the shooter (0 or 1), ball in hand, ... behind the head
+#: string, the next shot is a break, each player's group (:data:`OPEN`, :data:`SOLIDS`,
+#: :data:`STRIPES`), each player's successive fouls, the winner (-1 while undecided).
+SHOOTER, IN_HAND, BEHIND, BREAKING, GROUP_0, GROUP_1, FOULS_0, FOULS_1, WINNER, N_RACK = range(10)
+
+#: 8-ball groups.
+OPEN, SOLIDS, STRIPES = 0, 1, 2
+
+#: Foul codes and their ``info["foul"]`` names.
+NO_FOUL, FOUL_SCRATCH, FOUL_WRONG_BALL, FOUL_NO_RAIL, FOUL_NO_CONTACT, FOUL_BREAK = range(6)
+FOUL_NAMES: tuple[str | None, ...] = (
+    None, "scratch", "wrong_ball_first", "no_rail", "no_contact", "illegal_break",
+)  # fmt: skip
+
+#: Why a rack was lost, and the names.
+NO_LOSS, EIGHT_EARLY, EIGHT_WRONG_POCKET, EIGHT_ON_FOUL, THREE_FOULS = range(5)
+LOSS_NAMES: tuple[str | None, ...] = (
+    None, "eight_early", "eight_wrong_pocket", "eight_on_foul", "three_fouls",
+)  # fmt: skip
+
+#: Object balls driven to a cushion that make a break legal without a pot.
+BREAK_RAILS = 4
+
+#: Balls of each game, the cue ball included.
+GAME_BALLS = {NINE: 10, EIGHT: 16}
+
+
+@kernel
+def group_of(ball):
+    """The 8-ball group of ``ball``: :data:`SOLIDS` (1-7), :data:`STRIPES` (9-15), else OPEN."""
+    if 1 <= ball <= 7:
+        return SOLIDS
+    if 9 <= ball <= 15:
+        return STRIPES
+    return OPEN
+
+
+@kernel
+def ball_on(game, rack, on_table, player):
+    """The one ball ``player`` must hit first, or -1 when it is not a single one.
+
+    9-ball: the lowest-numbered ball on the table; 8-ball: the 8 once the player's group
+    is cleared, else -1 (any ball of the group, or of either on an open table).
+    """
+    n = on_table.shape[0]
+    if game == NINE:
+        for j in range(1, n):
+            if on_table[j]:
+                return j
+        return -1
+    group = rack[GROUP_0 + player]
+    if group == OPEN:
+        return -1
+    for j in range(1, n):
+        if on_table[j] and group_of(j) == group:
+            return -1
+    return 8
+
+
+@kernel
+def legal_first(game, rack, on_table, player, on, j):
+    """Whether ``player`` may hit ball ``j`` first (``on`` is :func:`ball_on`'s answer)."""
+    if j < 1 or j >= on_table.shape[0] or not on_table[j]:
+        return False
+    if game == NINE:
+        return j == on
+    if rack[BREAKING] != 0:
+        return True
+    if on == 8:
+        return j == 8
+    group = rack[GROUP_0 + player]
+    if group == OPEN:
+        return j != 8
+    return group_of(j) == group
+
+
+@kernel
+def legal_targets(game, rack, on_table, player, out):
+    """``out[j]``: ``player`` may hit ball ``j`` first (the break: any ball in 8-ball)."""
+    on = ball_on(game, rack, on_table, player)
+    for j in range(on_table.shape[0]):
+        out[j] = legal_first(game, rack, on_table, player, on, j)
+
+
+@kernel
+def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail):
+    """The first foul that applies to a shot (:data:`NO_FOUL` for a legal one).
+
+    Args:
+        game: :data:`NINE` or :data:`EIGHT`.
+        rack: The rack-state row before the shot.
+        on_table: ``(N,)`` the balls on the table before the shot.
+        first: The ball the cue ball hit first, -1 for none.
+        scratch: The cue ball dropped.
+        n_potted: Object balls potted.
+        rail: Some ball touched a cushion after the first contact.
+        to_rail: Object balls that touched a cushion after the first contact.
+    """
+    if scratch:
+        return FOUL_SCRATCH
+    if rack[BREAKING] != 0:
+        first_ok = first >= 0 and (game == EIGHT or first == 1)
+        spread = n_potted > 0 or to_rail >= BREAK_RAILS
+        return NO_FOUL if first_ok and spread else FOUL_BREAK
+    if first < 0:
+        return FOUL_NO_CONTACT
+    player = rack[SHOOTER]
+    on = ball_on(game, rack, on_table, player)
+    if not legal_first(game, rack, on_table, player, on, first):
+        return FOUL_WRONG_BALL
+    if n_potted == 0 and not rail:
+        return FOUL_NO_RAIL
+    return NO_FOUL
+
+
+@kernel
+def judge_rack(game, players, rack, on_table, first, scratch, potted, first_dropped,
+               eight_pocket, called, rail, to_rail):  # fmt: skip
+    """Judge one shot and move the rack state on (``rack`` is updated in place).
+
+    Args:
+        game: :data:`NINE` or :data:`EIGHT`.
+        players: 1 (the shooter never changes) or 2.
+        rack: The table's rack-state row, updated in place.
+        on_table: ``(N,)`` balls on the table *before* the shot (not changed).
+        first: The ball the cue ball hit first, -1 for none.
+        scratch: The cue ball dropped.
+        potted: ``(N,)`` booleans: the object balls the shot potted (index 0 ignored).
+        first_dropped: The first object ball other than the 8 to drop, -1 for none.
+        eight_pocket: The pocket the 8 dropped in, -1 if it did not (or 9-ball).
+        called: The pocket called for the 8 (-1: none).
+        rail: Some ball touched a cushion after the first contact.
+        to_rail: Object balls that touched a cushion after the first contact.
+
+    Returns:
+        ``(foul, ball_on, respot, loss, keeps)``: the foul code, the ball on before the
+        shot (-1: none single), the ball to re-spot (-1: none), why the shooter lost
+        (:data:`NO_LOSS`...), and whether the shooter's turn goes on (a legal shot that
+        pots a ball that keeps the table, counted as if two players played). The winner
+        is ``rack[WINNER]`` (-1 while undecided).
+    """
+    shooter = rack[SHOOTER]
+    other = 1 - shooter
+    n = on_table.shape[0]
+    n_potted = 0
+    for j in range(1, n):
+        if potted[j]:
+            n_potted += 1
+    on = ball_on(game, rack, on_table, shooter)
+    foul = foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail)
+    breaking = rack[BREAKING] != 0
+    respot, loss, winner = -1, NO_LOSS, -1
+    if game == NINE:
+        nine = n > 9 and potted[9]
+        if nine:
+            if foul != NO_FOUL:
+                respot = 9
+            else:
+                winner = shooter
+        if foul != NO_FOUL and rack[FOULS_0 + shooter] + 1 >= 3:
+            winner, loss = other, THREE_FOULS
+        keeps = foul == NO_FOUL and n_potted > 0
+    else:
+        if eight_pocket >= 0:
+            if breaking:
+                respot = 8
+            elif foul != NO_FOUL:
+                loss = EIGHT_ON_FOUL
+            elif on != 8:
+                loss = EIGHT_EARLY
+            elif called != eight_pocket:
+                loss = EIGHT_WRONG_POCKET
+            else:
+                winner = shooter
+            if loss != NO_LOSS:
+                winner = other
+        objects = n_potted - (1 if eight_pocket >= 0 else 0)
+        group = rack[GROUP_0 + shooter]
+        if foul == NO_FOUL and not breaking and group == OPEN and first_dropped > 0:
+            group = group_of(first_dropped)
+            rack[GROUP_0 + shooter] = group
+            rack[GROUP_0 + other] = SOLIDS + STRIPES - group
+        if breaking or group == OPEN:
+            keeps = foul == NO_FOUL and objects > 0
+        else:
+            keeps = False
+            if foul == NO_FOUL:
+                for j in range(1, n):
+                    if potted[j] and group_of(j) == group:
+                        keeps = True
+    rack[FOULS_0 + shooter] = rack[FOULS_0 + shooter] + 1 if foul != NO_FOUL else 0
+    rack[BEHIND] = 1 if foul == FOUL_SCRATCH and breaking and game == EIGHT else 0
+    rack[IN_HAND] = 1 if foul != NO_FOUL else 0
+    rack[BREAKING] = 0
+    rack[WINNER] = winner
+    if players == 2 and not keeps:
+        rack[SHOOTER] = other
+    return foul, on, respot, loss, keeps
+
+
+@kernel
+def new_rack(rack, breaking):
+    """Reset a rack-state row: player 0 to shoot, open table, no fouls, no winner.
+
+    A break (``breaking``) is played with the cue ball in hand behind the head string.
+    """
+    rack[:] = 0
+    rack[WINNER] = -1
+    if breaking:
+        rack[BREAKING] = 1
+        rack[IN_HAND] = 1
+        rack[BEHIND] = 1

@@ -1,0 +1,147 @@
+"""Run the compiled rules (:func:`pool_env.game.rules.judge_rules`) on one shot's outcome.
+
+The tests judge each outcome twice, with the plain-Python reference
+(:mod:`tests.wpa_reference`) and with the product's compiled rules, and compare; this file
+converts between the reference's :class:`RackState` and the compiled rack-state row.
+"""
+
+from __future__ import annotations
+
+from functools import cache
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from pool_env.game.config import GameConfig, make_config
+from pool_env.game.kernels import wpa as cw
+from pool_env.game.rules import (
+    BALL_ON,
+    FOUL,
+    KEEPS,
+    LOSS,
+    RESPOT,
+    WINNER,
+    judge_rules,
+)
+from pool_env.sim.table import Table
+from tests.wpa_reference import RackState
+
+SCENES = {"nine": "nine_ball", "eight": "eight_ball"}
+
+
+@cache
+def rules_config(game: str, players: int, table: Table) -> GameConfig:
+    """A rules config on ``table`` (absolute aim, speeds 0-10 m/s for easy actions)."""
+    return make_config(
+        table=table, scene=SCENES[game], game=game, players=players, aim="absolute",
+        speed_range=(0.0, 10.0),
+    )  # fmt: skip
+
+
+def rack_row(state: RackState) -> np.ndarray:
+    """The compiled rack-state row of a reference state."""
+    row = np.zeros(cw.N_RACK, dtype=np.int64)
+    row[cw.SHOOTER] = state.shooter
+    row[cw.IN_HAND], row[cw.BEHIND] = state.ball_in_hand, state.behind_head_string
+    row[cw.BREAKING] = state.breaking
+    row[cw.GROUP_0], row[cw.GROUP_1] = state.groups
+    row[cw.FOULS_0], row[cw.FOULS_1] = state.fouls
+    row[cw.WINNER] = -1 if state.winner is None else state.winner
+    return row
+
+
+def rules_option(state: RackState) -> dict[str, Any]:
+    """``options["rules"]`` for a reference state (shooter 0's seat)."""
+    names = ("open", "solids", "stripes")
+    out: dict[str, Any] = {
+        "break": state.breaking,
+        "ball_in_hand": state.ball_in_hand,
+        "behind_head_string": state.behind_head_string,
+        "fouls": state.fouls,
+        "shooter": state.shooter,
+    }
+    if state.game == "eight":
+        out["groups"] = tuple(names[g] for g in state.groups)
+    return out
+
+
+def compiled_judge(
+    table: Table,
+    state: RackState,
+    positions: ArrayLike,
+    numbers: ArrayLike,
+    first_contact: tuple[int, int] | None,
+    cushions: ArrayLike,
+    pocketed: ArrayLike,
+    order: ArrayLike,
+    called: int | None,
+    players: int = 2,
+) -> tuple[dict[str, Any], RackState]:
+    """Judge a shot with the compiled rules from a reference state.
+
+    Args:
+        table: The table.
+        state: The rack before the shot.
+        positions: ``(M, 2)`` final positions of the simulated rows.
+        numbers: ``(M,)`` the ball number of each row (cue first).
+        first_contact: Rows of the first ball-ball impact, or None.
+        cushions: ``(M,)`` cushion impacts after the first contact per row.
+        pocketed: ``(M,)`` pocket per row, -1 none.
+        order: ``(M,)`` the order the rows dropped, -1 none.
+        called: The called pocket (None: none).
+        players: 1 or 2.
+
+    Returns:
+        The verdict as a dict (``foul``, ``legal``, ``ball_on`` (None for -1), ``respot``
+        (a tuple), ``winner``, ``loss``, ``keeps``) and the rack after the shot.
+    """
+    config = rules_config(state.game, players, table)
+    balls = np.asarray(numbers, dtype=np.int64)
+    n = config.n_balls
+    final = np.asarray(positions, dtype=np.float64).reshape(1, -1, 2)
+    pos = np.zeros((1, n, 2))
+    pos[0, balls] = final[0]
+    on = np.array([state.on_table], dtype=np.bool_)
+    rack = rack_row(state)[None].copy()
+    first = np.array([first_contact if first_contact is not None else (-1, -1)], np.int64)
+    _, _, hits = judge_rules(
+        config.params, table.pockets, np.zeros(1, np.intp), balls, pos, on,
+        np.zeros(1, np.int64), rack, final, np.array([pocketed], np.int64), first,
+        np.array([cushions], np.int64), np.array([order], np.int64),
+        np.array([-1 if called is None else called], np.int64),
+    )  # fmt: skip
+    h = hits[0]
+    verdict = {
+        "foul": cw.FOUL_NAMES[h[FOUL]],
+        "legal": h[FOUL] == 0,
+        "ball_on": None if h[BALL_ON] < 0 else int(h[BALL_ON]),
+        "respot": () if h[RESPOT] < 0 else (int(h[RESPOT]),),
+        "winner": None if h[WINNER] < 0 else int(h[WINNER]),
+        "loss": cw.LOSS_NAMES[h[LOSS]],
+        "keeps": bool(h[KEEPS]),
+    }
+    row = rack[0]
+    after = RackState(
+        game=state.game,
+        on_table=tuple(bool(v) for v in on[0]),
+        shooter=int(row[cw.SHOOTER]),
+        breaking=bool(row[cw.BREAKING]),
+        fouls=(int(row[cw.FOULS_0]), int(row[cw.FOULS_1])),
+        groups=(int(row[cw.GROUP_0]), int(row[cw.GROUP_1])),
+        ball_in_hand=bool(row[cw.IN_HAND]),
+        behind_head_string=bool(row[cw.BEHIND]),
+        winner=None if row[cw.WINNER] < 0 else int(row[cw.WINNER]),
+    )
+    return verdict, after
+
+
+def same_verdict(ref: Any, ref_after: RackState, got: dict[str, Any], after: RackState) -> None:
+    """Assert the compiled verdict and rack equal the reference's."""
+    want = {
+        "foul": ref.foul, "legal": ref.legal, "ball_on": ref.ball_on, "respot": ref.respot,
+        "winner": ref.winner, "loss": ref.loss, "continues": ref.shooter_continues,
+    }  # fmt: skip
+    have = {**got, "continues": got["keeps"] and got["winner"] is None}
+    assert {k: have[k] for k in want} == want, (have, want)
+    assert after == ref_after, (after, ref_after)
