@@ -25,7 +25,7 @@ touched after the first contact, the order the balls dropped, the called pocket)
 by :func:`pool_env.game.kernels.wpa.judge_rack` (the one copy of those rules, whose
 docstring lists them and every simplification) on the rack state each table keeps in
 ``GameState.rack``. Practice reward: ``reward_pot`` per object ball potted on a legal shot
-(a re-spotted ball not counted), ``reward_foul`` for a foul, ``reward_win`` for winning the
+(a re-spotted ball and the 8 of 8-ball not counted), ``reward_foul`` for a foul, ``reward_win`` for winning the
 rack and minus it for losing it.
 """
 
@@ -280,10 +280,10 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
             eight_pocket, called[k], rail, to_rail,
         )  # fmt: skip
         winner = rack[b, wpa.WINNER]
-        legal_pots = 0
+        legal_pots = 0  # the 8 of 8-ball is no pot: it wins or loses the rack
         if foul == wpa.NO_FOUL:
             for j in range(1, n_balls):
-                if potted[j] and j != respot:
+                if potted[j] and j != respot and not (j == 8 and game == wpa.EIGHT):
                     legal_pots += 1
         reward = params[W_POT] * legal_pots
         if foul != wpa.NO_FOUL:
