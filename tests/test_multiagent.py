@@ -42,18 +42,21 @@ def test_same_seed_same_game() -> None:
 
 
 def test_a_break_that_touches_nothing_gives_the_opponent_ball_in_hand() -> None:
-    env = PoolDuelEnv("nine")
+    env = PoolDuelEnv("nine", break_speed_range=(0.5, 10.0))
     env.reset(seed=0)
-    assert env.agent_selection == "player_0" and env.observe("player_0")[30] == 1.0
+    # Observation: 3 x 10 ball entries, 9 legal-ball flags, then ball in hand (39), behind
+    # the head string (40), break (41), open table (42), own fouls (43), opponent's (44).
+    assert env.agent_selection == "player_0" and env.observe("player_0")[39] == 1.0
     # Cue ball placed in the kitchen, shot softly into the head rail: it never reaches the rack.
     r = env.table.ball_radius
-    ax = 2 * (0.3 - r) / (env.table.length - 2 * r) - 1
+    ax = 2 * (0.3 - r) / (env.table.length / 4 - r) - 1  # the break's placement: the kitchen
     env.step(np.array([-1.0, -1.0, ax, 0.0, 0.0], np.float32))
     assert env.infos["player_1"]["foul"] == "illegal_break"
     assert env.agent_selection == "player_1"
     obs = env.observe("player_1")
-    assert obs[30] == 1.0 and obs[31] == 0.0  # ball in hand anywhere, not only the kitchen
-    assert obs[37] == 0.5 and obs[36] == 0.0  # the opponent (player_0) has one foul in a row
+    assert obs[39] == 1.0 and obs[40] == 0.0  # ball in hand anywhere, not only the kitchen
+    assert obs[44] == 0.5 and obs[43] == 0.0  # the opponent (player_0) has one foul in a row
+    assert obs[45] == 1.0 and env.observe("player_0")[45] == 0.0  # player_1 shoots next
 
 
 def test_the_nine_straight_in_wins_the_rack() -> None:
@@ -75,7 +78,7 @@ def test_reset_refuses_an_invalid_layout() -> None:
     pos = np.array([[1.0, 0.6]] * 10)
     with pytest.raises(ValueError, match="overlap"):
         env.reset(options={"positions": pos})
-    with pytest.raises(ValueError, match="cue ball"):
+    with pytest.raises(ValueError, match="keep the cue"):
         env.reset(options={"positions": pos, "on_table": np.zeros(10, bool)})
 
 
@@ -96,7 +99,7 @@ def test_versus_policy_rack_ends_with_the_opponents_win_or_the_agents() -> None:
         _, reward, term, trunc, _ = env.step(rng.uniform(-1, 1, 5).astype(np.float32))
         total += reward
         done = term or trunc
-    winner = env.duel.state_.winner
-    assert total == (0.0 if winner is None else (1.0 if winner == 0 else -1.0))
+    winner = env.duel.rack["winner"]
+    assert total == (0.0 if winner < 0 else (1.0 if winner == 0 else -1.0))
     with pytest.raises(ValueError, match="rack is over"):
         env.step(np.zeros(5, np.float32))
