@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.envs import make_env
-from agents.ghost_ball import GhostBallAgent
+from agents.ghost_ball import GameGhostBallAgent, GhostBallAgent
 from agents.metrics import EpisodeLog, Estimate
 from agents.random_agent import ConstantAgent, RandomAgent
 from agents.search import SearchAgent
@@ -43,6 +43,18 @@ COLUMNS: tuple[tuple[str, str, bool], ...] = (
     ("pots_per_turn", "pots/turn", False),
     ("shots_per_episode", "shots/episode", False),
     ("episode_reward", "episode reward", False),
+)
+
+#: The statistics of the game ids (rules): a won rack is a "clear", a run-out a rack won
+#: in the first turn (every shot legal and keeping the table).
+GAME_COLUMNS: tuple[tuple[str, str, bool], ...] = (
+    ("fouls_per_shot", "fouls/shot", True),
+    ("pots_per_shot", "pots/shot", False),
+    ("scratch_rate", "scratch/shot", True),
+    ("clear_rate", "racks won", True),
+    ("run_out_rate", "run-outs", True),
+    ("shots_per_episode", "shots/rack", False),
+    ("episode_reward", "rack reward", False),
 )
 
 
@@ -64,7 +76,7 @@ def run_episodes(
     log = EpisodeLog()
     for k in range(episodes):
         obs, _ = env.reset(seed=seed + k)
-        shots = pots = clean = scratches = turns = 0
+        shots = pots = clean = scratches = turns = fouls = 0
         reward, first_turn = 0.0, True
         while True:
             action, _ = agent.predict(obs, deterministic=deterministic)
@@ -73,7 +85,9 @@ def run_episodes(
             shots, pots, reward = shots + 1, pots + n_pot, reward + float(r)
             clean += n_pot > 0 and not scratch
             scratches += scratch
-            turn_over = n_pot == 0 or scratch
+            rules = "foul" in info  # a game id: the rules say when the turn ends
+            fouls += rules and info["foul"] is not None
+            turn_over = bool(info["turn_over"]) if rules else (n_pot == 0 or scratch)
             if turn_over:
                 turns += 1
                 first_turn = False
@@ -89,6 +103,8 @@ def run_episodes(
         log.rewards.append(reward)
         log.cleared.append(cleared)
         log.run_out.append(cleared and first_turn)
+        if rules:
+            log.fouls.append(fouls)
     return log
 
 
@@ -123,6 +139,8 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Any:
     if name == "random":
         return RandomAgent(env, seed=seed)
     if name == "ghost":
+        if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
+            return GameGhostBallAgent(env)
         return GhostBallAgent(env)
     if name == "search":
         return SearchAgent(env, seed=seed)
@@ -169,21 +187,30 @@ def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
     """A markdown table: one row per agent, each statistic with its 95% interval."""
     # Pots per shot is a rate only while no shot pots two balls (a break can pot several).
     multi = any(stats["pots_per_shot"].high > 1.0 for stats in rows.values())
-    head = "| agent | " + " | ".join(label for _, label, _ in COLUMNS) + " |"
-    lines = [head, "|" + "---|" * (len(COLUMNS) + 1)]
+    game = any("fouls_per_shot" in stats for stats in rows.values())
+    columns = GAME_COLUMNS if game else COLUMNS
+    head = "| agent | " + " | ".join(label for _, label, _ in columns) + " |"
+    lines = [head, "|" + "---|" * (len(columns) + 1)]
     for agent, stats in rows.items():
         cells = [
             stats[key].as_percent()
             if pct and not (multi and key == "pots_per_shot")
             else str(stats[key])
-            for key, _, pct in COLUMNS
+            for key, _, pct in columns
         ]
         lines.append(f"| {agent} | " + " | ".join(cells) + " |")
     lines.append("")
-    lines.append(
-        f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets. Clean pot: "
-        "a shot that pots without scratching. Run-out: cleared in the first turn."
-    )
+    if game:
+        lines.append(
+            f"{episodes} racks each, same seeds; 95% confidence intervals in brackets. Racks "
+            "won: the rack ended with the agent's win (the 9 or the 8 legally potted). "
+            "Run-out: won without a foul or a missed turn."
+        )
+    else:
+        lines.append(
+            f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets. Clean "
+            "pot: a shot that pots without scratching. Run-out: cleared in the first turn."
+        )
     return "\n".join(lines)
 
 

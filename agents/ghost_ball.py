@@ -84,14 +84,19 @@ class GhostBallAgent(BaselineAgent):
         return self._fallback(positions, on_table)
 
     def best_shot(
-        self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        reference: NDArray[np.bool_] | None = None,
     ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
         """The most forgiving clear shot the action space can play: ``(shot, speed, action)``.
 
         A shot is skipped when it needs more than the top speed or when the aim mode cannot
-        express its direction (``cut`` and ``relative`` aim relative to the nearest ball).
+        express its direction (``cut`` and ``relative`` aim relative to the nearest ball of
+        ``reference``, default ``on_table``; the game ids aim at the nearest legal ball).
         ``(None, nan, None)`` when no shot is left.
         """
+        aim_on = on_table if reference is None else reference
         table = self.spec.table
         top = self.spec.speed_range[1]
         targets = self.legal_targets(positions, on_table)
@@ -103,7 +108,7 @@ class GhostBallAgent(BaselineAgent):
             speed = cue_speed(table, shot, self.arrival_speed)
             if speed > top:
                 continue
-            action = shot_to_action(shot.angle, speed, positions, on_table, self.spec)
+            action = shot_to_action(shot.angle, speed, positions, aim_on, self.spec)
             if action is not None:
                 playable.append((shot, speed, action))
         # The easiest shot whose cue ball stays out of the pockets, else the easiest.
@@ -113,8 +118,14 @@ class GhostBallAgent(BaselineAgent):
                 return shot, speed, action
         return playable[0] if playable else (None, math.nan, None)
 
-    def _fallback(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
+    def _fallback(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        reference: NDArray[np.bool_] | None = None,
+    ) -> NDArray:
         """A full hit on the nearest legal ball at the top speed (the nearest ball if it fails)."""
+        aim_on = on_table if reference is None else reference
         cue = positions[0]
         targets = self.legal_targets(positions, on_table)
         if targets:
@@ -124,7 +135,7 @@ class GhostBallAgent(BaselineAgent):
         speed = self.spec.speed_range[1]
         if j >= 0:
             d = positions[j] - cue
-            action = shot_to_action(math.atan2(d[1], d[0]), speed, positions, on_table, self.spec)
+            action = shot_to_action(math.atan2(d[1], d[0]), speed, positions, aim_on, self.spec)
             if action is not None:
                 return action
         # A legal ball that cut or relative aim cannot reach: a full hit on their reference
@@ -136,3 +147,124 @@ class GhostBallAgent(BaselineAgent):
             else float(np.clip(-(aim_lo + aim_hi) / (aim_hi - aim_lo), -1, 1))
         )
         return np.array([zero, 1.0], dtype=np.float32)
+
+
+#: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
+#: straight-in shot from close enough to aim well, far enough to follow through.
+PLACE_DISTANCES = (0.12, 0.25, 0.45)
+
+
+class GameGhostBallAgent(BaselineAgent):
+    """The ghost-ball heuristic under the rules of the game ids (``game="nine"``/``"eight"``).
+
+    It reads the rules from the observation (the balls it may hit first, ball in hand,
+    behind the head string, the break) and plays :class:`GhostBallAgent`'s most forgiving
+    shot on those balls only: the ball on (9-ball), its group (8-ball; any ball but the 8
+    on an open table), the 8 once the group is cleared, with the called pocket set to the
+    shot's pocket. With the cue ball in hand it tries straight-in placements
+    (:data:`PLACE_DISTANCES` behind the ghost-ball point of each legal ball and pocket,
+    inside the allowed region and clear of the balls) and keeps the one whose best shot
+    forgives the most. The break: the cue ball on the head spot, a full hit on the nearest
+    legal ball at the top of the break speed range.
+
+    Args:
+        env: A game-id environment (``gym.make("pool_env/NineBallGame-v0")``, wrapped or not).
+        arrival_speed: As :class:`GhostBallAgent`.
+    """
+
+    def __init__(self, env: Any, arrival_speed: float = ARRIVAL_SPEED) -> None:
+        config = env.unwrapped.config
+        if not config.rules:
+            raise ValueError("GameGhostBallAgent plays the game ids (game='nine' or 'eight')")
+        self.config = config
+        self.ghost = GhostBallAgent(env, arrival_speed, legal_targets=self._legal)
+        self._targets: list[int] = []
+        self.last_plan: dict[str, Any] = {}
+
+    def _legal(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> list[int]:
+        return [j for j in self._targets if on_table[j]]
+
+    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
+        """The planned ``(B, 5)`` actions."""
+        n = self.config.n_balls
+        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, : 3 * n]))
+        out = [self._plan(obs, pos, on) for obs, (pos, on) in zip(observations, layouts, strict=True)]
+        return np.stack(out).astype(np.float32)
+
+    def _plan(
+        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> NDArray[np.float32]:
+        n = self.config.n_balls
+        legal = obs[3 * n : 4 * n - 1] > 0.5
+        in_hand, behind, breaking = (bool(v > 0.5) for v in obs[4 * n - 1 : 4 * n + 2])
+        self._targets = [j for j in range(1, n) if legal[j - 1]]
+        reference = on.copy()
+        reference[1:] &= legal
+        place = np.zeros(2)
+        table = self.config.table
+        if breaking:
+            place = self._place_action(np.array([table.length / 4.0, table.width / 2.0]), behind)
+            positions = positions.copy()
+            positions[0] = table.length / 4.0, table.width / 2.0
+            action = self.ghost._fallback(positions, on, reference)
+            action[1] = 1.0  # the top of the break speed range
+            self.last_plan = {"kind": "break"}
+        else:
+            if in_hand:
+                positions, place = self._place(positions, on, reference, behind)
+            shot, _, action = self.ghost.best_shot(positions, on, reference)
+            if action is None:
+                action = self.ghost._fallback(positions, on, reference)
+                self.last_plan = {"kind": "fallback", "in_hand": in_hand}
+            else:
+                self.last_plan = {"kind": "ghost", "shot": shot, "in_hand": in_hand}
+        pocket = 0.0
+        shot = self.last_plan.get("shot")
+        if shot is not None:
+            pocket = (shot.pocket + 0.5) / table.n_pockets * 2.0 - 1.0
+        return np.array([action[0], action[1], place[0], place[1], pocket])
+
+    def _place_action(self, point: NDArray[np.float64], behind: bool) -> NDArray[np.float64]:
+        """The action components that place the cue ball on ``point`` (the kernels' map)."""
+        t = self.config.table
+        r = t.ball_radius
+        x_high = t.length / 4.0 if behind else t.length - r
+        return np.clip(
+            [2.0 * (point[0] - r) / (x_high - r) - 1.0, 2.0 * (point[1] - r) / (t.width - 2 * r) - 1.0],
+            -1.0,
+            1.0,
+        )
+
+    def _place(
+        self,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        reference: NDArray[np.bool_],
+        behind: bool,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The best straight-in placement: ``(positions with the cue ball there, action)``."""
+        t = self.config.table
+        r = t.ball_radius
+        x_high = t.length / 4.0 if behind else t.length - r
+        others = [j for j in range(1, on.shape[0]) if on[j]]
+        best, best_tol = positions[0].copy(), -1.0
+        trial = positions.copy()
+        for b in self._targets:
+            for p in range(t.n_pockets):
+                d = positions[b] - t.pockets[p, :2]
+                u = d / max(float(np.hypot(*d)), 1e-12)
+                for dist in PLACE_DISTANCES:
+                    point = positions[b] + (2.0 * r + dist) * u
+                    if not (r <= point[0] <= x_high and r <= point[1] <= t.width - r):
+                        continue
+                    if any(np.hypot(*(positions[j] - point)) < 2.2 * r for j in others):
+                        continue
+                    if np.any(np.hypot(*(t.pockets[:, :2] - point).T) < t.pockets[:, 2] + r):
+                        continue
+                    trial[0] = point
+                    shot, _, action = self.ghost.best_shot(trial, on, reference)
+                    if action is not None and shot is not None and shot.tolerance > best_tol:
+                        best, best_tol = point.copy(), shot.tolerance
+        placed = positions.copy()
+        placed[0] = best
+        return placed, self._place_action(best, behind)

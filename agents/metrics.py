@@ -102,6 +102,7 @@ class EpisodeLog:
         rewards: Summed reward.
         cleared: Whether the table was cleared.
         run_out: Cleared in the first turn.
+        fouls: Fouls (the game ids only; empty otherwise).
     """
 
     shots: list[int] = field(default_factory=list)
@@ -112,12 +113,13 @@ class EpisodeLog:
     rewards: list[float] = field(default_factory=list)
     cleared: list[bool] = field(default_factory=list)
     run_out: list[bool] = field(default_factory=list)
+    fouls: list[int] = field(default_factory=list)
 
     def summary(self) -> dict[str, Estimate]:
         """The reported statistics, each with its 95% interval."""
         shots = np.array(self.shots, dtype=np.float64)
         n = len(self.shots)
-        return {
+        out = {
             "pots_per_shot": ratio_ci(np.array(self.pots), shots),
             "clean_pot_rate": ratio_ci(np.array(self.clean), shots, bounds=(0.0, 1.0)),
             "scratch_rate": ratio_ci(np.array(self.scratches), shots, bounds=(0.0, 1.0)),
@@ -127,3 +129,6 @@ class EpisodeLog:
             "episode_reward": mean_ci(np.array(self.rewards)),
             "shots_per_episode": mean_ci(shots),
         }
+        if self.fouls:
+            out["fouls_per_shot"] = ratio_ci(np.array(self.fouls), shots, bounds=(0.0, 1.0))
+        return out

@@ -31,13 +31,16 @@ STEPS = {
     "pool_env/OneBall-v0": 40_000,
     "pool_env/NineBall-v0": 10_000,
     "pool_env/EightBall-v0": 6_000,
+    "pool_env/NineBallGame-v0": 6_000,
+    "pool_env/EightBallGame-v0": 4_000,
 }
 TARGETS = {"pool_env/OneBall-v0": 20_000, "pool_env/NineBall-v0": 3_000}
 
 
 def run(env: gym.Env, steps: int, seed: int) -> tuple[float, float]:
     """Play ``steps`` random shots; return (steps per second, mean simulator events)."""
-    actions = np.random.default_rng(seed).uniform(-1.0, 1.0, (steps, 2)).astype(np.float32)
+    size = (steps, *env.action_space.shape)  # (aim, speed), or the rules' Box(5)
+    actions = np.random.default_rng(seed).uniform(-1.0, 1.0, size).astype(np.float32)
     env.reset(seed=seed)
     events = 0
     start = time.perf_counter()

@@ -21,6 +21,7 @@ from pool_env.game.rules import (
     CLEARED,
     FIRST_BALL,
     FOUL,
+    KEEPS,
     LOSS,
     POTTED_BITS,
     SCRATCH,
@@ -55,8 +56,10 @@ RULE_COLUMNS: dict[str, tuple[str, int, type]] = {
 }
 
 #: Every key a step adds under rules: ``foul`` (None or its name), ``legal``, ``loss``
-#: (None or why the shooter lost the rack) and :data:`RULE_COLUMNS`.
-RULE_KEYS: tuple[str, ...] = ("foul", "legal", "loss", *RULE_COLUMNS)
+#: (None or why the shooter lost the rack), ``turn_over`` (a foul, or a legal shot that
+#: does not keep the table: with two players the opponent would come to the table) and
+#: :data:`RULE_COLUMNS`.
+RULE_KEYS: tuple[str, ...] = ("foul", "legal", "loss", "turn_over", *RULE_COLUMNS)
 
 _FOULS = np.array(FOUL_NAMES, dtype=object)
 _LOSSES = np.array(LOSS_NAMES, dtype=object)
@@ -111,6 +114,7 @@ def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str,
         info["foul"] = FOUL_NAMES[hits[FOUL]]
         info["legal"] = hits[FOUL] == 0
         info["loss"] = LOSS_NAMES[hits[LOSS]]
+        info["turn_over"] = hits[FOUL] != 0 or hits[KEEPS] == 0
         for key, (_, column, _) in RULE_COLUMNS.items():
             info[key] = hits[column]
     return info
@@ -152,11 +156,14 @@ def batch_info(
             ("foul", np.full(n_envs, None, dtype=object)),
             ("legal", np.zeros(n_envs, dtype=np.bool_)),
             ("loss", np.full(n_envs, None, dtype=object)),
+            ("turn_over", np.zeros(n_envs, dtype=np.bool_)),
         ):
             if key == "foul":
                 values[tables] = _FOULS[codes]
             elif key == "legal":
                 values[tables] = codes == 0
+            elif key == "turn_over":
+                values[tables] = (codes != 0) | (result.hits[rows, KEEPS] == 0)
             else:
                 values[tables] = _LOSSES[result.hits[rows, LOSS]]
             info[key], info[f"_{key}"] = values, present.copy()
