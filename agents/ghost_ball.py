@@ -188,7 +188,8 @@ class GameGhostBallAgent(BaselineAgent):
         """The planned ``(B, 5)`` actions."""
         n = self.config.n_balls
         layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, : 3 * n]))
-        out = [self._plan(obs, pos, on) for obs, (pos, on) in zip(observations, layouts, strict=True)]
+        pairs = zip(observations, layouts, strict=True)
+        out = [self._plan(obs, pos, on) for obs, (pos, on) in pairs]
         return np.stack(out).astype(np.float32)
 
     def _plan(
@@ -229,11 +230,9 @@ class GameGhostBallAgent(BaselineAgent):
         t = self.config.table
         r = t.ball_radius
         x_high = t.length / 4.0 if behind else t.length - r
-        return np.clip(
-            [2.0 * (point[0] - r) / (x_high - r) - 1.0, 2.0 * (point[1] - r) / (t.width - 2 * r) - 1.0],
-            -1.0,
-            1.0,
-        )
+        u = 2.0 * (point[0] - r) / (x_high - r) - 1.0
+        v = 2.0 * (point[1] - r) / (t.width - 2 * r) - 1.0
+        return np.clip([u, v], -1.0, 1.0)
 
     def _place(
         self,

@@ -40,6 +40,7 @@ class Timer:
 
     def wrap(self, fn: Callable[..., Any]) -> Callable[..., Any]:
         """``fn``, its time added to :attr:`seconds`."""
+
         def timed(*args: Any, **kwargs: Any) -> Any:
             start = time.perf_counter()
             try:

@@ -238,9 +238,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self.n_object_balls = config.n_object_balls
         self.cue = CUE
         n = config.n_balls
-        self.observation_space = gym.spaces.Box(
-            -1.0, 1.0, (config.observation_size,), np.float32
-        )
+        self.observation_space = gym.spaces.Box(-1.0, 1.0, (config.observation_size,), np.float32)
         self.action_space = gym.spaces.Box(-1.0, 1.0, (config.action_size,), np.float32)
         self._record = render_mode is not None  # trajectories only when something draws them
         self._state: GameState = new_state(1, n)

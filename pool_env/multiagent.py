@@ -97,9 +97,7 @@ class PoolDuelEnv(AECEnv):
         self.possible_agents = list(AGENTS)
         n = self.config.n_balls
         self._action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)
-        self._observation_space = spaces.Box(
-            -1.0, 1.0, (self.config.observation_size,), np.float32
-        )
+        self._observation_space = spaces.Box(-1.0, 1.0, (self.config.observation_size,), np.float32)
         self._state: GameState = new_state(1, n)
         self._state.seed(0, None)
         self._lut = potted_lookup(self.config.n_object_balls)

@@ -135,9 +135,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self.single_observation_space = gym.spaces.Box(
             -1.0, 1.0, (config.observation_size,), np.float32
         )
-        self.single_action_space = gym.spaces.Box(
-            -1.0, 1.0, (config.action_size,), np.float32
-        )
+        self.single_action_space = gym.spaces.Box(-1.0, 1.0, (config.action_size,), np.float32)
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
 

@@ -256,7 +256,7 @@ def test_run_out_mode_ends_at_the_first_foul_or_missed_turn() -> None:
 
 def test_the_break_of_a_racked_episode_uses_the_break_speed_range() -> None:
     env = gym.make(IDS["nine"])
-    obs, _ = env.reset(seed=3)
+    env.reset(seed=3)
     assert env.unwrapped.rack["break"] and env.unwrapped.rack["behind_head_string"]
     *_, info = env.step(np.array([0.0, -1.0, 0.0, 0.0, 0.0]))
     assert info["speed"] == 8.0  # break_speed_range (8, 12), action -1

@@ -17,8 +17,9 @@ never simulates, never draws random numbers and never mutates its inputs.
 table; then a ball must be potted or some ball (the cue ball included) must touch a
 cushion; a scratch and a shot that touches no ball are fouls. Legal break: the 1 first,
 and a ball potted or at least four object balls driven to a cushion. The 9 potted on a legal
-shot wins (the break and combinations included); potted on a foul it is re-spotted, other balls potted on a foul stay down. A player who
-fouls on three successive shots loses the rack. After a foul the incoming player has the
+shot wins (the break and combinations included); potted on a foul it is re-spotted,
+other balls potted on a foul stay down. A player who fouls on three successive shots
+loses the rack. After a foul the incoming player has the
 cue ball in hand anywhere on the table. (Re-spotting and ball-in-hand placement are
 :func:`pool_env.game.scenes.free_spot`'s, not this file's.)
 

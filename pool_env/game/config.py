@@ -114,8 +114,11 @@ class GameConfig:
 
     @property
     def observation_size(self) -> int:
-        """Observation entries: ``3 N``, under rules plus ``N - 1`` legal-ball flags and
-        the rule features (:func:`pool_env.game.kernels.observe.encode_rule_observations`)."""
+        """Observation entries: ``3 N``; under rules also the legal-ball flags and more.
+
+        ``N - 1`` legal-ball flags and the rule features
+        (:func:`pool_env.game.kernels.observe.encode_rule_observations`).
+        """
         n = self.n_balls
         return 3 * n + (n - 1 + N_RULE_FEATURES if self.rules else 0)
 
@@ -237,7 +240,14 @@ def make_config(
         if parsed_table.n_pockets == 0:
             raise ValueError(f"game={game!r} needs a table with pockets")
     params = kernel_params(
-        parsed_table, aim, aims, speeds, sigmas, weights, miss, shots or 0  # type: ignore[arg-type]
+        parsed_table,
+        aim,
+        aims,
+        speeds,
+        sigmas,
+        weights,
+        miss,
+        shots or 0,  # type: ignore[arg-type]
     )
     if game != "solitaire":
         params = rule_params(params, parsed_table, game, players, foul_ends, breaks, rule_rewards)

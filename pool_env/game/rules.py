@@ -25,17 +25,17 @@ touched after the first contact, the order the balls dropped, the called pocket)
 by :func:`pool_env.game.kernels.wpa.judge_rack` (the one copy of those rules, whose
 docstring lists them and every simplification) on the rack state each table keeps in
 ``GameState.rack``. Practice reward: ``reward_pot`` per object ball potted on a legal shot
-(a re-spotted ball and the 8 of 8-ball not counted), ``reward_foul`` for a foul, ``reward_win`` for winning the
-rack and minus it for losing it.
+(a re-spotted ball and the 8 of 8-ball not counted), ``reward_foul`` for a foul,
+``reward_win`` for winning the rack and minus it for losing it.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from pool_env.game.kernels import wpa
 from pool_env.game.kernels.layout import point_free
 from pool_env.game.kernels.observe import potential
-from pool_env.game.kernels import wpa
 from pool_env.game.kernels.params import (
     DIAGONAL,
     END_ON_FOUL,
@@ -48,10 +48,10 @@ from pool_env.game.kernels.params import (
     SHOT_LIMIT,
     SPOT_X,
     SPOT_Y,
+    W_FOUL,
     W_NO_CONTACT,
     W_POT,
     W_SCRATCH,
-    W_FOUL,
     W_SHAPING,
     W_WIN,
 )
@@ -93,37 +93,24 @@ def judge(params, pockets, tables, balls, positions, on_table, shots, final, poc
         integers: :data:`POTTED_BITS` (bit ``j - 1`` for each object ball ``j`` potted, up
         to 63) and :data:`FIRST_BALL` (the first ball the cue ball hit, -1 for none).
     """
-    n_shots, n_cols = pocketed.shape
+    n_shots = pocketed.shape[0]
     n_balls = on_table.shape[1]
     # Few returned arrays: numba spends about a microsecond handing each one to Python.
     rewards = np.empty(n_shots)
     flags = np.zeros((n_shots, 5), dtype=np.bool_)
     balls_hit = np.zeros((n_shots, 2), dtype=np.int64)
     others = np.empty((n_balls, 2))
+    potted = np.zeros(n_balls, dtype=np.bool_)
     shaping = params[W_SHAPING] != 0.0
     for k in range(n_shots):
         b = tables[k]
         phi_before = 0.0
         if shaping:
             phi_before = potential(positions[b], on_table[b], pockets, params[DIAGONAL])
-        n_potted, bits, scratch = 0, np.int64(0), False
-        for c in range(n_cols):  # what happened: balls move, potted ones leave
-            j = balls[c]
-            positions[b, j, 0] = final[k, c, 0]
-            positions[b, j, 1] = final[k, c, 1]
-            if pocketed[k, c] >= 0:
-                on_table[b, j] = False
-                if j == CUE:
-                    scratch = True
-                else:
-                    n_potted += 1
-                    if j <= 63:
-                        bits |= np.int64(1) << (j - 1)
+        n_potted, bits, scratch = _settle(positions, on_table, b, balls, final, pocketed, k,
+                                          potted)  # fmt: skip
         shots[b] += 1
-        first_ball = -1
-        if first[k, 0] >= 0:
-            i, j = balls[first[k, 0]], balls[first[k, 1]]
-            first_ball = j if i == CUE else i
+        first_ball = _first_ball(balls, first, k)
         phi_change = 0.0
         if shaping:
             phi_after = potential(positions[b], on_table[b], pockets, params[DIAGONAL])
@@ -139,6 +126,42 @@ def judge(params, pockets, tables, balls, positions, on_table, shots, final, poc
         flags[k, SCRATCH], flags[k, SPOT_TAKEN] = scratch, spot_taken
         balls_hit[k, POTTED_BITS], balls_hit[k, FIRST_BALL] = bits, first_ball
     return rewards, flags, balls_hit
+
+
+@kernel
+def _settle(positions, on_table, b, balls, final, pocketed, k, potted):
+    """What happened on table ``b`` (result row ``k``): balls move, potted ones leave.
+
+    Returns:
+        ``(n_potted, bits, scratch)``: object balls potted, their bits (ball ``j`` sets bit
+        ``j - 1``, up to 63) and whether the cue ball dropped; ``potted[j]`` is set for
+        each object ball ``j`` potted (cleared first).
+    """
+    n_potted, bits, scratch = 0, np.int64(0), False
+    potted[:] = False
+    for c in range(balls.shape[0]):
+        j = balls[c]
+        positions[b, j, 0] = final[k, c, 0]
+        positions[b, j, 1] = final[k, c, 1]
+        if pocketed[k, c] >= 0:
+            on_table[b, j] = False
+            if j == CUE:
+                scratch = True
+            else:
+                potted[j] = True
+                n_potted += 1
+                if j <= 63:
+                    bits |= np.int64(1) << (j - 1)
+    return n_potted, bits, scratch
+
+
+@kernel
+def _first_ball(balls, first, k):
+    """The first ball the cue ball hit in result row ``k`` (-1 for none)."""
+    if first[k, 0] < 0:
+        return -1
+    i, j = balls[first[k, 0]], balls[first[k, 1]]
+    return j if i == CUE else i
 
 
 @kernel
@@ -246,34 +269,22 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
     for k in range(n_shots):
         b = tables[k]
         before[:] = on_table[b]
-        potted[:] = False
-        bits, scratch, rail, to_rail = np.int64(0), False, False, 0
+        _, bits, scratch = _settle(positions, on_table, b, balls, final, pocketed, k, potted)
+        rail, to_rail = False, 0
         first_dropped, first_order, eight_pocket = -1, n_cols + 1, -1
-        for c in range(n_cols):
+        for c in range(n_cols):  # what the rules read besides: rails, the order of drops
             j = balls[c]
-            positions[b, j, 0] = final[k, c, 0]
-            positions[b, j, 1] = final[k, c, 1]
             if cushions[k, c] > 0:
                 rail = True
                 if j != CUE:
                     to_rail += 1
-            if pocketed[k, c] >= 0:
-                on_table[b, j] = False
-                if j == CUE:
-                    scratch = True
-                else:
-                    potted[j] = True
-                    if j <= 63:
-                        bits |= np.int64(1) << (j - 1)
-                    if j == 8 and game == wpa.EIGHT:
-                        eight_pocket = pocketed[k, c]
-                    elif order[k, c] < first_order:
-                        first_order, first_dropped = order[k, c], j
+            if j != CUE and potted[j]:
+                if j == 8 and game == wpa.EIGHT:
+                    eight_pocket = pocketed[k, c]
+                elif order[k, c] < first_order:
+                    first_order, first_dropped = order[k, c], j
         shots[b] += 1
-        first_ball = -1
-        if first[k, 0] >= 0:
-            i, j = balls[first[k, 0]], balls[first[k, 1]]
-            first_ball = j if i == CUE else i
+        first_ball = _first_ball(balls, first, k)
         shooter = rack[b, wpa.SHOOTER]
         foul, on, respot, loss, keeps = wpa.judge_rack(
             game, players, rack[b], before, first_ball, scratch, potted, first_dropped,
