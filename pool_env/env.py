@@ -142,6 +142,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     | ``reward_scratch`` | float | -1.0 | when the cue ball is potted |
     | ``reward_no_contact`` | float | 0.0 | when the cue ball hits no ball |
     | ``reward_shaping`` | float | 0.0 | weight of the pocket-distance potential |
+    | ``game`` | str | ``"solitaire"`` | ``"nine"`` or ``"eight"``: the rules (above) |
+    | ``end_on_foul`` | bool | False | rules: a foul or a lost turn ends the episode |
+    | ``break_speed_range`` | (float, float) | (8.0, 12.0) | rules: m/s of the break |
+    | ``reward_foul`` | float | -1.0 | rules: for a foul |
+    | ``reward_win`` | float | 1.0 | rules: for a won rack (minus for a lost one) |
     | ``render_mode`` | str or None | None | ``"rgb_array"``, ``"rgb_array_list"``, ``"human"`` |
     | ``render_width`` | int | 800 | frame width in pixels |
 
@@ -149,9 +154,69 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ``pool_env/OneBall-v0`` (``scene="one_ball"``, ``end_on_miss=True``: one shot per
     episode, since a pot clears the table and a miss ends the turn; 10 shots with
     ``end_on_miss=False``), ``pool_env/NineBall-v0`` (break, 50 shots) and
-    ``pool_env/EightBall-v0`` (break, 80 shots). In ``SubprocVecEnv`` workers use the id
-    ``"pool_env:pool_env/OneBall-v0"`` (or import ``pool_env`` in the main script), so that
-    each worker imports the package that registers the ids.
+    ``pool_env/EightBall-v0`` (break, 80 shots), all solitaire;
+    ``pool_env/NineBallGame-v0`` and ``pool_env/EightBallGame-v0`` under the rules (below).
+    In ``SubprocVecEnv`` workers use the id ``"pool_env:pool_env/OneBall-v0"`` (or import
+    ``pool_env`` in the main script), so that each worker imports the package that
+    registers the ids.
+
+    ## Rules: the game ids (``game="nine"`` / ``"eight"``)
+
+    ``pool_env/NineBallGame-v0`` and ``pool_env/EightBallGame-v0`` (or ``game=`` with the
+    ``nine_ball`` / ``eight_ball`` scene, or any layout of 9 / 15 object balls) play one rack
+    under the WPA rules, compiled in :mod:`pool_env.game.kernels.wpa` (its docstring lists
+    every rule and simplification: no push-out, no called shots but the 8's pocket, an
+    illegal break is a foul with ball in hand, ...). One agent shoots every shot: a foul
+    gives ball in hand to its next shot (practice mode, ``end_on_foul=False``), or ends the
+    episode (run-out mode, ``end_on_foul=True``: so does a legal shot that does not keep
+    the table). A rack scene starts with the break: the cue ball in hand behind the head
+    string, the speed mapped onto ``break_speed_range`` (8 .. 12 m/s; a pro breaks at 11-13).
+    Without ``noise`` a break from the same spot at the same speed is the same every
+    episode.
+
+    Action ``Box(-1, 1, (5,), float32)``, each component mapped linearly:
+
+    | Num | Action | -1 .. +1 maps to | used |
+    |-----|--------|------------------|------|
+    | 0 | aim | ``aim_range``, from the nearest legal ball (below) | always |
+    | 1 | speed | ``speed_range``; on a break ``break_speed_range`` | always |
+    | 2 | cue ball x | ``R .. L - R``; behind the head string ``R .. L / 4`` | cue ball in hand |
+    | 3 | cue ball y | ``R .. W - R`` | cue ball in hand |
+    | 4 | called pocket | six equal bins, pockets in ``table.pockets`` order | shooting at the 8 |
+
+    Cut and relative aim refer to the nearest ball the rules let the cue ball hit first
+    (not to the nearest ball). A placement on or next to a ball (closer than ``2R``) or in
+    a pocket is moved to the free point nearest to it (:func:`pool_env.free_spot`),
+    deterministically; the ball in hand is behind the head string on a break and after a
+    scratch on the 8-ball break.
+
+    Observation ``Box(-1, 1, (4 N - 1 + 7,), float32)`` (``N`` balls, cue included): the
+    ``3 N`` ball entries above; then ``N - 1`` flags, one per object ball ``1..N-1``: the
+    agent may hit it first (9-ball: the ball on; 8-ball: its group, any ball but the 8 on an
+    open table, the 8 once the group is cleared, any ball on the break); then 7 entries:
+    cue ball in hand, behind the head string only, the next shot is a break, open table
+    (8-ball), the agent's successive fouls / 2, the opponent's / 2 (0 with one player),
+    the agent shoots next (1 with one player). With these the game is Markov.
+
+    Reward: ``reward_pot`` (+1) per object ball potted on a legal shot (a re-spotted ball
+    and the 8 of 8-ball not counted), ``reward_foul`` (-1) for a foul, ``reward_win`` (+1)
+    for winning the rack and ``-reward_win`` for losing it (three fouls in a row in
+    9-ball; the 8 early, in an uncalled pocket, or on a foul). The episode terminates when
+    the rack is decided (``info["is_success"]``: the agent won) and is truncated at the
+    time limit (100 shots 9-ball, 150 8-ball).
+
+    Info adds ``foul`` (``None`` or ``"scratch"``, ``"wrong_ball_first"``, ``"no_rail"``,
+    ``"no_contact"``, ``"illegal_break"``), ``legal``, ``ball_on`` (the ball on before the
+    shot; -1 in 8-ball before the group is cleared), ``winner`` (-1 while undecided, 0 the
+    agent, 1 its absent opponent: a lost rack; an integer rather than ``None`` so that
+    vector envs keep one dtype per key), ``loss`` (``None`` or ``"three_fouls"``,
+    ``"eight_early"``, ``"eight_wrong_pocket"``, ``"eight_on_foul"``) and ``turn_over``
+    (a foul, or a shot that would pass the table to an opponent). ``env.unwrapped.rack``
+    is the rack state; ``reset(options={"positions": ..., "on_table": ..., "rules":
+    {...}})`` sets it (keys ``break``, ``ball_in_hand``, ``behind_head_string``,
+    ``groups`` (``"open"``, ``"solids"``, ``"stripes"`` per player), ``fouls``; by default
+    a given layout is not a break, with the cue ball where it lies and an open table).
+    Two players: :mod:`pool_env.multiagent`.
 
     ## Rendering
 
