@@ -346,3 +346,26 @@ def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> N
         k: got[k] for k in ("foul", "winner", "loss")
     }
     assert one_after.shooter == state.shooter
+
+
+def test_the_vector_env_plays_the_rules_alike_threaded_and_with_rule_options() -> None:
+    from gymnasium.utils.env_checker import data_equivalence
+
+    envs = [
+        gym.make_vec(IDS["nine"], 4, vectorization_mode="vector_entry_point", parallel=p)
+        for p in (False, True)
+    ]
+    rng = np.random.default_rng(4)
+    out = [env.reset(seed=7) for env in envs]
+    for _ in range(25):
+        actions = rng.uniform(-1, 1, (4, 5))
+        out = [env.step(actions) for env in envs]
+        assert data_equivalence(out[0], out[1], exact=True)
+    # options["rules"] reaches every table reset; the rack state is per table
+    env = gym.make_vec(IDS["nine"], 4, vectorization_mode="vector_entry_point", **KWARGS)
+    env.reset(options={**layout("nine", NINE_MISS), "rules": {"fouls": (2, 0)}})
+    assert [r["fouls"] for r in env.unwrapped.rack] == [(2, 0)] * 4
+    *_, terminated, _, info = env.step(np.tile(action(math.pi / 2, 0.3), (4, 1)))
+    assert terminated.all() and (info["winner"] == 1).all()
+    assert list(info["foul"]) == ["no_contact"] * 4
+    assert list(info["loss"]) == ["three_fouls"] * 4
