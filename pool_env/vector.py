@@ -119,6 +119,8 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self.metadata = {**type(self).metadata, "autoreset_mode": self.autoreset_mode}
         self.parallel = parallel
         self.max_episode_steps = parse_count("max_episode_steps", max_episode_steps)
+        if "players" in env_kwargs:  # PoolEnv has one agent: so does each table here
+            raise ValueError("players is not an argument of PoolEnv: see pool_env.multiagent")
         self.config: GameConfig = make_config(**env_kwargs).with_shot_limit(self.max_episode_steps)
         config = self.config
         self.table = config.table

@@ -283,6 +283,8 @@ def test_bad_rule_options_and_arguments_raise() -> None:
         gym.make("pool_env/Pool-v0", game="nine")
     with pytest.raises(ValueError, match="end_on_foul"):
         gym.make("pool_env/Pool-v0", end_on_foul=True)
+    with pytest.raises(ValueError, match="players"):
+        gym.make_vec(IDS["nine"], 2, vectorization_mode="vector_entry_point", players=2)
     env = make("nine")
     env.reset(seed=0)
     with pytest.raises(ValueError, match=r"shape \(5,\)"):
