@@ -36,11 +36,13 @@ the worker's baseline kernels (the scratch copy keeps the files' time stamps).
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import queue
 import re
 import shlex
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -123,12 +125,54 @@ def apply(mutant: Mutant, tree: Path) -> None:
     path.write_text(source.replace(mutant.original, mutant.mutated))
 
 
+class Stop:
+    """Shared between the workers: set on an interrupt; the running subsets are killed."""
+
+    def __init__(self) -> None:
+        self.event = threading.Event()
+        self._lock = threading.Lock()
+        self._running: set[subprocess.Popen[str]] = set()
+
+    def add(self, proc: subprocess.Popen[str]) -> bool:
+        """Track ``proc``; False (and ``proc`` killed) if the run is already stopping."""
+        with self._lock:
+            if self.event.is_set():
+                proc.kill()
+                return False
+            self._running.add(proc)
+            return True
+
+    def remove(self, proc: subprocess.Popen[str]) -> None:
+        """Forget ``proc`` (it has finished)."""
+        with self._lock:
+            self._running.discard(proc)
+
+    def stop(self) -> None:
+        """Stop handing out jobs and kill every running subset (its process group)."""
+        with self._lock:
+            self.event.set()
+            for proc in self._running:
+                _kill(proc)
+
+
+def _kill(proc: subprocess.Popen[str]) -> None:
+    """Kill a subset's pytest and whatever it started (it leads its own process group)."""
+    with contextlib.suppress(ProcessLookupError):
+        os.killpg(proc.pid, signal.SIGKILL)
+
+
 def run_tests(
-    tree: Path, cache: Path, tests: Sequence[str], timeout: float, interpreted: bool
+    tree: Path,
+    cache: Path,
+    tests: Sequence[str],
+    timeout: float,
+    interpreted: bool,
+    stop: Stop | None = None,
 ) -> tuple[str, str]:
     """Run ``tests`` in ``tree``; return ``(verdict, first failure)``.
 
-    The verdict is ``"passed"``, ``"failed"``, ``"timeout"`` or ``"error"``.
+    The verdict is ``"passed"``, ``"failed"``, ``"timeout"``, ``"error"`` or
+    ``"stopped"`` (the run was interrupted).
     """
     env = {
         **os.environ,
@@ -142,18 +186,29 @@ def run_tests(
     else:
         env.pop("NUMBA_DISABLE_JIT", None)
     command = [sys.executable, "-m", "pytest", "-q", "-x", "-p", "no:cacheprovider", "-rfE"]
+    proc = subprocess.Popen(
+        [*command, *tests],
+        cwd=tree,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,  # its own process group, so a kill takes its children too
+    )
+    stop = stop or Stop()
+    if not stop.add(proc):
+        proc.communicate()
+        return "stopped", "run interrupted"
     try:
-        proc = subprocess.run(
-            [*command, *tests],
-            cwd=tree,
-            env=env,
-            capture_output=True,
-            text=True,
-            timeout=timeout,
-        )
+        output, _ = proc.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
+        _kill(proc)
+        proc.communicate()
         return "timeout", f"no verdict after {timeout:.0f} s"
-    output = proc.stdout + proc.stderr
+    finally:
+        stop.remove(proc)
+    if stop.event.is_set():
+        return "stopped", "run interrupted"
     first = FAILED_LINE.search(output)
     where = first.group(2) if first else ""
     if proc.returncode == 0:
@@ -171,9 +226,10 @@ def _worker(
     snapshot: Path,
     files: list[str],
     timeout: float,
+    stop: Stop,
 ) -> None:
     tree, cache = scratch / "tree", scratch / "numba"
-    while True:
+    while not stop.event.is_set():
         try:
             job = jobs.get_nowait()
         except queue.Empty:
@@ -184,7 +240,9 @@ def _worker(
         if mutant is not None:
             apply(mutant, tree)
         limit = timeout if mutant is not None else 4 * timeout
-        verdict, where = run_tests(tree, cache, job.tests, limit, job.interpreted)
+        verdict, where = run_tests(tree, cache, job.tests, limit, job.interpreted, stop)
+        if verdict == "stopped":
+            return
         # A baseline must pass ("survived"); a mutant should fail ("killed").
         status = {"passed": "survived", "failed": "killed"}.get(verdict, verdict)
         if mutant is None and status == "killed":
@@ -226,7 +284,9 @@ def run(
         jobs.put(Job(m, m.tests, mode[m.name]))
     files = tracked_files(ROOT)
     lock = threading.Lock()
+    stop = Stop()
     root = Path(tempfile.mkdtemp(prefix="pool_env-mutants-"))
+    threads: list[threading.Thread] = []
     try:
         # One snapshot of the tree at the start: edits made while the run goes on do not
         # leak into later mutants.
@@ -235,15 +295,21 @@ def run(
         threads = [
             threading.Thread(
                 target=_worker,
-                args=(jobs, results, lock, root / f"w{k}", snapshot, files, timeout),
+                args=(jobs, results, lock, root / f"w{k}", snapshot, files, timeout, stop),
             )
             for k in range(workers)
         ]
         for t in threads:
             t.start()
         for t in threads:
-            t.join()
+            while t.is_alive():  # join in slices, so that Ctrl-C reaches this thread
+                t.join(0.5)
     finally:
+        # Interrupted (Ctrl-C, SIGTERM) or done: kill the running subsets, wait for the
+        # workers, then remove every scratch copy and cache.
+        stop.stop()
+        for t in threads:
+            t.join()
         shutil.rmtree(root, ignore_errors=True)
     baselines = [r for r in results if r.mutant is None]
     order = {m.name: k for k, m in enumerate(mutants)}
@@ -252,8 +318,14 @@ def run(
     return baselines, outcomes
 
 
-def report(baselines: list[Outcome], outcomes: list[Outcome], command: str, wall: float) -> str:
-    """The Markdown table of a run."""
+def report(
+    baselines: list[Outcome],
+    outcomes: list[Outcome],
+    command: str,
+    wall: float,
+    load_start: float | None = None,
+) -> str:
+    """The Markdown table of a run (``load_start``: the load average when it began)."""
     killed = sum(o.status == "killed" for o in outcomes)
     total = len(outcomes)
     lines = [
@@ -262,7 +334,9 @@ def report(baselines: list[Outcome], outcomes: list[Outcome], command: str, wall
         f"Command: `{command}`",
         "",
         f"Made {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit "
-        f"`{_commit()}`; load average {os.getloadavg()[0]:.2f} at the end; wall time "
+        f"`{_commit()}`; load average "
+        + (f"{load_start:.2f} at the start, " if load_start is not None else "")
+        + f"{os.getloadavg()[0]:.2f} at the end; wall time "
         f"{wall / 60:.1f} min.",
         "",
         "Baselines (the unmutated tree, the union of the subsets of each mode): "
@@ -320,12 +394,19 @@ def main(argv: Sequence[str] | None = None) -> int:
     if unknown:
         parser.error(f"unknown mutants {sorted(unknown)}")
     mutants = [m for m in CATALOGUE if not args.only or m.name in args.only]
+    # A SIGTERM ends the run as Ctrl-C does: the scratch copies are removed on the way out.
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    load_start = os.getloadavg()[0]
     start = time.perf_counter()
-    baselines, outcomes = run(mutants, max(1, args.workers), args.timeout, args.compiled)
+    try:
+        baselines, outcomes = run(mutants, max(1, args.workers), args.timeout, args.compiled)
+    except KeyboardInterrupt:
+        print("interrupted: the running subsets were killed and the scratch copies removed")
+        return 130
     wall = time.perf_counter() - start
     given = sys.argv[1:] if argv is None else list(argv)
     command = shlex.join(["python", "-m", "bench.mutants", *given])
-    text = report(baselines, outcomes, command, wall)
+    text = report(baselines, outcomes, command, wall, load_start)
     print(text)
     if args.out:
         out = ROOT / args.out
