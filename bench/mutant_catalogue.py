@@ -257,6 +257,16 @@ CATALOGUE: tuple[Mutant, ...] = (
         "event-kind tie order reversed: a cushion before a ball at the same instant",
     ),
     Mutant(
+        "tie-jaw-before-ball",
+        "ties",
+        _K + "loop.py",
+        "        return kind < bkind",
+        # Jaw (4) and point (5) contacts rank before pocket (0) and ball (1) at a tie.
+        "        return (kind - 6 if kind > 3 else kind) < (bkind - 6 if bkind > 3 else bkind)",
+        JAWS,
+        "facing and point contacts taken before a ball impact at the same instant",
+    ),
+    Mutant(
         "tie-id-order",
         "ties",
         _K + "loop.py",

@@ -16,6 +16,7 @@ from pool_env import PoolEnv, Table, check_layout
 from pool_env.game.config import DEFAULT_SPEED_RANGE
 from pool_env.registration import ENV_IDS, GAME_IDS
 from pool_env.sim.layouts import head_spot
+from tests.profiles import examples
 
 TABLE = Table()
 R = TABLE.ball_radius
@@ -294,7 +295,7 @@ def test_same_seed_same_rollout_exactly(env_id: str) -> None:
     assert not all(_same(x, y) for x, y in zip(a, c, strict=False))
 
 
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=examples(25), deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(
     seed=st.integers(0, 2**31 - 1),
     env_id=st.sampled_from([i for i in ENV_IDS if i not in GAME_IDS]),  # solitaire rewards

@@ -18,9 +18,11 @@ import math
 import numpy as np
 import pytest
 
-from pool_env import Table, shoot
+from pool_env import Table, shoot, simulate
 from pool_env.sim.table import JawSpec
 from pool_env.testing.invariants import check_shot
+from tests.helpers_sim import normal_velocities
+from tests.reference import reference_simulate
 
 INCH = 0.0254  # m, exactly
 CORNER_MOUTH_SPEC = 4.5 * INCH
@@ -344,3 +346,66 @@ def test_the_playing_region_ends_at_the_offset_facings_and_points(k: int, side: 
     # The fall line, in the middle of the throat.
     assert f"behind pocket {k}'s fall line" in _placed(TABLE, fall_point - hair * normal)
     assert _placed(TABLE, fall_point + hair * normal) == "free"
+
+
+# --- a tie between a ball impact and a facing contact ---------------------------------------
+
+
+def _tie_scene(theta_deg: float, v_dir: tuple[float, float], speed: float):
+    """Ball 0 touching a corner facing and ball 1 at once, moving into both.
+
+    In the frame of facing 0 of pocket 0 (``d`` along it, ``n`` across the throat): ball 0
+    sits a femtometre into the offset facing (within the input tolerance, so contact is
+    certain and the tie exact in float64), 2 cm along it; ball 1 touches ball 0 along the
+    line of centres at ``theta_deg`` from ``n`` (non-orthogonal to the facing's normal).
+    Returns ``(positions, velocities, d, n, c)``.
+    """
+    a_point, d, n = _offset_facing(0, 0)
+    p0 = a_point + 0.02 * d - 1e-15 * n
+    th = math.radians(theta_deg)
+    c = math.cos(th) * n - math.sin(th) * d  # ball 1 across the throat, towards the table
+    p1 = p0 + (2 * R - 1e-16) * c
+    v = speed * _unit(v_dir[0] * n + v_dir[1] * c)
+    return np.array([p0, p1]), np.array([v, [0.0, 0.0]]), d, n, c
+
+
+@pytest.mark.parametrize(("theta_deg", "v_dir"), [(60.0, (-0.8, 1.0)), (75.0, (-1.0, 1.0))])
+def test_ball_impact_then_facing_at_the_same_instant(theta_deg: float, v_dir) -> None:
+    """The documented tie order (ball before cushion, jaw and point) on a facing.
+
+    By hand: the impact along the line of centres (``e_ball``), then the facing reflects
+    what is left of ball 0's normal speed into it (``e_jaw``); both at t = 0. The reverse
+    order (facing first) sends ball 1 off at another speed: the sequence and the speeds
+    after the instant pin it.
+    """
+    table = Table(e_jaw=0.7, e_ball=0.9)
+    pos, vel, _, n, c = _tie_scene(theta_deg, v_dir, 0.6)
+    assert _placed(table, pos[0]) == "free" and _placed(table, pos[1]) == "free"
+    v0 = vel[0]
+    assert v0 @ n < 0 and v0 @ c > 0  # into the facing and into ball 1
+    un = float(v0 @ c)
+    u0, u1 = normal_velocities(table.ball_mass, table.ball_mass, un, 0.0, table.e_ball)
+    after0 = v0 + (u0 - un) * c
+    after1 = u1 * c
+    assert after0 @ n < 0  # still into the facing after the impact: it bounces at once
+    after0 = after0 - (1 + table.e_jaw) * float(after0 @ n) * n
+    assert (after1 - after0) @ c > 0  # separating: no third event at t = 0
+    result = simulate(table, pos, vel)
+    head = [(e.kind, e.i, e.j, e.time) for e in result.events[:2]]
+    assert head == [("ball", 0, 1, 0.0), ("jaw", 0, 0, 0.0)]
+    assert result.events[2].time > 0.0
+    ball, t, state, _ = result.segments
+    for k, expected in ((0, after0), (1, after1)):
+        last = np.flatnonzero((ball == k) & (t == 0.0))[-1]
+        np.testing.assert_allclose(state[last, 2:], expected, rtol=0, atol=1e-14)
+    # The whole shot (what the balls do after the instant) against the 50-digit reference.
+    ref = reference_simulate(table, pos, vel, max_events=400)
+    assert [(e.kind, e.i, e.j) for e in result.events] == [(k, i, j) for _, k, i, j in ref.events]
+    for (x, y), (rx, ry) in zip(result.positions, ref.positions, strict=True):
+        assert math.hypot(x - float(rx), y - float(ry)) < 1e-9
+    # The reverse order would give ball 1 a visibly different speed.
+    reflected = v0 - (1 + table.e_jaw) * float(v0 @ n) * n
+    _, wrong1 = normal_velocities(
+        table.ball_mass, table.ball_mass, float(reflected @ c), 0.0, table.e_ball
+    )
+    assert abs(wrong1 - u1) > 0.05

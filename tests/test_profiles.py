@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import os
+import re
+from pathlib import Path
 
 from hypothesis import settings
 
@@ -20,3 +22,16 @@ def test_the_loaded_profile_is_the_one_named_by_the_environment() -> None:
     name = os.environ.get("HYPOTHESIS_PROFILE", "ci")
     assert settings.default.derandomize == settings.get_profile(name).derandomize
     assert profiles.examples(400) == 400 * settings.get_profile(name).max_examples // 100
+
+
+def test_every_property_test_scales_its_examples_with_the_profile() -> None:
+    """A fixed ``max_examples`` would ignore the nightly profile's ten times as many."""
+    fixed = re.compile(r"max_examples=(?!examples\()")
+    here = Path(__file__).parent
+    offenders = [
+        f"{path.name}:{number}"
+        for path in sorted(here.glob("test_*.py"))
+        for number, line in enumerate(path.read_text().splitlines(), 1)
+        if fixed.search(line) and not line.lstrip().startswith(("#", "fixed ="))
+    ]
+    assert offenders == []

@@ -105,7 +105,7 @@ damped_or_elastic = st.builds(
 )
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=examples(150), deadline=None)
 @given(
     table=damped_or_elastic,
     n_pressed=st.integers(1, 3),
@@ -125,7 +125,7 @@ def test_lumps_driven_into_rails(table, n_pressed, log_ratio, gap, speed, seed) 
     _check_unequal(table, result, masses)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=examples(150), deadline=None)
 @given(
     table=damped_or_elastic,
     n=st.integers(2, 8),
@@ -141,7 +141,7 @@ def test_masses_over_a_million_to_one(table, n, seed, speed, angle) -> None:
     _check_unequal(table, result, masses)
 
 
-@settings(max_examples=80, deadline=None)
+@settings(max_examples=examples(80), deadline=None)
 @given(
     log_scale=st.floats(
         math.log10(limits.MIN_LENGTH / Table().ball_radius),
