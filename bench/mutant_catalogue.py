@@ -72,6 +72,8 @@ REFERENCE = ("tests/test_game_reference.py",)
 # The 9/8-ball rules: the hand-built rule-case table first (pure functions of a shot's
 # outcome, no physics), then the cases shot by the real physics.
 RULES = ("tests/test_rule_cases.py", "tests/test_wpa.py")
+# The two-player front (PettingZoo): its own decoding of ball in hand and the called pocket.
+DUEL = ("tests/test_duel_cases.py", "tests/test_multiagent.py")
 JAWS = (
     "tests/test_jaw_closed_forms.py",
     "tests/test_jaws.py",
@@ -92,6 +94,7 @@ INTERPRETABLE = frozenset(
         "tests/test_jaws.py",
         "tests/test_jaw_closed_forms.py",
         *RULES,
+        *DUEL,
     }
 )
 
@@ -798,6 +801,37 @@ CATALOGUE: tuple[Mutant, ...] = (
         RULES,
         "a re-spotted ball goes to the farthest free point behind the spot, not the nearest",
         "placement.respot_point: as close to the spot as possible",
+    ),
+    # -- the two-player front (pool_env/multiagent.py) ---------------------------------
+    Mutant(
+        "duel-called-pocket-magnitude",
+        "rules",
+        "pool_env/multiagent.py",
+        "called = min(int((a[4] + 1.0) / 2.0 * self.table.n_pockets), self.table.n_pockets - 1)",
+        "called = min(int(abs(a[4]) * self.table.n_pockets), self.table.n_pockets - 1)",
+        DUEL,
+        "the called-pocket action decoded from [0, 1] (its magnitude), not [-1, 1]",
+        "PoolDuelEnv.step: action 4 -> the pocket called for the 8",
+    ),
+    Mutant(
+        "duel-ball-in-hand-anywhere",
+        "ball in hand",
+        "pool_env/multiagent.py",
+        "self.table, self.positions, others, target, behind_head_string=behind",
+        "self.table, self.positions, others, target, behind_head_string=False",
+        DUEL,
+        "the break's cue ball placed anywhere, not behind the head string",
+        "PoolDuelEnv._place_cue_ball: the kitchen on the break",
+    ),
+    Mutant(
+        "duel-winner-reward-sign",
+        "rewards",
+        "pool_env/multiagent.py",
+        "self.rewards[name] = 1.0 if k == after.winner else -1.0",
+        "self.rewards[name] = 1.0 if k != after.winner else -1.0",
+        DUEL,
+        "the rack's +1 / -1 given to the wrong player",
+        "PoolDuelEnv.step: rewards at the end of the rack",
     ),
     # -- the decision process ------------------------------------------------------------
     Mutant(
