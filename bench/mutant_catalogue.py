@@ -907,13 +907,13 @@ CATALOGUE: tuple[Mutant, ...] = (
         "end_on_miss ignores a scratch that also pots",
     ),
     Mutant(
-        "reward-first-ball-column",
-        "rewards",
+        "info-first-ball-is-cue",
+        "observations",
         _G + "rules.py",
         "first_ball = j if i == CUE else i",
-        "first_ball = j",
-        DECISION,
-        "the first ball read from the impact's second column (the cue ball when it is the second)",
+        "first_ball = i if i == CUE else j",
+        (*DECISION, *REFERENCE),
+        "the first ball taken from the wrong side of the impact pair: the cue ball itself",
     ),
     Mutant(
         "info-potted-bits-shift",
@@ -921,7 +921,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "rules.py",
         "bits |= np.int64(1) << (j - 1)",
         "bits |= np.int64(1) << j",
-        DECISION,
+        (*DECISION, *REFERENCE),
         "potted-ball bit j instead of j - 1 (ball 1 reported as ball 2)",
     ),
     Mutant(
@@ -930,7 +930,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "rules.py",
         "if point_free(sx, sy, params, pockets, others, count, reach * reach):",
         "if True:",
-        DECISION,
+        (*DECISION, *REFERENCE),
         "a scratched cue ball put on the head spot even when a ball covers it",
     ),
     Mutant(
@@ -939,7 +939,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "kernels/layout.py",
         "if dx * dx + dy * dy < min_d2:",
         "if dx * dx + dy * dy < 0.25 * min_d2:",
-        DECISION,
+        (*DECISION, *REFERENCE),
         "random layouts keep centres half the reach apart (balls overlap)",
     ),
     Mutant(
@@ -948,7 +948,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "kernels/layout.py",
         "y = y0 + draws[2 * i + 1] * (y1 - y0)",
         "y = y0 + draws[2 * i] * (y1 - y0)",
-        DECISION,
+        (*DECISION, *REFERENCE),
         "x and y of a drawn ball from the same uniform number (layouts on a diagonal)",
     ),
     Mutant(
@@ -957,7 +957,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "kernels/layout.py",
         "r = pockets[p, 2] + params[CLEARANCE]",
         "r = pockets[p, 2]",
-        DECISION,
+        (*DECISION, *REFERENCE),
         "drawn balls may touch a capture circle (no clearance)",
     ),
     Mutant(
@@ -966,7 +966,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "kernels/observe.py",
         "for j in range(1, on_table.shape[0]):",
         "for j in range(0, on_table.shape[0]):",
-        DECISION,
+        (*DECISION, *REFERENCE),
         "the shaping potential counts the cue ball's distance to a pocket",
     ),
     # -- the vector env and the SB3 adapter ----------------------------------------------

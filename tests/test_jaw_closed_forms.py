@@ -409,3 +409,39 @@ def test_ball_impact_then_facing_at_the_same_instant(theta_deg: float, v_dir) ->
         table.ball_mass, table.ball_mass, float(reflected @ c), 0.0, table.e_ball
     )
     assert abs(wrong1 - u1) > 0.05
+
+
+# --- a lump against a dead facing -----------------------------------------------------------
+
+_PHANTOM_RAIL = (
+    "product bug: resolve.stick_cluster (and jaws.unpress_lump) take a lump whose ball is past "
+    "a rail line inside a pocket's opening as touching that rail, which is not there, and "
+    "reflect the lump off it with e_cushion (momentum along the facing is not conserved)"
+)
+
+
+@pytest.mark.parametrize(
+    "e_ball",
+    [0.95, 0.5, pytest.param(0.0, marks=pytest.mark.xfail(strict=True, reason=_PHANTOM_RAIL))],
+)
+def test_a_ball_wedged_against_a_dead_facing_leaves_as_a_lump_along_it(e_ball: float) -> None:
+    """``e_jaw = 0``: the facing takes every impulse along its normal, the balls share the rest.
+
+    Ball 0 rests on the side pocket's left facing, 4 mm in from its start; ball 1 touches it
+    along the facing's normal and drives it in at 0.8 m/s while moving 0.05 m/s outwards
+    along the facing. Every impulse (ball on ball, facing on ball) is along that normal, so
+    the pair's momentum along the facing, ``m * 0.05``, is conserved; the Zeno rule ends the
+    cascade with the pair stuck against the facing, each ball rolling along it at
+    0.025 m/s: ``0.025^2 / 2a`` further out (the analogue, on a facing, of the dead-rail case
+    of ``tests/test_pinned_hard_cases.py``).
+    """
+    table = Table(e_ball=e_ball, e_jaw=0.0)
+    a_point, d, n = _offset_facing(1, 0)
+    p0 = a_point + 0.004 * d
+    pos = np.array([p0, p0 + 2 * R * n])
+    vel = np.array([[0.0, 0.0], -0.8 * n - 0.05 * d])
+    assert _placed(table, pos[0]) == "free" and _placed(table, pos[1]) == "free"
+    result = simulate(table, pos, vel)
+    assert not result.hit_event_cap and result.pocketed.tolist() == [-1, -1]
+    travel = 0.025**2 / (2 * table.deceleration)
+    np.testing.assert_allclose(result.positions, pos - travel * d, rtol=0, atol=1e-12)
