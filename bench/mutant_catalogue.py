@@ -95,6 +95,7 @@ INTERPRETABLE = frozenset(
         "tests/test_jaw_closed_forms.py",
         *RULES,
         *DUEL,
+        "tests/test_layout_rules.py",
     }
 )
 
@@ -939,7 +940,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "kernels/layout.py",
         "if dx * dx + dy * dy < min_d2:",
         "if dx * dx + dy * dy < 0.25 * min_d2:",
-        (*DECISION, *REFERENCE),
+        ("tests/test_layout_rules.py", *DECISION, *REFERENCE),
         "random layouts keep centres half the reach apart (balls overlap)",
     ),
     Mutant(
@@ -957,7 +958,7 @@ CATALOGUE: tuple[Mutant, ...] = (
         _G + "kernels/layout.py",
         "r = pockets[p, 2] + params[CLEARANCE]",
         "r = pockets[p, 2]",
-        (*DECISION, *REFERENCE),
+        ("tests/test_layout_rules.py", *DECISION, *REFERENCE),
         "drawn balls may touch a capture circle (no clearance)",
     ),
     Mutant(
