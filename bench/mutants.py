@@ -6,11 +6,11 @@ Usage (from the repository root)::
     python -m bench.mutants --only tie-kind-order zeno-threshold-1e-3
     python -m bench.mutants --workers 1 --out results/mutants.md
 
-Cost, measured on the shared 2-core machine at load average 13: the 29 simulator mutants
-(interpreted) take 13-35 s each and their baseline 2.5 min, about 6 min in all on 2
-workers; a compiled mutant recompiles the kernels (~25 s of CPU) before its tests, and the
-compiled baseline (the env, vector env and SB3 files) took 11 min. Most mutants die in
-the first seconds of their subset (``-x``); a survivor runs all of it.
+Cost, measured on the shared 2-core machine at load average 10 (``nice -n 5``, 2 workers,
+99 mutants, 2026-12-02): 33 min in all. The baselines (the union of each mode's subsets)
+took 6 min (compiled) and 8.5 min (interpreted); an interpreted mutant 4-50 s (median 8);
+a compiled one recompiles the kernels before its tests, 11-290 s (median 2 min). Most
+mutants die in the first seconds of their subset (``-x``); a survivor runs all of it.
 
 Each mutant of :data:`bench.mutant_catalogue.CATALOGUE` is applied to a fresh scratch copy
 of the tracked tree (never to the tree itself), and its focused test subset runs there with
