@@ -23,6 +23,7 @@ import pool_env  # noqa: F401  (registers the ids)
 from pool_env import free_spot
 from pool_env.game.scenes import CLEARANCE
 from pool_env.sim.layouts import break_scene, foot_spot
+from tests.profiles import examples
 from tests.rules_harness import compiled_judge, same_verdict
 from tests.test_wpa import TABLE, TOWARD_CORNER, R, _graze_into_corner, diag, parked, straight_in
 from tests.wpa_reference import N_BALLS, OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
@@ -326,7 +327,7 @@ def outcomes(draw: st.DrawFn) -> tuple:
     return state, numbers, first, cushions, pocketed, order, called
 
 
-@settings(max_examples=400, deadline=None)
+@settings(max_examples=examples(400), deadline=None)
 @given(outcomes())
 def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> None:
     state, numbers, first, cushions, pocketed, order, called = case

@@ -1,24 +1,21 @@
 """Rule cases on hand-built shot outcomes: each row is one WPA rule, checked without physics.
 
-``tests/test_wpa.py`` shoots every case with the real simulator (so it also checks that the
-outcome the rules read is the one the physics produced); the table here builds the
-:class:`~pool_env.game.wpa.ShotOutcome` directly, so a case can isolate one rule exactly
-at its edge (three object balls to a rail against four, the second foul against the third,
-two balls of different groups dropping in a known order). Every expected value is the
-WPA rule as the module docstring of :mod:`pool_env.game.wpa` states it.
+They pin the plain-Python reference (``tests/wpa_reference.py``) that the compiled rules
+are compared with in ``tests/test_wpa.py`` and ``tests/test_games.py``: an oracle must be
+right on its own. The table builds the :class:`ShotOutcome` directly, so a case can isolate
+one rule exactly at its edge (three object balls to a rail against four, the second foul
+against the third, two balls of different groups dropping in a known order). Every expected
+value is the WPA rule as the reference's module docstring states it.
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
 
-import numpy as np
 import pytest
 
 from pool_env import Table
-from pool_env.game.placement import respot_point
-from pool_env.game.wpa import OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
-from pool_env.sim.layouts import foot_spot
+from tests.wpa_reference import OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
 
 TABLE = Table(pockets="circles")
 R = TABLE.ball_radius
@@ -224,18 +221,3 @@ def test_the_cue_ball_is_not_an_object_ball_driven_to_a_rail() -> None:
     assert out.object_balls_to_rail == 3 and out.rail_after_contact
     verdict, _ = judge(RackState.new_rack("nine"), out)
     assert verdict.foul == "illegal_break"  # three object balls, not four
-
-
-# --- re-spotting ---------------------------------------------------------------------------
-
-
-def test_a_respotted_ball_goes_as_close_behind_the_spot_as_it_can() -> None:
-    """WPA 9-ball 1.5: on the long string, as near the spot as possible behind it.
-
-    A ball on the spot and another 5 R behind it: the nearest free point is touching the
-    first (2 R behind the spot), not beyond the second (7 R).
-    """
-    spot = foot_spot(TABLE)
-    balls = np.array([spot, spot + [5 * R, 0.0]])
-    got = respot_point(TABLE, balls, [True, True], spot)
-    np.testing.assert_allclose(got, spot + [2 * R, 0.0], rtol=0, atol=1e-8)
