@@ -27,7 +27,7 @@ from typing import Any
 
 import yaml
 
-from agents.train_lib import ALGOS, VEC_KINDS, resolve_config, train
+from agents.train_lib import ALGOS, NATIVE_WRAPPERS, VEC_KINDS, resolve_config, train
 
 
 def parse_sets(items: list[str]) -> dict[str, Any]:
@@ -112,8 +112,9 @@ def main(argv: list[str] | None = None) -> int:
     config.env_kwargs = {**config.env_kwargs, **extra}
     if args.wrapper:
         config.wrapper = None if args.wrapper == "none" else args.wrapper
-        if config.wrapper and config.vec == "native" and not args.vec:
-            config.vec = "dummy"  # the native vector env cannot apply a Python wrapper
+        native_ok = config.wrapper is None or config.wrapper in NATIVE_WRAPPERS
+        if config.vec == "native" and not native_ok and not args.vec:
+            config.vec = "dummy"  # the native vector env cannot apply this Python wrapper
     train(config, root=args.runs)
     return 0
 

@@ -26,11 +26,18 @@ from stable_baselines3 import A2C, PPO, SAC, TD3
 from stable_baselines3.common.base_class import BaseAlgorithm
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.env_util import make_vec_env
-from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv, VecEnv, VecMonitor
+from stable_baselines3.common.vec_env import (
+    DummyVecEnv,
+    SubprocVecEnv,
+    VecEnv,
+    VecEnvWrapper,
+    VecMonitor,
+)
 
 from agents import hyperparams, runs
 from agents.envs import EnvFactory, make_env
 from agents.evaluate import evaluate_agent, format_table, one_line, run_episodes
+from agents.features import GhostFeaturesVecEnv
 from agents.metrics import Estimate
 
 #: Algorithms by the name used in ``hyperparams.yml`` and on the command line.
@@ -38,6 +45,11 @@ ALGOS: dict[str, type[BaseAlgorithm]] = {"ppo": PPO, "sac": SAC, "a2c": A2C, "td
 
 #: Vectorized environment kinds (``--vec``).
 VEC_KINDS = ("dummy", "subproc", "native")
+
+#: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
+#: features as the ``gym.Env`` wrapper of that name (:data:`agents.envs.WRAPPERS`), which the
+#: evaluation envs use.
+NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {"ghost_features": GhostFeaturesVecEnv}
 
 #: Seeds of the periodic evaluation and of the final one: apart from each other, so that
 #: nothing is tuned on the final numbers, and from the training envs' own streams.
@@ -93,14 +105,17 @@ def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = 
     """The training ``VecEnv`` of ``config`` (episode statistics monitored).
 
     Raises:
-        ValueError: On an unknown kind, or a wrapper with the native kind.
+        ValueError: On an unknown kind, or a wrapper the native kind cannot apply.
         ImportError: For ``native`` when ``agents.native_vec`` is not installed.
     """
     n = n_envs or config.n_envs
     seed = config.seed if seed is None else seed
     if config.vec == "native":
-        if config.wrapper:
-            raise ValueError("--vec native does not apply observation wrappers; use dummy")
+        if config.wrapper and config.wrapper not in NATIVE_WRAPPERS:
+            raise ValueError(
+                f"--vec native applies only the wrappers {sorted(NATIVE_WRAPPERS)}, not "
+                f"{config.wrapper!r}; use --vec dummy"
+            )
         try:
             from agents.native_vec import make_native_vec_env
         except ImportError as exc:
@@ -108,7 +123,8 @@ def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = 
                 "--vec native needs agents/native_vec.py (make_native_vec_env), which is not "
                 f"available here ({exc}); use --vec dummy or --vec subproc"
             ) from exc
-        return VecMonitor(make_native_vec_env(config.env_id, n, seed, config.env_kwargs or None))
+        venv = VecMonitor(make_native_vec_env(config.env_id, n, seed, config.env_kwargs or None))
+        return NATIVE_WRAPPERS[config.wrapper](venv) if config.wrapper else venv
     if config.vec not in VEC_KINDS:
         raise ValueError(f"--vec must be one of {VEC_KINDS}, got {config.vec!r}")
     factory = EnvFactory(config.env_id, config.env_kwargs, config.wrapper)
