@@ -59,3 +59,51 @@ def learning_curve(
     fig.tight_layout()
     fig.savefig(path)
     plt.close(fig)
+
+
+#: Baselines drawn as horizontal lines on the seed plots: name, label, style, colour.
+BASELINE_LINES = (
+    ("random", "random", ":", "gray"),
+    ("best-const", "best constant action", "-.", "tab:purple"),
+    ("ghost", "ghost-ball (geometric)", "--", "black"),
+    ("search", "search (simulator, oracle)", (0, (5, 1)), "tab:brown"),
+)
+
+
+def seeds_curve(
+    path: str | Path,
+    curves: dict[str, list[tuple[int, list[tuple[int, float, float]]]]],
+    baselines: dict[str, float],
+    title: str,
+) -> None:
+    """Write a PNG: every seed's learning curve of every configuration, baselines as lines.
+
+    Args:
+        path: Output PNG.
+        curves: By configuration label, ``(seed, [(timesteps, pots/shot, clean/shot), ...])``
+            of each run.
+        baselines: Pots per shot of the baselines by name (:data:`BASELINE_LINES`).
+        title: The plot's title (the task).
+    """
+    fig, ax = plt.subplots(figsize=(7.5, 4.5), dpi=110)
+    colors = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:cyan", "tab:olive")
+    for (label, runs), color in zip(curves.items(), colors, strict=False):
+        for k, (_, points) in enumerate(sorted(runs)):
+            steps = [p[0] for p in points]
+            ax.plot(steps, [p[1] for p in points], color=color, lw=1.2, marker="o", ms=2,
+                    label=f"{label}: pots/shot" if k == 0 else None)  # fmt: skip
+            ax.plot(steps, [p[2] for p in points], color=color, lw=0.8, ls="--", alpha=0.7,
+                    label=f"{label}: clean pots/shot" if k == 0 else None)  # fmt: skip
+    for name, label, style, color in BASELINE_LINES:
+        if name in baselines:
+            value = baselines[name]
+            ax.axhline(value, color=color, ls=style, lw=1, label=f"{label}: {value:.0%} pots")
+    ax.set_xlabel("environment steps")
+    ax.set_ylabel("rate (periodic evaluation, 500 episodes)")
+    ax.set_ylim(0.0, 1.05)
+    ax.set_title(title)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="lower right")
+    fig.tight_layout()
+    fig.savefig(path)
+    plt.close(fig)

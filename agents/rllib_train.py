@@ -56,6 +56,11 @@ RLLIB_KEYS = {
     "max_grad_norm": "grad_clip",
 }
 
+#: SB3 ``policy_kwargs`` that RLlib's default PPO model has no counterpart for and that the
+#: RLlib run goes without: its Gaussian's log std is a network output, not a parameter with
+#: an initial value.
+SB3_ONLY_POLICY_KWARGS = ("log_std_init",)
+
 #: Seeds of the final evaluation (the SB3 path's, so the tables compare).
 FINAL_SEED = 10_000
 
@@ -126,13 +131,16 @@ def rllib_training_kwargs(
     SB3's defaults fill the keys the entry leaves out. One SB3 rollout (``n_steps`` per env
     times ``sb3_n_envs`` envs) is one RLlib train batch; ``"lin_<x>"`` becomes a linear
     learning-rate schedule to 0 at ``n_timesteps``; there is no KL penalty (SB3 has none);
-    ``policy_kwargs`` may give ``net_arch`` (a list) and ``activation_fn``.
+    ``policy_kwargs`` may give ``net_arch`` (a list) and ``activation_fn``; the keys of
+    :data:`SB3_ONLY_POLICY_KWARGS` are left out.
 
     Raises:
         ValueError: On a key RLlib's PPO has no counterpart for, or a bad value.
     """
     kw = {**SB3_PPO_DEFAULTS, **algo_kwargs}
     policy_kwargs = dict(kw.pop("policy_kwargs", None) or {})
+    for key in SB3_ONLY_POLICY_KWARGS:
+        policy_kwargs.pop(key, None)
     out: dict[str, Any] = {rllib: kw.pop(sb3) for sb3, rllib in RLLIB_KEYS.items()}
     out["train_batch_size_per_learner"] = int(kw.pop("n_steps")) * int(sb3_n_envs)
     out["lr"] = _learning_rate(kw.pop("learning_rate"), n_timesteps)

@@ -4,6 +4,10 @@ Usage::
 
     python -m agents.summarize runs            # every run under runs/
     python -m agents.summarize runs/OneBall-v0 --env pool_env/OneBall-v0
+    python -m agents.summarize runs --plot results/oneball_cut_learning.png --title "..."
+
+The means over seeds carry a 95% interval (Student's t over the seeds' values: it says how
+much the *training* varies, the per-run brackets how much the evaluation does).
 """
 
 from __future__ import annotations
@@ -17,6 +21,9 @@ from pathlib import Path
 from typing import Any
 
 import yaml
+
+#: Two-sided 95% Student t quantiles for 1..10 degrees of freedom (then ~10's).
+T95 = (12.706, 4.303, 3.182, 2.776, 2.571, 2.447, 2.365, 2.306, 2.262, 2.228)
 
 
 def load_runs(root: str | Path, env_id: str | None = None) -> list[dict[str, Any]]:
@@ -63,15 +70,24 @@ def table(runs: list[dict[str, Any]]) -> str:
         groups[key].append({k: res[k][0] for k in ("pots_per_shot", "clean_pot_rate")})
     lines += [
         "",
-        "| env | variant | algo | steps | seeds | pots/shot (mean, sd) | clean (mean, sd) |",
+        "| env | variant | algo | steps | seeds | pots/shot (mean [95%], sd) "
+        "| clean (mean [95%], sd) |",
     ]
     lines.append("|---|---|---|---|---|---|---|")
     for (env, variant, algo, steps), rows in sorted(groups.items()):
         stats = []
         for k in ("pots_per_shot", "clean_pot_rate"):
             values = [r[k] for r in rows]
-            sd = f"{100 * statistics.stdev(values):.1f}" if len(values) > 1 else "-"
-            stats.append(f"{100 * statistics.mean(values):.1f}% ({sd})")
+            mean = statistics.mean(values)
+            if len(values) > 1:
+                sd = statistics.stdev(values)
+                half = T95[min(len(values) - 1, len(T95)) - 1] * sd / len(values) ** 0.5
+                stats.append(
+                    f"{100 * mean:.1f}% [{100 * (mean - half):.1f}, {100 * (mean + half):.1f}] "
+                    f"({100 * sd:.1f})"
+                )
+            else:
+                stats.append(f"{100 * mean:.1f}% (-)")
         lines.append(
             f"| {env} | {variant} | {algo} | {steps:,} | {len(rows)} | " + " | ".join(stats) + " |"
         )
@@ -94,13 +110,34 @@ def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("root", nargs="?", default="runs")
     parser.add_argument("--env", default=None, help="only runs on this env id")
+    parser.add_argument("--plot", help="write every run's learning curve into this PNG")
+    parser.add_argument("--title", default="", help="title of the --plot figure")
     args = parser.parse_args(argv)
     runs = load_runs(args.root, args.env)
     if not runs:
         print(f"no evaluation.json under {args.root}")
         return 1
     print(table(runs))
+    if args.plot:
+        plot(runs, args.plot, args.title)
     return 0
+
+
+def plot(runs: list[dict[str, Any]], path: str | Path, title: str) -> None:
+    """Every run's ``curve.csv`` in one PNG, by algorithm and steps; baselines of the first."""
+    from agents.plots import seeds_curve  # matplotlib only now
+
+    curves: dict[str, list] = defaultdict(list)
+    baselines: dict[str, float] = {}
+    for run in runs:
+        label = f"{run['algo'].upper()} {run['n_timesteps']:,}"
+        lines = (Path(run["folder"]) / "curve.csv").read_text().splitlines()[1:]
+        points = [(int(c[0]), float(c[2]), float(c[3])) for c in (x.split(",") for x in lines)]
+        curves[label].append((run["seed"], points))
+        for name, res in run["results"].items():
+            if not name.endswith("(this run)"):
+                baselines.setdefault(name, res["pots_per_shot"][0])
+    seeds_curve(path, dict(curves), baselines, title)
 
 
 if __name__ == "__main__":

@@ -14,6 +14,7 @@ import train
 from agents import hyperparams
 from agents.evaluate import evaluate_agent, load_model
 from agents.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
+from pool_env import ENV_IDS
 
 TINY = [
     "--timesteps", "512", "--n-envs", "2", "--eval-freq", "256", "--eval-episodes", "10",
@@ -92,7 +93,8 @@ def test_every_hyperparameter_entry_resolves() -> None:
             assert algo in ALGOS
             run, kwargs = hyperparams.split(entry)
             hyperparams.to_sb3(kwargs)
-            env = "pool_env/OneBall-v0" if env_id == "default" else env_id
+            # "default" serves the ids without an entry of their own.
+            env = next(i for i in ENV_IDS if i not in data) if env_id == "default" else env_id
             assert resolve_config(env, algo, {}).n_timesteps == run["n_timesteps"]
 
 
@@ -107,3 +109,23 @@ def test_schedules_and_bad_values() -> None:
         hyperparams.to_sb3({"policy_kwargs": {"activation_fn": "nope"}})
     with pytest.raises(SystemExit):
         train.main(["--set", "novalue"])
+
+
+@pytest.mark.parametrize("algo", ["ppo", "sac"])
+def test_default_recipe_trains_on_what_its_evaluation_sees(algo: str) -> None:
+    """The OneBall recipe: ghost-ball features on the native vector env, as the eval env has."""
+    from agents.envs import make_env
+
+    config = resolve_config("pool_env/OneBall-v0", algo, {"n_envs": 2})
+    assert (config.vec, config.wrapper) == ("native", "ghost_features")
+    venv = make_vec(config)
+    env = make_env(config.env_id, config.env_kwargs, config.wrapper)
+    try:
+        obs = venv.reset()
+        expected, _ = env.reset(seed=config.seed)
+        assert venv.observation_space == env.observation_space
+        np.testing.assert_array_equal(obs[0], expected)
+        assert expected[6] == 1.0  # a direct shot exists on this layout: its row is filled
+    finally:
+        venv.close()
+        env.close()
