@@ -224,13 +224,14 @@ def test_ghost_ball_features_by_hand() -> None:
                 2 * (speed - lo) / (hi - lo) - 1]  # fmt: skip
     assert np.allclose(rows[0], expected, atol=1e-6)
     assert np.all(rows[1:, 0] <= 1) and np.all(rows[1:, 2] ** 2 + rows[1:, 3] ** 2 <= 1 + 1e-6)
-    # The valid rows come first, the rest are zero; a 30-degree cut reads sin = 0.5.
+    # The valid rows come first, the rest are zero; a 30-degree cut (the object ball leaving
+    # counter-clockwise of the cue ball's path) is played with the cut action -sin(30) = -0.5.
     valid = rows[:, 0] == 1.0
     assert not np.any(rows[~valid]) and np.all(np.diff(valid.astype(int)) <= 0)
     cut = _cut_layout(np.array([0.6, 0.5]), CORNER_TARGET, 30.0, 0.5)
     obs, _ = env.reset(seed=0, options={"positions": cut})
     first = obs[6:].reshape(6, per)[0]
-    assert first[2] == pytest.approx(0.5, abs=1e-6)
+    assert first[2] == pytest.approx(-0.5, abs=1e-6)
     assert first[3] == pytest.approx(math.sqrt(3) / 2, abs=1e-6)
 
 
