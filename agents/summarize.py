@@ -112,6 +112,13 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--env", default=None, help="only runs on this env id")
     parser.add_argument("--plot", help="write every run's learning curve into this PNG")
     parser.add_argument("--title", default="", help="title of the --plot figure")
+    parser.add_argument(
+        "--baseline",
+        nargs="*",
+        default=[],
+        metavar="NAME=RATE",
+        help="baseline pot rates for --plot when no run evaluated them (random=0.082 ...)",
+    )
     args = parser.parse_args(argv)
     runs = load_runs(args.root, args.env)
     if not runs:
@@ -119,16 +126,30 @@ def main(argv: list[str] | None = None) -> int:
         return 1
     print(table(runs))
     if args.plot:
-        plot(runs, args.plot, args.title)
+        given = {}
+        for item in args.baseline:
+            name, sep, value = item.partition("=")
+            if not sep:
+                parser.error(f"--baseline expects NAME=RATE, got {item!r}")
+            given[name] = float(value)
+        plot(runs, args.plot, args.title, given)
     return 0
 
 
-def plot(runs: list[dict[str, Any]], path: str | Path, title: str) -> None:
-    """Every run's ``curve.csv`` in one PNG, by algorithm and steps; baselines of the first."""
+def plot(
+    runs: list[dict[str, Any]],
+    path: str | Path,
+    title: str,
+    given: dict[str, float] | None = None,
+) -> None:
+    """Every run's ``curve.csv`` in one PNG, by algorithm and steps.
+
+    The baselines are the first run's that evaluated them, else ``given`` (name: pot rate).
+    """
     from agents.plots import seeds_curve  # matplotlib only now
 
     curves: dict[str, list] = defaultdict(list)
-    baselines: dict[str, float] = {}
+    baselines: dict[str, float] = dict(given or {})
     for run in runs:
         label = f"{run['algo'].upper()} {run['n_timesteps']:,}"
         lines = (Path(run["folder"]) / "curve.csv").read_text().splitlines()[1:]
