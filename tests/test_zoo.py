@@ -62,5 +62,5 @@ def test_zoo_trains_ppo_with_the_shipped_file(tmp_path: Path) -> None:
     saved = yaml.unsafe_load((run / "pool_env-OneBall-v0" / "config.yml").read_text())
     # Zoo used the file's values, not its own defaults (gamma 0.99, n_steps 2048).
     assert dict(saved)["gamma"] == 0.0
-    assert dict(saved)["n_steps"] == 256
+    assert dict(saved)["n_steps"] == hyperparams.load("pool_env/OneBall-v0", "ppo")["n_steps"] == 64
     assert "total_timesteps" in done.stdout
