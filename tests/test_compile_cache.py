@@ -28,7 +28,7 @@ from pool_env.sim.layouts import break_scene
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
 print(hashlib.sha256(r.positions.tobytes()).hexdigest(), r.n_events)
-print("cache_hits", sum(loop.run_shot.stats.cache_hits.values()))
+print("cache_hits", sum(loop.packed_shot.stats.cache_hits.values()))
 """
 
 
@@ -117,7 +117,7 @@ from pool_env.sim.layouts import break_scene
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
 print(hashlib.sha256(r.positions.tobytes() + r.positions_at(0.1).tobytes()).hexdigest())
-for k in (loop.run_shot, loop.validate, timeline.positions_at):
+for k in (loop.packed_shot, loop.validate, timeline.positions_at):
     print(k.__name__, sum(k.stats.cache_hits.values()), sum(k.stats.cache_misses.values()))
 """
 
@@ -160,7 +160,7 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
         (path,) = folder.rglob(pattern)
         return path
 
-    only("loop.run_shot-*.nbi").write_bytes(b"")  # a process killed mid-write
+    only("loop.packed_shot-*.nbi").write_bytes(b"")  # a process killed mid-write
     index = only("loop.validate-*.nbi")
     index.write_bytes(index.read_bytes()[: index.stat().st_size // 2])  # a full disk
     only("timeline.positions_at-*.nbc").write_bytes(b"\x80\x05garbage" * 64)

@@ -22,6 +22,7 @@ from pool_env.sim.table import Table
 DEFAULT_MAX_EVENTS = 10_000
 
 _NUMERIC_KINDS = "iuf"  # integer, unsigned, float: no bools, complex, strings, objects
+_FLOAT64 = np.dtype(np.float64)  # native byte order: a big-endian float64 compares unequal
 
 
 def check_table(table: object) -> Table:
@@ -33,6 +34,8 @@ def check_table(table: object) -> Table:
 
 def check_max_events(value: object) -> int:
     """An event cap: a (numpy) integer, not a bool, in ``[0, 2**63 - 1]``."""
+    if type(value) is int and 0 <= value <= limits.MAX_EVENTS_LIMIT:  # the common case, fast
+        return value
     if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
         raise ValueError(f"max_events must be a non-negative integer, got {value!r}")
     if not 0 <= value <= limits.MAX_EVENTS_LIMIT:
@@ -45,13 +48,17 @@ def check_max_events(value: object) -> int:
 def kernel_array(name: str, value: ArrayLike, what: str) -> NDArray[np.float64]:
     """``value`` as the one float64 array layout the kernels are compiled for.
 
-    A copy only when needed (another dtype or byte order, not contiguous, read-only).
+    A copy only when needed (another dtype or byte order, not contiguous, read-only); an
+    array that is already right comes back as it is, after a fast check (this runs for
+    every argument of every shot).
 
     Args:
         name: The argument's name, for messages.
         value: Array-like of real numbers.
         what: What the argument should be, for messages (e.g. ``"an (N, 2) array"``).
     """
+    if type(value) is np.ndarray and value.dtype == _FLOAT64 and value.flags.carray:
+        return value  # C-contiguous, aligned, writable, native float64: the kernels' layout
     try:
         arr = np.asarray(value)
     except (TypeError, ValueError) as exc:
@@ -135,13 +142,16 @@ def check_speed(speed: object, table: Table) -> float:
         raise ValueError(f"speed must be a non-negative finite number, got {speed!r}") from None
     if value < 0.0:
         raise ValueError(f"speed must be a non-negative finite number, got {speed!r}")
-    if not limits.speed_allowed(value * value, table.deceleration):
+    # The compiled test run as plain Python: the same code, without a dispatcher call.
+    if not limits.speed_allowed.py_func(value * value, table.deceleration):
         raise ValueError(f"speed {value!r} m/s is beyond {_speed_limits(table)}")
     return value
 
 
 def check_cue(cue: object, n: int) -> int:
     """A ball index in ``[0, n)``."""
+    if type(cue) is int and 0 <= cue < n:  # the common case, fast
+        return cue
     if isinstance(cue, bool | np.bool_) or not isinstance(cue, int | np.integer):
         raise ValueError(f"cue must be a ball index in [0, {n}), got {cue!r}")
     if not 0 <= cue < n:

@@ -9,20 +9,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.sim.kernels import loop
-from pool_env.sim.kernels.loop import ShotOutput
 from pool_env.sim.kernels.timeline import positions_at as _positions_at
 from pool_env.sim.kernels.timeline import positions_at_many as _positions_at_many
 
 EventKind = Literal["pocket", "ball", "cushion", "stop", "jaw", "point"]
-
-# Shared read-only empty logs of unrecorded results (no allocation per shot).
-_EMPTY_F = np.empty(0, dtype=np.float64)
-_EMPTY_I = np.empty(0, dtype=np.int64)
-_EMPTY_KIND = np.empty(0, dtype=np.int8)
-_EMPTY_STATE = np.empty((0, 4), dtype=np.float64)
-_EMPTY_BOOL = np.empty(0, dtype=np.bool_)
-for _array in (_EMPTY_F, _EMPTY_I, _EMPTY_KIND, _EMPTY_STATE, _EMPTY_BOOL):
-    _array.setflags(write=False)
 
 #: Event kind codes of the compiled loop, in tie-breaking order.
 KIND_NAMES: tuple[EventKind, ...] = ("pocket", "ball", "cushion", "stop", "jaw", "point")
@@ -58,6 +48,11 @@ class Event:
 class ShotResult:
     """The outcome of :func:`pool_env.simulate`: final state, events, exact trajectories.
 
+    The compiled loop hands back two flat arrays
+    (:func:`~pool_env.sim.kernels.loop.packed_shot`); the result owns them, and every array
+    attribute below is a view into them made on access (a shot costs only the fields that
+    are read).
+
     Attributes:
         positions: ``(N, 2)`` final positions; a potted ball keeps its capture point.
         pocketed: ``(N,)`` ints: -1 on the table, ``k`` captured by pocket ``k``.
@@ -78,92 +73,110 @@ class ShotResult:
             hit before it is not counted: the "rail after contact" of the rules.
         pocket_order: ``(N,)`` ints: 0 for the first ball to drop, 1 for the next, and so
             on; -1 for a ball left on the table.
-        event_times, event_kinds, event_i, event_j: The events as arrays (kinds are codes
-            into :data:`KIND_NAMES`).
+        event_times, event_kinds, event_i, event_j: The events as arrays (kinds are int
+            codes into :data:`KIND_NAMES`; all empty if not recorded).
         event_first_segment: For each event, the first row it wrote in :attr:`segments`
             (the rows up to the next event's are the balls it re-anchored).
     """
 
     __slots__ = (
         "_deceleration",
-        "_seg_ball",
-        "_seg_potted",
-        "_seg_state",
-        "_seg_t",
-        "cushions_after_contact",
+        "_floats",
+        "_ints",
+        "_n_logged",
+        "_n_segments",
         "duration",
-        "event_first_segment",
-        "event_i",
-        "event_j",
-        "event_kinds",
-        "event_times",
         "first_contact",
-        "first_hit",
         "hit_event_cap",
+        "n_balls",
         "n_events",
-        "pocket_order",
-        "pocketed",
-        "positions",
         "recorded",
-        "stopped_by_cap",
     )
 
-    def __init__(self, raw: ShotOutput, deceleration: float, recorded: bool = True) -> None:
-        """Wrap the kernel's :data:`~pool_env.sim.kernels.loop.ShotOutput` (taken over)."""
-        self.positions = raw.positions
-        self.pocketed = raw.pocketed
-        self.pocket_order = raw.pocket_order
-        self.first_hit = raw.first_hit
-        self.cushions_after_contact = raw.cushions_after_contact
-        self.n_events = int(raw.n_events)
-        self.duration = float(raw.duration)
-        self.hit_event_cap = bool(raw.capped)
-        self.stopped_by_cap = raw.stopped_by_cap.astype(np.bool_)
-        first_i, first_j = int(raw.first_i), int(raw.first_j)
+    def __init__(self, raw: tuple, n_balls: int, deceleration: float, recorded: bool) -> None:
+        """Take over what :func:`~pool_env.sim.kernels.loop.packed_shot` returned.
+
+        Args:
+            raw: Its tuple, for a valid scene.
+            n_balls: The number of balls ``N``.
+            deceleration: The table's rolling deceleration (for :meth:`positions_at`).
+            recorded: Whether the events and segments were logged.
+        """
+        _, _, _, floats, ints, n_events, n_segments, first_i, first_j, capped, duration = raw
+        self._floats, self._ints = floats, ints
+        self.n_balls = n_balls
+        self.n_events = n_events
+        self._n_logged = n_events if recorded else 0
+        self._n_segments = n_segments
         self.first_contact = (first_i, first_j) if first_i >= 0 else None
-        events, segments = raw.events, raw.segments
-        self.event_times, self.event_kinds = events.t, events.kind
-        self.event_i, self.event_j = events.i, events.j
-        self.event_first_segment = events.first_segment
-        self._seg_ball, self._seg_t = segments.ball, segments.t
-        self._seg_state, self._seg_potted = segments.state, segments.potted
+        self.hit_event_cap = capped
+        self.duration = duration
         self._deceleration = deceleration
         self.recorded = recorded
 
-    @classmethod
-    def unrecorded(
-        cls,
-        final: NDArray[np.float64],
-        balls: NDArray[np.int64],
-        meta: NDArray[np.int64],
-        duration: float,
-        deceleration: float,
-    ) -> ShotResult:
-        """A result without events or trajectories (``simulate(record=False)``).
+    def _ball_row(self, row: int) -> NDArray[np.int64]:
+        n = self.n_balls
+        return self._ints[row * n : (row + 1) * n]
 
-        ``balls`` and ``meta`` are the per-ball rows and the meta slots written by
-        :func:`~pool_env.sim.kernels.loop.shoot_final` (the result takes them over).
-        """
-        self = cls.__new__(cls)  # attribute by attribute: this runs once per training step
-        self.positions = final
-        self.pocketed = balls[loop.BALL_POCKET]
-        self.pocket_order = balls[loop.BALL_POCKET_ORDER]
-        self.first_hit = balls[loop.BALL_FIRST_HIT]
-        self.cushions_after_contact = balls[loop.BALL_CUSHIONS]
-        self.stopped_by_cap = balls[loop.BALL_STOPPED].astype(np.bool_)
-        counts = meta[loop.META_EVENTS : loop.META_FIRST_J + 1].tolist()
-        self.n_events, capped, first_i, first_j = counts
-        self.duration = duration
-        self.hit_event_cap = bool(capped)
-        self.first_contact = (first_i, first_j) if first_i >= 0 else None
-        self.event_times = self._seg_t = _EMPTY_F
-        self.event_kinds = _EMPTY_KIND
-        self.event_i = self.event_j = self.event_first_segment = self._seg_ball = _EMPTY_I
-        self._seg_state = _EMPTY_STATE
-        self._seg_potted = _EMPTY_BOOL
-        self._deceleration = deceleration
-        self.recorded = False
-        return self
+    def _event_row(self, row: int) -> NDArray[np.int64]:
+        start = loop.N_BALL_ROWS * self.n_balls + row * self._n_logged
+        return self._ints[start : start + self._n_logged]
+
+    @property
+    def positions(self) -> NDArray[np.float64]:
+        """``(N, 2)`` final positions; a potted ball keeps its capture point."""
+        return self._floats[: 2 * self.n_balls].reshape(self.n_balls, 2)
+
+    @property
+    def pocketed(self) -> NDArray[np.int64]:
+        """``(N,)`` the pocket each ball dropped into, -1 if none."""
+        return self._ball_row(loop.BALL_POCKET)
+
+    @property
+    def pocket_order(self) -> NDArray[np.int64]:
+        """``(N,)`` the order in which the balls dropped (0 first), -1 on the table."""
+        return self._ball_row(loop.BALL_POCKET_ORDER)
+
+    @property
+    def first_hit(self) -> NDArray[np.int64]:
+        """``(N,)`` the first ball each ball touched, -1 if none."""
+        return self._ball_row(loop.BALL_FIRST_HIT)
+
+    @property
+    def cushions_after_contact(self) -> NDArray[np.int64]:
+        """``(N,)`` each ball's cushion impacts after the shot's first ball-ball impact."""
+        return self._ball_row(loop.BALL_CUSHIONS)
+
+    @property
+    def stopped_by_cap(self) -> NDArray[np.bool_]:
+        """``(N,)`` booleans: the balls still moving when the event cap stopped them."""
+        return self._ball_row(loop.BALL_STOPPED) != 0
+
+    @property
+    def event_times(self) -> NDArray[np.float64]:
+        """``(E,)`` event times (s), chronological; empty if not recorded."""
+        start = 2 * self.n_balls
+        return self._floats[start : start + self._n_logged]
+
+    @property
+    def event_kinds(self) -> NDArray[np.int64]:
+        """``(E,)`` event kind codes into :data:`KIND_NAMES`."""
+        return self._event_row(0)
+
+    @property
+    def event_i(self) -> NDArray[np.int64]:
+        """``(E,)`` the ball of each event."""
+        return self._event_row(1)
+
+    @property
+    def event_j(self) -> NDArray[np.int64]:
+        """``(E,)`` the other ball, rail, facing, point or pocket of each event (-1: none)."""
+        return self._event_row(2)
+
+    @property
+    def event_first_segment(self) -> NDArray[np.int64]:
+        """``(E,)`` the first row of :attr:`segments` each event wrote."""
+        return self._event_row(3)
 
     @property
     def events(self) -> list[Event]:
@@ -174,11 +187,6 @@ class ShotResult:
                 self.event_times, self.event_kinds, self.event_i, self.event_j, strict=True
             )
         ]
-
-    @property
-    def n_balls(self) -> int:
-        """Number of balls in the scene."""
-        return int(self.positions.shape[0])
 
     def _check_time(self, t: float) -> float:
         if not self.recorded:
@@ -211,7 +219,7 @@ class ShotResult:
             self._check_time(0.0)
         if times.size and not (times.min() >= 0.0 and times.max() <= self.duration):
             raise ValueError(f"times must lie in [0, duration={self.duration}]")
-        return _positions_at_many(*self.segments, self.n_balls, times, self._deceleration)
+        return _positions_at_many(*self._segment_views(), self.n_balls, times, self._deceleration)
 
     @property
     def segments(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
@@ -221,7 +229,17 @@ class ShotResult:
         ``state[r] = (x, y, vx, vy)`` (``potted[r]``: captured there). From an anchor a ball
         decelerates along its velocity until it rests. Empty if not recorded.
         """
-        return self._seg_ball, self._seg_t, self._seg_state, self._seg_potted
+        ball, t, state, potted = self._segment_views()
+        return ball, t, state, potted != 0
+
+    def _segment_views(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+        """The segment log as views: balls, times, states and potted flags (0 or 1)."""
+        n_seg = self._n_segments
+        f = 2 * self.n_balls + self._n_logged
+        k = loop.N_BALL_ROWS * self.n_balls + 4 * self._n_logged
+        floats, ints = self._floats, self._ints
+        state = floats[f + n_seg : f + 5 * n_seg].reshape(n_seg, 4)
+        return ints[k : k + n_seg], floats[f : f + n_seg], state, ints[k + n_seg : k + 2 * n_seg]
 
     def pocketed_at(self, t: float) -> NDArray[np.bool_]:
         """``(N,)`` booleans: which balls are potted by time ``t``."""
@@ -229,7 +247,8 @@ class ShotResult:
 
     def _frame(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
         """Positions and potted flags at ``t`` (checked against ``[0, duration]``)."""
-        return _positions_at(*self.segments, self.n_balls, self._check_time(t), self._deceleration)
+        t = self._check_time(t)
+        return _positions_at(*self._segment_views(), self.n_balls, t, self._deceleration)
 
     def __repr__(self) -> str:
         potted = [int(i) for i in np.flatnonzero(self.pocketed >= 0)]

@@ -15,6 +15,8 @@ import numpy as np
 
 def real_number(name: str, value: object) -> float:
     """``value`` as a finite float: a real number (not a bool, string or complex)."""
+    if type(value) is float and math.isfinite(value):  # the common case, fast
+        return value
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
     if isinstance(value, bool | np.bool_) or not isinstance(value, numbers.Real):

@@ -72,23 +72,13 @@ def _run(
     table = check_table(table)
     mass = as_masses(masses, pos.shape[0])
     max_events = check_max_events(max_events)
-    n = pos.shape[0]
-    if not record:  # one compiled call: validation and the loop, final state only
-        final = np.empty((n, 2))
-        balls = np.empty((loop.N_BALL_ROWS, n), dtype=np.int64)
-        meta = np.empty(loop.N_META, dtype=np.int64)
-        duration = loop.shoot_final(
-            pos, vel, mass, table.params, table.pocket_geometry, max_events, final, balls, meta
-        )
-        if meta[loop.META_CODE] != loop.OK:
-            code, i, j = meta[loop.META_CODE : loop.META_J + 1].tolist()
-            raise_invalid(code, i, j, table, pos, vel, mass)
-        return ShotResult.unrecorded(final, balls, meta, duration, table.deceleration)
-    code, i, j = loop.validate(pos, vel, mass, table.params, table.pocket_geometry)
-    if code != loop.OK:
-        raise_invalid(code, i, j, table, pos, vel, mass)
-    raw = loop.run_shot(pos, vel, mass, table.params, table.pocket_geometry, max_events, True)
-    return ShotResult(raw, table.deceleration, True)
+    record = bool(record)  # one compiled version: a bool, never an int
+    raw = loop.packed_shot(
+        pos, vel, mass, table.params, table.pocket_geometry, max_events, record
+    )  # one compiled call: validation, the loop and the result, in two arrays
+    if raw[0] != loop.OK:
+        raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
+    return ShotResult(raw, pos.shape[0], table.deceleration, record)
 
 
 def shoot(
@@ -127,7 +117,8 @@ def shoot(
     n = pos.shape[0]
     cue = check_cue(cue, n)
     vel = np.zeros((n, 2))
-    vel[cue] = (speed * math.cos(angle), speed * math.sin(angle))
+    vel[cue, 0] = speed * math.cos(angle)
+    vel[cue, 1] = speed * math.sin(angle)
     return _run(table, pos, vel, masses, max_events, record)
 
 

@@ -124,13 +124,13 @@ ShotOutput = namedtuple(
     ],
 )
 
-#: Rows of the per-ball output of :func:`shoot_final` (``N_BALL_ROWS`` of them).
+#: Rows of the per-ball results (``N_BALL_ROWS`` of them): the pocket each ball dropped
+#: into, its place in the pocketing order, the first ball it touched, its cushion impacts
+#: after the first contact, and 1 if the event cap stopped it (the :data:`ShotOutput`
+#: fields ``pocketed``, ``pocket_order``, ``first_hit``, ``cushions_after_contact``,
+#: ``stopped_by_cap``).
 BALL_POCKET, BALL_POCKET_ORDER, BALL_FIRST_HIT, BALL_CUSHIONS, BALL_STOPPED = range(5)
 N_BALL_ROWS = 5
-
-#: Slots of the ``meta`` output of :func:`shoot_final` (``N_META`` of them).
-META_CODE, META_I, META_J, META_EVENTS, META_CAPPED, META_FIRST_I, META_FIRST_J = range(7)
-N_META = 7
 
 
 @kernel
@@ -218,8 +218,8 @@ def _tally(kind, i, j, balls, first_i, first_j):
 
 
 @kernel
-def run_shot(positions, velocities, masses, params, pockets, max_events, record):
-    """Simulate one shot to rest.
+def _shoot(positions, velocities, masses, params, pockets, max_events, record):
+    """Simulate one shot to rest: the event loop itself.
 
     Args:
         positions: ``(N, 2)`` ball centres (validated).
@@ -231,7 +231,12 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         record: Whether to log events and trajectory segments (off for batched training).
 
     Returns:
-        A :data:`ShotOutput`; its logs are empty unless ``record``.
+        ``(st, balls, first_i, first_j, n_events, duration, capped, events, segments,
+        n_segments)``: the final ball anchors (``st``, columns of
+        :mod:`~pool_env.sim.kernels.motion`), the per-ball rows (``BALL_POCKET``, ...), the
+        shot's first ball-ball impact, the event count, the time of the last event, whether
+        the cap was reached, and the two logs with room to spare (their first ``n_events``
+        and ``n_segments`` rows are the shot's; empty unless ``record``).
     """
     n = positions.shape[0]
     a = params[P_DECEL]
@@ -370,6 +375,24 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
                         segments = grown_segment_log(segments)
                     log_segment(segments, n_seg, i, now, st, status)
                     n_seg += 1
+    return st, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
+
+
+@kernel
+def run_shot(positions, velocities, masses, params, pockets, max_events, record):
+    """Simulate one shot to rest, for compiled callers (the batch).
+
+    Args:
+        positions, velocities, masses, params, pockets, max_events, record: As for
+            :func:`_shoot` (``positions`` validated).
+
+    Returns:
+        A :data:`ShotOutput`; its logs are empty unless ``record``.
+    """
+    st, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = _shoot(
+        positions, velocities, masses, params, pockets, max_events, record
+    )
+    n = positions.shape[0]
     final = np.empty((n, 2), dtype=np.float64)
     for i in range(n):
         final[i, 0] = st[i, PX]
@@ -386,42 +409,68 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
         now,
         capped,
         balls[BALL_STOPPED],
-        trim_events(events, n_ev),
+        trim_events(events, n_ev if record else 0),
         trim_segments(segments, n_seg),
     )
 
 
 @kernel
-def shoot_final(positions, velocities, masses, params, pockets, max_events, final, balls, meta):
-    """Validate and simulate one shot in a single call, writing only the final state.
+def packed_shot(positions, velocities, masses, params, pockets, max_events, record):
+    """Validate and simulate one shot in a single call, for Python: the lean path.
 
-    The lean path for training loops: no event log, and nothing allocated for Python (each
-    array handed back to Python costs a Python object).
+    Every array handed back to Python costs a Python object (about 0.3 us each, and a named
+    tuple about a microsecond more), so the whole result comes back in two flat arrays;
+    :class:`~pool_env.sim.result.ShotResult` takes them over and reads its fields from them
+    as views. For ``N`` balls, ``E`` logged events and ``S`` logged segments (``E = S = 0``
+    unless ``record``), block after block:
+
+    * ``floats``: final positions ``(N, 2)``; event times ``(E,)``; segment times ``(S,)``;
+      segment states ``(S, 4)`` (``x, y, vx, vy``).
+    * ``ints``: the per-ball rows ``(N_BALL_ROWS, N)``; the event rows ``(4, E)`` (kind
+      code, ``i``, ``j``, first segment row); the segment rows ``(2, S)`` (ball, 1 if
+      potted there).
 
     Args:
-        positions, velocities, masses, params, pockets, max_events: As for :func:`run_shot`.
-        final: ``(N, 2)`` output: final positions.
-        balls: ``(N_BALL_ROWS, N)`` output: per-ball results in the rows ``BALL_POCKET``,
-            ``BALL_POCKET_ORDER``, ``BALL_FIRST_HIT``, ``BALL_CUSHIONS`` and
-            ``BALL_STOPPED`` (the :data:`ShotOutput` fields of those names).
-        meta: ``(N_META,)`` output: ``META_CODE`` (the validation code: ``OK``, or the
-            problem with balls ``META_I``, ``META_J``, and then nothing is simulated),
-            ``META_EVENTS``, ``META_CAPPED``, ``META_FIRST_I``, ``META_FIRST_J``.
+        positions, velocities, masses, params, pockets, max_events, record: As for
+            :func:`_shoot` (``record`` a bool).
 
     Returns:
-        The shot's duration (s).
+        ``(code, i, j, floats, ints, n_events, n_segments, first_i, first_j, capped,
+        duration)``: the validation code (``OK``, or the problem with balls ``i``, ``j``
+        and then nothing is simulated and the arrays are empty), the packed arrays, the
+        event count (the log holds them all if ``record``, none otherwise), the logged
+        segments, the shot's first ball-ball impact (-1 if none), whether the event cap
+        was reached and the duration (s).
     """
-    code, i, j = validate(positions, velocities, masses, params, pockets)
-    meta[META_CODE], meta[META_I], meta[META_J] = code, i, j
+    code, ci, cj = validate(positions, velocities, masses, params, pockets)
     if code != OK:
-        return 0.0
-    out = run_shot(positions, velocities, masses, params, pockets, max_events, False)
-    final[:] = out.positions
-    balls[BALL_POCKET] = out.pocketed
-    balls[BALL_POCKET_ORDER] = out.pocket_order
-    balls[BALL_FIRST_HIT] = out.first_hit
-    balls[BALL_CUSHIONS] = out.cushions_after_contact
-    balls[BALL_STOPPED] = out.stopped_by_cap
-    meta[META_EVENTS], meta[META_CAPPED] = out.n_events, out.capped
-    meta[META_FIRST_I], meta[META_FIRST_J] = out.first_i, out.first_j
-    return out.duration
+        empty_f = np.empty(0, dtype=np.float64)
+        empty_i = np.empty(0, dtype=np.int64)
+        return code, ci, cj, empty_f, empty_i, 0, 0, -1, -1, False, 0.0
+    st, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = _shoot(
+        positions, velocities, masses, params, pockets, max_events, record
+    )
+    n = positions.shape[0]
+    n_log = n_ev if record else 0
+    floats = np.empty(2 * n + n_log + 5 * n_seg, dtype=np.float64)
+    ints = np.empty(N_BALL_ROWS * n + 4 * n_log + 2 * n_seg, dtype=np.int64)
+    for i in range(n):  # positions (N, 2), then the per-ball rows (N_BALL_ROWS, N)
+        floats[2 * i] = st[i, PX]
+        floats[2 * i + 1] = st[i, PY]
+        for row in range(N_BALL_ROWS):
+            ints[row * n + i] = balls[row, i]
+    f, k = 2 * n, N_BALL_ROWS * n
+    for e in range(n_log):  # event times, then the event rows: kind, i, j, first segment
+        floats[f + e] = events.t[e]
+        ints[k + e] = events.kind[e]
+        ints[k + n_log + e] = events.i[e]
+        ints[k + 2 * n_log + e] = events.j[e]
+        ints[k + 3 * n_log + e] = events.first_segment[e]
+    f, k = f + n_log, k + 4 * n_log
+    for r in range(n_seg):  # segment times, then states (S, 4); balls, then potted flags
+        floats[f + r] = segments.t[r]
+        for c in range(4):
+            floats[f + n_seg + 4 * r + c] = segments.state[r, c]
+        ints[k + r] = segments.ball[r]
+        ints[k + n_seg + r] = segments.potted[r]
+    return OK, -1, -1, floats, ints, n_ev, n_seg, first_i, first_j, capped, now

@@ -13,8 +13,9 @@ from pool_env.sim.kernels._jit import kernel
 def positions_at(seg_ball, seg_t, seg_state, seg_potted, n_balls, t, a):
     """Ball positions at time ``t`` and whether each ball is potted by then.
 
-    Segments are chronological; the last one of each ball starting at or before ``t``
-    anchors it, and the ball rolls from there with deceleration ``a`` until it rests.
+    Segments are chronological (``seg_potted`` nonzero where a ball was captured); the
+    last one of each ball starting at or before ``t`` anchors it, and the ball rolls from
+    there with deceleration ``a`` until it rests.
     """
     last = np.full(n_balls, -1, dtype=np.int64)
     for row in range(seg_t.shape[0]):
@@ -26,7 +27,7 @@ def positions_at(seg_ball, seg_t, seg_state, seg_potted, n_balls, t, a):
     for i in range(n_balls):
         row = last[i]
         x, y, vx, vy = seg_state[row, 0], seg_state[row, 1], seg_state[row, 2], seg_state[row, 3]
-        potted[i] = seg_potted[row]
+        potted[i] = seg_potted[row] != 0
         spd = math.sqrt(vx * vx + vy * vy)
         if spd > 0.0:
             # Same arithmetic as the event loop's state_at, so the final frame matches.
