@@ -37,12 +37,19 @@ STEPS = {
 TARGETS = {"pool_env/OneBall-v0": 20_000, "pool_env/NineBall-v0": 3_000}
 
 
-def run(env: gym.Env, steps: int, seed: int) -> tuple[float, float]:
-    """Play ``steps`` random shots; return (steps per second, mean simulator events)."""
+def run(env: gym.Env, steps: int, seed: int) -> tuple[float, float, float]:
+    """Play ``steps`` random shots.
+
+    Returns:
+        Steps per wall second, steps per CPU second of this thread (what the machine's
+        load does not change: other processes take wall time, not this thread's CPU time)
+        and the mean number of simulator events per shot.
+    """
     size = (steps, *env.action_space.shape)  # (aim, speed), or the rules' Box(5)
     actions = np.random.default_rng(seed).uniform(-1.0, 1.0, size).astype(np.float32)
     env.reset(seed=seed)
     events = 0
+    cpu_start = time.thread_time()
     start = time.perf_counter()
     for action in actions:
         _, _, terminated, truncated, info = env.step(action)
@@ -50,7 +57,7 @@ def run(env: gym.Env, steps: int, seed: int) -> tuple[float, float]:
         if terminated or truncated:
             env.reset()
     elapsed = time.perf_counter() - start
-    return steps / elapsed, events / steps
+    return steps / elapsed, steps / (time.thread_time() - cpu_start), events / steps
 
 
 def first_step_seconds(env_id: str) -> float:
@@ -86,26 +93,28 @@ def main() -> None:
     args = parser.parse_args()
 
     rows = []
+    load_start = os.getloadavg()[0]
     for env_id in ENV_IDS:
         steps = max(100, int(STEPS.get(env_id, 5_000) * args.scale))
         made, raw = gym.make(env_id), gym.make(env_id).unwrapped
         run(made, 200, 999)  # warm up: load compiled kernels, first allocations
         run(raw, 200, 999)
         # Alternate make/raw runs, so that load from other processes hits both alike.
-        samples: dict[str, list[tuple[float, float]]] = {"make": [], "raw": []}
+        samples: dict[str, list[tuple[float, float, float]]] = {"make": [], "raw": []}
         for seed in range(args.repeats):
             samples["make"].append(run(made, steps, seed))
             samples["raw"].append(run(raw, steps, seed))
         results = {}
-        for name, pairs in samples.items():
-            rates = [rate for rate, _ in pairs]
-            events = statistics.mean(ev for _, ev in pairs)
-            results[name] = (statistics.median(rates), min(rates), max(rates), events)
+        for name, runs in samples.items():
+            rates = [rate for rate, _, _ in runs]
+            cpu = statistics.median(rate for _, rate, _ in runs)
+            events = statistics.mean(ev for _, _, ev in runs)
+            results[name] = (statistics.median(rates), min(rates), max(rates), events, cpu)
         first = first_step_seconds(env_id)
         rows.append((env_id, steps, results, first))
         m, r = results["make"], results["raw"]
         print(
-            f"{env_id:24s} make {m[0]:9,.0f}/s  raw {r[0]:9,.0f}/s  "
+            f"{env_id:24s} make {m[0]:9,.0f}/s  raw {r[0]:9,.0f}/s  CPU {m[4]:9,.0f}/s  "
             f"({1e6 / m[0]:6.1f} us/step, {m[3]:5.1f} events/shot, first step {first:.2f} s)"
         )
 
@@ -117,11 +126,13 @@ def main() -> None:
         f"{args.repeats} seeds (range in brackets). `make`: `gymnasium.make(id)` with its",
         "wrappers (TimeLimit, OrderEnforcing, PassiveEnvChecker); `raw`: `.unwrapped`.",
         "First step: a fresh process importing, making, resetting and stepping once (warm",
-        "numba disk cache), as every `SubprocVecEnv` worker does.",
+        "numba disk cache), as every `SubprocVecEnv` worker does. Steps per CPU second: the",
+        "same runs through make, counted against this thread's CPU time instead of the wall",
+        "clock, which the load of other processes on the shared machine does not change.",
         "",
-        "| id | steps/s via make | steps/s raw | us/step (make) | events/shot | target "
-        "| first step |",
-        "|---|---|---|---|---|---|---|",
+        "| id | steps/s via make | steps/s raw | steps per CPU s (make) | us/step (make) "
+        "| events/shot | target | first step |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for env_id, _, res, first in rows:
         m, r = res["make"], res["raw"]
@@ -131,16 +142,19 @@ def main() -> None:
         )
         lines.append(
             f"| `{env_id}` | {m[0]:,.0f} [{m[1]:,.0f}-{m[2]:,.0f}] | {r[0]:,.0f} "
-            f"[{r[1]:,.0f}-{r[2]:,.0f}] | {1e6 / m[0]:.1f} | {m[3]:.1f} | {verdict} "
+            f"[{r[1]:,.0f}-{r[2]:,.0f}] | {m[4]:,.0f} | {1e6 / m[0]:.1f} | {m[3]:.1f} | {verdict} "
             f"| {first:.2f} s |"
         )
     lines += [
         "",
         f"Machine: {cpu_name()}, {os.cpu_count()} cores, one process; load average "
-        f"{os.getloadavg()[0]:.1f} at the end (other processes share the machine). Python "
+        f"{load_start:.1f} at the start and {os.getloadavg()[0]:.1f} at the end (other "
+        f"processes share the machine), {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}. "
+        "Python "
         f"{platform.python_version()}, numpy {np.__version__}, gymnasium {gym.__version__}.",
         "",
-        f"Command: `python bench/env_speed.py --repeats {args.repeats}`",
+        f"Command: `python bench/env_speed.py --repeats {args.repeats}"
+        + (f" --scale {args.scale:g}`" if args.scale != 1.0 else "`"),
         "",
     ]
     Path(args.out).parent.mkdir(parents=True, exist_ok=True)
