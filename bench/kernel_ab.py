@@ -1,0 +1,139 @@
+"""Same-run A/B timing of the compiled shot loop: this tree against a git revision.
+
+Run: ``python bench/kernel_ab.py --ref main`` (a few minutes: each side compiles once).
+Exports ``--ref`` with ``git archive`` to a temporary folder, then alternates fresh
+processes of the two trees (``--rounds`` times each), every one timing ``run_shot`` from a
+compiled loop (no Python in the measured path) and ``shoot``/``simulate_batch`` end to end.
+Times are thread CPU time (``time.thread_time``), the minimum over repeats: on a shared
+machine that is far steadier than wall time. Prints the minimum of each figure over the
+rounds and the ratio this tree / ref; nothing is written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+# The timed child: prints "name=microseconds" pairs.
+CHILD = r"""
+import time
+import numba
+import numpy as np
+from pool_env import Table, shoot
+from pool_env.sim.batch import simulate_batch
+from pool_env.sim.kernels import loop
+from pool_env.sim.layouts import break_scene
+from pool_env.testing.scenes_random import random_layout
+
+table = Table()
+run_shot = loop.run_shot
+
+
+@numba.njit
+def many(p, v, m, params, pockets, k, record):
+    s = 0
+    for _ in range(k):
+        s += run_shot(p, v, m, params, pockets, 10000, record)[1][0]
+    return s
+
+
+def best(f, reps=15):
+    f()
+    out = 1e9
+    for _ in range(reps):
+        t0 = time.thread_time()
+        k = f()
+        out = min(out, (time.thread_time() - t0) / k)
+    return out * 1e6
+
+
+none = np.empty(0)
+two = np.array([[0.5, 0.6], [1.0, 0.62]])
+two_v = np.array([[3.0, 0.0], [0.0, 0.0]])
+rack = break_scene(table, "nine")
+rack_v = np.zeros_like(rack)
+rack_v[0] = 8.0 * (rack[1] - rack[0]) / np.hypot(*(rack[1] - rack[0]))
+rng = np.random.default_rng(0)
+pos = np.stack([random_layout(table, 2, rng) for _ in range(256)])
+vel = np.zeros_like(pos)
+d = pos[:, 1] - pos[:, 0]
+angle = np.arctan2(d[:, 1], d[:, 0]) + rng.uniform(-0.3, 0.3, 256)
+vel[:, 0] = 3.0 * np.stack([np.cos(angle), np.sin(angle)], axis=1)
+P, K = table.params, table.pocket_geometry  # the jaw rows of the default table
+
+
+def loop_of(p, v, k, record):
+    return lambda: many(p, v, none, P, K, k, record) * 0 + k
+
+
+def shoot_of(p, record):
+    def f():
+        for _ in range(2000):
+            shoot(table, p, 0.0, 3.0, record=record)
+        return 2000
+    return f
+
+
+def batch():
+    for _ in range(5):
+        simulate_batch(table, pos, vel, parallel=False)
+    return 5 * 256
+
+
+figures = {
+    "loop_two_final": best(loop_of(two, two_v, 3000, False)),
+    "loop_two_recorded": best(loop_of(two, two_v, 3000, True)),
+    "loop_break_final": best(loop_of(rack, rack_v, 100, False)),
+    "loop_break_recorded": best(loop_of(rack, rack_v, 100, True)),
+    "shoot_two_final": best(shoot_of(two, False), 7),
+    "shoot_two_recorded": best(shoot_of(two, True), 7),
+    "batch256_per_table": best(batch, 7),
+}
+print(" ".join(f"{k}={v:.3f}" for k, v in figures.items()))
+"""
+
+
+def run(tree: Path, cache: Path) -> dict[str, float]:
+    env = {**os.environ, "PYTHONPATH": str(tree), "NUMBA_CACHE_DIR": str(cache)}
+    out = subprocess.run(
+        [sys.executable, "-c", CHILD], cwd=tree, env=env, capture_output=True, text=True
+    )
+    if out.returncode:
+        raise RuntimeError(out.stderr)
+    return {k: float(v) for k, v in (kv.split("=") for kv in out.stdout.split())}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__)
+    parser.add_argument("--ref", default="main", help="git revision to compare against")
+    parser.add_argument("--rounds", type=int, default=3)
+    args = parser.parse_args()
+    with tempfile.TemporaryDirectory() as tmp:
+        ref_tree = Path(tmp) / "ref"
+        ref_tree.mkdir()
+        archive = subprocess.run(
+            ["git", "archive", args.ref], cwd=ROOT, capture_output=True, check=True
+        ).stdout
+        subprocess.run(["tar", "-x", "-C", str(ref_tree)], input=archive, check=True)
+        results: dict[str, list[dict[str, float]]] = {"ref": [], "this": []}
+        for _ in range(args.rounds):
+            results["ref"].append(run(ref_tree, Path(tmp) / "cache-ref"))
+            results["this"].append(run(ROOT, Path(tmp) / "cache-this"))
+    load = os.getloadavg()[0]
+    print(f"# kernel_ab: this tree vs {args.ref}, {args.rounds} rounds, load {load:.1f}")
+    print("| figure (us, min) | ref | this | this / ref |")
+    print("|---|---|---|---|")
+    for name in results["ref"][0]:
+        ref = min(r[name] for r in results["ref"])
+        this = min(r[name] for r in results["this"])
+        print(f"| {name} | {ref:.2f} | {this:.2f} | {this / ref:.3f} |")
+
+
+if __name__ == "__main__":
+    main()
