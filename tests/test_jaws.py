@@ -236,6 +236,58 @@ def test_wedged_between_a_facing_and_a_ball(e_ball: float) -> None:
     assert check_shot(table, result) == []
 
 
+def _driven_into_a_point(e_ball: float, e_jaw: float):
+    """A light ball touching point 2 (side pocket 1, tip 0), a heavy one driving it in.
+
+    The heavy ball starts 5 cm away along the point's normal ``g`` at 0.5 m/s straight at
+    it (masses 1e-3 and 1 kg): the scenes of the 100k fuzz that reached the event cap.
+    """
+    table = Table(e_ball=e_ball, e_jaw=e_jaw)
+    jaw = table.jaws[1]
+    g = _unit([1.0, 1.0])
+    light = jaw.tip_centres[0] + (jaw.tip_radius + R) * g
+    pos = np.array([light, light + (2 * R + 0.05) * g])
+    masses = np.array([1e-3, 1.0])
+    return table, pos, np.array([[0.0, 0.0], -0.5 * g]), masses, g
+
+
+@pytest.mark.parametrize("e_jaw", [0.0, 0.65])
+def test_a_heavy_ball_drives_a_light_one_into_a_point_closed_form(e_jaw: float) -> None:
+    """With ``e_ball = 0`` the lump meets the point as one body (T, P, E, closed form).
+
+    The heavy ball arrives at ``v1 = sqrt(v^2 - 2 a d)``; the inelastic impact gives both
+    ``V1 = M v1 / (M + m)``; the light ball leaves the point at ``e_jaw V1``, the pair
+    meets again inelastically at ``V2 = (M V1 - m e_jaw V1) / (M + m)``, sticks, and the
+    lump leaves the point at ``e_jaw V2``: both roll ``(e_jaw V2)^2 / (2 a)`` out along the
+    normal, touching. Reflecting only the light ball at the point (the lump pressing on
+    into it) ran into the event cap at one instant.
+    """
+    table, pos, vel, masses, g = _driven_into_a_point(0.0, e_jaw)
+    result = simulate(table, pos, vel, masses)
+    assert not result.hit_event_cap and result.n_events <= 5
+    assert check_shot(table, result, masses) == []
+    m, big = masses
+    v1 = math.sqrt(0.5**2 - 2 * A * 0.05)
+    v_lump = e_jaw * (big * v1 - m * e_jaw * v1) / (big + m) * big / (big + m)
+    moved = (result.positions - pos) @ g
+    assert moved[0] == pytest.approx(v_lump**2 / (2 * A), rel=1e-12, abs=1e-12)
+    assert moved[1] == pytest.approx(moved[0] - 0.05, rel=1e-12, abs=1e-12)
+    gap = float(np.hypot(*(result.positions[1] - result.positions[0])))
+    assert gap == pytest.approx(2 * R, abs=1e-9)
+
+
+@pytest.mark.parametrize("e_jaw", [0.0, 0.65])
+def test_a_heavy_ball_drives_a_light_one_into_a_point_elastic_balls(e_jaw: float) -> None:
+    """With ``e_ball = 0.95`` the pair rattles, sticks by the Zeno rule, and leaves (T, G)."""
+    table, pos, vel, masses, g = _driven_into_a_point(0.95, e_jaw)
+    result = simulate(table, pos, vel, masses)
+    assert not result.hit_event_cap and result.n_events < 100
+    assert check_shot(table, result, masses) == []
+    moved = (result.positions - pos) @ g
+    assert moved[0] >= -1e-12 and moved[1] == pytest.approx(moved[0] - 0.05, abs=1e-9)
+    assert (moved[0] > 0.01) == (e_jaw > 0)  # out of the point only if it rebounds
+
+
 def test_at_rest_touching_a_point() -> None:
     """Resting against a point: no event; moving into it collides now, away from it none."""
     jaw = TABLE.jaws[1]

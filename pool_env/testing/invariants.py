@@ -7,7 +7,8 @@ The named invariants of the design notes:
   playing region: the rails' rectangle and, on a jaw table, the pocket throats (clear of
   every facing and point, in front of the fall line).
 * **P** (momentum): each ball-ball impact conserves the pair's momentum (a sticking lump
-  touching a rail: up to the rail's impulse out of it).
+  touching a rail: up to the rail's impulse out of it; touching jaws and rails: up to
+  impulses out of the contacts it touches).
 * **E** (energy): kinetic energy never increases, across impacts or in between.
 * **T** (termination): the shot ends at rest without reaching the event cap.
 
@@ -103,6 +104,65 @@ def _rail_impulse_allowed(
     return True
 
 
+def _contact_normals(table: Table, positions: NDArray) -> list[NDArray]:
+    """Unit normals, out of each contact, of the rails, facings and points a lump touches.
+
+    Derived from the table's own geometry (``Table.jaws``), not from the kernels' rows: a
+    rail at its line, a facing or a point at ``R`` (up to ``CONTACT_TOL``) from the ball's
+    centre.
+    """
+    r, tol = table.ball_radius, CONTACT_TOL
+    normals = []
+    for p in positions:
+        for coord, line, n in (
+            (p[0], r, (1.0, 0.0)),
+            (p[0], table.length - r, (-1.0, 0.0)),
+            (p[1], r, (0.0, 1.0)),
+            (p[1], table.width - r, (0.0, -1.0)),
+        ):
+            if abs(coord - line) <= tol:
+                normals.append(np.array(n))
+        for jaw in table.jaws:
+            for side in range(2):
+                c = jaw.tip_centres[side]
+                d = float(np.hypot(*(p - c)))
+                if 0.0 < d <= jaw.tip_radius + r + tol:
+                    normals.append((p - c) / d)
+                a, b = jaw.facings[side]
+                u = b - a
+                q = a + np.clip((p - a) @ u / (u @ u), 0.0, 1.0) * u  # nearest facing point
+                d = float(np.hypot(*(p - q)))
+                if 0.0 < d <= r + tol:
+                    normals.append((p - q) / d)
+    return normals
+
+
+def _contact_impulse_allowed(
+    table: Table, positions: NDArray, p0: NDArray, dp: NDArray, slack: float
+) -> bool:
+    """Whether ``dp`` is an impulse the contacts a lump at ``positions`` touches can give.
+
+    Contacts only push out of themselves: ``dp`` must be a non-negative combination of one
+    or two of their normals (in the plane, any vector of a cone of normals is one of two),
+    and no larger than twice the lump's momentum (the lump's kinetic energy cannot rise).
+    """
+    if float(np.hypot(*dp)) > 2.0 * float(np.hypot(*p0)) + slack:
+        return False
+    normals = _contact_normals(table, positions)
+    for n in normals:
+        if abs(n[0] * dp[1] - n[1] * dp[0]) <= slack and n @ dp >= -slack:
+            return True
+    for a in range(len(normals)):
+        for b in range(a + 1, len(normals)):
+            basis = np.column_stack([normals[a], normals[b]])
+            if abs(np.linalg.det(basis)) < 1e-12:
+                continue
+            lam = np.linalg.solve(basis, dp)
+            if lam.min() >= -slack:
+                return True
+    return False
+
+
 def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = None) -> list[str]:
     """P: every ball-ball impact conserves the momentum of the balls it changed.
 
@@ -134,8 +194,13 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
                 continue
             if np.all(after == 0.0) and change <= allowed + float(np.abs(p0).max()):
                 continue  # wedged between jaws and rails, the lump stops
-            if table is not None and _rail_impulse_allowed(
-                table, state[bounds[k] : bounds[k + 1], 0:2], p0, p1 - p0, allowed
+            at = state[bounds[k] : bounds[k + 1], 0:2]
+            if table is not None and _rail_impulse_allowed(table, at, p0, p1 - p0, allowed):
+                continue
+            if (
+                table is not None
+                and table.jaws
+                and _contact_impulse_allowed(table, at, p0, p1 - p0, allowed)
             ):
                 continue
         problems.append(f"P: impact {k} (t={t}, balls {balls}) momentum {p0} -> {p1}")

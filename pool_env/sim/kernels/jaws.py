@@ -29,7 +29,15 @@ import numpy as np
 
 from pool_env.sim.kernels._jit import kernel
 from pool_env.sim.kernels.motion import set_anchor, state_at
-from pool_env.sim.kernels.params import P_DECEL, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
+from pool_env.sim.kernels.params import (
+    P_DECEL,
+    P_E_CUSHION,
+    P_E_JAW,
+    P_LENGTH,
+    P_RADIUS,
+    P_WIDTH,
+)
+from pool_env.sim.kernels.resolve import lump_off_contacts
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF, ray_circle_entry
 
 # Event kinds of jaw contacts (after the kinds of predict.py: pocket 0, ball 1, cushion 2,
@@ -293,36 +301,43 @@ def _wedged(normals, count, vx, vy, v_below, v_rest):
 
 @kernel
 def unpress_lump(st, status, changed, size, t, params, pockets, v_zeno, contact_tol, v_rest):
-    """A stuck lump of balls stops pressing slowly into the jaws and rails it touches.
+    """A stuck lump of balls meets the jaws and rails it touches as one body.
 
     The jaw counterpart of the rail rule of :func:`pool_env.sim.kernels.resolve.stick_cluster`
-    (which has just given the ``size`` balls in ``changed`` one common velocity): a velocity
-    component slower than ``v_zeno`` into a facing, point or rail that one of the lump's
-    balls touches (within ``contact_tol``) is removed, as the cushion's impulse would;
-    otherwise the lump would bounce off the jaw and re-stick forever at one instant (a ball
-    wedged between a facing and a ball). Removing components only lowers the kinetic
-    energy. A lump wedged between contacts (it cannot slide along any one of them without
-    pressing into another) stops.
+    (which has just given the ``size`` balls in ``changed`` one common velocity and met the
+    rails with it). A lump wedged between contacts (it cannot slide along any one of them
+    without pressing into another) stops. Otherwise it meets every facing, point and rail
+    that one of its balls touches (within ``contact_tol``) as one body
+    (:func:`~pool_env.sim.kernels.resolve.lump_off_contacts`: the normal velocity ``v_n``
+    into it becomes ``-e v_n``, ``e_jaw`` for jaws and ``e_cushion`` for rails, 0 below
+    ``V_ZENO``); reflecting only the ball at the jaw instead leaves a heavy ball driving a
+    light one into a point re-sticking to it forever at one instant. A component slower
+    than ``v_zeno`` still pressing into a contact after that is removed, as the cushion's
+    impulse would. Only the contacts' impulses along their normals change the momentum,
+    and the kinetic energy never rises.
     """
     a, radius = params[P_DECEL], params[P_RADIUS]
     length, width = params[P_LENGTH], params[P_WIDTH]
     _, _, vx, vy = state_at(st, status, changed[0], t, a)
     # The normals of every contact of the lump (at most a few per ball).
     normals = np.zeros((4 * size + 4, 2))
+    es = np.full(4 * size + 4, params[P_E_CUSHION])  # each contact's restitution
     count = 0
     for c in range(size):
         k = changed[c]
         x, y, _, _ = state_at(st, status, k, t, a)
-        if x <= radius + contact_tol:
+        # A rail is touched at its line, outside the pocket openings (a ball in a throat,
+        # past the rail line, touches no rail there).
+        if abs(x - radius) <= contact_tol and opening_of(pockets, 0, y) < 0:
             normals[count] = (1.0, 0.0)
             count += 1
-        if x >= length - radius - contact_tol:
+        if abs(x - (length - radius)) <= contact_tol and opening_of(pockets, 1, y) < 0:
             normals[count] = (-1.0, 0.0)
             count += 1
-        if y <= radius + contact_tol:
+        if abs(y - radius) <= contact_tol and opening_of(pockets, 2, x) < 0:
             normals[count] = (0.0, 1.0)
             count += 1
-        if y >= width - radius - contact_tol:
+        if abs(y - (width - radius)) <= contact_tol and opening_of(pockets, 3, x) < 0:
             normals[count] = (0.0, -1.0)
             count += 1
         p = throat_of(x, y, params, pockets)
@@ -335,12 +350,14 @@ def unpress_lump(st, status, changed, size, t, params, pockets, v_zeno, contact_
             along = (x - row[col]) * row[col + 2] + (y - row[col + 1]) * row[col + 3]
             if delta <= contact_tol and 0.0 <= along <= row[col + 6]:
                 normals[count] = (row[col + 4], row[col + 5])
+                es[count] = params[P_E_JAW]
                 count += 1
             tip = J_TIP0 + 3 * side
             dx, dy = x - row[tip], y - row[tip + 1]
             dist = math.sqrt(dx * dx + dy * dy)
             if dist > 0.0 and dist <= row[tip + 2] + contact_tol:
                 normals[count] = (dx / dist, dy / dist)
+                es[count] = params[P_E_JAW]
                 count += 1
             if count > normals.shape[0] - 3:
                 break
@@ -353,6 +370,7 @@ def unpress_lump(st, status, changed, size, t, params, pockets, v_zeno, contact_
     ):
         vx, vy = 0.0, 0.0
     else:
+        vx, vy = lump_off_contacts(vx, vy, normals, es, count)
         vx, vy = _slide(normals, count, vx, vy, v_zeno, v_rest)
     for c in range(size):
         k = changed[c]

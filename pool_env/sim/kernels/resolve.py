@@ -157,17 +157,18 @@ LUMP_PASSES = 8
 
 
 @kernel
-def lump_off_rails(vx, vy, normals, count, e):
-    """:func:`lump_off_rail` against every rail a lump touches (``normals[:count]``).
+def lump_off_contacts(vx, vy, normals, es, count):
+    """:func:`lump_off_rail` against every contact a lump touches (``normals[:count]``).
 
-    Each pass meets every rail in turn; orthogonal rails (a corner) settle in one pass
-    whatever their order. A lump still pressed into a rail after ``LUMP_PASSES`` passes
-    (wedged between rails that keep turning it into each other) stops: energy only drops.
+    Contact ``r`` (a rail, a jaw facing or a jaw point) has restitution ``es[r]``. Each pass
+    meets every contact in turn; orthogonal rails (a corner) settle in one pass whatever
+    their order. A lump still pressed into a contact after ``LUMP_PASSES`` passes (wedged
+    between contacts that keep turning it into each other) stops: energy only drops.
     """
     for _ in range(LUMP_PASSES):
         pressed = False
         for r in range(count):
-            vx, vy, hit = lump_off_rail(vx, vy, normals[r, 0], normals[r, 1], e)
+            vx, vy, hit = lump_off_rail(vx, vy, normals[r, 0], normals[r, 1], es[r])
             pressed |= hit
         if not pressed:
             return vx, vy
@@ -175,6 +176,12 @@ def lump_off_rails(vx, vy, normals, count, e):
         if vx * normals[r, 0] + vy * normals[r, 1] < 0.0:
             return 0.0, 0.0
     return vx, vy
+
+
+@kernel
+def lump_off_rails(vx, vy, normals, count, e):
+    """:func:`lump_off_contacts` against rails that all have restitution ``e``."""
+    return lump_off_contacts(vx, vy, normals, np.full(max(count, 1), e), count)
 
 
 @kernel
@@ -225,12 +232,12 @@ def stick_cluster(st, status, masses, i, t, params, changed):
     # The rails the lump touches, as unit normals into the table (rail order).
     length, width = params[P_LENGTH], params[P_WIDTH]
     left = right = bottom = top = False
-    for c in range(size):
+    for c in range(size):  # at a rail line (a ball past one is in a pocket's throat)
         k = changed[c]
-        left |= xs[k] <= radius + CONTACT_TOL
-        right |= xs[k] >= length - radius - CONTACT_TOL
-        bottom |= ys[k] <= radius + CONTACT_TOL
-        top |= ys[k] >= width - radius - CONTACT_TOL
+        left |= abs(xs[k] - radius) <= CONTACT_TOL
+        right |= abs(xs[k] - (length - radius)) <= CONTACT_TOL
+        bottom |= abs(ys[k] - radius) <= CONTACT_TOL
+        top |= abs(ys[k] - (width - radius)) <= CONTACT_TOL
     normals = np.zeros((4, 2))
     count = 0
     rails = ((left, 1.0, 0.0), (right, -1.0, 0.0), (bottom, 0.0, 1.0), (top, 0.0, -1.0))
