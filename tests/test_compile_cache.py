@@ -114,8 +114,10 @@ warnings.simplefilter("always")
 from pool_env import Table, shoot
 from pool_env.sim.kernels import loop, timeline
 from pool_env.sim.layouts import break_scene
+from pool_env.sim.simulate import check_layout
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
+check_layout(t, break_scene(t, "nine"))  # loop.validate, from Python (shoot: packed_shot)
 print(hashlib.sha256(r.positions.tobytes() + r.positions_at(0.1).tobytes()).hexdigest())
 for k in (loop.packed_shot, loop.validate, timeline.positions_at):
     print(k.__name__, sum(k.stats.cache_hits.values()), sum(k.stats.cache_misses.values()))
