@@ -413,17 +413,8 @@ def test_ball_impact_then_facing_at_the_same_instant(theta_deg: float, v_dir) ->
 
 # --- a lump against a dead facing -----------------------------------------------------------
 
-_PHANTOM_RAIL = (
-    "product bug: resolve.stick_cluster (and jaws.unpress_lump) take a lump whose ball is past "
-    "a rail line inside a pocket's opening as touching that rail, which is not there, and "
-    "reflect the lump off it with e_cushion (momentum along the facing is not conserved)"
-)
 
-
-@pytest.mark.parametrize(
-    "e_ball",
-    [0.95, 0.5, pytest.param(0.0, marks=pytest.mark.xfail(strict=True, reason=_PHANTOM_RAIL))],
-)
+@pytest.mark.parametrize("e_ball", [0.95, 0.5, 0.0])
 def test_a_ball_wedged_against_a_dead_facing_leaves_as_a_lump_along_it(e_ball: float) -> None:
     """``e_jaw = 0``: the facing takes every impulse along its normal, the balls share the rest.
 
