@@ -25,19 +25,12 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvS
 
 import pool_env  # noqa: F401  (registers the ids and their vector entry point)
 from pool_env import ENV_IDS, PoolVectorEnv
+from pool_env.game.info import INFO_KEYS as STEP_INFO_KEYS
+from pool_env.game.info import RULE_KEYS
 from pool_env.registration import VECTOR_ENTRY_POINT
 
-#: ``PoolEnv``'s step info keys, in its order.
-INFO_KEYS = (
-    "potted",
-    "scratch",
-    "first_contact",
-    "n_events",
-    "hit_event_cap",
-    "angle",
-    "speed",
-    "is_success",
-)
+#: ``PoolEnv``'s step info keys, in its order: every id's, then the rules ids' own.
+INFO_KEYS = (*STEP_INFO_KEYS, *RULE_KEYS)
 
 #: Attributes that hold one value per table: ``get_attr`` returns each table's own.
 PER_TABLE = frozenset({"positions", "on_table", "shots", "np_random", "np_random_seed"})
@@ -88,12 +81,13 @@ class NativeVecEnv(VecEnv):
         dones = terminated | truncated
         final = info.get("final_info", {})
         columns = []
-        for key in INFO_KEYS:  # each table's info is in the top level or, if it ended, final
+        keys = [key for key in INFO_KEYS if key in info or key in final]  # rule keys: rules ids
+        for key in keys:  # each table's info is in the top level or, if it ended, final
             if key in info and key in final:
                 columns.append(np.where(info[f"_{key}"], info[key], final[key]).tolist())
             else:
                 columns.append((info[key] if key in info else final[key]).tolist())
-        keys = (*INFO_KEYS, "TimeLimit.truncated")
+        keys.append("TimeLimit.truncated")
         columns.append((truncated & ~terminated).tolist())
         infos = [dict(zip(keys, values, strict=True)) for values in zip(*columns, strict=True)]
         if dones.any():

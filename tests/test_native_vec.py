@@ -22,6 +22,8 @@ from pool_env.vector import PoolVectorEnv
         ("pool_env/OneBall-v0", {}),
         ("pool_env/Pool-v0", {"max_shots": 4, "noise": (0.02, 0.2)}),
         ("pool_env/NineBall-v0", {"aim": "relative"}),
+        ("pool_env/NineBallGame-v0", {"noise": (0.003, 0.05)}),
+        ("pool_env/EightBallGame-v0", {"end_on_foul": True}),
     ],
 )
 def test_same_trajectories_as_a_dummy_vec_env(env_id: str, kwargs: dict) -> None:
@@ -35,7 +37,7 @@ def test_same_trajectories_as_a_dummy_vec_env(env_id: str, kwargs: dict) -> None
     rng = np.random.default_rng(1)
     dones = 0
     for t in range(60):
-        actions = rng.uniform(-1, 1, (n, 2)).astype(np.float32)
+        actions = rng.uniform(-1, 1, (n, *native.action_space.shape)).astype(np.float32)
         ours, theirs = native.step(actions), dummy.step(actions)
         for x, y, name in zip(ours, theirs, ("obs", "rewards", "dones", "infos"), strict=True):
             assert data_equivalence(x, y, exact=True), f"step {t}: {name}\n{x}\n{y}"
