@@ -5,6 +5,7 @@ Usage (from the repository root)::
     python -m bench.mutants                       # every mutant, 2 workers
     python -m bench.mutants --only tie-kind-order zeno-threshold-1e-3
     python -m bench.mutants --workers 1 --out results/mutants.md
+    python -m bench.mutants --budget 20           # start no mutant after 20 min
 
 Cost, measured on the shared 2-core machine at load average 10 (``nice -n 5``, 2 workers,
 99 mutants, 2026-12-02): 33 min in all. The baselines (the union of each mode's subsets)
@@ -17,7 +18,9 @@ of the tracked tree (never to the tree itself), and its focused test subset runs
 ``pytest -x`` and the derandomized hypothesis profile ``ci``. A failing subset *kills* the
 mutant (the table names the first failing test); a passing one lets it *survive*. A
 mutant whose snippet no longer occurs exactly once is *stale* (the code moved: re-anchor
-it) and is reported, never skipped silently. The unmutated tree runs the union of all
+it) and is reported, never skipped silently. With ``--budget`` no mutant starts once
+that many minutes have passed (the running ones finish): the rest are reported *not run*,
+and the kill rate counts only the mutants that ran. The unmutated tree runs the union of all
 subsets first: if that baseline fails, no kill means anything and the run says so.
 
 Interpreted kernels: a mutant whose subset only uses the simulator (the files of
@@ -67,7 +70,7 @@ class Outcome:
     """The verdict on one mutant (or on a baseline, ``mutant=None``)."""
 
     mutant: Mutant | None
-    status: str  # "killed", "survived", "stale", "timeout", "error"
+    status: str  # "killed", "survived", "stale", "timeout", "error", "not run"
     detail: str  # the killing test, the reason for stale/error, or ""
     seconds: float
     interpreted: bool = False
@@ -227,9 +230,10 @@ def _worker(
     files: list[str],
     timeout: float,
     stop: Stop,
+    deadline: float,
 ) -> None:
     tree, cache = scratch / "tree", scratch / "numba"
-    while not stop.event.is_set():
+    while not stop.event.is_set() and time.monotonic() < deadline:
         try:
             job = jobs.get_nowait()
         except queue.Empty:
@@ -256,12 +260,17 @@ def _worker(
 
 
 def run(
-    mutants: Sequence[Mutant], workers: int, timeout: float = TIMEOUT, compiled: bool = False
+    mutants: Sequence[Mutant],
+    workers: int,
+    timeout: float = TIMEOUT,
+    compiled: bool = False,
+    budget: float | None = None,
 ) -> tuple[list[Outcome], list[Outcome]]:
     """Run the baselines and every mutant; return ``(baselines, outcomes in catalogue order)``.
 
     Mutants whose subsets are all :data:`INTERPRETABLE` run with the kernels interpreted
-    unless ``compiled``; each mode has its own baseline (the union of its subsets).
+    unless ``compiled``; each mode has its own baseline (the union of its subsets). With a
+    ``budget`` (s), no job starts after it; the mutants left are ``"not run"``.
     """
     results: list[Outcome] = []
     runnable = []
@@ -285,6 +294,7 @@ def run(
     files = tracked_files(ROOT)
     lock = threading.Lock()
     stop = Stop()
+    deadline = time.monotonic() + (budget if budget is not None else float("inf"))
     root = Path(tempfile.mkdtemp(prefix="pool_env-mutants-"))
     threads: list[threading.Thread] = []
     try:
@@ -295,7 +305,17 @@ def run(
         threads = [
             threading.Thread(
                 target=_worker,
-                args=(jobs, results, lock, root / f"w{k}", snapshot, files, timeout, stop),
+                args=(
+                    jobs,
+                    results,
+                    lock,
+                    root / f"w{k}",
+                    snapshot,
+                    files,
+                    timeout,
+                    stop,
+                    deadline,
+                ),
             )
             for k in range(workers)
         ]
@@ -314,6 +334,9 @@ def run(
     baselines = [r for r in results if r.mutant is None]
     order = {m.name: k for k, m in enumerate(mutants)}
     mutated = [r for r in results if r.mutant is not None]
+    done = {r.mutant.name for r in mutated}  # type: ignore[union-attr]
+    left = f"not started: the budget of {(budget or 0.0) / 60:.0f} min was spent"
+    mutated += [Outcome(m, "not run", left, 0.0) for m in mutants if m.name not in done]
     outcomes = sorted(mutated, key=lambda r: order[r.mutant.name])  # type: ignore[union-attr]
     return baselines, outcomes
 
@@ -327,7 +350,8 @@ def report(
 ) -> str:
     """The Markdown table of a run (``load_start``: the load average when it began)."""
     killed = sum(o.status == "killed" for o in outcomes)
-    total = len(outcomes)
+    not_run = sum(o.status == "not run" for o in outcomes)
+    total = len(outcomes) - not_run
     lines = [
         "# Mutation testing: planted bugs and the tests that catch them",
         "",
@@ -347,7 +371,13 @@ def report(
         )
         + ".",
         "",
-        f"**Killed {killed} of {total} ({100.0 * killed / max(total, 1):.1f}%)**; "
+        f"**Killed {killed} of {total} run ({100.0 * killed / max(total, 1):.1f}%)**"
+        + (
+            f" ({not_run} of the {len(outcomes)} not run: the time budget ended first)"
+            if not_run
+            else ""
+        )
+        + "; "
         f"survived {sum(o.status == 'survived' for o in outcomes)}, "
         f"stale {sum(o.status == 'stale' for o in outcomes)}, "
         f"timeout {sum(o.status == 'timeout' for o in outcomes)}, "
@@ -366,7 +396,8 @@ def report(
         assert m is not None
         lines.append(
             f"| `{m.name}` | {m.area} | `{m.file}` | {m.models} | "
-            f"{'interp.' if o.interpreted else 'jit'} | {o.status} | "
+            f"{'-' if o.status == 'not run' else 'interp.' if o.interpreted else 'jit'} | "
+            f"{o.status} | "
             f"{o.detail.replace('|', '/') or '-'} | {o.seconds:.0f} |"
         )
     return "\n".join(lines) + "\n"
@@ -388,6 +419,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser.add_argument(
         "--compiled", action="store_true", help="compile every mutant (no interpreted runs)"
     )
+    parser.add_argument(
+        "--budget", type=float, default=None, metavar="MIN", help="start no job after MIN min"
+    )
     args = parser.parse_args(argv)
     names = {m.name for m in CATALOGUE}
     unknown = set(args.only or ()) - names
@@ -399,7 +433,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     load_start = os.getloadavg()[0]
     start = time.perf_counter()
     try:
-        baselines, outcomes = run(mutants, max(1, args.workers), args.timeout, args.compiled)
+        budget = None if args.budget is None else 60.0 * args.budget
+        baselines, outcomes = run(
+            mutants, max(1, args.workers), args.timeout, args.compiled, budget
+        )
     except KeyboardInterrupt:
         print("interrupted: the running subsets were killed and the scratch copies removed")
         return 130

@@ -372,3 +372,75 @@ def test_the_vector_env_plays_the_rules_alike_threaded_and_with_rule_options() -
     assert terminated.all() and (info["winner"] == 1).all()
     assert list(info["foul"]) == ["no_contact"] * 4
     assert list(info["loss"]) == ["three_fouls"] * 4
+
+
+# --- ball in hand, the called pocket and the break speed: the action's other components ---
+
+
+@pytest.mark.parametrize("bin_", range(6))
+def test_the_called_pocket_is_one_of_six_equal_bins_of_the_last_action(bin_: int) -> None:
+    # Action 4 calls pocket floor(6 (a + 1) / 2): the 8 goes straight into pocket 0, so
+    # only a call from bin 0 wins; every other bin's call loses the rack (WPA 8-ball 3.x:
+    # the 8 in the called pocket). Bin centres and both edges of bin 0.
+    pocket = -1.0 + (2 * bin_ + 1) / 6.0
+    *_, reward, terminated, _, info = play("eight", ON_EIGHT, TOWARD_CORNER, 1.5, SOLID_STRIPE,
+                                           pocket)  # fmt: skip
+    assert info["potted"] == (8,) and info["foul"] is None and terminated
+    if bin_ == 0:
+        assert info["winner"] == 0 and info["loss"] is None and reward == 1.0
+    else:
+        assert info["winner"] == 1 and info["loss"] == "eight_wrong_pocket" and reward == -1.0
+
+
+@pytest.mark.parametrize("pocket", [-1.0, -1.0 + 2.0 / 6.0 - 1e-9])
+def test_both_edges_of_the_first_bin_call_pocket_0(pocket: float) -> None:
+    *_, info = play("eight", ON_EIGHT, TOWARD_CORNER, 1.5, SOLID_STRIPE, pocket)
+    assert info["winner"] == 0 and info["loss"] is None
+
+
+def test_ball_in_hand_behind_the_head_string_on_a_covered_point_stays_behind_it() -> None:
+    # The kitchen's +1 placement is the head string itself (x = L / 4); a ball just in
+    # front of it covers that point. The nearest free point behind the head string lies on
+    # that ball's 2R circle where it meets the head string (WPA 8-ball: ball in hand behind
+    # the head string after a break scratch); the free point just past the ball is not
+    # allowed.
+    head = TABLE.length / 4
+    gap = 0.01
+    balls = {0: (0.3, 0.3), 3: (head - gap, MID), 8: parked(0), 11: parked(1)}
+    env = make("eight")
+    rules = {"ball_in_hand": True, "behind_head_string": True, **SOLID_STRIPE}
+    env.reset(seed=0, options={**layout("eight", balls), "rules": rules})
+    env.step(action(0.0, 0.0, (1.0, 0.0)))  # speed 0: the cue ball stays where it is put
+    cue = env.unwrapped.positions[0]
+    assert cue[0] <= head
+    assert math.dist(cue, (head - gap, MID)) >= 2 * R
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="product bug: free_spot's candidates miss the nearest point on the edge of the "
+    "allowed box (a rail, the head string); a pocket's projection wins, ~1 m away",
+)
+@pytest.mark.parametrize("behind", [False, True])
+def test_the_nearest_free_point_next_to_an_edge_of_the_allowed_box(behind: bool) -> None:
+    # A ball just inside an edge of the allowed centres (the bottom rail's y = R, or the
+    # head string's x = L / 4) covers the target on that edge: the nearest free point is
+    # where the ball's placement circle (2R + clearance) meets the edge, at
+    # sqrt(reach^2 - gap^2) from the target.
+    gap, reach = 0.01, 2 * R + CLEARANCE
+    if behind:
+        target, ball = (TABLE.length / 4, MID), (TABLE.length / 4 - gap, MID)
+    else:
+        target, ball = (1.0, R), (1.0, R + gap)
+    positions = np.array([(0.0, 0.0), ball])
+    got = free_spot(TABLE, positions, np.array([False, True]), np.array(target),
+                    behind_head_string=behind)  # fmt: skip
+    assert math.dist(got, target) == pytest.approx(math.sqrt(reach**2 - gap**2), abs=1e-6)
+
+
+def test_ball_in_hand_that_is_not_a_break_uses_the_shot_speed_range() -> None:
+    env = make("nine", break_speed_range=(8.0, 12.0))
+    env.reset(seed=0, options={**layout("nine", NINE_MISS), "rules": {"ball_in_hand": True}})
+    *_, info = env.step(action(math.pi / 2, 0.3))
+    assert info["speed"] == pytest.approx(0.3, abs=1e-12)  # speed_range (0, 10), not (8, 12)
+    assert info["foul"] == "no_contact"
