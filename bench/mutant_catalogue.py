@@ -17,7 +17,7 @@ tells it apart from the code):
   point of the line gives the same half-plane (up to rounding).
 * ``predict.predict_own`` without ``or enter_b == enter_a``: folding one pocket twice into
   the earliest event changes nothing (same times, kinds and tie rules).
-* ``rules.judge`` with ``first_ball = j`` for ``j if i == CUE else i``: a shot's first
+* ``rules._first_ball`` returning ``j`` for ``j if i == CUE else i``: a shot's first
   impact always involves the cue ball (only it moves at the start), which is column 0, so
   the ``else`` branch is dead.
 
@@ -46,10 +46,8 @@ class Mutant:
         tests: pytest arguments selecting the subset to run (files or node ids).
         models: The real bug it stands for.
         target: The function (and rule) the snippet sits in, for moving the mutant when
-            the code moves: the 9/8-ball rules of ``game/wpa.py`` are being ported into
-            the compiled ``game/rules.py``; retarget a rules mutant by finding the same
-            rule in its new home and copying that line as ``original``. Empty when the
-            file and ``models`` say enough.
+            the code moves (find the same rule in its new home and copy that line as
+            ``original``). Empty when the file and ``models`` say enough.
     """
 
     name: str

@@ -444,3 +444,17 @@ def test_ball_in_hand_that_is_not_a_break_uses_the_shot_speed_range() -> None:
     *_, info = env.step(action(math.pi / 2, 0.3))
     assert info["speed"] == pytest.approx(0.3, abs=1e-12)  # speed_range (0, 10), not (8, 12)
     assert info["foul"] == "no_contact"
+
+
+def test_the_eight_potted_without_a_call_loses_the_rack() -> None:
+    # The env always calls a pocket (action 4); the compiled rules also take "no call"
+    # (-1). WPA 8-ball: the 8 wins only in the called pocket, so without a call, potting it
+    # on the 8 loses like any other pocket. No physics: a legal shot that drops the 8.
+    on = tuple(b in (0, 8, 11) for b in range(16))
+    state = RackState(game="eight", on_table=on, breaking=False, groups=(SOLIDS, STRIPES))
+    args = ([(0.3, 0.3), (0.0, 0.0), (1.0, 0.6)], [0, 8, 11], (0, 1), [0, 0, 0])
+    for called, loss, winner in [(None, "eight_wrong_pocket", 1), (0, None, 0),
+                                 (3, "eight_wrong_pocket", 1)]:  # fmt: skip
+        got, after = compiled_judge(TABLE, state, *args, [-1, 0, -1], [-1, 0, -1], called)
+        assert got["foul"] is None and got["ball_on"] == 8
+        assert (got["loss"], got["winner"], after.winner) == (loss, winner, winner)
