@@ -347,8 +347,13 @@ def report(
     command: str,
     wall: float,
     load_start: float | None = None,
+    commit: str | None = None,
 ) -> str:
-    """The Markdown table of a run (``load_start``: the load average when it began)."""
+    """The Markdown table of a run.
+
+    ``load_start`` is the load average when it began; ``commit`` the tree's commit when
+    it began (default: now).
+    """
     killed = sum(o.status == "killed" for o in outcomes)
     not_run = sum(o.status == "not run" for o in outcomes)
     total = len(outcomes) - not_run
@@ -358,7 +363,7 @@ def report(
         f"Command: `{command}`",
         "",
         f"Made {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())} at commit "
-        f"`{_commit()}`; load average "
+        f"`{commit or _commit()}`; load average "
         + (f"{load_start:.2f} at the start, " if load_start is not None else "")
         + f"{os.getloadavg()[0]:.2f} at the end; wall time "
         f"{wall / 60:.1f} min.",
@@ -431,6 +436,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     # A SIGTERM ends the run as Ctrl-C does: the scratch copies are removed on the way out.
     signal.signal(signal.SIGTERM, signal.default_int_handler)
     load_start = os.getloadavg()[0]
+    commit = _commit()  # the tree the snapshot is taken from, not the tree at the end
     start = time.perf_counter()
     try:
         budget = None if args.budget is None else 60.0 * args.budget
@@ -443,7 +449,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     wall = time.perf_counter() - start
     given = sys.argv[1:] if argv is None else list(argv)
     command = shlex.join(["python", "-m", "bench.mutants", *given])
-    text = report(baselines, outcomes, command, wall, load_start)
+    text = report(baselines, outcomes, command, wall, load_start, commit)
     print(text)
     if args.out:
         out = ROOT / args.out
