@@ -134,6 +134,10 @@ def check_angle(angle: object) -> float:
     return real_number("angle", angle)
 
 
+#: ``limits.speed_allowed`` as plain Python (with ``NUMBA_DISABLE_JIT=1`` it already is).
+_SPEED_ALLOWED = getattr(limits.speed_allowed, "py_func", limits.speed_allowed)
+
+
 def check_speed(speed: object, table: Table) -> float:
     """A cue speed: real, non-negative, and within the limits (:func:`max_speed`)."""
     try:
@@ -143,7 +147,7 @@ def check_speed(speed: object, table: Table) -> float:
     if value < 0.0:
         raise ValueError(f"speed must be a non-negative finite number, got {speed!r}")
     # The compiled test run as plain Python: the same code, without a dispatcher call.
-    if not limits.speed_allowed.py_func(value * value, table.deceleration):
+    if not _SPEED_ALLOWED(value * value, table.deceleration):
         raise ValueError(f"speed {value!r} m/s is beyond {_speed_limits(table)}")
     return value
 
