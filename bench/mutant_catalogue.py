@@ -1063,10 +1063,10 @@ _ALL: tuple[Mutant, ...] = (
         "scratch-spot-unchecked",
         "ball in hand",
         _G + "rules.py",
-        "if point_free(sx, sy, params, pockets, others, count, reach * reach):",
+        "if point_free(x, y, params, pockets, others, count, reach * reach):",
         "if True:",
         (*DECISION, *REFERENCE),
-        "a scratched cue ball put on the head spot even when a ball covers it",
+        "a scratched cue ball (or a re-spotted ball) put on its spot even when a ball covers it",
     ),
     Mutant(
         "layout-gap-one-radius",

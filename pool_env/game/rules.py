@@ -192,17 +192,9 @@ def _solitaire(params, pockets, positions, on_table, shots, n_potted, scratch, f
     )
     spot_taken = False
     if scratch:  # back on the head spot when it is free
-        on_table[CUE] = True
-        count = 0
-        for j in range(on_table.shape[0]):
-            if j != CUE and on_table[j]:
-                others[count] = positions[j]
-                count += 1
-        sx, sy, reach = params[SPOT_X], params[SPOT_Y], params[REACH]
-        if point_free(sx, sy, params, pockets, others, count, reach * reach):
-            positions[CUE, 0], positions[CUE, 1] = sx, sy
-        else:
-            spot_taken = True
+        spot_taken = not _spot(
+            positions, on_table, CUE, params[SPOT_X], params[SPOT_Y], params, pockets, others
+        )
     cleared = True
     for j in range(on_table.shape[0]):
         if j != CUE and on_table[j]:
