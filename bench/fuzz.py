@@ -29,7 +29,12 @@ from pool_env.sim.inputs import max_speed
 from pool_env.sim.kernels import limits
 from pool_env.sim.layouts import break_scene
 from pool_env.testing.invariants import check_shot
-from pool_env.testing.scenes_random import log_uniform_masses, lump_at_rail, random_layout
+from pool_env.testing.scenes_random import (
+    log_uniform_masses,
+    lump_at_rail,
+    random_layout,
+    within_limits,
+)
 
 DEFAULT = Table()
 MASS_RATIO = 1e6
@@ -103,7 +108,7 @@ def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray
             masses = np.full(n, table.ball_mass)
             masses[0] *= np.sqrt(ratio)  # the driver heavy, the chain light
             masses[1:] /= np.sqrt(ratio)
-            return table, pos, vel, masses
+            return table, pos, within_limits(table, vel, masses), masses
     if kind == 0:
         pos = break_scene(table, str(rng.choice(["nine", "eight"])))
         if not _is_valid(table, pos):  # a scaled table's pockets may cover the rack
@@ -146,7 +151,7 @@ def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray
         masses = log_uniform_masses(rng, n, table.ball_mass, MASS_RATIO)
     else:
         masses = np.full(n, table.ball_mass)
-    return table, pos, vel, masses
+    return table, pos, within_limits(table, vel, masses), masses
 
 
 def main() -> None:

@@ -15,7 +15,7 @@ import pytest
 
 from pool_env import Table, shoot, simulate
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
-from pool_env.sim.inputs import max_speed
+from pool_env.sim.inputs import max_speed, reachable_speed
 from pool_env.sim.kernels import batch as kbatch
 from pool_env.sim.kernels import limits, loop
 from pool_env.testing.invariants import check_shot
@@ -125,6 +125,53 @@ def test_speeds_beyond_the_limits(table: Table) -> None:
         simulate_batch(table, np.array([POS]), vel)
 
 
+def test_energy_that_could_drive_a_light_ball_past_the_limits_is_refused(table: Table) -> None:
+    """Issue 20 item 9: a light ball sped to 14 km/s by impacts ended 1.2e-9 m past a rail.
+
+    Kinetic energy never grows, so the lightest ball can never move faster than
+    sqrt(sum m v^2 / m_min); a scene where that passes the speed limits is refused (the
+    limits then bound every speed of the shot, not only the initial ones). One ball moving,
+    or equal masses: the bound is the initial speed, as before.
+    """
+    fastest = max_speed(table)
+    pos = [[1.0, 0.6], [1.5, 0.6], [2.0, 0.6]]
+    masses = [1.0, 1e-6, 1.0]
+    ok = [[0.999 * fastest / 1e3, 0.0], [0.0, 0.0], [0.0, 0.0]]  # sqrt(1 / 1e-6) = 1e3
+    assert reachable_speed(ok, masses) == pytest.approx(0.999 * fastest, rel=1e-15)
+    simulate(table, pos, ok, masses, record=False)
+    fast = [[1.001 * fastest / 1e3, 0.0], [0.0, 0.0], [0.0, 0.0]]
+    message = _message(lambda: simulate(table, pos, fast, masses))
+    assert message.startswith("the scene's kinetic energy could speed ball 1 (the lightest)")
+    assert "the simulator's numeric limits" in message
+    assert message == _message(lambda: simulate(table, pos, fast, masses, record=False))
+    assert message == _message(lambda: shoot(table, pos, 0.0, fast[0][0], masses=masses))
+    batch = _message(lambda: simulate_batch(table, np.array([pos]), np.array([fast]), masses))
+    assert batch == f"table 0: {message}"
+    # equal masses: the root of the sum of squared speeds, each ball within the limit alone
+    both = [[0.8 * fastest, 0.0], [0.0, 0.0], [0.0, -0.8 * fastest]]
+    assert reachable_speed(both) == pytest.approx(math.sqrt(1.28) * fastest, rel=1e-15)
+    assert "kinetic energy could speed ball 0" in _message(lambda: simulate(table, pos, both))
+    # one ball moving: exactly its speed, whatever the masses (a shot is judged as before)
+    assert reachable_speed(ok, [1e-6, 1.0, 1.0]) == 0.999 * fastest / 1e3
+
+
+def test_no_ball_ever_passes_the_energy_bound() -> None:
+    """A light ball rattles between a heavy one and a rail: faster than any initial speed.
+
+    Never faster than the energy bound sqrt(sum m v^2 / m_min).
+    """
+    table = Table(pockets="none", e_ball=1.0, e_cushion=1.0, mu_roll=1e-3)
+    r = table.ball_radius
+    pos = [[0.6, 0.6], [r + 0.05, 0.6]]
+    vel = np.array([[-2.0, 0.0], [0.0, 0.0]])
+    masses = [1.0, 1e-2]  # the bound: 20 m/s
+    result = simulate(table, pos, vel, masses)
+    bound = reachable_speed(vel, masses)
+    state = result.segments[2]  # every anchor's (x, y, vx, vy): the speeds after each event
+    fastest = float(np.hypot(state[:, 2], state[:, 3]).max())
+    assert 2.0 * 2.0 < fastest <= bound * (1 + 1e-12)
+
+
 @pytest.mark.parametrize("mass", [1e308, 1e-300, 2e12, 0.0, float("nan")])
 def test_masses_beyond_the_limits(table: Table, mass: float) -> None:
     """Equal masses of 1e308 used to overflow and stop both balls."""
@@ -162,7 +209,10 @@ def test_a_long_approach_stays_exact(distance: float, both_moving: bool) -> None
     [
         ({"ball_radius": limits.MIN_LENGTH, "length": 0.01, "width": 0.005}, None, 0.05),
         ({"length": limits.MAX_LENGTH, "width": 5e3, "ball_radius": 10.0}, None, 20.0),
-        ({}, [limits.MAX_MASS, limits.MIN_MASS, 1.0], 5.0),
+        # the cue ball the lightest: a heavy cue ball's energy could drive the lightest ball
+        # past the speed limits (test_energy_that_could_drive_a_light_ball_past_the_limits)
+        ({}, [limits.MIN_MASS, limits.MAX_MASS, 1.0], 5.0),
+        ({}, [limits.MAX_MASS, limits.MAX_MASS, limits.MAX_MASS / 4], 5.0),
         ({"mu_roll": 1e5}, None, limits.MAX_SPEED),
     ],
 )

@@ -136,6 +136,7 @@ def check_angle(angle: object) -> float:
 
 #: ``limits.speed_allowed`` as plain Python (with ``NUMBA_DISABLE_JIT=1`` it already is).
 _SPEED_ALLOWED = getattr(limits.speed_allowed, "py_func", limits.speed_allowed)
+_REACHABLE_SPEED2 = getattr(limits.reachable_speed2, "py_func", limits.reachable_speed2)
 
 
 def check_speed(speed: object, table: Table) -> float:
@@ -170,6 +171,23 @@ def max_speed(table: Table) -> float:
     pass ``MAX_ROLL`` (see :mod:`pool_env.sim.kernels.limits`).
     """
     return min(limits.MAX_SPEED, (2.0 * table.deceleration * limits.MAX_ROLL) ** 0.5)
+
+
+def reachable_speed(velocities: ArrayLike, masses: ArrayLike | None = None) -> float:
+    """The fastest speed (m/s) impacts could give any ball of a scene.
+
+    ``sqrt(sum_k m_k v_k^2 / min m)``: kinetic energy never grows, so no ball ever moves
+    faster. The simulator refuses a scene where this passes :func:`max_speed` (see
+    :mod:`pool_env.sim.kernels.limits`); with one ball moving, or equal masses, it is the
+    initial speed (of the one ball, or the root of the sum of squares).
+
+    Args:
+        velocities: ``(N, 2)`` initial velocities.
+        masses: ``(N,)`` masses, or ``None`` for equal masses.
+    """
+    vel = as_points("velocities", velocities)
+    mass = as_masses(masses, vel.shape[0])
+    return float(_REACHABLE_SPEED2(vel, mass)[0]) ** 0.5
 
 
 def _speed_limits(table: Table) -> str:
@@ -207,6 +225,13 @@ def raise_invalid(
     if code == loop.TOO_FAST:
         speed = float(np.hypot(*velocities[i]))
         raise ValueError(f"ball {i} has speed {speed!r} m/s, beyond {_speed_limits(table)}")
+    if code == loop.TOO_ENERGETIC:
+        reach = reachable_speed(velocities, masses if masses.shape[0] else None)
+        raise ValueError(
+            f"the scene's kinetic energy could speed ball {i} (the lightest) up to "
+            f"{reach!r} m/s through impacts (sqrt(sum m v^2 / m_{i})), beyond "
+            f"{_speed_limits(table)}; slow the balls down or bring the masses closer"
+        )
     if code == loop.BAD_MASS:
         raise ValueError(
             f"ball {i} has mass {float(masses[i])!r}: masses must be finite and lie in "

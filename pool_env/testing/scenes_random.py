@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.sim.inputs import max_speed, reachable_speed
 from pool_env.sim.table import Table
 
 
@@ -105,3 +106,17 @@ def log_uniform_masses(
     """``n`` masses spread log-uniformly over ``[base / sqrt(ratio), base * sqrt(ratio)]``."""
     half = 0.5 * np.log10(ratio)
     return base * 10.0 ** rng.uniform(-half, half, n)
+
+
+def within_limits(
+    table: Table, velocities: NDArray[np.float64], masses: NDArray[np.float64] | None = None
+) -> NDArray[np.float64]:
+    """``velocities`` scaled down, if need be, so that no impact can speed a ball past the limits.
+
+    The simulator refuses a scene whose kinetic energy could drive its lightest ball past
+    :func:`~pool_env.sim.inputs.max_speed` (:func:`~pool_env.sim.inputs.reachable_speed`);
+    one factor for every velocity keeps the scene's directions and the ratios of its speeds.
+    """
+    reach = reachable_speed(velocities, masses)
+    limit = 0.999 * max_speed(table)
+    return velocities * (limit / reach) if reach > limit else velocities

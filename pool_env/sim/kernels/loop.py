@@ -36,7 +36,7 @@ from pool_env.sim.kernels.jaws import (
     locate,
     unpress_lump,
 )
-from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, speed_allowed
+from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, reachable_speed2, speed_allowed
 from pool_env.sim.kernels.motion import (
     MOVING,
     NCOL,
@@ -86,7 +86,7 @@ POS_TOL = 1e-9
 
 # Validation codes.
 OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAST = range(8)
-IN_JAW, BEHIND_LINE = 8, 9
+IN_JAW, BEHIND_LINE, TOO_ENERGETIC = 8, 9, 10
 
 #: What :func:`run_shot` returns, by name.
 #:
@@ -148,6 +148,9 @@ def validate(positions, velocities, masses, params, pockets):
             return TOO_FAST, i, -1
         if masses.shape[0] and not (MIN_MASS <= masses[i] <= MAX_MASS):  # also NaN
             return BAD_MASS, i, -1
+    reach2, lightest = reachable_speed2(velocities, masses)  # speeds impacts can produce
+    if not speed_allowed(reach2, params[P_DECEL]):
+        return TOO_ENERGETIC, lightest, -1
     for i in range(n):
         where, k = locate(positions[i, 0], positions[i, 1], params, pockets, POS_TOL)
         if where != LOC_FREE:
