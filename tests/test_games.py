@@ -416,28 +416,6 @@ def test_ball_in_hand_behind_the_head_string_on_a_covered_point_stays_behind_it(
     assert math.dist(cue, (head - gap, MID)) >= 2 * R
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="product bug: free_spot's candidates miss the nearest point on the edge of the "
-    "allowed box (a rail, the head string); a pocket's projection wins, ~1 m away",
-)
-@pytest.mark.parametrize("behind", [False, True])
-def test_the_nearest_free_point_next_to_an_edge_of_the_allowed_box(behind: bool) -> None:
-    # A ball just inside an edge of the allowed centres (the bottom rail's y = R, or the
-    # head string's x = L / 4) covers the target on that edge: the nearest free point is
-    # where the ball's placement circle (2R + clearance) meets the edge, at
-    # sqrt(reach^2 - gap^2) from the target.
-    gap, reach = 0.01, 2 * R + CLEARANCE
-    if behind:
-        target, ball = (TABLE.length / 4, MID), (TABLE.length / 4 - gap, MID)
-    else:
-        target, ball = (1.0, R), (1.0, R + gap)
-    positions = np.array([(0.0, 0.0), ball])
-    got = free_spot(TABLE, positions, np.array([False, True]), np.array(target),
-                    behind_head_string=behind)  # fmt: skip
-    assert math.dist(got, target) == pytest.approx(math.sqrt(reach**2 - gap**2), abs=1e-6)
-
-
 def test_ball_in_hand_that_is_not_a_break_uses_the_shot_speed_range() -> None:
     env = make("nine", break_speed_range=(8.0, 12.0))
     env.reset(seed=0, options={**layout("nine", NINE_MISS), "rules": {"ball_in_hand": True}})

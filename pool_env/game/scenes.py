@@ -269,11 +269,14 @@ def free_spot(
 
     A point is free when :func:`pool_env.game.kernels.layout.point_free` says so: inside
     the rails (and behind the head string, ``x <= L / 4``, when ``behind_head_string``),
-    outside every capture circle and at least ``2R`` from every occupied ball.
-    The nearest free point is the target itself, the radial projection of the target onto
-    the ``2R`` circle of one ball, or an intersection of two such circles; these candidates
-    are checked exactly. A ring search around the target is the fallback for the rare case
-    that the rails or a pocket cut all of them off.
+    outside every capture circle and at least ``2R`` from every occupied ball. The free
+    region is a box (the rails, the head string) minus discs (the balls' ``2R + clearance``
+    circles, the capture circles padded by twice the clearance), so its nearest point to the
+    target is the target itself, the nearest point of one edge (the projection onto a line
+    or radially onto a circle), or a corner where two edges meet (line-line, line-circle,
+    circle-circle): every one of these candidates is checked, and the nearest free one is
+    the answer (exact up to rounding and the clearance). A ring search around the target
+    remains as a fallback should rounding reject every candidate.
 
     Args:
         table: The table.
@@ -299,28 +302,11 @@ def free_spot(
     if point_free(tx, ty, params, pockets, balls, balls.shape[0], reach * reach):
         return target
     box = params[[kp.X_LOW, kp.X_HIGH, kp.Y_LOW, kp.Y_HIGH]]
-    clamped = np.array([min(max(tx, box[0]), box[1]), min(max(ty, box[2]), box[3])])
-    cands = [target[None, :], clamped[None, :]]
-    if pockets.shape[0]:  # out of a pocket the target (clamped) is in, radially
-        d = clamped - pockets[:, :2]
-        norm = np.maximum(np.hypot(d[:, 0], d[:, 1]), 1e-300)
-        pad = (pockets[:, 2] + 2.0 * CLEARANCE) / norm
-        cands.append(pockets[:, :2] + d * pad[:, None])
-    if balls.shape[0]:
-        d = target - balls
-        norm = np.hypot(d[:, 0], d[:, 1])
-        unit = np.where(norm[:, None] > 0.0, d / np.maximum(norm, 1e-300)[:, None], [1.0, 0.0])
-        cands.append(balls + reach * unit)
-        i, j = np.triu_indices(balls.shape[0], 1)
-        sep = balls[j] - balls[i]
-        dist = np.hypot(sep[:, 0], sep[:, 1])
-        near = (dist > 0.0) & (dist < 2.0 * reach)
-        if np.any(near):
-            a, s, dist = balls[i[near]], sep[near], dist[near]
-            mid = a + 0.5 * s
-            h = np.sqrt(np.maximum(reach * reach - 0.25 * dist * dist, 0.0)) * 1.000001
-            perp = np.stack([-s[:, 1], s[:, 0]], axis=1) / dist[:, None]
-            cands += [mid + h[:, None] * perp, mid - h[:, None] * perp]
+    centres = np.concatenate([balls, pockets[:, :2]])
+    radii = np.concatenate(
+        [np.full(balls.shape[0], reach), pockets[:, 2] + 2.0 * CLEARANCE]
+    )  # out of a capture circle with the clearance to spare
+    cands = [target[None, :], *_edge_candidates(target, box, centres, radii)]
     # Candidates lie on a 2R circle up to rounding: half the clearance absorbs it.
     min_d2 = (reach - CLEARANCE / 2.0) ** 2
     cand = np.ascontiguousarray(np.concatenate(cands))
@@ -337,3 +323,57 @@ def free_spot(
         if np.any(ok):
             return cand[int(np.argmax(ok))].copy()
     raise ValueError("no free point on the table to re-spot the ball")
+
+
+def _edge_candidates(
+    target: NDArray[np.float64],
+    box: NDArray[np.float64],
+    centres: NDArray[np.float64],
+    radii: NDArray[np.float64],
+) -> list[NDArray[np.float64]]:
+    """The points where the nearest free point to ``target`` can lie, short of the target.
+
+    The allowed region is the box ``(x_low, x_high, y_low, y_high)`` minus the discs
+    ``(centres, radii)``. Its nearest point to the target lies on one edge (then it is the
+    target's projection onto that line or circle) or where two edges meet.
+
+    Returns:
+        ``(k, 2)`` arrays: projections onto the four lines and the circles, the box's
+        corners, line-circle and circle-circle intersections.
+    """
+    tx, ty = target.tolist()
+    x_low, x_high, y_low, y_high = box.tolist()
+    out = [
+        np.array([[x_low, ty], [x_high, ty], [tx, y_low], [tx, y_high]]),
+        np.array([[x_low, y_low], [x_low, y_high], [x_high, y_low], [x_high, y_high]]),
+    ]
+    if centres.shape[0] == 0:
+        return out
+    d = target - centres
+    norm = np.hypot(d[:, 0], d[:, 1])
+    unit = np.where(norm[:, None] > 0.0, d / np.maximum(norm, 1e-300)[:, None], [1.0, 0.0])
+    out.append(centres + radii[:, None] * unit)  # radially onto each circle
+    for axis, values in ((0, (x_low, x_high)), (1, (y_low, y_high))):
+        for value in values:  # each circle meets the line coordinate[axis] = value
+            off = value - centres[:, axis]
+            meets = np.abs(off) <= radii
+            half = np.sqrt(np.maximum(radii[meets] ** 2 - off[meets] ** 2, 0.0))
+            along = centres[meets, 1 - axis]
+            for sign in (-1.0, 1.0):
+                pts = np.empty((half.shape[0], 2))
+                pts[:, axis], pts[:, 1 - axis] = value, along + sign * half
+                out.append(pts)
+    i, j = np.triu_indices(centres.shape[0], 1)
+    sep = centres[j] - centres[i]
+    dist = np.hypot(sep[:, 0], sep[:, 1])
+    ri, rj = radii[i], radii[j]
+    meet = (dist > 0.0) & (dist <= ri + rj) & (dist >= np.abs(ri - rj))
+    if np.any(meet):
+        a, s, dist, ri, rj = centres[i[meet]], sep[meet], dist[meet], ri[meet], rj[meet]
+        along = (ri * ri - rj * rj + dist * dist) / (2.0 * dist)
+        # lifted 1e-6 (relative) off both circles, so that rounding cannot put it inside
+        h = np.sqrt(np.maximum(ri * ri - along * along, 0.0)) * 1.000001
+        mid = a + (along / dist)[:, None] * s
+        perp = np.stack([-s[:, 1], s[:, 0]], axis=1) / dist[:, None]
+        out += [mid + h[:, None] * perp, mid - h[:, None] * perp]
+    return out
