@@ -24,6 +24,7 @@ from pool_env.game.config import (
     make_config,
 )
 from pool_env.game.info import potted_lookup, table_info
+from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TERMINATED, TRUNCATED
 from pool_env.game.scenes import SceneSpec
 from pool_env.game.state import GameState, new_state
@@ -321,8 +322,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[NDArray[np.float32], dict[str, Any]]:
         """Start an episode: a new layout from the scene, or ``options["positions"]``."""
-        if seed is not None:
-            check_seed(seed)  # a ValueError, as the vector env's, before anything changes
+        if seed is not None:  # a ValueError, as the vector env's, before anything changes;
+            seed = check_seed(seed)  # a numpy integer becomes the int Gymnasium requires
         super().reset(seed=seed)
         self._use_generator()
         game.reset(self.config, self._state, _ONE, options)
@@ -389,8 +390,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     @property
     def rack(self) -> dict[str, Any]:
-        """Under rules: the rack state (:func:`pool_env.game.step.rack_dict`), a new dict."""
-        return game.rack_dict(self.config, self._state.rack[0])
+        """Under rules: the rack state (:func:`pool_env.game.rack.rack_dict`), a new dict."""
+        return rack_dict(self.config, self._state.rack[0])
 
     @property
     def last_shot(self) -> ShotResult | None:

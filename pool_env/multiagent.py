@@ -36,10 +36,11 @@ from numpy.typing import NDArray
 from pettingzoo import AECEnv
 
 from pool_env.game import step as game_step
-from pool_env.game.checks import check_actions, check_seed
+from pool_env.game.checks import check_actions, check_options, check_seed
 from pool_env.game.config import GameConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.kernels import wpa
+from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TRUNCATED
 from pool_env.game.state import GameState, new_state
 from pool_env.sim.table import Table
@@ -118,8 +119,8 @@ class PoolDuelEnv(AECEnv):
 
     @property
     def rack(self) -> dict[str, Any]:
-        """The rack state (:func:`pool_env.game.step.rack_dict`)."""
-        return game_step.rack_dict(self.config, self._state.rack[0])
+        """The rack state (:func:`pool_env.game.rack.rack_dict`)."""
+        return rack_dict(self.config, self._state.rack[0])
 
     @property
     def shots(self) -> int:
@@ -132,7 +133,7 @@ class PoolDuelEnv(AECEnv):
         ``options={"positions": (N, 2), "on_table": (N,), "rules": {...}}`` starts instead
         from that layout (ball ``k`` in row ``k``, the cue ball on the table); without
         ``rules``: ``player_0`` to shoot, not a break, the cue ball where it lies, an open
-        table (see :func:`pool_env.game.step.rack_option`). Other keys are ignored, as
+        table (see :func:`pool_env.game.rack.rack_option`). Other keys are ignored, as
         PettingZoo's API test expects.
 
         Raises:
@@ -140,7 +141,7 @@ class PoolDuelEnv(AECEnv):
         """
         if seed is not None:
             self._state.seed(0, check_seed(seed))
-        known = {k: v for k, v in (options or {}).items() if k in _OPTIONS}
+        known = {k: v for k, v in check_options(options).items() if k in _OPTIONS}
         game_step.reset(self.config, self._state, _ONE, known)
         self.agents = list(self.possible_agents)
         self.rewards = {a: 0.0 for a in self.agents}

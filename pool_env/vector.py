@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from pool_env.game import step as game
 from pool_env.game.checks import (
     check_actions,
+    check_options,
     check_render,
     check_reset_mask,
     check_seeds,
@@ -25,6 +26,7 @@ from pool_env.game.checks import (
 )
 from pool_env.game.config import CUE, GameConfig, make_config
 from pool_env.game.info import batch_info, potted_lookup
+from pool_env.game.rack import rack_dict
 from pool_env.game.state import GameState, new_state
 
 _OPTIONS = ("positions", "on_table", "reset_mask")
@@ -179,7 +181,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
             The observations of all tables and ``{}``.
         """
         seeds = check_seeds(seed, self.num_envs)
-        options = dict(options or {})
+        options = check_options(options)
         mask = options.pop("reset_mask", None)
         tables = self._all if mask is None else check_reset_mask(mask, self.num_envs)
         state = self._state
@@ -268,7 +270,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     @property
     def rack(self) -> tuple[dict[str, Any], ...]:
         """Under rules: each table's rack state (as ``PoolEnv.rack``)."""
-        return tuple(game.rack_dict(self.config, row) for row in self._state.rack)
+        return tuple(rack_dict(self.config, row) for row in self._state.rack)
 
     @property
     def shots(self) -> NDArray[np.int64]:

@@ -7,6 +7,7 @@ that the same bad input gets the same message from either.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
@@ -168,6 +169,15 @@ def check_seed(value: object) -> int:
     if not _is_int(value) or int(value) < 0:  # type: ignore[call-overload]
         raise ValueError(f"a seed must be None or a non-negative integer, got {value!r}")
     return int(value)  # type: ignore[call-overload]
+
+
+def check_options(options: object) -> dict[str, Any]:
+    """Reset options: ``None`` or a mapping, as a new dict (``ValueError`` otherwise)."""
+    if options is None:
+        return {}
+    if not isinstance(options, Mapping):
+        raise ValueError(f"options must be a dict or None, got {options!r}")
+    return dict(options)
 
 
 def check_reset_mask(mask: object, n: int) -> NDArray[np.intp]:

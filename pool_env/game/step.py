@@ -20,12 +20,14 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.checks import check_options
 from pool_env.game.config import CUE, GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
 from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, place_in_hand
 from pool_env.game.kernels.layout import sample_layouts
 from pool_env.game.kernels.observe import encode_observations, encode_rule_observations
+from pool_env.game.rack import check_rack, rack_option
 from pool_env.game.rules import (
     CLEARED,
     FIRST_BALL,
@@ -316,86 +318,23 @@ def reset(
     """
     if config.rules and "rules" not in option_names:
         option_names = (*option_names, "rules")
-    options = dict(options or {})
+    options = check_options(options)
     rack = None
     if config.rules:
         rack = rack_option(config, options.pop("rules", None), rack_scene=not options)
     if options:
         positions, on_table = option_layouts(config, options, tables, state.n_tables, option_names)
+        if rack is not None:
+            check_rack(config, rack, on_table)
         state.positions[tables], state.on_table[tables] = positions, on_table
     else:
+        if rack is not None:
+            check_rack(config, rack, np.ones((1, config.n_balls), dtype=np.bool_))
         _lay_out(config, state, tables)
         state.on_table[tables] = True
     state.shots[tables] = 0
     if rack is not None:
         state.rack[tables] = rack
-
-
-#: ``options["rules"]`` group names, by code.
-GROUP_NAMES = ("open", "solids", "stripes")
-
-
-def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.int64]:
-    """The rack-state row an episode starts from, from ``options["rules"]`` if given.
-
-    Without it: a named rack scene starts with the break (player 0, the cue ball in hand
-    behind the head string); any other layout with player 0 to shoot, the cue ball where it
-    lies, an open table and no fouls. ``options["rules"]`` (a dict) sets any of ``break``
-    (bool), ``ball_in_hand`` (bool), ``behind_head_string`` (bool), ``groups`` (two of
-    ``"open"``, ``"solids"``, ``"stripes"``, players 0 and 1), ``fouls`` (each player's
-    successive fouls, 0-2) and, with two players, ``shooter`` (0 or 1).
-
-    Raises:
-        ValueError: On an unknown key or a bad value, naming it.
-    """
-    row = np.zeros(wpa.N_RACK, dtype=np.int64)
-    breaking = rack_scene and isinstance(config.scene.spec, str) and config.scene.n_new == 1
-    wpa.new_rack(row, breaking)
-    if given is None:
-        return row
-    if not isinstance(given, dict):
-        raise ValueError(f"options['rules'] must be a dict, got {given!r}")
-    keys = ("break", "ball_in_hand", "behind_head_string", "groups", "fouls", "shooter")
-    unknown = set(given) - set(keys)
-    if unknown:
-        raise ValueError(f"unknown options['rules'] keys {sorted(unknown)}: use {list(keys)}")
-    for key, column in (("break", wpa.BREAKING), ("ball_in_hand", wpa.IN_HAND),
-                        ("behind_head_string", wpa.BEHIND)):  # fmt: skip
-        if key in given:
-            if not isinstance(given[key], bool | np.bool_):
-                raise ValueError(f"options['rules'][{key!r}] must be a bool, got {given[key]!r}")
-            row[column] = int(given[key])
-    if "groups" in given:
-        groups = given["groups"]
-        if (
-            config.game != "eight"
-            or not isinstance(groups, tuple | list)
-            or len(groups) != 2
-            or any(g not in GROUP_NAMES for g in groups)
-            or (groups[0] == "open") != (groups[1] == "open")
-            or (groups[0] != "open" and groups[0] == groups[1])
-        ):
-            raise ValueError(
-                "options['rules']['groups'] (8-ball only) must be ('open', 'open') or one "
-                f"player 'solids' and the other 'stripes', got {groups!r}"
-            )
-        row[wpa.GROUP_0], row[wpa.GROUP_1] = (GROUP_NAMES.index(g) for g in groups)
-    if "fouls" in given:
-        fouls = given["fouls"]
-        if not (isinstance(fouls, tuple | list) and len(fouls) == 2
-                and all(isinstance(f, int) and 0 <= f <= 2 for f in fouls)):  # fmt: skip
-            raise ValueError(f"options['rules']['fouls'] must be two ints in 0..2, got {fouls!r}")
-        row[wpa.FOULS_0], row[wpa.FOULS_1] = fouls
-    if "shooter" in given:
-        if given["shooter"] not in (0, 1) or (config.players == 1 and given["shooter"] != 0):
-            raise ValueError(
-                f"options['rules']['shooter'] must be 0 or 1 (0 with one player), got "
-                f"{given['shooter']!r}"
-            )
-        row[wpa.SHOOTER] = int(given["shooter"])
-    if row[wpa.BEHIND] and not row[wpa.IN_HAND]:
-        raise ValueError("options['rules']: behind_head_string needs ball_in_hand")
-    return row
 
 
 def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> None:
@@ -465,6 +404,16 @@ def option_layouts(
             raise ValueError("options['on_table'] must keep the cue (0) on the table")
         if not on[:, 1:].any(axis=1).all():
             raise ValueError("options['on_table'] leaves no object ball on the table")
+    # Every row must be finite, a ball off the table included: its row is kept as where it
+    # was captured (``positions`` reads it back), so NaN would reach the caller.
+    bad = ~np.isfinite(pos).all(axis=2)
+    if bad.any():
+        k, ball = (int(v) for v in np.argwhere(bad)[0])
+        where = "" if n_envs == 1 else f"table {int(tables[k])}: "
+        raise ValueError(
+            f"{where}options['positions'] row {ball} is not finite ({pos[k, ball].tolist()}): "
+            "every row needs a finite point, a ball off the table included (any point will do)"
+        )
     for k in range(tables.size):
         try:
             check_layout(config.table, pos[k][on[k]])
@@ -492,21 +441,3 @@ def observe(
     return encode_observations(
         state.positions, state.on_table, config.table.length, config.table.width
     )
-
-
-def rack_dict(config: GameConfig, row: NDArray[np.int64]) -> dict[str, Any]:
-    """A rack-state row as a dict of the keys of ``options["rules"]`` and ``winner``.
-
-    ``winner`` is -1 while the rack is undecided; ``groups`` are names (8-ball).
-    """
-    if not config.rules:
-        raise ValueError("the rack state exists under rules only (game='nine' or 'eight')")
-    return {
-        "shooter": int(row[wpa.SHOOTER]),
-        "break": bool(row[wpa.BREAKING]),
-        "ball_in_hand": bool(row[wpa.IN_HAND]),
-        "behind_head_string": bool(row[wpa.BEHIND]),
-        "groups": (GROUP_NAMES[row[wpa.GROUP_0]], GROUP_NAMES[row[wpa.GROUP_1]]),
-        "fouls": (int(row[wpa.FOULS_0]), int(row[wpa.FOULS_1])),
-        "winner": int(row[wpa.WINNER]),
-    }
