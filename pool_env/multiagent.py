@@ -26,6 +26,7 @@ None while the rack is undecided).
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable
 from typing import Any, ClassVar
 
@@ -216,22 +217,50 @@ class VersusPolicyEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None
     ) -> tuple[NDArray[np.float32], dict[str, Any]]:
-        """Rack (or set up ``options``' layout) and return the agent's first observation."""
+        """Rack (or set up ``options``' layout) and return the agent's first observation.
+
+        Raises:
+            ValueError: On a bad seed or option, or when the opponent policy fails on the
+                shots it plays first (``options["rules"]["shooter"] = 1``); the env is
+                then as it was before the call.
+        """
+        seed = None if seed is None else check_seed(seed)
+        undo = self._snapshot()
         super().reset(seed=seed)
-        self.duel.reset(seed=None if seed is None else int(self.np_random.integers(2**31)),
-                        options=options)  # fmt: skip
-        self._opponent_plays()
+        try:
+            self.duel.reset(seed=None if seed is None else int(self.np_random.integers(2**31)),
+                            options=options)  # fmt: skip
+            self._opponent_plays()
+        except BaseException:
+            undo()
+            raise
         return self.duel.observe(AGENTS[0]), {}
 
     def step(
         self, action: NDArray[np.float32]
     ) -> tuple[NDArray[np.float32], float, bool, bool, dict[str, Any]]:
-        """The agent's shot, then the opponent's until the agent is back at the table."""
+        """The agent's shot, then the opponent's until the agent is back at the table.
+
+        The step is all or nothing: when the opponent policy raises or returns an invalid
+        action (NaN, a wrong shape, not numbers), the agent's shot and the opponent's
+        shots before it are taken back (the table, the rack, the generators) and a
+        ``ValueError`` names the opponent; the agent may step again.
+
+        Raises:
+            ValueError: On a bad action of the agent (before anything is played), after
+                the rack is over, or when the opponent policy fails (as above).
+        """
         if self._over():
             raise ValueError("the rack is over: call reset()")
-        self.duel.step(action)
-        info = dict(self.duel.infos[AGENTS[0]])
-        info["opponent_shots"] = self._opponent_plays()
+        check_actions(action, 1, single=True, width=self.duel.config.action_size)
+        undo = self._snapshot()
+        try:
+            self.duel.step(action)
+            info = dict(self.duel.infos[AGENTS[0]])
+            info["opponent_shots"] = self._opponent_plays()
+        except BaseException:
+            undo()
+            raise
         return (
             self.duel.observe(AGENTS[0]),
             float(self.duel.rewards[AGENTS[0]]),
@@ -244,14 +273,56 @@ class VersusPolicyEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         duel = self.duel
         return duel.terminations[AGENTS[0]] or duel.truncations[AGENTS[0]]
 
+    def _snapshot(self) -> Callable[[], None]:
+        """A function that puts this env back as it is now (the duel and the generators)."""
+        duel = self.duel
+        restore_tables = duel._state.snapshot()
+        names = ("agents", "rewards", "_cumulative_rewards", "terminations", "truncations",
+                 "infos", "agent_selection")  # fmt: skip
+        saved = {k: copy.deepcopy(duel.__dict__[k]) for k in names if k in duel.__dict__}
+        rng, rng_seed = self._np_random, self._np_random_seed
+        bits = None if rng is None else rng.bit_generator.state
+
+        def restore() -> None:
+            restore_tables()
+            for k in names:
+                duel.__dict__.pop(k, None)
+            duel.__dict__.update(copy.deepcopy(saved))
+            self._np_random, self._np_random_seed = rng, rng_seed
+            if rng is not None:
+                rng.bit_generator.state = bits
+
+        return restore
+
     def _opponent_plays(self) -> int:
+        """The opponent's shots until the agent is back at the table or the rack ends.
+
+        Raises:
+            ValueError: Naming the opponent, when its policy raises or returns an invalid
+                action (the caller takes the step back).
+        """
         shots = 0
+        width = self.duel.config.action_size
         while self.duel.agent_selection == AGENTS[1] and not self._over():
             obs = self.duel.observe(AGENTS[1])
             if self.opponent is None:
                 action = self.np_random.uniform(-1.0, 1.0, 5).astype(np.float32)
             else:
-                action = np.asarray(self.opponent(obs), dtype=np.float32)
+                try:
+                    raw = self.opponent(obs)
+                except Exception as exc:
+                    raise ValueError(
+                        f"the opponent policy raised {exc!r} on its shot {shots + 1}: the "
+                        "agent's shot was taken back, nothing was changed"
+                    ) from exc
+                try:
+                    action = check_actions(raw, 1, single=True, width=width)[0]
+                except ValueError as exc:
+                    raise ValueError(
+                        f"the opponent policy returned an invalid action on its shot "
+                        f"{shots + 1} ({exc}): the agent's shot was taken back, nothing was "
+                        "changed"
+                    ) from None
             self.duel.step(action)
             shots += 1
         return shots

@@ -9,6 +9,7 @@ per process: they are taken again after unpickling.
 from __future__ import annotations
 
 import ctypes
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -65,6 +66,29 @@ class GameState:
             if rng is None:
                 self.seed(i, None)
         return self.generators  # type: ignore[return-value]
+
+    def snapshot(self) -> Callable[[], None]:
+        """A function that puts the tables back as they are now, generators included.
+
+        For fronts that must undo a step that failed half-way (an opponent policy that
+        raises after the agent's shot): arrays are copied, each generator keeps its object
+        (so its addresses stay valid) and gets its bit state back.
+        """
+        arrays = [a.copy() for a in (self.positions, self.on_table, self.shots, self.rack)]
+        ptrs, generators, seeds = self.ptrs.copy(), list(self.generators), list(self.seeds)
+        bits = [None if g is None else g.bit_generator.state for g in generators]
+
+        def restore() -> None:
+            for now, then in zip((self.positions, self.on_table, self.shots, self.rack), arrays,
+                                 strict=True):  # fmt: skip
+                now[...] = then
+            self.generators[:], self.seeds[:] = generators, seeds
+            for g, state in zip(generators, bits, strict=True):
+                if g is not None:
+                    g.bit_generator.state = state
+            self.ptrs[...] = ptrs
+
+        return restore
 
     def __setstate__(self, state: dict[str, Any]) -> None:
         self.__dict__.update(state)
