@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 import pool_env  # noqa: F401  (registers the ids)
 from pool_env import free_spot
 from pool_env.game.scenes import CLEARANCE
+from pool_env.multiagent import PoolDuelEnv
 from pool_env.sim.layouts import break_scene, foot_spot
 from tests.profiles import examples
 from tests.rules_harness import compiled_judge, same_verdict
@@ -243,6 +244,27 @@ def test_an_eight_ball_break_scratch_puts_the_ball_in_hand_behind_the_head_strin
     # the placement maps onto the kitchen: +1 is the head string
     env.step(action(0.0, 0.0, (1.0, 0.0)))
     np.testing.assert_allclose(env.unwrapped.positions[0], [TABLE.length / 4, MID], atol=1e-12)
+
+
+EIGHT_ON_BREAK = {**straight_in(8), **{b: parked(b) for b in range(1, 16) if b != 8}}
+
+
+def test_the_eight_on_a_legal_break_is_respotted_and_the_breaker_continues() -> None:
+    # WPA 8-ball 3.3(e): re-spot the 8 and continue (the rules always take that choice).
+    # In run-out mode the episode goes on; in a duel the breaker stays at the table.
+    env, _, reward, terminated, _, info = play(
+        "eight", EIGHT_ON_BREAK, TOWARD_CORNER, 1.5, {"break": True}, end_on_foul=True
+    )
+    assert info["foul"] is None and info["potted"] == (8,) and info["winner"] == -1
+    assert not info["turn_over"] and not terminated and reward == 0.0
+    np.testing.assert_array_equal(env.unwrapped.positions[8], foot_spot(TABLE))
+    rack = env.unwrapped.rack
+    assert not rack["ball_in_hand"] and not rack["break"] and rack["groups"] == ("open", "open")
+    duel = PoolDuelEnv("eight", aim="absolute", speed_range=(0.0, 10.0),
+                       break_speed_range=(0.0, 10.0), table=KWARGS["table"])  # fmt: skip
+    duel.reset(seed=0, options={**layout("eight", EIGHT_ON_BREAK), "rules": {"break": True}})
+    duel.step(action(TOWARD_CORNER, 1.5).astype(np.float32))
+    assert duel.infos["player_0"]["potted"] == (8,) and duel.agent_selection == "player_0"
 
 
 def test_run_out_mode_ends_at_the_first_foul_or_missed_turn() -> None:

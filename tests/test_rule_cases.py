@@ -74,6 +74,27 @@ def test_groups_stay_open_after_an_eight_ball_break_that_pots() -> None:
     assert after.groups == (OPEN, OPEN) and not after.on_table[3]
 
 
+@pytest.mark.parametrize(("potted", "to_rail"), [((8,), 0), ((8, 3), 4), ((8, 12), 0)])
+def test_the_eight_on_a_legal_break_is_respotted_and_the_breaker_continues(
+    potted: tuple[int, ...], to_rail: int
+) -> None:
+    # WPA 8-ball 3.3(e): the breaker may have the 8 re-spotted and continue; the rules
+    # always take that choice. The 8 alone counts as the break's pot.
+    verdict, after = judge(RackState.new_rack("eight"), shot(first=1, potted=potted,
+                                                             to_rail=to_rail))  # fmt: skip
+    assert verdict.legal and verdict.respot == (8,) and verdict.winner is None
+    assert verdict.shooter_continues and after.shooter == 0 and not after.ball_in_hand
+    assert after.on_table[8] and after.groups == (OPEN, OPEN)
+
+
+def test_the_eight_on_a_break_scratch_is_respotted_and_the_turn_passes() -> None:
+    verdict, after = judge(RackState.new_rack("eight"), shot(first=1, potted=(8,),
+                                                             scratch=True))  # fmt: skip
+    assert verdict.foul == "scratch" and verdict.respot == (8,) and verdict.winner is None
+    assert not verdict.shooter_continues and after.shooter == 1
+    assert after.ball_in_hand and after.behind_head_string and after.on_table[8]
+
+
 @pytest.mark.parametrize(("breaking", "behind"), [(True, True), (False, False)])
 def test_behind_the_head_string_only_after_an_eight_ball_break_scratch(
     breaking: bool, behind: bool

@@ -33,7 +33,7 @@ in the called pocket on a legal shot; potting the 8 before the group is cleared 
 break), into another pocket, or on a foul (a scratch included) loses. A scratch on the
 break gives the incoming player ball in hand behind the head string; every other foul,
 ball in hand anywhere. The shooter keeps the table after a legal shot that pots a ball of
-their group (open table: any ball but the 8).
+their group (open table: any ball but the 8; the break: any ball, the re-spotted 8 too).
 
 Simplifications, all deliberate:
 
@@ -45,8 +45,10 @@ Simplifications, all deliberate:
   the table as it lies, rather than choosing to re-rack or to have the breaker break again.
   On an 8-ball break a scratch is reported as "scratch" (ball in hand behind the head
   string); a break that also fails the four-rails test is still reported as "scratch".
-* The 8 potted on the break is re-spotted and the break judged as any other; groups are
-  never assigned on the break (the table is open after it).
+* The 8 potted on the break is re-spotted and the break judged as any other; of the
+  breaker's two choices (WPA 8-ball 3.3(e): re-spot and continue, or re-break) the breaker
+  always continues: after a legal break that pots the 8, the breaker keeps the table.
+  Groups are never assigned on the break (the table is open after it).
 * Balls potted on a foul stay down (WPA 9-ball 1.4 and 8-ball 3.3), except the 9 (re-spotted)
   and the 8 (the rack is lost, or re-spotted on the break).
 * A pocket jaw counts as a cushion: every cushion impact the simulator reports after the
@@ -392,7 +394,9 @@ def _judge_eight(
         mine = [OPEN, OPEN]
         mine[state.shooter], mine[1 - state.shooter] = group, SOLIDS + STRIPES - group
         groups = (mine[0], mine[1])
-    if state.breaking or group == OPEN:
+    if state.breaking:  # the 8 re-spotted, the breaker continues (WPA 8-ball 3.3(e))
+        keeps = foul is None and bool(shot.potted)
+    elif group == OPEN:
         keeps = foul is None and bool(objects)
     else:
         keeps = foul is None and any(group_of(b) == group for b in objects)

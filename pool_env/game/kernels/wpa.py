@@ -24,8 +24,8 @@ shooter who has cleared their group wins by potting the 8 in the called pocket o
 shot; potting the 8 before the group is cleared (not on the break), into another pocket,
 or on a foul (a scratch included) loses. A scratch on the break gives the incoming player
 ball in hand behind the head string; every other foul, ball in hand anywhere. The shooter
-keeps the table after a legal shot that pots a ball of their group (open table and break:
-any ball but the 8).
+keeps the table after a legal shot that pots a ball of their group (open table: any ball
+but the 8; the break: any ball, the 8 included, which is re-spotted).
 
 Simplifications, all deliberate:
 
@@ -36,8 +36,11 @@ Simplifications, all deliberate:
 * An illegal break is a foul (``illegal_break``): the incoming player takes ball in hand on
   the table as it lies, rather than choosing to re-rack or to have the breaker break again.
   A scratch on a break is reported as ``scratch`` even if the break also failed otherwise.
-* The 8 potted on the break is re-spotted and the break judged as any other; groups are
-  never assigned on the break (the table is open after it).
+* The 8 potted on the break is re-spotted and the break judged as any other (WPA 8-ball
+  3.3(e) lets the breaker choose: re-spot the 8 and continue, or re-break; the breaker
+  always takes the first: on a legal break the 8 counts as a potted ball, so the breaker
+  keeps the table; on a scratch the turn passes with ball in hand behind the head string).
+  Groups are never assigned on the break (the table is open after it).
 * Balls potted on a foul stay down, except the 9 (re-spotted) and the 8 (the rack is lost,
   or re-spotted on the break). A re-spotted ball goes on the foot spot, or on the free
   point nearest to it (WPA: on the long string behind it).
@@ -239,7 +242,9 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
             group = group_of(first_dropped)
             rack[GROUP_0 + shooter] = group
             rack[GROUP_0 + other] = SOLIDS + STRIPES - group
-        if breaking or group == OPEN:
+        if breaking:  # a ball potted on a legal break keeps the table, the 8 included
+            keeps = n_potted > 0 and foul == NO_FOUL
+        elif group == OPEN:
             keeps = foul == NO_FOUL and objects > 0
         else:
             keeps = False
