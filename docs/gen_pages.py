@@ -9,6 +9,8 @@
   evaluation, copied as they stand, so that the pages link to them and the site never
   holds a second copy that could drift.
 * ``changelog.md``: ``CHANGELOG.md``.
+* ``img/``: pictures drawn now by the project's renderer (``docs/make_picture.py``), so a
+  page shows what today's code does.
 """
 
 from __future__ import annotations
@@ -18,6 +20,7 @@ import shutil
 from pathlib import Path
 
 import griffe
+import imageio.v3 as iio
 import mkdocs_gen_files
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -59,9 +62,7 @@ def resolve_export(package: griffe.Module, name: str) -> griffe.Object:
     found = [
         module.members[name]
         for module_name, module in package.modules.items()
-        if module_name in imported
-        and name in module.members
-        and not module.members[name].is_alias
+        if module_name in imported and name in module.members and not module.members[name].is_alias
     ]
     if len(found) != 1:
         raise SystemExit(f"{package.path}.__all__ names {name!r}: defined in {len(found)} places")
@@ -90,6 +91,11 @@ def exports_table(package: griffe.Module, documented: set[str]) -> str:
     return "\n".join(["", "Public names:", "", *rows, ""])
 
 
+def load_packages() -> dict[str, griffe.Module]:
+    """The packages as griffe reads them from the source (nothing is imported)."""
+    return {name: griffe.load(name, search_paths=[str(ROOT)]) for name in PACKAGES}
+
+
 def write_reference() -> None:
     """``reference/**.md`` and the reference's navigation (``reference/SUMMARY.md``)."""
     nav = mkdocs_gen_files.Nav()
@@ -99,7 +105,7 @@ def write_reference() -> None:
         for parts in module_names(package):
             documented.add(".".join(parts))
             modules.append(parts)
-    loader = {name: griffe.load(name, search_paths=[str(ROOT)]) for name in PACKAGES}
+    loader = load_packages()
     for parts in modules:
         dotted = ".".join(parts)
         obj = loader[parts[0]]
@@ -121,6 +127,28 @@ def write_reference() -> None:
         out.writelines(nav.build_literate_nav())
 
 
+def list_simulator_modules(loader: dict[str, griffe.Module]) -> None:
+    """Append every module of ``pool_env.sim`` and its first docstring paragraph to physics.md.
+
+    So a module others add to the simulator (spin, say) shows on the physics page without an
+    edit here.
+    """
+    rows = ["", "| module | what it is |", "|---|---|"]
+    for parts in module_names("pool_env"):
+        if parts[:2] != ("pool_env", "sim"):
+            continue
+        obj = loader["pool_env"]
+        for part in parts[1:]:
+            obj = obj.members[part]
+        is_package = (ROOT.joinpath(*parts) / "__init__.py").is_file()
+        doc = obj.docstring.value if obj.docstring else ""
+        summary = " ".join(doc.split("\n\n")[0].split()).replace("|", "\\|")
+        link = f"[`{'.'.join(parts)}`](reference/{page_of(parts, is_package)})"
+        rows.append(f"| {link} | {summary} |")
+    with mkdocs_gen_files.open("physics.md", "a") as out:
+        out.write("\n".join(rows) + "\n")
+
+
 def copy_reports() -> None:
     """``results/`` and ``models/`` reports into the site, as they stand."""
     for folder, patterns in COPIED.items():
@@ -135,5 +163,19 @@ def copy_reports() -> None:
         out.write((ROOT / "CHANGELOG.md").read_text())
 
 
+def draw_pictures() -> None:
+    """``img/break.png``: a 9-ball break with its paths; ``img/cut.png``: the README's shot."""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "docs"))
+    import make_picture  # docs/make_picture.py
+
+    for name, env in (("break", make_picture.break_env(800)), ("cut", make_picture.cut_shot_env())):
+        with mkdocs_gen_files.open(f"img/{name}.png", "wb") as out:
+            out.write(iio.imwrite("<bytes>", env.render(), extension=".png"))
+
+
 write_reference()
+list_simulator_modules(load_packages())
 copy_reports()
+draw_pictures()
