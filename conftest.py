@@ -3,7 +3,8 @@
 * Markdown (README.md, docs/**/*.md): every ```python block runs, in order, in one namespace
   per file, in a scratch folder (``models/`` linked in), so blocks may build on earlier ones
   and write files freely. Every ```bash block runs with ``bash -e`` from the repository root
-  (``python`` is this interpreter); a long one is preceded by ``<!-- run: SHORTER -->``,
+  (``python`` is this interpreter; this project's own commands run their ``main`` in this
+  process, see :func:`in_process`); a long one is preceded by ``<!-- run: SHORTER -->``,
   the same command on a small budget, which the test runs instead (shown in the source
   beside the block, so a reader sees both). A block that cannot run here is preceded by
   ``<!-- skip: next "why not" -->`` and counts as skipped, with its reason.
@@ -15,7 +16,9 @@
 from __future__ import annotations
 
 import doctest
+import importlib
 import os
+import shlex
 import subprocess
 import sys
 import tempfile
@@ -30,6 +33,7 @@ from sybil.parsers.rest import DocTestParser
 ROOT = Path(__file__).resolve().parent
 FLAGS = doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE
 BASH_TIMEOUT = 300  # s; a shortened command takes seconds
+PACKAGES = ("agents", "pool_env")
 
 
 def _enter(namespace: dict[str, Any], cwd: Path) -> None:
@@ -74,6 +78,25 @@ class RunParser:
         example.namespace["_docs_run_next"] = example.parsed
 
 
+def in_process(command: str, env: dict[str, str]) -> list[str] | None:
+    """``[module, *args]`` when ``command`` is one of this project's Python commands.
+
+    ``python train.py ...`` and ``python -m agents.x ...`` / ``python -m pool_env.x ...`` run
+    their ``main(argv)`` in this process: the same code path as the command, without paying
+    for a new interpreter importing torch and loading the kernels again.
+    """
+    if any(token in command for token in ("&&", "||", "|", ";", "\n", "`", "$(")):
+        return None
+    words = shlex.split(os.path.expandvars(command.replace("$DOCS_TMP", env["DOCS_TMP"])))
+    if len(words) < 2 or words[0] != "python":
+        return None
+    if words[1] == "-m" and len(words) > 2 and words[2].split(".")[0] in PACKAGES:
+        return words[2:]
+    if words[1] == "train.py":
+        return ["train", *words[2:]]
+    return None
+
+
 def run_bash(example: Example) -> None:
     """Run a bash block (or its shortened form) from the root; fail with its output."""
     namespace = example.namespace
@@ -85,6 +108,16 @@ def run_bash(example: Example) -> None:
         "DOCS_TMP": scratch.name if scratch is not None else tempfile.gettempdir(),
         "MPLBACKEND": "Agg",
     }
+    argv = in_process(command.strip(), env)
+    if argv is not None:
+        old = Path.cwd()
+        os.chdir(ROOT)
+        try:
+            code = importlib.import_module(argv[0]).main(argv[1:])
+        finally:
+            os.chdir(old)
+        assert code in (0, None), f"{command} returned {code}"
+        return
     done = subprocess.run(
         ["bash", "-e", "-c", command.replace("python ", f"{sys.executable} ")],
         cwd=ROOT,

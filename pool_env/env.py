@@ -259,6 +259,17 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ## Version History
 
     * v0: Initial version.
+
+    Example:
+        >>> import numpy as np
+        >>> from pool_env import PoolEnv
+        >>> env = PoolEnv(scene="one_ball", end_on_miss=True)
+        >>> obs, info = env.reset(seed=0)
+        >>> obs.shape  # x, y and on-table flag of the cue ball and ball 1
+        (6,)
+        >>> obs, reward, terminated, truncated, info = env.step(np.array([0.0, 1.0]))
+        >>> reward, info["potted"], info["first_contact"], terminated  # a full hit, hard
+        (1.0, (1,), 1, True)
     """
 
     metadata: ClassVar[dict[str, Any]] = {
