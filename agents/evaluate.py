@@ -73,7 +73,7 @@ def run_episodes(
     Returns:
         The per-episode counts.
 
-    Example:
+    Examples:
         >>> import gymnasium as gym
         >>> from agents import GhostBallAgent, RandomAgent, run_episodes
         >>> env = gym.make("pool_env/OneBall-v0")
@@ -183,7 +183,7 @@ def evaluate_agent(
 
     For a model path, ``env_kwargs`` and ``wrapper`` default to the model's saved config.
 
-    Example:
+    Examples:
         >>> from agents import evaluate_agent
         >>> summary = evaluate_agent("ghost", "pool_env/OneBall-v0", episodes=20, seed=10000)
         >>> print(summary["pots_per_shot"], summary["scratch_rate"])

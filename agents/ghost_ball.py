@@ -54,7 +54,7 @@ class GhostBallAgent(BaselineAgent):
         legal_targets: Which object balls may be aimed at (default: any on the table; a
             rules game passes its own).
 
-    Example:
+    Examples:
         >>> import gymnasium as gym
         >>> import pool_env
         >>> from agents import GhostBallAgent

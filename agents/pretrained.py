@@ -13,7 +13,7 @@ The committed models and their evaluations sit together in ``models/``:
 ``ppo_oneball.zip`` (PPO, 300k steps on ``pool_env/OneBall-v0``), its settings
 ``ppo_oneball_config.yaml`` and its re-evaluation ``ppo_oneball_eval.md``.
 
-Example:
+Examples:
     >>> import agents, gymnasium as gym
     >>> policy = agents.load("models/ppo_oneball.zip")
     >>> policy.env_id, policy.wrapper
@@ -142,7 +142,7 @@ def load(path: str | Path, algo: str | None = None) -> PretrainedPolicy:
         FileNotFoundError: If there is no model file.
         ValueError: If there is no config beside it or the algorithm cannot be told.
 
-    Example:
+    Examples:
         >>> import agents
         >>> agents.load("models/ppo_oneball.zip").model.__class__.__name__
         'PPO'

@@ -260,7 +260,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     * v0: Initial version.
 
-    Example:
+    Examples:
         >>> import numpy as np
         >>> from pool_env import PoolEnv
         >>> env = PoolEnv(scene="one_ball", end_on_miss=True)

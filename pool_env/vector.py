@@ -94,7 +94,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     Registered as the ``vector_entry_point`` of every id:
     ``gym.make_vec("pool_env/OneBall-v0", num_envs=256)`` returns one.
 
-    Example:
+    Examples:
         >>> import numpy as np
         >>> from pool_env import PoolVectorEnv
         >>> envs = PoolVectorEnv(4, scene="one_ball", end_on_miss=True)

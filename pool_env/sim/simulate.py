@@ -54,7 +54,7 @@ def simulate(
         ValueError: On malformed, non-finite or out-of-table input, overlapping balls, a
             non-positive mass, or a bad ``max_events``. Inputs are never modified.
 
-    Example:
+    Examples:
         A head-on hit on a table without pockets: the first impact comes when the rolling
         cue ball has closed the gap, ``s = v t - a t^2 / 2``; ball 1 runs to the far rail
         and back into the cue ball, which kept ``(1 - e) / 2`` of its speed.
@@ -129,7 +129,7 @@ def shoot(
         ValueError: On a non-finite angle, a negative or non-finite speed, a cue index out
             of range, or any problem :func:`simulate` rejects.
 
-    Example:
+    Examples:
         >>> from pool_env import Table, shoot
         >>> result = shoot(Table(), [[0.635, 0.635], [1.27, 0.635]], angle=0.0, speed=2.0)
         >>> result.first_hit  # the cue ball touched ball 1 first, and ball 1 the cue ball

@@ -147,7 +147,7 @@ class Table:
             table too small for one ball or for its pockets; or an unknown or malformed
             pocket specification.
 
-    Example:
+    Examples:
         >>> from pool_env import Table
         >>> table = Table()  # a 9-ft table, six pockets with jaws, measured defaults
         >>> table.length, table.width, table.mu_roll, table.e_ball, table.e_cushion
