@@ -167,7 +167,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ``pool_env`` in the main script), so that each worker imports the package that
     registers the ids.
 
-    ## Rules: the game ids (``game="nine"`` / ``"eight"``)
+    ## Rules: the game ids
 
     ``pool_env/NineBallGame-v0`` and ``pool_env/EightBallGame-v0`` (or ``game=`` with the
     ``nine_ball`` / ``eight_ball`` scene, or any layout of 9 / 15 object balls) play one rack
