@@ -30,3 +30,7 @@ class SphinxRolesAsCode(griffe.Extension):
         """Rewrite ``obj``'s docstring, if it has one."""
         if obj.docstring is not None:
             obj.docstring.value = plain(obj.docstring.value)
+
+    def on_package(self, *, pkg: griffe.Module, **kwargs: Any) -> None:
+        """The top-level package: griffe calls ``on_object`` for it before its docstring."""
+        self.on_object(obj=pkg)
