@@ -5,6 +5,9 @@ heuristic, no simulation) and ``SearchAgent(env)`` (candidate shots checked on t
 work with SB3's ``evaluate_policy``;
 :func:`agents.evaluate.run_episodes` reports pots per shot, clean pots, scratches and clears.
 Training (``agents.train_lib``, ``train.py``) needs the ``train`` extra (SB3, torch).
+:func:`agents.load` loads a pretrained model with the observation wrapper of its saved
+config (:mod:`agents.pretrained`), so ``agents.load("models/ppo_oneball.zip").predict(obs)``
+plays on the env's own observations.
 """
 
 from typing import Any
@@ -19,6 +22,7 @@ __all__ = [
     "RandomAgent",
     "SearchAgent",
     "evaluate_agent",
+    "load",
     "run_episodes",
 ]
 
@@ -29,4 +33,8 @@ def __getattr__(name: str) -> Any:
         from agents import evaluate
 
         return getattr(evaluate, name)
+    if name == "load":  # SB3 and torch only when a model is loaded
+        from agents.pretrained import load
+
+        return load
     raise AttributeError(f"module 'agents' has no attribute {name!r}")

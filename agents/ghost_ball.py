@@ -53,6 +53,18 @@ class GhostBallAgent(BaselineAgent):
         arrival_speed: Speed (m/s) at which the object ball should drop.
         legal_targets: Which object balls may be aimed at (default: any on the table; a
             rules game passes its own).
+
+    Examples:
+        >>> import gymnasium as gym
+        >>> import pool_env
+        >>> from agents import GhostBallAgent
+        >>> env = gym.make("pool_env/OneBall-v0")
+        >>> agent = GhostBallAgent(env)
+        >>> obs, _ = env.reset(seed=10000)
+        >>> action, _ = agent.predict(obs)  # cut offset and speed, both in [-1, 1]
+        >>> obs, reward, terminated, truncated, info = env.step(action)
+        >>> reward, info["potted"]
+        (1.0, (1,))
     """
 
     def __init__(

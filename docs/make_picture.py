@@ -1,4 +1,9 @@
-"""Draw ``docs/shot.png``: a cut shot on four object balls, with the paths it left.
+"""Draw the README's pictures with the project's own renderer: ``docs/shot.png`` and ``.gif``.
+
+A cut shot on four object balls: ``shot.png`` is the frame with the paths the shot left,
+``shot.gif`` the shot animated from its exact trajectories. The docs site draws its pages'
+animations with :func:`cut_shot_env` and :func:`break_env` at build time
+(``docs/gen_pages.py``).
 
 Run: ``python docs/make_picture.py``.
 """
@@ -18,9 +23,9 @@ LAYOUT = np.array([[1.45, 0.75], [2.0, 0.85], [0.7, 0.95], [2.1, 0.3], [1.0, 0.3
 SPEED = 1.3  # m/s
 
 
-def main() -> None:
-    """Aim with the ghost ball, play the shot, save the frame with its trails."""
-    env = PoolEnv(scene=LAYOUT, aim="cut", render_mode="rgb_array", render_width=800)
+def cut_shot_env(render_mode: str = "rgb_array", width: int = 800) -> PoolEnv:
+    """The env after the cut shot: ghost-ball aim at ball 1, into the top-right corner."""
+    env = PoolEnv(scene=LAYOUT, aim="cut", render_mode=render_mode, render_width=width)
     env.reset(seed=0)
     table = env.table
     cue, ball = LAYOUT[0], LAYOUT[1]
@@ -36,9 +41,27 @@ def main() -> None:
     print(
         f"reward {reward}, potted {info['potted']}, cut {math.degrees(math.asin(offset)):.1f} deg"
     )
-    out = Path(__file__).with_name("shot.png")
-    iio.imwrite(out, env.render(), optimize=True)
-    print(f"wrote {out} ({out.stat().st_size / 1024:.0f} KB)")
+    return env
+
+
+def break_env(width: int = 480) -> PoolEnv:
+    """The env after a 9-ball break at 10 m/s from the head spot, full on the 1 ball."""
+    env = PoolEnv(scene="nine_ball", game="nine", render_mode="rgb_array", render_width=width)
+    env.reset(seed=0)
+    # Cue ball on the head spot (x = L/4, y = W/2), a full hit at the middle of 8-12 m/s.
+    env.step(np.array([0.0, 0.0, 1.0, 0.0, 0.0], dtype=np.float32))
+    return env
+
+
+def main() -> None:
+    """Play the shot, save the frame with its trails and the animation."""
+    here = Path(__file__).parent
+    png = here / "shot.png"
+    iio.imwrite(png, cut_shot_env().render(), optimize=True)
+    gif = here / "shot.gif"
+    cut_shot_env(width=480).save_shot(str(gif))
+    for out in (png, gif):
+        print(f"wrote {out} ({out.stat().st_size / 1024:.0f} KB)")
 
 
 if __name__ == "__main__":

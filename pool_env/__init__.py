@@ -5,6 +5,7 @@ Layers, imports pointing down only: :mod:`pool_env.sim` (the simulator), :mod:`p
 :class:`PoolVectorEnv`, registration, rendering). This module is the public API.
 """
 
+from pool_env._version import __version__
 from pool_env.env import PoolEnv
 from pool_env.game.config import AIM_MODES, DEFAULT_AIM_RANGE, DEFAULT_SPEED_RANGE, GameConfig
 from pool_env.game.kernels.actions import decode_shots, nearest_object_ball
@@ -28,6 +29,7 @@ __all__ = [
     "PoolVectorEnv",
     "ShotResult",
     "Table",
+    "__version__",
     "check_layout",
     "decode_shots",
     "encode_observations",
@@ -37,4 +39,3 @@ __all__ = [
     "shoot",
     "simulate",
 ]
-__version__ = "0.1.0"

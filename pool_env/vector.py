@@ -95,6 +95,20 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
 
     Registered as the ``vector_entry_point`` of every id:
     ``gym.make_vec("pool_env/OneBall-v0", num_envs=256)`` returns one.
+
+    Examples:
+        >>> import numpy as np
+        >>> from pool_env import PoolVectorEnv
+        >>> envs = PoolVectorEnv(4, scene="one_ball", end_on_miss=True)
+        >>> obs, info = envs.reset(seed=0)  # table i is seeded with 0 + i
+        >>> obs.shape
+        (4, 6)
+        >>> actions = np.zeros((4, 2), dtype=np.float32)  # full hits at the middle speed
+        >>> obs, rewards, terminated, truncated, info = envs.step(actions)
+        >>> rewards  # pot, scratch, pot, pot
+        array([ 1., -1.,  1.,  1.])
+        >>> bool(terminated.all())  # one shot ends a one-ball episode
+        True
     """
 
     metadata: ClassVar[dict[str, Any]] = {

@@ -53,6 +53,25 @@ def simulate(
     Raises:
         ValueError: On malformed, non-finite or out-of-table input, overlapping balls, a
             non-positive mass, or a bad ``max_events``. Inputs are never modified.
+
+    Examples:
+        A head-on hit on a table without pockets: the first impact comes when the rolling
+        cue ball has closed the gap, ``s = v t - a t^2 / 2``; ball 1 runs to the far rail
+        and back into the cue ball, which kept ``(1 - e) / 2`` of its speed.
+
+        >>> import numpy as np
+        >>> from pool_env import Table, simulate
+        >>> table = Table(pockets="none")
+        >>> positions = np.array([[1.0, 0.635], [1.5, 0.635]])
+        >>> result = simulate(table, positions, np.array([[1.0, 0.0], [0.0, 0.0]]))
+        >>> [event.kind for event in result.events]
+        ['ball', 'stop', 'cushion', 'ball', 'stop', 'stop']
+        >>> a, gap = table.mu_roll * table.g, 0.5 - 2 * table.ball_radius
+        >>> t = (1.0 - (1.0 - 2 * a * gap) ** 0.5) / a
+        >>> abs(result.events[0].time - t) < 1e-15
+        True
+        >>> result.pocketed
+        array([-1, -1])
     """
     pos = as_points("positions", positions)
     return _run(
@@ -109,6 +128,16 @@ def shoot(
     Raises:
         ValueError: On a non-finite angle, a negative or non-finite speed, a cue index out
             of range, or any problem :func:`simulate` rejects.
+
+    Examples:
+        >>> from pool_env import Table, shoot
+        >>> result = shoot(Table(), [[0.635, 0.635], [1.27, 0.635]], angle=0.0, speed=2.0)
+        >>> result.first_hit  # the cue ball touched ball 1 first, and ball 1 the cue ball
+        array([1, 0])
+        >>> shoot(Table(), [[0.635, 0.635]], angle=0.0, speed=-1.0)
+        Traceback (most recent call last):
+        ...
+        ValueError: ...speed...
     """
     table = check_table(table)
     pos = as_points("positions", positions)

@@ -146,6 +146,18 @@ class Table:
             number); a non-positive ``mu_roll`` or ``g``; a restitution outside [0, 1]; a
             table too small for one ball or for its pockets; or an unknown or malformed
             pocket specification.
+
+    Examples:
+        >>> from pool_env import Table
+        >>> table = Table()  # a 9-ft table, six pockets with jaws, measured defaults
+        >>> table.length, table.width, table.mu_roll, table.e_ball, table.e_cushion
+        (2.54, 1.27, 0.01, 0.95, 0.65)
+        >>> len(table.jaws), table.pocket_model
+        (6, 'jaws')
+        >>> Table(e_ball=1.5)
+        Traceback (most recent call last):
+        ...
+        ValueError: e_ball must lie in [0, 1], got 1.5
     """
 
     length: float = 2.54

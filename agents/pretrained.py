@@ -1,0 +1,161 @@
+"""Pretrained agents in one line: ``agents.load("models/ppo_oneball.zip")``.
+
+A model trained by ``train.py`` saw the environment through an observation wrapper (the
+OneBall default ``ghost_features`` appends the ghost-ball shot into each pocket), so SB3's
+``PPO.load(path).predict(obs)`` on the environment's own observation fails on the shape.
+:func:`load` reads the model's saved run config (``<stem>_config.yaml`` or ``config.yaml``
+beside it: env id, ``env_kwargs``, ``wrapper``) and returns a :class:`PretrainedPolicy`
+whose ``predict`` applies that wrapper's features to the raw observation first. The
+features are a function of the observation alone, so nothing but the observation is
+needed.
+
+The committed models and their evaluations sit together in ``models/``:
+``ppo_oneball.zip`` (PPO, 300k steps on ``pool_env/OneBall-v0``), its settings
+``ppo_oneball_config.yaml`` and its re-evaluation ``ppo_oneball_eval.md``.
+
+Examples:
+    >>> import agents, gymnasium as gym
+    >>> policy = agents.load("models/ppo_oneball.zip")
+    >>> policy.env_id, policy.wrapper
+    ('pool_env/OneBall-v0', 'ghost_features')
+    >>> env = policy.make_env()  # gym.make(env_id, **env_kwargs), no wrapper
+    >>> obs, _ = env.reset(seed=50000)
+    >>> action, _ = policy.predict(obs, deterministic=True)
+    >>> action.shape
+    (2,)
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+from numpy.typing import NDArray
+
+from agents.base import batch_obs, decode_observation
+from agents.envs import make_env
+
+__all__ = ["PretrainedPolicy", "load"]
+
+
+class PretrainedPolicy:
+    """An SB3 model with the observation wrapper it was trained behind.
+
+    ``predict`` takes the environment's own observations (``(D,)`` or ``(B, D)``; already
+    wrapped ones, of the model's input size, pass through unchanged) and has SB3's
+    signature, so it works with ``evaluate_policy`` and :func:`agents.evaluate.run_episodes`.
+
+    Args:
+        model: The loaded SB3 model.
+        config: The model's saved run config (``env_id``, ``env_kwargs``, ``wrapper``, ...).
+
+    Raises:
+        ValueError: If the config names no ``env_id`` or an unknown wrapper.
+    """
+
+    def __init__(self, model: Any, config: dict[str, Any]) -> None:
+        if not config.get("env_id"):
+            raise ValueError("the model's config names no env_id")
+        self.model = model
+        self.config = dict(config)
+        self.env_id: str = str(config["env_id"])
+        self.env_kwargs: dict[str, Any] = dict(config.get("env_kwargs") or {})
+        self.wrapper: str | None = config.get("wrapper") or None
+        # The wrapped env computes the features; it is never stepped.
+        self._features_env = make_env(self.env_id, self.env_kwargs, self.wrapper)
+        self._raw_size = int(self._features_env.unwrapped.observation_space.shape[0])
+        self._model_size = int(model.observation_space.shape[0])
+
+    def make_env(self, **kwargs: Any) -> gym.Env:
+        """``gymnasium.make(env_id, **env_kwargs, **kwargs)``: the env the model plays, unwrapped.
+
+        Args:
+            **kwargs: More ``gymnasium.make`` keywords (e.g. ``render_mode``).
+        """
+        return gym.make(self.env_id, **{**self.env_kwargs, **kwargs})
+
+    def features(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
+        """The model's input for ``(B, D)`` raw observations: the wrapper's features appended.
+
+        Raises:
+            ValueError: If the rows are neither the env's nor the model's size.
+        """
+        obs = np.asarray(observations, dtype=np.float32)
+        size = obs.shape[1]
+        if size == self._model_size:
+            return obs
+        if size != self._raw_size:
+            raise ValueError(
+                f"observations of size {size}: {self.env_id} gives {self._raw_size}, "
+                f"the model takes {self._model_size}"
+            )
+        if self.wrapper is None:
+            return obs
+        env = self._features_env
+        if self.wrapper == "ghost_features":
+            extra = env.ghost_features.of_observations(obs)
+        else:  # pocket_features reads a layout: decode it from each observation
+            table = env.unwrapped.table
+            extra = np.stack([env.features(*decode_observation(row, table)) for row in obs])
+        return np.concatenate([obs, extra.astype(np.float32)], axis=1)
+
+    def predict(
+        self,
+        observation: Any,
+        state: tuple[NDArray[Any], ...] | None = None,
+        episode_start: NDArray[np.bool_] | None = None,
+        deterministic: bool = True,
+    ) -> tuple[NDArray[np.float32], tuple[NDArray[Any], ...] | None]:
+        """Actions for the env's observation ``(D,)`` or a batch ``(B, D)`` (SB3's signature).
+
+        Args:
+            observation: One observation or a batch, raw or already wrapped.
+            state: Recurrent state, passed to the model.
+            episode_start: Passed to the model.
+            deterministic: The policy's mean action (True, the default here) or a sample.
+
+        Returns:
+            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` actions.
+        """
+        obs, single = batch_obs(observation)
+        actions, state = self.model.predict(
+            self.features(obs), state, episode_start, deterministic=deterministic
+        )
+        return (actions[0] if single else actions), state
+
+
+def load(path: str | Path, algo: str | None = None) -> PretrainedPolicy:
+    """Load an SB3 model saved by ``train.py`` with the wrapper of its saved config.
+
+    Args:
+        path: The model ``.zip``; its config is ``<stem>_config.yaml`` or ``config.yaml``
+            in the same folder (a run folder has the latter).
+        algo: The SB3 algorithm (``"ppo"``, ``"sac"``, ...); default: the config's, else
+            the file name's.
+
+    Returns:
+        A :class:`PretrainedPolicy` with SB3's ``predict`` on the env's own observations.
+
+    Raises:
+        FileNotFoundError: If there is no model file.
+        ValueError: If there is no config beside it or the algorithm cannot be told.
+
+    Examples:
+        >>> import agents
+        >>> agents.load("models/ppo_oneball.zip").model.__class__.__name__
+        'PPO'
+    """
+    from agents.evaluate import load_model, model_config  # SB3 only when a model is loaded
+
+    path = Path(path)
+    config = model_config(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no model file {path}")
+    if not config:
+        raise ValueError(
+            f"no saved config beside {path} ({path.stem}_config.yaml or config.yaml): "
+            "it says which env and observation wrapper the model was trained on"
+        )
+    return PretrainedPolicy(load_model(path, algo or config.get("algo")), config)

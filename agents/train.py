@@ -1,0 +1,160 @@
+"""Train an SB3 agent on a pool environment; a thin command line over :mod:`agents.train_lib`.
+
+Three names for one command: ``python train.py`` in a clone, ``python -m agents.train`` or
+the console script ``pool-env-train`` wherever the package is installed (the hyperparameter
+file ships with it). With no arguments it trains PPO on ``pool_env/OneBall-v0`` with the
+hyperparameters of ``agents/hyperparams.yml`` (300k steps on the ghost-ball features over
+the native vector env), then prints its pot rate next to random, the best constant action,
+the ghost-ball and the search baselines on the same layouts. Each run writes
+``runs/<env>/<algo>_s<seed>_<steps>_<time>/``: config.yaml, command.txt, model.zip,
+evaluation.md/.json, curve.csv, learning_curve.png and tensorboard logs (tb/).
+
+With ``--backend rllib`` it trains PPO on Ray RLlib instead (:mod:`agents.rllib_train`):
+EnvRunners sample in parallel, each with its own batch of tables, on this machine or on
+every node of the Ray cluster that ``RAY_ADDRESS`` names.
+
+Examples::
+
+    python train.py
+    python train.py --backend rllib --env-runners 2 --timesteps 50000
+    python train.py --algo sac --timesteps 300000
+    python train.py --timesteps 1000000 --seed 1 --set learning_rate=lin_1e-3 n_epochs=20
+    tensorboard --logdir runs
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from typing import Any
+
+import yaml
+
+from agents.train_lib import ALGOS, NATIVE_WRAPPERS, VEC_KINDS, resolve_config, train
+
+
+def parse_sets(items: list[str]) -> dict[str, Any]:
+    """``["key=value", ...]`` to a dict; values are parsed as YAML data (never evaluated)."""
+    out: dict[str, Any] = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            raise ValueError(f"--set expects key=value, got {item!r}")
+        out[key] = yaml.safe_load(value)
+    return out
+
+
+def build_parser() -> argparse.ArgumentParser:
+    """The command line (every option defaults to the hyperparameter file's value)."""
+    p = argparse.ArgumentParser(
+        description=__doc__.split("\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
+    )
+    p.add_argument("--env", default="pool_env/OneBall-v0", help="registered env id")
+    p.add_argument(
+        "--backend", default="sb3", choices=("sb3", "rllib"), help="trainer (rllib: PPO only)"
+    )
+    p.add_argument("--env-runners", type=int, default=2, help="rllib: EnvRunner actors")
+    p.add_argument("--address", help="rllib: Ray cluster address (default: RAY_ADDRESS or local)")
+    p.add_argument("--algo", default="ppo", choices=sorted(ALGOS))
+    p.add_argument("--timesteps", type=int, help="training steps (default: from the YAML)")
+    p.add_argument("--seed", type=int, default=0)
+    p.add_argument(
+        "--n-envs", type=int, help="parallel envs (default: YAML; rllib: 64 tables per runner)"
+    )
+    p.add_argument(
+        "--vec", choices=VEC_KINDS, help="vectorized env kind (default: YAML, else dummy)"
+    )
+    p.add_argument("--threads", type=int, default=1, help="torch threads (1 is fastest here)")
+    p.add_argument("--eval-freq", type=int, help="steps between evaluations (0: none)")
+    p.add_argument("--eval-episodes", type=int, help="episodes per periodic evaluation")
+    p.add_argument("--final-episodes", type=int, default=1000, help="final evaluation episodes")
+    p.add_argument("--no-baselines", action="store_true", help="skip random/ghost at the end")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--aim", help="env aim mode override (cut, relative, absolute)")
+    p.add_argument(
+        "--env-kwargs", help='gymnasium.make kwargs as YAML, e.g. "{noise: [0.003, 0.05]}"'
+    )
+    p.add_argument(
+        "--wrapper",
+        help="observation wrapper: ghost_features (the OneBall default), pocket_features, none",
+    )
+    p.add_argument("--hyperparams", help="YAML file (default: agents/hyperparams.yml)")
+    p.add_argument("--runs", default="runs", help="parent folder of run folders")
+    p.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="algorithm kwargs")
+    return p
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Parse, resolve the config, train; print the final comparison."""
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        algo_kwargs = parse_sets(args.set)
+    except ValueError as exc:
+        parser.error(str(exc))
+    extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
+    if not isinstance(extra, dict):
+        parser.error("--env-kwargs must be a YAML mapping")
+    if args.aim:
+        extra["aim"] = args.aim
+    if args.backend == "rllib":
+        return _train_rllib(parser, args, algo_kwargs, extra)
+    overrides: dict[str, Any] = {
+        "seed": args.seed,
+        "n_timesteps": args.timesteps,
+        "n_envs": args.n_envs,
+        "vec": args.vec,
+        "threads": args.threads,
+        "eval_freq": args.eval_freq,
+        "eval_episodes": args.eval_episodes,
+        "final_episodes": args.final_episodes,
+        "baselines": not args.no_baselines,
+        "progress_bar": not args.no_progress,
+        "algo_kwargs": algo_kwargs,
+    }
+    config = resolve_config(args.env, args.algo, overrides, args.hyperparams)
+    config.env_kwargs = {**config.env_kwargs, **extra}
+    if args.wrapper:
+        config.wrapper = None if args.wrapper == "none" else args.wrapper
+        native_ok = config.wrapper is None or config.wrapper in NATIVE_WRAPPERS
+        if config.vec == "native" and not native_ok and not args.vec:
+            config.vec = "dummy"  # the native vector env cannot apply this Python wrapper
+    train(config, root=args.runs)
+    return 0
+
+
+def _train_rllib(
+    parser: argparse.ArgumentParser,
+    args: argparse.Namespace,
+    algo_kwargs: dict[str, Any],
+    env_kwargs: dict[str, Any],
+) -> int:
+    """``--backend rllib``: PPO on Ray RLlib with the same hyperparameter file."""
+    if args.algo != "ppo":
+        parser.error("--backend rllib trains PPO only")
+    if args.vec or args.wrapper:
+        parser.error("--backend rllib always samples the native vector env: no --vec/--wrapper")
+    from agents.rllib_train import resolve_run
+    from agents.rllib_train import train as train_rllib
+
+    overrides: dict[str, Any] = {
+        "seed": args.seed,
+        "n_timesteps": args.timesteps,
+        "env_runners": args.env_runners,
+        "n_envs": args.n_envs,
+        "threads": args.threads,
+        "final_episodes": args.final_episodes,
+        "baselines": not args.no_baselines,
+        "env_kwargs": env_kwargs,
+        "algo_kwargs": algo_kwargs,
+    }
+    try:
+        run = resolve_run(args.env, overrides, args.hyperparams)
+    except (KeyError, ValueError) as exc:
+        parser.error(str(exc))
+    train_rllib(run, root=args.runs, address=args.address)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

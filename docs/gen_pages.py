@@ -1,0 +1,181 @@
+"""Pages the docs site generates at build time (mkdocs-gen-files runs this file).
+
+* ``reference/``: one page per module of ``pool_env`` and ``agents``, found by walking the
+  source tree, so modules that others add or move appear without an edit here; each page is
+  the module's docstrings through mkdocstrings. A package's page lists its public names
+  (``__all__``) with links to where each is defined, and the build fails if one of them
+  has no page.
+* ``results/`` and ``models/``: the measurement reports and the pretrained model's
+  evaluation, copied as they stand, so that the pages link to them and the site never
+  holds a second copy that could drift.
+* ``changelog.md``: ``CHANGELOG.md``.
+* ``img/``: pictures drawn now by the project's renderer (``docs/make_picture.py``), so a
+  page shows what today's code does.
+"""
+
+from __future__ import annotations
+
+import re
+import shutil
+from pathlib import Path
+
+import griffe
+import imageio.v3 as iio
+import mkdocs_gen_files
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGES = ("pool_env", "agents")
+COPIED = {"results": ("*.md", "*.png"), "models": ("*.md", "*.yaml")}
+
+
+def module_names(package: str) -> list[tuple[str, ...]]:
+    """Dotted module paths (as tuples) of ``package``, packages first, private ones left out."""
+    names = []
+    for path in sorted((ROOT / package).rglob("*.py")):
+        parts = path.relative_to(ROOT).with_suffix("").parts
+        if parts[-1] == "__init__":
+            parts = parts[:-1]
+        elif parts[-1].startswith("_"):
+            continue  # private (_version) and __main__
+        if any(part.startswith("_") for part in parts) or "__pycache__" in parts:
+            continue
+        names.append(parts)
+    return names
+
+
+def page_of(parts: tuple[str, ...], is_package: bool) -> str:
+    """The reference page of a module: ``a/b/index.md`` for a package, ``a/b.md`` otherwise."""
+    return "/".join(parts) + ("/index.md" if is_package else ".md")
+
+
+def resolve_export(package: griffe.Module, name: str) -> griffe.Object:
+    """What ``package.name`` is: a member, or (a lazy export) the one submodule defining it."""
+    if name in package.members:
+        member = package.members[name]
+        return member.final_target if member.is_alias else member
+    # A lazy export (module __getattr__): one of the submodules the package's code imports.
+    source = Path(package.filepath).read_text()
+    imported = {
+        sub or names.split()[0]
+        for sub, names in re.findall(rf"from {package.path}(?:\.(\w+))? import (\w+)", source)
+    }
+    found = [
+        module.members[name]
+        for module_name, module in package.modules.items()
+        if module_name in imported and name in module.members and not module.members[name].is_alias
+    ]
+    if len(found) != 1:
+        raise SystemExit(f"{package.path}.__all__ names {name!r}: defined in {len(found)} places")
+    return found[0]
+
+
+def exports_table(package: griffe.Module, documented: set[str]) -> str:
+    """A table of a package's ``__all__``: each name linked to the page that defines it."""
+    names = [str(name) for name in (package.exports or [])]
+    if not names:
+        return ""
+    rows = ["| name | defined in |", "|---|---|"]
+    for name in names:
+        target = resolve_export(package, name)
+        module = target.module.path if not target.is_module else target.path
+        public_module = module
+        while public_module not in documented and "." in public_module:
+            public_module = public_module.rsplit(".", 1)[0]  # a private module: its package
+        if public_module not in documented:
+            raise SystemExit(f"{package.path}.{name}: no reference page for {module}")
+        if module in documented and target.docstring is not None:
+            link = f"[`{name}`][{target.path}]"
+        else:  # a constant without a docstring of its own: link its module
+            link = f"[`{name}`][{public_module}]"
+        rows.append(f"| {link} | `{public_module}` |")
+    return "\n".join(["", "Public names:", "", *rows, ""])
+
+
+def load_packages() -> dict[str, griffe.Module]:
+    """The packages as griffe reads them from the source (nothing is imported)."""
+    return {name: griffe.load(name, search_paths=[str(ROOT)]) for name in PACKAGES}
+
+
+def write_reference() -> None:
+    """``reference/**.md`` and the reference's navigation (``reference/SUMMARY.md``)."""
+    nav = mkdocs_gen_files.Nav()
+    documented = set()
+    modules = []
+    for package in PACKAGES:
+        for parts in module_names(package):
+            documented.add(".".join(parts))
+            modules.append(parts)
+    loader = load_packages()
+    for parts in modules:
+        dotted = ".".join(parts)
+        obj = loader[parts[0]]
+        for part in parts[1:]:
+            obj = obj.members[part]
+        is_package = (ROOT.joinpath(*parts) / "__init__.py").is_file()
+        page = page_of(parts, is_package)
+        nav[parts] = page
+        with mkdocs_gen_files.open(f"reference/{page}", "w") as out:
+            if is_package:
+                out.write(f"::: {dotted}\n    options:\n      members: false\n")
+                out.write(exports_table(obj, documented))
+            else:
+                out.write(f"::: {dotted}\n")
+        source = ROOT.joinpath(*parts) / "__init__.py" if is_package else None
+        source = source or ROOT.joinpath(*parts).with_suffix(".py")
+        mkdocs_gen_files.set_edit_path(f"reference/{page}", source.relative_to(ROOT))
+    with mkdocs_gen_files.open("reference/SUMMARY.md", "w") as out:
+        out.writelines(nav.build_literate_nav())
+
+
+def list_simulator_modules(loader: dict[str, griffe.Module]) -> None:
+    """Append every module of ``pool_env.sim`` and its first docstring paragraph to physics.md.
+
+    So a module others add to the simulator (spin, say) shows on the physics page without an
+    edit here.
+    """
+    rows = ["", "| module | what it is |", "|---|---|"]
+    for parts in module_names("pool_env"):
+        if parts[:2] != ("pool_env", "sim"):
+            continue
+        obj = loader["pool_env"]
+        for part in parts[1:]:
+            obj = obj.members[part]
+        is_package = (ROOT.joinpath(*parts) / "__init__.py").is_file()
+        doc = obj.docstring.value if obj.docstring else ""
+        summary = " ".join(doc.split("\n\n")[0].split()).replace("|", "\\|")
+        link = f"[`{'.'.join(parts)}`](reference/{page_of(parts, is_package)})"
+        rows.append(f"| {link} | {summary} |")
+    with mkdocs_gen_files.open("physics.md", "a") as out:
+        out.write("\n".join(rows) + "\n")
+
+
+def copy_reports() -> None:
+    """``results/`` and ``models/`` reports into the site, as they stand."""
+    for folder, patterns in COPIED.items():
+        for pattern in patterns:
+            for path in sorted((ROOT / folder).glob(pattern)):
+                with (
+                    path.open("rb") as src,
+                    mkdocs_gen_files.open(f"{folder}/{path.name}", "wb") as dst,
+                ):
+                    shutil.copyfileobj(src, dst)
+    with mkdocs_gen_files.open("changelog.md", "w") as out:
+        out.write((ROOT / "CHANGELOG.md").read_text())
+
+
+def draw_pictures() -> None:
+    """``img/break.png``: a 9-ball break with its paths; ``img/cut.png``: the README's shot."""
+    import sys
+
+    sys.path.insert(0, str(ROOT / "docs"))
+    import make_picture  # docs/make_picture.py
+
+    for name, env in (("break", make_picture.break_env(800)), ("cut", make_picture.cut_shot_env())):
+        with mkdocs_gen_files.open(f"img/{name}.png", "wb") as out:
+            out.write(iio.imwrite("<bytes>", env.render(), extension=".png"))
+
+
+write_reference()
+list_simulator_modules(load_packages())
+copy_reports()
+draw_pictures()

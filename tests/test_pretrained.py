@@ -1,0 +1,71 @@
+"""agents.load: the committed model plays the env's own observations at its documented rate."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("stable_baselines3")
+
+import agents
+from agents.evaluate import load_model, run_episodes
+from agents.features import GhostBallFeatures
+
+ROOT = Path(__file__).resolve().parents[1]
+MODEL = ROOT / "models" / "ppo_oneball.zip"
+EVAL = ROOT / "models" / "ppo_oneball_eval.md"
+
+
+def documented_rate() -> tuple[float, float, float]:
+    """The model's pots/shot and its 95% interval, as ``models/ppo_oneball_eval.md`` says."""
+    row = next(line for line in EVAL.read_text().splitlines() if line.startswith("| PPO"))
+    match = re.search(r"\| ([\d.]+)% \[([\d.]+), ([\d.]+)\] \|", row)
+    assert match, row
+    rate, low, high = (float(x) / 100 for x in match.groups())
+    return rate, low, high
+
+
+@pytest.fixture(scope="module")
+def policy() -> agents.pretrained.PretrainedPolicy:
+    return agents.load(MODEL)
+
+
+def test_the_pot_rate_matches_the_models_evaluation(policy) -> None:
+    """1000 episodes on the evaluation's seeds (50000+), on the raw env's observations."""
+    rate, low, high = documented_rate()
+    assert (rate, low, high) == pytest.approx((0.642, 0.612, 0.671))
+    env = policy.make_env()
+    summary = run_episodes(policy, env, 1000, 50000).summary()
+    measured = summary["pots_per_shot"].value
+    assert low <= measured <= high, (measured, low, high)
+    assert measured > 2 * 0.275  # over twice the best constant action (results/agents.md)
+
+
+def test_predict_applies_the_saved_wrapper(policy) -> None:
+    """Raw observations give the actions SB3's model gives on the wrapped observations."""
+    env = policy.make_env()
+    wrapped = GhostBallFeatures(policy.make_env())
+    model = load_model(MODEL)
+    raw_obs = np.stack([env.reset(seed=s)[0] for s in range(8)])
+    wrapped_obs = np.stack([wrapped.reset(seed=s)[0] for s in range(8)])
+    assert raw_obs.shape[1] < wrapped_obs.shape[1]
+    expected, _ = model.predict(wrapped_obs, deterministic=True)
+    got, _ = policy.predict(raw_obs)
+    np.testing.assert_array_equal(got, expected)
+    one, _ = policy.predict(raw_obs[3])  # one observation, unbatched
+    np.testing.assert_array_equal(one, model.predict(wrapped_obs[3], deterministic=True)[0])
+    passed, _ = policy.predict(wrapped_obs)  # already wrapped: passes through
+    np.testing.assert_array_equal(passed, expected)
+    with pytest.raises(ValueError, match="model takes"):
+        policy.predict(raw_obs[:, :-1])
+
+
+def test_bad_paths_say_what_is_missing(tmp_path) -> None:
+    with pytest.raises(FileNotFoundError, match="no model file"):
+        agents.load(tmp_path / "missing.zip")
+    (tmp_path / "model.zip").write_bytes(MODEL.read_bytes())
+    with pytest.raises(ValueError, match="no saved config"):
+        agents.load(tmp_path / "model.zip")
