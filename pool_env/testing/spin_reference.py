@@ -14,6 +14,8 @@ table, written from scratch: it imports nothing from ``pool_env`` and shares no 
   real polynomial. A touching or overlapping pair that approaches collides now.
 * Transitions (sliding -> rolling, rolling -> spinning or rest, spinning -> rest) are
   events at their closed-form times.
+* A ball given as input with a slip below 1e-12 of its speed rolls (float inputs of a
+  rolling ball carry rounding); after that, rolling means zero slip at 50 digits.
 * Events at one instant (within 1e-30 s) are taken in the order ball, cushion,
   transition, then by ball index; event kinds are ``"ball"``, ``"cushion"`` (``j`` the rail:
   0 ``x = R``, 1 ``x = L - R``, 2 ``y = R``, 3 ``y = W - R``), ``"slide_roll"``,
@@ -56,6 +58,8 @@ class SpinReferenceResult:
         angular_velocities: Final angular velocities.
         states: Final motion states.
         events: ``(time, kind, i, j)`` in order.
+        before: Per event, every ball's ``(p, v, w)`` just before it is resolved.
+        after: Per event, every ball's ``(p, v, w)`` just after.
     """
 
     positions: list[ph.Vec2]
@@ -63,6 +67,8 @@ class SpinReferenceResult:
     angular_velocities: list[ph.Vec3]
     states: list[int]
     events: list[tuple[mpf, str, int, int]]
+    before: list[list[tuple[ph.Vec2, ph.Vec2, ph.Vec3]]]
+    after: list[list[tuple[ph.Vec2, ph.Vec2, ph.Vec3]]]
 
 
 def params_from(table: Any, **overrides: Any) -> dict:
@@ -152,8 +158,18 @@ class _Sim:
         )
         zero = mpf(0)
         self.pieces = [
-            ph.Piece(zero, p[i], v[i], w[i], ph.state_of(v[i], w[i], r), prm) for i in range(len(p))
+            ph.Piece(zero, p[i], v[i], w[i], self._input_state(v[i], w[i]), prm)
+            for i in range(len(p))
         ]
+
+    def _input_state(self, v: ph.Vec2, w: ph.Vec3) -> int:
+        """A float input that rolls to rounding (slip <= 1e-12 of the speeds) rolls."""
+        r = self.prm["R"]
+        u = ph.norm(ph.slip(v, w, r))
+        scale = max(ph.norm(v), r * ph.norm((w[0], w[1])))
+        if 0 < u <= mpf("1e-12") * scale:
+            return ph.ROLLING
+        return ph.state_of(v, w, r)
 
     def at(self, i: int, t: mpf) -> tuple[ph.Vec2, ph.Vec2, ph.Vec3]:
         return self.pieces[i].at(t, self.prm)
@@ -262,9 +278,14 @@ class _Sim:
         self.transition(i, t)
         return (t, name, i, -1)
 
+    def snapshot(self, t: mpf) -> list[tuple[ph.Vec2, ph.Vec2, ph.Vec3]]:
+        return [self.at(i, t) for i in range(len(self.pieces))]
+
     def run(self, max_events: int) -> list[tuple[mpf, str, int, int]]:
         t = mpf(0)
         events: list = []
+        self.before: list = []
+        self.after: list = []
         n = len(self.pieces)
         while True:
             cands = []
@@ -289,7 +310,9 @@ class _Sim:
             if len(events) >= max_events:
                 raise SpinReferenceError(f"more than {max_events} events")
             t = max(chosen[0], t)
+            self.before.append(self.snapshot(t))
             events.append(self.apply((t, chosen[1], chosen[2], chosen[3])))
+            self.after.append(self.snapshot(t))
 
 
 def _rows(name: str, a: npt.ArrayLike, n: int | None, width: int) -> np.ndarray:
@@ -363,4 +386,6 @@ def spin_reference_simulate(
             angular_velocities=[f[2] for f in finals],
             states=[pc.state for pc in sim.pieces],
             events=events,
+            before=sim.before,
+            after=sim.after,
         )
