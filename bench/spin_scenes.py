@@ -10,7 +10,7 @@ cushion impacts). The same shot is handed to pooltool in its own terms
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from types import SimpleNamespace
 from typing import Any
 
@@ -25,9 +25,9 @@ from pool_env.testing.spin_reference import params_from
 
 #: pooltool 0.6.0's cue mass (kg): only pooltool needs it, to turn our ball speed into V0.
 POOLTOOL_CUE_MASS = 0.567
-#: Alciatore's ball-ball friction fit ``a + b exp(-c v)`` as the contract states it
-#: (pooltool 0.6.0's default resolver has a = 0.009951).
-ALCIATORE = (0.00995, 0.108, 1.088)
+#: Alciatore's ball-ball friction fit ``a + b exp(-c v)``: pooltool 0.6.0's coefficients,
+#: which pool_env's spin level and the reference use too.
+ALCIATORE = (0.009951, 0.108, 1.088)
 
 
 def spin_table() -> Any:
@@ -62,6 +62,8 @@ class SpinShot:
         elevation: Cue elevation (radians).
         velocities: ``(N, 2)`` after the strike (the reference's strike, rounded).
         angular_velocities: ``(N, 3)`` after the strike.
+        ref_positions: ``(N, 2)`` the reference's final centres (rounded to float64).
+        ref_events: The reference's ``(kind, i, j)`` sequence.
     """
 
     name: str
@@ -72,6 +74,8 @@ class SpinShot:
     elevation: float
     velocities: NDArray[np.float64]
     angular_velocities: NDArray[np.float64]
+    ref_positions: NDArray[np.float64] | None = None
+    ref_events: tuple[tuple[str, int, int], ...] = ()
 
 
 def strike_state(table: Any, angle: float, speed: float, tip: tuple[float, float],
@@ -112,7 +116,7 @@ def _draw(rng: np.random.Generator, table: Any, k: int) -> SpinShot:
     n = int(rng.integers(2, 5))
     pos = random_layout(Table(pockets="none"), n, rng, min_gap=2e-3)
     target = pos[int(rng.integers(1, n))]
-    angle = math.atan2(*(target - pos[0])[::-1]) + float(rng.normal(0.0, 0.25))
+    angle = math.atan2(*(target - pos[0])[::-1]) + float(rng.normal(0.0, 0.15))
     speed = float(rng.uniform(0.4, 3.0))
     tip = (float(rng.uniform(-0.5, 0.5)), float(rng.uniform(-0.6, 0.6)))
     elevation = 0.0 if rng.random() < 0.6 else float(rng.uniform(0.02, 0.3))
@@ -137,21 +141,41 @@ def spin_shots(n: int, seed: int = 19, table: Any = None) -> list[SpinShot]:
         )
         impacts = sum(kind in ("ball", "cushion") for _, kind, _, _ in ref.events)
         if 1 <= impacts <= 3:
-            shots.append(shot)
+            final = np.array([[float(x), float(y)] for x, y in ref.positions])
+            events = tuple((kind, i, j) for _, kind, i, j in ref.events)
+            shots.append(replace(shot, ref_positions=final, ref_events=events))
     return shots
 
 
-def worker_scene(table: Any, shot: SpinShot, strike: bool = True) -> dict[str, Any]:
-    """The pooltool worker's description of a spin shot (see ``pooltool_worker``)."""
+def worker_scene(
+    table: Any, shot: SpinShot, strike: bool = True, throw: str = "coulomb"
+) -> dict[str, Any]:
+    """The pooltool worker's description of a spin shot (see ``pooltool_worker``).
+
+    Args:
+        table: The spin table.
+        shot: The shot.
+        strike: Let pooltool strike the cue ball (else start from the shot's state).
+        throw: ``"coulomb"`` configures pooltool to the spin level's friction impulse
+            ``mu (1 + e) / 2 |du_n|`` (per unit mass) by scaling its friction by
+            ``(1 + e) / (2 e)``, since pooltool applies ``mu e |du_n|`` (exact for equal
+            masses, which these shots have); ``"pooltool"`` leaves pooltool's own.
+    """
     n = shot.positions.shape[0]
+    e = table.e_ball
+    k = (1.0 + e) / (2.0 * e) if throw == "coulomb" else 1.0
+    friction = table.ball_friction
+    if friction != "alciatore":
+        friction = k * float(friction)
     scene: dict[str, Any] = {
         "table": {
             "model": "spin", "pockets": False, "length": table.length, "width": table.width,
             "ball_radius": table.ball_radius, "ball_mass": table.ball_mass,
             "mu_roll": table.mu_roll, "g": table.g, "e_ball": table.e_ball,
             "e_cushion": table.e_cushion, "mu_slide": table.mu_slide,
-            "spin_decel": table.spin_decel, "ball_friction": table.ball_friction,
-            "alciatore": list(ALCIATORE), "cushion_friction": table.cushion_friction,
+            "spin_decel": table.spin_decel, "ball_friction": friction,
+            "alciatore": [k * ALCIATORE[0], k * ALCIATORE[1], ALCIATORE[2]],
+            "cushion_friction": table.cushion_friction,
             "cushion_height": table.cushion_height,
         },
         "positions": shot.positions.tolist(),

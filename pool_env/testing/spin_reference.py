@@ -79,13 +79,15 @@ def params_from(table: Any, **overrides: Any) -> dict:
             ``ball_radius``, ``g``, ``mu_slide``, ``mu_roll``, ``spin_decel``, ``e_ball``,
             ``e_cushion``, ``ball_friction``, ``cushion_friction``, ``cushion_height``,
             ``cue_tip_radius``, ``cue_end_mass``); ``None`` to give everything as overrides.
-        **overrides: Values that replace or supply attributes.
+        **overrides: Values that replace or supply attributes; ``throw`` (``"coulomb"``,
+            the default, or ``"pooltool"``) picks the friction impulse's size (see
+            :mod:`pool_env.testing.spin_physics_mp`).
 
     Returns:
         A dict of ``mpf`` values (``ball_friction`` stays ``"alciatore"`` or an ``mpf``).
     """
     raw = {k: getattr(table, k, None) for k in (*PARAM_NAMES, "ball_friction")}
-    raw.update(overrides)
+    raw.update({k: v for k, v in overrides.items() if k != "throw"})
     missing = [k for k, v in raw.items() if v is None]
     if missing:
         raise ValueError(f"missing parameters: {missing}")
@@ -93,6 +95,9 @@ def params_from(table: Any, **overrides: Any) -> dict:
     bf = raw["ball_friction"]
     prm["ball_friction"] = bf if bf == "alciatore" else mpf(float(bf))
     prm["R"] = prm["ball_radius"]
+    prm["throw"] = overrides.get("throw", "coulomb")
+    if prm["throw"] not in ("coulomb", "pooltool"):
+        raise ValueError(f"throw must be 'coulomb' or 'pooltool', got {prm['throw']!r}")
     return prm
 
 
