@@ -146,6 +146,10 @@ def compare(n: int) -> tuple[list[str], dict[str, Any]]:
         "same_events": same_events,
         "have_ours": have_ours,
         "worst": sorted(worst, reverse=True)[:5],
+        "table": {
+            k: getattr(table, k)
+            for k in ("e_ball", "e_cushion", "cushion_friction", "mu_slide", "mu_roll")
+        },
         "pairs": pairs,
     }
     lines = [

@@ -52,7 +52,7 @@ def test_stun_slides_12v2_over_49mug_then_rolls_at_5_7(angle_deg: float, v0: flo
     c, s = math.cos(math.radians(angle_deg)), math.sin(math.radians(angle_deg))
     vel = (v0 * c, v0 * s)
     res = spin_reference_simulate(table(), [(20.0, 20.0)], [vel])
-    assert [k for _, k, _, _ in res.events] == ["slide_roll", "roll_stop"]
+    assert [k for _, k, _, _ in res.events] == ["slide_roll", "stop"]
     with mp.workdps(50):
         v = mp.sqrt(mpf(vel[0]) ** 2 + mpf(vel[1]) ** 2)
         mus, mur, g = mpf(0.2) * mpf(G), mpf(0.01) * mpf(G), 1
@@ -288,7 +288,7 @@ def test_side_spin_that_dies_first_ends_in_a_plain_stop() -> None:
     """Vertical spin decays to zero and stays there: the roll then ends at rest."""
     v0, wz = 0.2, -5.0  # spin gone after 0.46 s, roll lasts 2.04 s
     res = spin_reference_simulate(table(), [(5.0, 5.0)], [(v0, 0.0)], [(0.0, v0 / R, wz)])
-    assert [k for _, k, _, _ in res.events] == ["roll_stop"]
+    assert [k for _, k, _, _ in res.events] == ["stop"]
     assert res.angular_velocities[0] == (0, 0, 0)
     assert res.states == [ph.STATIONARY]
 

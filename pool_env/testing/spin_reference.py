@@ -19,7 +19,7 @@ table, written from scratch: it imports nothing from ``pool_env`` and shares no 
 * Events at one instant (within 1e-30 s) are taken in the order ball, cushion,
   transition, then by ball index; event kinds are ``"ball"``, ``"cushion"`` (``j`` the rail:
   0 ``x = R``, 1 ``x = L - R``, 2 ``y = R``, 3 ``y = W - R``), ``"slide_roll"``,
-  ``"roll_spin"``, ``"roll_stop"``, ``"spin_stop"`` (``j = -1``).
+  ``"roll_spin"``, ``"stop"``, ``"spin_stop"`` (``j = -1``).
 
 Slow (O(N^2) root finding per event), meant for scenes with a few impacts.
 """
@@ -37,8 +37,6 @@ from pool_env.testing import spin_physics_mp as ph
 
 DPS = 50
 TIE = mpf("1e-30")
-KIND_ORDER = {"ball": 0, "cushion": 1, "slide_roll": 2, "roll_spin": 2, "roll_stop": 2,
-              "spin_stop": 2}  # fmt: skip
 PARAM_NAMES = ("length", "width", "ball_radius", "g", "mu_slide", "mu_roll", "spin_decel",
                "e_ball", "e_cushion", "cushion_friction", "cushion_height", "cue_tip_radius",
                "cue_end_mass")  # fmt: skip
@@ -257,7 +255,7 @@ class _Sim:
         if st == ph.SPINNING:
             return "spin_stop"
         wz = ph.spin_z(self.pieces[i].w[2], t - self.pieces[i].t0, self.prm["spin_decel"])
-        return "roll_spin" if wz != 0 else "roll_stop"
+        return "roll_spin" if wz != 0 else "stop"
 
     def reanchor(self, i: int, t: mpf, v: ph.Vec2, w: ph.Vec3, p: ph.Vec2) -> None:
         self.pieces[i] = ph.Piece(t, p, v, w, ph.state_of(v, w, self.prm["R"]), self.prm)
