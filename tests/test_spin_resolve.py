@@ -141,6 +141,23 @@ def test_side_english_throws_the_object_ball_the_other_way():
     assert w1[2] - wz == pytest.approx(w2[2], rel=1e-13)
 
 
+def test_full_hit_with_follow_rubs_the_vertical_slip():
+    """A rolling cue ball's front turns downwards at ``v``: friction ``min(mu J_n, m v / 7)``.
+
+    It acts upwards on ball 1 (the vertical velocities are dropped) and takes
+    ``(5 / (2 m R)) T_z`` of topspin from both balls about ``y``; ``wz`` and the in-plane
+    tangent stay zero.
+    """
+    speed, e = 1.5, 0.95
+    f = np.array([1.0, 0.0])
+    v1, w1, v2, w2 = collide(speed * f, rolling(speed, f), (0, 0), (0, 0, 0), f, e=e)
+    lift = min(alciatore(speed) * (1 + e) * speed / 2, speed / 7)  # T_z / m
+    assert w1[1] == pytest.approx(speed / R - 2.5 * lift / R, rel=1e-13)
+    assert w2[1] == pytest.approx(-2.5 * lift / R, rel=1e-13)
+    assert v1[1] == v2[1] == 0.0 and w1[2] == w2[2] == 0.0
+    assert v2[0] == pytest.approx((1 + e) * speed / 2, rel=1e-15)
+
+
 def rolling(speed, direction):
     """Spin of a ball rolling at ``speed`` along ``direction``: w = (v / R) z x f."""
     return np.array([-direction[1], direction[0], 0.0]) * speed / R
