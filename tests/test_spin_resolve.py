@@ -103,18 +103,20 @@ def test_maximum_throw_against_speed_is_spin_md_curve(speed, spin_md, cut_deg):
     assert math.degrees(cuts[best]) == pytest.approx(cut_deg, abs=0.1)
 
 
-def test_throw_is_capped_at_the_no_slip_result():
+@pytest.mark.parametrize(("m1", "m2"), [(M, M), (0.1, 0.4), (0.5, 0.05)])
+def test_throw_is_capped_at_the_no_slip_result(m1, m2):
     """A huge mu gives the sticking result: ball 2's contact point moves with ball 1's."""
     v1, w1, v2, w2 = np.array([1.5, 0.2]), np.zeros(3), np.zeros(2), np.zeros(3)
     n = unit(0.5)
-    a, b, c, d = collide(v1, w1, v2, w2, n, mode=CONSTANT, mu=1e3)
+    a, b, c, d = collide(v1, w1, v2, w2, n, m1, m2, mode=CONSTANT, mu=1e3)
     n3 = np.array([*n, 0.0])
     slip = (np.array([*a, 0.0]) + np.cross(b, R * n3)) - (np.array([*c, 0.0]) - np.cross(d, R * n3))
     slip -= (slip @ n3) * n3
     assert np.abs(slip).max() < 1e-14
-    # and the sticking impulse is (2/7) mu_r |s| = |s| m / 7 for equal masses
+    # and the sticking impulse is (2/7) mu_r |s| (|s| m / 7 for equal masses)
     tangent = np.array([-n[1], n[0]])
-    assert (c @ tangent) * M == pytest.approx((v1 @ tangent) * M / 7.0, rel=1e-13)
+    reduced = m1 * m2 / (m1 + m2)
+    assert (c @ tangent) * m2 == pytest.approx((v1 @ tangent) * 2 / 7 * reduced, rel=1e-13)
 
 
 def test_sliding_friction_is_coulomb_with_the_normal_impulse():

@@ -177,3 +177,19 @@ def test_from_pooltool_rejects_bad_input(args, message):
 def test_from_pooltool_rejects_a_bad_cue_mass():
     with pytest.raises(ValueError, match="cue_mass"):
         from_pooltool(1.0, 0.0, 0.0, 0.0, 0.0, table=POOLTOOL, cue_mass=0.0)
+
+
+def test_from_pooltool_reads_a_spin_table():
+    """The default table and a given one: their ball mass, radius and tip radius are used."""
+    from pool_env import Table
+
+    if "cue_tip_radius" not in Table.__dataclass_fields__:
+        pytest.skip("Table(model='spin') comes with the spin loop (branch spin)")
+    table = Table(model="spin", ball_mass=M, ball_radius=R, cue_tip_radius=TIP)
+    assert from_pooltool(2.0, 30.0, 10.0, 0.2, -0.3, table) == from_pooltool(
+        2.0, 30.0, 10.0, 0.2, -0.3, table=POOLTOOL
+    )
+    default = Table(model="spin")
+    _, speed, tip, _ = from_pooltool(1.0, 0.0, 0.0, 0.0, 0.3)
+    assert tip[1] == pytest.approx(0.3 * (1 + default.cue_tip_radius / default.ball_radius))
+    assert speed == pytest.approx(2.0 / (1 + default.ball_mass / 0.567 + 2.5 * 0.09))

@@ -18,7 +18,7 @@ component, side spin and the cut a horizontal one). A tangential impulse ``T`` o
 same ``R n x T / I_k``, so the slip changes by ``(7/2)(1/m1 + 1/m2) T = (7/2) T / mu_r``; it
 does not touch the normal velocities (the two directions are decoupled). Coulomb friction
 over the impact gives ``|T| = mu |J_n|`` against the slip while the contact slides; the slip
-stops changing direction, and reaches zero (sticking) at ``|T| = (2/7) mu_r |s|``. So
+keeps its direction as it shrinks and reaches zero (sticking) at ``|T| = (2/7) mu_r |s|``. So
 
     T = -min(mu |J_n|, (2/7) mu_r |s|) s / |s|,
 
@@ -45,7 +45,9 @@ The two agree at ``e_b = 1``; at pooltool's ``e_b = 0.95`` its sliding friction 
 ``0.95 / 0.975`` (2.6 %) of Coulomb's (at ``e_b = 0`` it would have none at all). Here it is
 Coulomb's. Pooltool also assumes equal masses (its normal exchange is ``(1 -+ e_b)/2``), which
 this formula reproduces for ``m1 = m2``. Balls that are not approaching (``c <= 0``) are left
-unchanged: the event loop only calls this for an approach.
+unchanged: the event loop only calls this for an approach. ``bench/spin_kernels_pooltool.py``
+runs both on 200 seeded impacts: equal to rounding (4e-15 m/s) at ``e_b = 1``, and at
+``e_b = 0.95`` too once this kernel is given pooltool's impulse as a constant mu.
 """
 
 from __future__ import annotations
