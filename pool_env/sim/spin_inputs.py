@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from pool_env.sim.inputs import as_masses, check_max_events, kernel_array, raise_invalid
 from pool_env.sim.kernels import limits, spin_loop
-from pool_env.sim.kernels._spin_placeholder import cue_strike
+from pool_env.sim.kernels.spin_strike import cue_strike
 from pool_env.sim.result import SpinShotResult
 from pool_env.sim.scalars import real_number
 from pool_env.sim.table import Table

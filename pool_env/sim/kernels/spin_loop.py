@@ -29,7 +29,6 @@ import math
 import numpy as np
 
 from pool_env.sim.kernels._jit import kernel
-from pool_env.sim.kernels._spin_placeholder import ball_ball_spin, cushion_han
 from pool_env.sim.kernels.loop import (
     BALL_STOPPED,
     N_BALL_ROWS,
@@ -49,6 +48,8 @@ from pool_env.sim.kernels.record import (
 )
 from pool_env.sim.kernels.resolve import CONTACT_TOL, V_ZENO, ZENO_REPEATS, ZENO_WINDOW
 from pool_env.sim.kernels.roots import INF
+from pool_env.sim.kernels.spin_collide import ball_ball_spin
+from pool_env.sim.kernels.spin_cushion import cushion_han
 from pool_env.sim.kernels.spin_params import (
     S_CUSHION_FRICTION,
     S_CUSHION_HEIGHT,
