@@ -31,10 +31,19 @@ def render(lines: list[str], fig: dict[str, Any], _doc: str = "") -> str:
     released = fig["pooltool vs reference"]
     ours = fig.get("pool_env vs reference")
     worst = "\n".join(f"| {n} | {d:.2e} | {k} |" for d, n, k in meta["worst"])
+    ours_vs_pt = fig.get("pool_env vs pooltool")
+    ours_vs_pt0 = fig.get("pool_env vs pooltool (MIN_DIST 1e-12)")
     ours_text = (
-        f"pool_env's spin level matched the reference's event sequence (kinds and balls) on "
-        f"{meta['same_events']} of {meta['shots']} shots."
-        if ours is not None
+        f'pool_env\'s spin level (`shoot(..., tip=, elevation=)` on `Table(model="spin", '
+        f'pockets="none")`, its own strike) matched the reference\'s event sequence (kinds '
+        f"and balls, in order) on {meta['same_events']} of {meta['shots']} shots, and its "
+        f"final positions are within {ours['max']:.1e} m of the reference's on every shot. "
+        f"**Against pooltool as released** it is within 1e-6 m on {ours_vs_pt['within']:.0f} "
+        f"of {ours_vs_pt['n']:.0f} shots ({100 * ours_vs_pt['within'] / ours_vs_pt['n']:.1f}%, "
+        f"target 95%: not met, see below); **against pooltool with its spacer at 1e-12 m** on "
+        f"{ours_vs_pt0['within']:.0f} of {ours_vs_pt0['n']:.0f} (largest "
+        f"{ours_vs_pt0['max']:.1e} m)."
+        if ours is not None and ours_vs_pt is not None and ours_vs_pt0 is not None
         else "pool_env's spin level was not in this tree when the run was made: its rows "
         'are missing (rerun the command on a tree with `Table(model="spin")`).'
     )
