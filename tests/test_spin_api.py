@@ -72,7 +72,6 @@ def test_roll_params_unchanged() -> None:
     [
         ({"model": "slide"}, "model must be"),
         ({"model": 3}, "model must be"),
-        ({"model": "spin"}, "jaws"),
         ({"mu_slide": 0.0}, "mu_slide"),
         ({"mu_slide": math.nan}, "mu_slide"),
         ({"spin_decel": -1.0}, "spin_decel"),

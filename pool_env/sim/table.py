@@ -158,9 +158,7 @@ class Table:
         model: ``"roll"`` (default): balls roll without spin and the parameters below are
             ignored (bit for bit the original model); ``"spin"``: the spin level (sliding,
             rolling, spinning, english, throw, cushion spin), see
-            :mod:`pool_env.sim.kernels.spin_loop`. The spin level supports
-            ``pockets="circles"``, ``"none"`` or capture circles; jaws raise a
-            ``ValueError`` (not implemented on the spin level yet).
+            :mod:`pool_env.sim.kernels.spin_loop`; every pocket model.
         mu_slide: Sliding friction ball-cloth, 0.2 (Alciatore's physical-properties table:
             0.15-0.4, typical 0.2; pooltool 0.6.0's default). A sliding ball decelerates at
             ``mu_slide * g`` against its contact point's slip.
@@ -200,7 +198,7 @@ class Table:
             pocket specification; an unknown ``model``; a spin parameter that is not a
             finite real number in its range (``mu_slide``, ``spin_decel``, ``cue_tip_radius``
             and ``cue_end_mass`` positive, ``ball_friction`` and ``cushion_friction``
-            non-negative, ``cushion_height`` in ``[R, 2R)``); jaws on a spin table.
+            non-negative, ``cushion_height`` in ``[R, 2R)``).
     """
 
     length: float = 2.54
@@ -274,11 +272,6 @@ class Table:
         setter = object.__setattr__
         if not isinstance(self.model, str) or self.model not in MODELS:
             raise ValueError(f"model must be 'roll' or 'spin', got {self.model!r}")
-        if self.model == "spin" and self.pocket_model == "jaws":
-            raise ValueError(
-                "the spin level does not support pocket jaws yet: use model='spin' with "
-                "pockets='circles', 'none' or capture circles (x, y, radius)"
-            )
         r, g = self.ball_radius, self.g
         low, high = limits.MIN_DECELERATION, limits.MAX_DECELERATION
         setter(self, "mu_slide", positive("mu_slide", self.mu_slide))

@@ -11,15 +11,18 @@ the same event cap and the same Zeno rules for ball-ball impacts, with:
 * the transitions as events at closed-form times: ``SLIDE_ROLL``, ``STOP`` (a rolling ball
   comes to rest), ``ROLL_SPIN`` (it comes to rest spinning in place), ``SPIN_STOP``
   (:mod:`~pool_env.sim.kernels.spin_predict`), ordered after the roll level's kinds;
-* the closed-form resolution kernels of the spin level: ball-ball with throw, Han 2005
-  cushions (rails only on this level so far: jaws are refused by ``Table``).
+* the closed-form resolution kernels of the spin level: ball-ball with throw
+  (:mod:`~pool_env.sim.kernels.spin_collide`), Han 2005 cushions
+  (:mod:`~pool_env.sim.kernels.spin_cushion`) for rails, jaw facings and jaw points (a
+  point's normal runs from its tip's centre to the ball's), with ``e_jaw`` at the jaws.
 
 Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slower than
 ``V_ZENO`` is perfectly inelastic along the normal; a pair repeating ``ZENO_REPEATS`` times
 that closely sticks: it and every ball touching it leave with their common centre-of-mass
 velocity, their spins kept (momentum conserved, energy only lost). Simplification: the
-roll level's lump-against-rail rule is not reproduced; a wedged lump ends at the event cap
-at worst, which is reported.
+roll level's lump-against-rail and lump-against-jaw rules (``stick_cluster``'s rails,
+``unpress_lump``) are not reproduced; a lump wedged against a cushion ends at the event
+cap at worst, which is reported (``hit_event_cap``, ``stopped_by_cap``).
 """
 
 from __future__ import annotations
@@ -29,6 +32,7 @@ import math
 import numpy as np
 
 from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.jaws import JAW, POINT, jaw_normal
 from pool_env.sim.kernels.loop import (
     BALL_STOPPED,
     N_BALL_ROWS,
@@ -37,7 +41,7 @@ from pool_env.sim.kernels.loop import (
     _tally,
     validate,
 )
-from pool_env.sim.kernels.params import P_E_BALL, P_E_CUSHION, P_MASS, P_RADIUS
+from pool_env.sim.kernels.params import P_E_BALL, P_E_CUSHION, P_E_JAW, P_MASS, P_RADIUS
 from pool_env.sim.kernels.predict import BALL, CUSHION, EV_ARG, EV_KIND, EV_T, POCKET
 from pool_env.sim.kernels.record import (
     SegmentLog,
@@ -215,6 +219,7 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
     now = 0.0
     capped = False
     e_c, f_c, h = prm[P_E_CUSHION], prm[S_CUSHION_FRICTION], prm[S_CUSHION_HEIGHT]
+    e_jaw = prm[P_E_JAW]
     radius = prm[P_RADIUS]
     while True:
         bt, bkind, bi, bj = INF, 99, n, n
@@ -258,10 +263,13 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
             x, y, vx, vy, wx, wy, wz = state_at(st, ms, bi, now, prm)
             if bkind == POCKET:
                 set_potted(st, ms, bi, now, x, y)
-            elif bkind == CUSHION:
-                cushion_han(
-                    vx, vy, wx, wy, wz, _RAIL_NX[bj], _RAIL_NY[bj], radius, h, e_c, f_c, out
-                )
+            elif bkind == CUSHION or bkind == JAW or bkind == POINT:  # noqa: SIM109 (numba)
+                if bkind == CUSHION:
+                    nx, ny, e = _RAIL_NX[bj], _RAIL_NY[bj], e_c
+                else:
+                    nx, ny = jaw_normal(pockets, bkind, bj, x, y)
+                    e = e_jaw
+                cushion_han(vx, vy, wx, wy, wz, nx, ny, radius, h, e, f_c, out)
                 set_anchor(st, ms, bi, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, 0)
             elif bkind == SLIDE_ROLL:
                 set_anchor(st, ms, bi, now, x, y, vx, vy, wx, wy, wz, prm, FORCE_ROLL)

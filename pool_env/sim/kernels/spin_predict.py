@@ -10,7 +10,9 @@ Every ball moves with a constant acceleration between its anchor and its next tr
   past the line moving into it hits now (the contact rule of the roll level);
 * a capture circle: the squared distance to its centre less its squared radius is a
   quartic, solved by the bracketed :func:`~pool_env.sim.kernels.roots.first_contact`
-  (a start inside captures now, in any direction);
+  (a start inside captures now, in any direction); pocket jaws (facings, points, fall
+  lines): :mod:`~pool_env.sim.kernels.spin_jaws` (on a jaw table a rail crossing inside a
+  pocket's opening is no rail hit);
 * a pair of balls: the squared gap is a quartic in any mix of states
   (:func:`~pool_env.sim.kernels.roots.first_contact`), with the explicit degree drops: both
   still, no event; bitwise-equal accelerations (two balls rolling or sliding the same way),
@@ -32,6 +34,7 @@ from __future__ import annotations
 import math
 
 from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.jaws import JAW_COLS, opening_of
 from pool_env.sim.kernels.params import P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.predict import CUSHION, EV_ARG, EV_KIND, EV_T, POCKET, STOP
 from pool_env.sim.kernels.roots import (
@@ -41,6 +44,7 @@ from pool_env.sim.kernels.roots import (
     first_contact,
     quadratic_roots,
 )
+from pool_env.sim.kernels.spin_jaws import predict_jaws
 from pool_env.sim.kernels.spin_params import S_SLIDE_DECEL, S_SPIN_DECEL
 from pool_env.sim.kernels.spin_state import (
     AX,
@@ -132,28 +136,49 @@ def predict_own(st, ms, i, prm, pockets, own, boxes):
     span = t_end - st[i, T0]
     xl, xh, yl, yh = x, x, y, y
     if moving(ms[i]):
-        radius = prm[P_RADIUS]
+        radius, length, width = prm[P_RADIUS], prm[P_LENGTH], prm[P_WIDTH]
+        t0 = st[i, T0]
         vx, vy, ax, ay = st[i, VX], st[i, VY], st[i, AX], st[i, AY]
         scale = math.sqrt(vx * vx + vy * vy) + prm[S_SLIDE_DECEL] * span
         tol = APPROACH_RTOL * scale
-        lines = (radius - x, x - (prm[P_LENGTH] - radius), radius - y, y - (prm[P_WIDTH] - radius))
+        jaws = pockets.shape[1] == JAW_COLS
+        lines = (radius - x, x - (length - radius), radius - y, y - (width - radius))
         for rail in range(4):
             sign = -1.0 if rail % 2 == 0 else 1.0
             v, a = (vx, ax) if rail < 2 else (vy, ay)
             tau = first_rise(lines[rail], sign * v, 0.5 * sign * a, span, tol)
-            t = st[i, T0] + tau
+            t = t0 + tau
             if tau < INF and (t < best_t or (t == best_t and best_kind > CUSHION)):
+                # On a jaw table a crossing inside a pocket's opening is no rail hit.
+                if jaws:
+                    if rail < 2:
+                        coord = y + tau * (vy + 0.5 * ay * tau)
+                    else:
+                        coord = x + tau * (vx + 0.5 * ax * tau)
+                    if opening_of(pockets, rail, coord) >= 0:
+                        continue
                 best_t, best_kind, best_arg = t, CUSHION, rail
-        for k in range(pockets.shape[0]):
-            qx, qy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
-            dx, dy = qx - x, qy - y
-            if dx * dx + dy * dy <= r * r:
-                tau = 0.0
-            else:
-                tau = first_contact(dx, dy, -vx, -vy, -0.5 * ax, -0.5 * ay, r * r, span, scale, 0.0)
-            t = st[i, T0] + tau
-            if tau < INF and (t < best_t or (t == best_t and best_kind > POCKET)):
-                best_t, best_kind, best_arg = t, POCKET, k
+        if jaws:
+            xl, xh = _extent(x, vx, ax, span)
+            yl, yh = _extent(y, vy, ay, span)
+            if xl < radius or xh > length - radius or yl < radius or yh > width - radius:
+                best_t, best_kind, best_arg = predict_jaws(
+                    pockets, x, y, vx, vy, ax, ay, span, tol, scale, prm[S_SLIDE_DECEL], t0,
+                    (best_t, best_kind, best_arg),
+                )  # fmt: skip
+        else:
+            for k in range(pockets.shape[0]):
+                qx, qy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
+                dx, dy = qx - x, qy - y
+                if dx * dx + dy * dy <= r * r:
+                    tau = 0.0
+                else:
+                    tau = first_contact(
+                        dx, dy, -vx, -vy, -0.5 * ax, -0.5 * ay, r * r, span, scale, 0.0
+                    )
+                t = t0 + tau
+                if tau < INF and (t < best_t or (t == best_t and best_kind > POCKET)):
+                    best_t, best_kind, best_arg = t, POCKET, k
         piece = best_t - st[i, T0]
         xl, xh = _extent(x, vx, ax, piece)
         yl, yh = _extent(y, vy, ay, piece)
