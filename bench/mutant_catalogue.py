@@ -39,7 +39,7 @@ class Mutant:
         name: Short unique identifier (used on the command line and in the table).
         area: What it breaks: ``impacts``, ``cushions``, ``motion``, ``roots``, ``ties``,
             ``zeno``, ``pockets``, ``jaws``, ``loop``, ``rewards``, ``observations``, ``actions``,
-            ``seeding``, ``env``, ``vector``, ``sb3``, ``ball in hand``.
+            ``seeding``, ``env``, ``vector``, ``sb3``, ``ball in hand``, ``strike``.
         file: Path relative to the repository root.
         original: Exact source snippet; must occur exactly once in ``file``.
         mutated: What replaces it.
@@ -115,6 +115,8 @@ INTERPRETABLE = frozenset(
         "tests/test_jaw_closed_forms.py",
         "tests/test_wpa.py",
         "tests/test_layout_rules.py",
+        "tests/test_spin_resolve.py",
+        "tests/test_spin_strike.py",
     }
 )
 
@@ -1172,5 +1174,155 @@ _ALL: tuple[Mutant, ...] = (
     ),
 )
 
+# The spin level's resolution kernels (issue 19): their closed-form and property tests.
+SPIN_RESOLVE = ("tests/test_spin_resolve.py",)
+SPIN_STRIKE = ("tests/test_spin_strike.py",)
+_SC = _K + "spin_collide.py"
+_SU = _K + "spin_cushion.py"
+_SS = _K + "spin_strike.py"
+
+_SPIN_RESOLVE: tuple[Mutant, ...] = (
+    Mutant(
+        "spin-bb-pooltool-friction",
+        "impacts",
+        _SC,
+        "jt = min(mu * jn, (2.0 / 7.0) * reduced * slip)",
+        "jt = min(mu * e_b * 2.0 * reduced * approach, (2.0 / 7.0) * reduced * slip)",
+        SPIN_RESOLVE,
+        "friction impulse from the separation speed e_b c (pooltool's) instead of Coulomb's",
+        "ball_ball_spin: the tangential impulse",
+    ),
+    Mutant(
+        "spin-bb-no-cap",
+        "impacts",
+        _SC,
+        "jt = min(mu * jn, (2.0 / 7.0) * reduced * slip)",
+        "jt = mu * jn",
+        SPIN_RESOLVE,
+        "throw not capped at the no-slip result (friction reverses the slip)",
+        "ball_ball_spin: the tangential impulse",
+    ),
+    Mutant(
+        "spin-bb-cap-equal-mass",
+        "impacts",
+        _SC,
+        "jt = min(mu * jn, (2.0 / 7.0) * reduced * slip)",
+        "jt = min(mu * jn, (1.0 / 7.0) * reduced * slip)",
+        SPIN_RESOLVE,
+        "pooltool's equal-mass sticking impulse m s / 7 written with the reduced mass",
+        "ball_ball_spin: the tangential impulse",
+    ),
+    Mutant(
+        "spin-bb-slip-side-sign",
+        "impacts",
+        _SC,
+        "sx = dvx - approach * nx - R * wsz * ny",
+        "sx = dvx - approach * nx + R * wsz * ny",
+        SPIN_RESOLVE,
+        "w x n with a flipped sign in the slip (side english throws the wrong way)",
+        "ball_ball_spin: the slip",
+    ),
+    Mutant(
+        "spin-bb-torque-ball-2",
+        "impacts",
+        _SC,
+        "out[7], out[8], out[9] = w2x + k2 * cx, w2y + k2 * cy, w2z + k2 * cz",
+        "out[7], out[8], out[9] = w2x - k2 * cx, w2y - k2 * cy, w2z - k2 * cz",
+        SPIN_RESOLVE,
+        "ball 2's torque taken as -R n x T (both the lever and the force flip)",
+        "ball_ball_spin: the spins",
+    ),
+    Mutant(
+        "spin-bb-vertical-torque",
+        "impacts",
+        _SC,
+        "cx, cy, cz = ny * tz, -nx * tz, nx * ty - ny * tx",
+        "cx, cy, cz = 0.0, 0.0, nx * ty - ny * tx",
+        SPIN_RESOLVE,
+        "the vertical friction (topspin and draw rubbing) dropped from the spins too",
+        "ball_ball_spin: the spins",
+    ),
+    Mutant(
+        "spin-bb-friction-speed",
+        "impacts",
+        _SC,
+        "mu = ball_friction(friction_mode, mu_const, slip)",
+        "mu = ball_friction(friction_mode, mu_const, approach)",
+        SPIN_RESOLVE,
+        "Alciatore's fit fed the approach speed instead of the contact slip speed",
+        "ball_ball_spin: the friction coefficient",
+    ),
+    Mutant(
+        "spin-han-boundary-no-mu",
+        "cushions",
+        _SU,
+        "pt = min(f_c * pn, (2.0 / 7.0) * slip)",
+        "pt = (2.0 / 7.0) * slip if (2.0 / 7.0) * slip <= pn else f_c * pn",
+        SPIN_RESOLVE,
+        "Han's slip/stick boundary without mu (the paper's typo, pooltool before PR #247)",
+        "cushion_han: the tangential impulse",
+    ),
+    Mutant(
+        "spin-han-angle-below",
+        "cushions",
+        _SU,
+        "sin_t = h / R - 1.0",
+        "sin_t = 1.0 - h / R",
+        SPIN_RESOLVE,
+        "the contact angle misread: the nose below the equator",
+        "cushion_han: the contact angle",
+    ),
+    Mutant(
+        "spin-han-torque-sign",
+        "cushions",
+        _SU,
+        "k = 2.5 / R",
+        "k = -2.5 / R",
+        SPIN_RESOLVE,
+        "the torque as P x r instead of r x P",
+        "cushion_han: the spin",
+    ),
+    Mutant(
+        "spin-strike-no-tip-scale",
+        "strike",
+        _SS,
+        "scale = 1.0 / (1.0 + r_tip / R)",
+        "scale = 1.0",
+        SPIN_STRIKE,
+        "the tip offset taken as the contact point (no 1 / (1 + r_tip / R) scaling)",
+        "cue_strike: the contact point",
+    ),
+    Mutant(
+        "spin-strike-squirt-side",
+        "strike",
+        _SS,
+        "heading = angle + squirt_angle(ac, m_ball, m_end)",
+        "heading = angle - squirt_angle(ac, m_ball, m_end)",
+        SPIN_STRIKE,
+        "squirt towards the side of the english",
+        "cue_strike: the squirt",
+    ),
+    Mutant(
+        "spin-strike-plane-speed",
+        "strike",
+        _SS,
+        "spin = 2.5 * (speed / cos_e) / R",
+        "spin = 2.5 * speed / R",
+        SPIN_STRIKE,
+        "spin from the in-plane speed, not the speed along the elevated cue",
+        "cue_strike: the spin",
+    ),
+    Mutant(
+        "spin-pooltool-side",
+        "strike",
+        "pool_env/sim/cue.py",
+        "tip = (0.0 - a_c * widen, b_c * widen)",
+        "tip = (a_c * widen, b_c * widen)",
+        SPIN_STRIKE,
+        "pooltool's a (+ = left) ported as right english",
+        "from_pooltool: the tip",
+    ),
+)
+
 #: The mutants :mod:`bench.mutants` runs.
-CATALOGUE: tuple[Mutant, ...] = _ALL
+CATALOGUE: tuple[Mutant, ...] = (*_ALL, *_SPIN_RESOLVE)

@@ -50,6 +50,7 @@ def run_pooltool(
     timeout: float = 60.0,
     total_timeout: float = 1800.0,
     venv: Path = DEFAULT_VENV,
+    min_dist: float | None = None,
 ) -> dict[str, Any]:
     """Run ``scenes`` through pooltool in a subprocess.
 
@@ -60,6 +61,7 @@ def run_pooltool(
         timeout: Seconds per simulation before the worker reports a hang.
         total_timeout: Seconds for the whole subprocess.
         venv: The pooltool virtualenv.
+        min_dist: Replaces pooltool's collision spacer ``constants.MIN_DIST`` (1e-6 m).
 
     Returns:
         The worker's JSON output with ``available: True``, or ``{"available": False,
@@ -71,7 +73,13 @@ def run_pooltool(
             "available": False,
             "reason": f"no pooltool virtualenv at {venv} (run bash bench/setup_pooltool.sh)",
         }
-    job = {"repeats": repeats, "max_events": max_events, "timeout": timeout, "scenes": scenes}
+    job = {
+        "repeats": repeats,
+        "max_events": max_events,
+        "timeout": timeout,
+        "scenes": scenes,
+        "min_dist": min_dist,
+    }
     with tempfile.TemporaryDirectory(prefix="pooltool-home-") as home:
         env = {**os.environ, "HOME": home, "PYTHONNOUSERSITE": "1"}
         env.pop("PYTHONPATH", None)

@@ -10,6 +10,17 @@ Input::
                  "positions": [[x, y], ...], "velocities": [[vx, vy], ...], "obj": 1,
                  "masses": null | [m, ...]}]}
 
+Spin scenes (the spin level's equal-model comparison, ``bench/spin_vs_pooltool.py``) add
+``"model": "spin"`` and ``mu_slide``, ``spin_decel``, ``ball_friction`` (``"alciatore"``
+or a constant), ``alciatore`` (``[a, b, c]`` of the fit), ``cushion_friction``,
+``cushion_height`` to the table, and ``angular_velocities`` (``[[wx, wy, wz], ...]``, our
+frame) and optionally ``strike`` (``{"V0", "phi", "theta", "a", "b", "M", "end_mass"}`` in
+pooltool's own terms and frame; every ball then starts at rest) to the scene. They run on a
+pocketless ``BilliardTableSpecs`` table with a ``Resolver`` of Han 2005 cushions, the
+frictional inelastic ball-ball model and the instantaneous-point strike; the balls start in
+the motion state their velocities and spins give, and the result adds the final
+velocities, angular velocities and the event list (``[time, type, [ball indices]]``).
+
 Output: versions, import and warm-up (numba compile) seconds, and per scene the wall times
 of ``pooltool.simulate`` (system construction is not timed), final positions, pocketed
 balls (pocket centres in our frame, for matching), the object ball's velocity after its
@@ -55,15 +66,108 @@ def _from_pt(px: float, py: float, width: float) -> tuple[float, float]:
 
 
 def _table(spec: dict) -> pt.Table:
-    if spec["pockets"]:
+    if spec.get("model") == "spin":
+        specs = pt.objects.BilliardTableSpecs(
+            l=spec["length"], w=spec["width"], cushion_height=spec["cushion_height"]
+        )
+    elif spec["pockets"]:
         specs = pt.objects.PocketTableSpecs(l=spec["length"], w=spec["width"])
     else:
         specs = pt.objects.BilliardTableSpecs(l=spec["length"], w=spec["width"])
     return pt.Table.from_table_specs(specs)
 
 
+def _engine(spec: dict) -> Any:
+    """The pooltool physics engine configured to the spin level's models (or its default)."""
+    if spec.get("model") != "spin":
+        return None
+    from pooltool.physics.engine import PhysicsEngine
+    from pooltool.physics.resolve.ball_ball.friction import AlciatoreBallBallFriction
+    from pooltool.physics.resolve.ball_ball.frictional_inelastic import FrictionalInelastic
+    from pooltool.physics.resolve.ball_cushion.han_2005.model import (
+        Han2005Circular,
+        Han2005Linear,
+    )
+    from pooltool.physics.resolve.resolver import Resolver
+
+    default = Resolver.default()
+    # A constant friction mu (0: frictionless, restitution kept) is the fit a + b e^(-c v)
+    # with a = mu, b = 0.
+    a, b, c = spec["alciatore"] if spec["ball_friction"] == "alciatore" else (
+        float(spec["ball_friction"]), 0.0, 0.0)  # fmt: skip
+    friction = AlciatoreBallBallFriction(a=a, b=b, c=c)
+    resolver = Resolver(
+        ball_ball=FrictionalInelastic(friction=friction),
+        ball_linear_cushion=Han2005Linear(),
+        ball_circular_cushion=Han2005Circular(),
+        ball_pocket=default.ball_pocket,
+        stick_ball=default.stick_ball,  # InstantaneousPoint (with squirt)
+        transition=default.transition,
+        version=default.version,
+    )
+    return PhysicsEngine(resolver=resolver)
+
+
+def _spin_ball(bid: str, scene: dict, k: int, mass: float) -> pt.Ball:
+    """A ball with the spin level's parameters and its initial state (pooltool frame)."""
+    spec = scene["table"]
+    width, radius, g = spec["width"], spec["ball_radius"], spec["g"]
+    x, y = scene["positions"][k]
+    vx, vy = scene["velocities"][k]
+    wx, wy, wz = scene["angular_velocities"][k]
+    ball = pt.Ball.create(
+        bid,
+        xy=_to_pt(x, y, width),
+        m=mass,
+        R=radius,
+        u_s=spec["mu_slide"],
+        u_r=spec["mu_roll"],
+        # spin deceleration = (5/2) (u_sp / R) g with u_sp = proportionality * R
+        u_sp_proportionality=spec["spin_decel"] * 2.0 / (5.0 * g),
+        e_b=spec["e_ball"],
+        e_c=spec["e_cushion"],
+        f_c=spec["cushion_friction"],
+        g=g,
+    )
+    # Ours (x, y) is pooltool's (W - y, x): vectors (and the spin about z) turn by +90 deg.
+    v, w = [-vy, vx, 0.0], [-wy, wx, wz]
+    ball.state.rvw[1] = v
+    ball.state.rvw[2] = w
+    slip = (v[0] - radius * w[1], v[1] + radius * w[0])
+    if v[0] == 0 and v[1] == 0 and w[0] == 0 and w[1] == 0:
+        ball.state.s = pt.constants.spinning if wz != 0 else pt.constants.stationary
+    elif slip == (0.0, 0.0):
+        ball.state.s = pt.constants.rolling
+    else:
+        ball.state.s = pt.constants.sliding
+    return ball
+
+
 def _system(scene: dict) -> pt.System:
     spec = scene["table"]
+    if spec.get("model") == "spin":
+        n = len(scene["positions"])
+        masses = scene.get("masses") or [spec["ball_mass"]] * n
+        balls = {
+            ("cue" if k == 0 else str(k)): _spin_ball("cue" if k == 0 else str(k), scene, k,
+                                                      masses[k])
+            for k in range(n)
+        }  # fmt: skip
+        strike = scene.get("strike")
+        if strike is None:
+            cue = pt.Cue(cue_ball_id="cue", V0=0.0)
+        else:
+            specs = pt.objects.CueSpecs(M=strike["M"], end_mass=strike["end_mass"])
+            cue = pt.Cue(
+                cue_ball_id="cue",
+                V0=strike["V0"],
+                phi=strike["phi"],
+                theta=strike["theta"],
+                a=strike["a"],
+                b=strike["b"],
+                specs=specs,
+            )
+        return pt.System(cue=cue, table=_table(spec), balls=balls)
     width, radius = spec["width"], spec["ball_radius"]
     balls = {}
     masses = scene.get("masses") or [spec["ball_mass"]] * len(scene["positions"])
@@ -118,26 +222,40 @@ def _summary(system: pt.System, scene: dict) -> dict:
             k = _index(event.agents[0].id)
             centre = system.table.pockets[event.agents[1].id].center
             pocket_xy[k] = list(_from_pt(float(centre[0]), float(centre[1]), width))
-    return {
+    out = {
         "positions": positions,
         "pocket_xy": pocket_xy,
         "obj_vel": obj_vel,
         "hits": sorted(list(h) for h in hits),
         "n_events": len(system.events),
     }
+    if scene["table"].get("model") == "spin":
+        velocities, spins = [[0.0, 0.0]] * n, [[0.0, 0.0, 0.0]] * n
+        for bid, ball in system.balls.items():
+            _, (pvx, pvy, _), (pwx, pwy, pwz) = ball.state.rvw
+            velocities[_index(bid)] = [float(pvy), float(-pvx)]
+            spins[_index(bid)] = [float(pwy), float(-pwx), float(pwz)]
+        out["velocities"], out["angular_velocities"] = velocities, spins
+        out["events"] = [
+            [float(e.time), str(e.event_type), [_index(a.id) for a in e.agents if a.id in
+                                                system.balls]]
+            for e in system.events
+        ]  # fmt: skip
+    return out
 
 
 def _run(scene: dict, repeats: int, max_events: int, timeout: float) -> dict:
     times = []
     cpu_times = []  # this thread's CPU time: what the load of other processes leaves alone
     out: dict = {}
+    engine = _engine(scene["table"])
     try:
         for _ in range(repeats):
             system = _system(scene)
             signal.setitimer(signal.ITIMER_REAL, timeout)
             t0, c0 = time.perf_counter(), time.thread_time()
             try:
-                pt.simulate(system, inplace=True, max_events=max_events)
+                pt.simulate(system, engine=engine, inplace=True, max_events=max_events)
             finally:
                 signal.setitimer(signal.ITIMER_REAL, 0.0)
             times.append(time.perf_counter() - t0)
@@ -159,6 +277,10 @@ def main() -> None:
     """Read the job from stdin, run it, print the results as JSON."""
     signal.signal(signal.SIGALRM, _on_alarm)
     job = json.load(sys.stdin)
+    if job.get("min_dist") is not None:
+        # pooltool moves colliding balls apart to a gap of MIN_DIST (1e-6 m) before it
+        # resolves an impact ("make_kiss"); a smaller gap shows what that spacer costs.
+        pt.constants.MIN_DIST = float(job["min_dist"])
     scenes = job["scenes"]
     t0 = time.perf_counter()
     if scenes:  # first use compiles pooltool's numba kernels (or loads them from its cache)

@@ -5,13 +5,16 @@ This layer knows nothing of Gymnasium: arrays and a frozen :class:`Table` in, a
 """
 
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
-from pool_env.sim.result import Event, ShotResult
+from pool_env.sim.kernels.spin_state import STATE_NAMES
+from pool_env.sim.result import Event, ShotResult, SpinShotResult
 from pool_env.sim.simulate import check_layout, shoot, simulate
 from pool_env.sim.table import Table
 
 __all__ = [
+    "STATE_NAMES",
     "Event",
     "ShotResult",
+    "SpinShotResult",
     "Table",
     "check_layout",
     "shoot",

@@ -32,6 +32,17 @@ from pool_env.sim.table import Table
 PARALLEL_FROM = 64
 
 
+def _roll_table(table: object) -> Table:
+    """``table`` if it is a roll-level :class:`Table` (batches do not run the spin level)."""
+    table = check_table(table)
+    if table.model != "roll":
+        raise ValueError(
+            "batches run the roll level only so far: simulate spin tables "
+            "(Table(model='spin')) one shot at a time with pool_env.simulate or shoot"
+        )
+    return table
+
+
 @dataclass(frozen=True, slots=True)
 class BatchResult:
     """Final states of ``B`` tables.
@@ -88,9 +99,11 @@ def simulate_batch(
 
     Raises:
         ValueError: On malformed arrays, or naming the first invalid table and its problem
-            (as :func:`pool_env.simulate` would); no table is simulated then.
+            (as :func:`pool_env.simulate` would); no table is simulated then. A spin
+            table (``Table(model="spin")``) is refused: batches run the roll level only
+            so far; simulate spin shots one by one with :func:`pool_env.simulate`.
     """
-    table = check_table(table)
+    table = _roll_table(table)
     pos = as_batch_points("positions", positions)
     vel = as_batch_points("velocities", velocities, pos.shape)
     n_tables, n_balls = pos.shape[:2]
@@ -189,7 +202,7 @@ def simulate_batch_threads(
     Raises:
         ValueError: As :func:`simulate_batch`, naming the table by its index in the batch.
     """
-    table = check_table(table)
+    table = _roll_table(table)
     positions = as_batch_points("positions", positions)
     velocities = as_batch_points("velocities", velocities, positions.shape)
     n = positions.shape[0]

@@ -8,14 +8,23 @@ from typing import Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.sim.kernels import loop
+from pool_env.sim.kernels import loop, spin_loop
+from pool_env.sim.kernels.spin_state import POTTED, STATIONARY
+from pool_env.sim.kernels.spin_timeline import spin_positions_at, spin_positions_at_many
 from pool_env.sim.kernels.timeline import positions_at as _positions_at
 from pool_env.sim.kernels.timeline import positions_at_many as _positions_at_many
 
-EventKind = Literal["pocket", "ball", "cushion", "stop", "jaw", "point"]
+EventKind = Literal[
+    "pocket", "ball", "cushion", "stop", "jaw", "point", "slide_roll", "roll_spin", "spin_stop"
+]
 
-#: Event kind codes of the compiled loop, in tie-breaking order.
-KIND_NAMES: tuple[EventKind, ...] = ("pocket", "ball", "cushion", "stop", "jaw", "point")
+#: Event kind codes of the compiled loops, in tie-breaking order. The last three are the
+#: spin level's transitions (``Table(model="spin")``): a sliding ball starts rolling, a
+#: rolling ball comes to rest spinning in place, a spinning ball stops; a rolling ball
+#: that comes to rest without spin is a ``"stop"`` on both levels.
+KIND_NAMES: tuple[EventKind, ...] = (
+    "pocket", "ball", "cushion", "stop", "jaw", "point", "slide_roll", "roll_spin", "spin_stop"
+)  # fmt: skip
 #: Kinds that are cushion contacts for the rules (a rail, a jaw facing, a jaw point).
 CUSHION_KINDS: tuple[EventKind, ...] = ("cushion", "jaw", "point")
 
@@ -34,7 +43,9 @@ class Event:
             the point (round tip) ``j = 2 k + side``), ``"pocket"`` (ball ``i`` captured by
             pocket ``j``: its centre entered the capture circle or reached the fall line)
             or ``"stop"`` (ball ``i`` comes to rest; ``j = -1``). Rails, facings and points
-            are all cushions for the rules (:data:`CUSHION_KINDS`).
+            are all cushions for the rules (:data:`CUSHION_KINDS`). On a spin table also
+            the transitions of ball ``i`` (``j = -1``): ``"slide_roll"``, ``"roll_spin"``
+            (it rests, spinning in place) and ``"spin_stop"``.
         i: The ball.
         j: The other ball, the rail, the pocket, or -1.
     """
@@ -92,6 +103,9 @@ class ShotResult:
         "n_events",
         "recorded",
     )
+
+    #: Columns of a segment state (``x, y, vx, vy`` on the roll level).
+    _SEG_WIDTH = 4
 
     def __init__(self, raw: tuple, n_balls: int, deceleration: float, recorded: bool) -> None:
         """Take over what :func:`~pool_env.sim.kernels.loop.packed_shot` returned.
@@ -238,8 +252,22 @@ class ShotResult:
         f = 2 * self.n_balls + self._n_logged
         k = loop.N_BALL_ROWS * self.n_balls + 4 * self._n_logged
         floats, ints = self._floats, self._ints
-        state = floats[f + n_seg : f + 5 * n_seg].reshape(n_seg, 4)
+        w = self._SEG_WIDTH
+        state = floats[f + n_seg : f + (1 + w) * n_seg].reshape(n_seg, w)
         return ints[k : k + n_seg], floats[f : f + n_seg], state, ints[k + n_seg : k + 2 * n_seg]
+
+    @property
+    def angular_velocities(self) -> NDArray[np.float64]:
+        """``(N, 3)`` final angular velocities (rad/s): zero on the roll level (no spin)."""
+        return np.zeros((self.n_balls, 3))
+
+    @property
+    def motion_states(self) -> NDArray[np.int8]:
+        """``(N,)`` final motion states (:data:`~pool_env.sim.kernels.spin_state.STATE_NAMES`).
+
+        On the roll level every ball ends at rest (``STATIONARY``) or ``POTTED``.
+        """
+        return np.where(self.pocketed >= 0, POTTED, STATIONARY).astype(np.int8)
 
     def pocketed_at(self, t: float) -> NDArray[np.bool_]:
         """``(N,)`` booleans: which balls are potted by time ``t``."""
@@ -256,3 +284,46 @@ class ShotResult:
             f"ShotResult(n_balls={self.n_balls}, n_events={self.n_events}, "
             f"duration={self.duration:.4f}, potted={potted}, hit_event_cap={self.hit_event_cap})"
         )
+
+
+class SpinShotResult(ShotResult):
+    """A :class:`ShotResult` of the spin level (``Table(model="spin")``).
+
+    As :class:`ShotResult`, with the final :attr:`angular_velocities` and
+    :attr:`motion_states`, the transition events, segment states of nine columns
+    ``(x, y, vx, vy, wx, wy, wz, ax, ay)`` (a ball follows ``p + v tau + acc tau^2 / 2`` from
+    each of its rows: sliding paths are parabolas), and :meth:`positions_at` exact on them.
+    """
+
+    __slots__ = ()
+    _SEG_WIDTH = spin_loop.SEG_COLS
+
+    def _tail(self) -> tuple[int, int]:
+        n_seg, n_log = self._n_segments, self._n_logged
+        floats = 2 * self.n_balls + n_log + (1 + self._SEG_WIDTH) * n_seg
+        return floats, loop.N_BALL_ROWS * self.n_balls + 4 * n_log + 2 * n_seg
+
+    @property
+    def angular_velocities(self) -> NDArray[np.float64]:
+        """``(N, 3)`` final angular velocities ``(wx, wy, wz)`` (rad/s)."""
+        f, _ = self._tail()
+        return self._floats[f : f + 3 * self.n_balls].reshape(self.n_balls, 3)
+
+    @property
+    def motion_states(self) -> NDArray[np.int64]:
+        """``(N,)`` final motion states (codes of ``spin_state.STATE_NAMES``)."""
+        _, k = self._tail()
+        return self._ints[k : k + self.n_balls]
+
+    def positions_at_many(self, times: NDArray[np.float64]) -> tuple[NDArray, NDArray]:
+        """Positions ``(T, N, 2)`` and potted flags ``(T, N)`` at each of ``times``."""
+        times = np.ascontiguousarray(times, dtype=np.float64).reshape(-1)
+        if not self.recorded:
+            self._check_time(0.0)
+        if times.size and not (times.min() >= 0.0 and times.max() <= self.duration):
+            raise ValueError(f"times must lie in [0, duration={self.duration}]")
+        return spin_positions_at_many(*self._segment_views(), self.n_balls, times)
+
+    def _frame(self, t: float) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+        t = self._check_time(t)
+        return spin_positions_at(*self._segment_views(), self.n_balls, t)

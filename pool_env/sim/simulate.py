@@ -21,6 +21,7 @@ from pool_env.sim.inputs import (
 )
 from pool_env.sim.kernels import loop
 from pool_env.sim.result import ShotResult
+from pool_env.sim.spin_inputs import as_angular, check_tip, run_spin, strike
 from pool_env.sim.table import Table
 
 __all__ = ["DEFAULT_MAX_EVENTS", "check_layout", "shoot", "simulate"]
@@ -33,6 +34,7 @@ def simulate(
     masses: ArrayLike | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
     record: bool = True,
+    angular_velocities: ArrayLike | None = None,
 ) -> ShotResult:
     """Simulate balls on ``table`` from the given state until everything rests.
 
@@ -46,13 +48,19 @@ def simulate(
             ``hit_event_cap`` and flags the balls it stopped in ``stopped_by_cap``.
         record: Keep the event list and the trajectories (for ``events`` and
             ``positions_at``). Training loops that only need the final state pass False.
+        angular_velocities: ``(N, 3)`` initial angular velocities ``(wx, wy, wz)`` (rad/s)
+            on a spin table (``Table(model="spin")``); ``None`` means no spin (a ball given
+            a velocity and no spin starts sliding). Must be ``None`` on a roll table.
 
     Returns:
-        The :class:`~pool_env.sim.result.ShotResult`.
+        The :class:`~pool_env.sim.result.ShotResult` (a
+        :class:`~pool_env.sim.result.SpinShotResult` on a spin table).
 
     Raises:
         ValueError: On malformed, non-finite or out-of-table input, overlapping balls, a
-            non-positive mass, or a bad ``max_events``. Inputs are never modified.
+            non-positive mass, a bad ``max_events``, or angular velocities on a roll table
+            (or non-finite, or with a surface speed ``R |w|`` beyond the speed limit).
+            Inputs are never modified.
 
     Examples:
         A head-on hit on a table without pockets: the first impact comes when the rolling
@@ -74,9 +82,17 @@ def simulate(
         array([-1, -1])
     """
     pos = as_points("positions", positions)
-    return _run(
-        table, pos, as_points("velocities", velocities, pos.shape[0]), masses, max_events, record
-    )
+    vel = as_points("velocities", velocities, pos.shape[0])
+    table = check_table(table)
+    if table.model == "spin":
+        ang = as_angular(table, angular_velocities, pos.shape[0])
+        return run_spin(table, pos, vel, ang, masses, max_events, record)
+    if angular_velocities is not None:
+        raise ValueError(
+            "angular_velocities need the spin level: use Table(model='spin'); the roll "
+            "level has no spin"
+        )
+    return _run(table, pos, vel, masses, max_events, record)
 
 
 def _run(
@@ -109,6 +125,9 @@ def shoot(
     masses: ArrayLike | Sequence[float] | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
     record: bool = True,
+    *,
+    tip: tuple[float, float] = (0.0, 0.0),
+    elevation: float = 0.0,
 ) -> ShotResult:
     """Strike ball ``cue`` at ``speed`` (m/s) along ``angle`` (radians from +x); others rest.
 
@@ -121,13 +140,21 @@ def shoot(
         masses: Optional per-ball masses.
         max_events: Event cap.
         record: Keep events and trajectories (see :func:`simulate`).
+        tip: The cue tip's offset ``(a, b)`` from the ball's centre, in fractions of the
+            radius in [-1, 1]: ``a`` side (+ right english, seen from behind the cue),
+            ``b`` vertical (+ above centre: follow; - draw). Spin table only.
+        elevation: The cue's elevation (radians, in [0, pi/2)). Spin table only. On a spin
+            table ``speed`` stays the cue ball's speed in the table plane after the strike
+            and ``angle`` the aim of the cue (the ball leaves at the aim less the squirt).
 
     Returns:
         The :class:`~pool_env.sim.result.ShotResult`.
 
     Raises:
         ValueError: On a non-finite angle, a negative or non-finite speed, a cue index out
-            of range, or any problem :func:`simulate` rejects.
+            of range, a tip or elevation out of range, a non-zero tip or elevation on a
+            roll table (use ``Table(model="spin")``), or any problem :func:`simulate`
+            rejects.
 
     Examples:
         >>> from pool_env import Table, shoot
@@ -145,6 +172,12 @@ def shoot(
     speed = check_speed(speed, table)
     n = pos.shape[0]
     cue = check_cue(cue, n)
+    a, b, elevation = check_tip(table, tip, elevation)
+    if table.model == "spin":
+        vel = np.zeros((n, 2))
+        ang = np.zeros((n, 3))
+        vel[cue], ang[cue] = strike(table, speed, angle, a, b, elevation)
+        return run_spin(table, pos, vel, ang, masses, max_events, record)
     vel = np.zeros((n, 2))
     vel[cue, 0] = speed * math.cos(angle)
     vel[cue, 1] = speed * math.sin(angle)

@@ -26,6 +26,20 @@ from pool_env.sim.kernels.params import (
     P_RADIUS,
     P_WIDTH,
 )
+from pool_env.sim.kernels.spin_params import (
+    ALCIATORE_FRICTION,
+    CONSTANT_FRICTION,
+    FRICTIONLESS,
+    N_SPIN_PARAMS,
+    S_CUSHION_FRICTION,
+    S_CUSHION_HEIGHT,
+    S_END_MASS,
+    S_FRICTION_MODE,
+    S_MU_BALL,
+    S_SLIDE_DECEL,
+    S_SPIN_DECEL,
+    S_TIP_RADIUS,
+)
 from pool_env.sim.pockets import (
     CORNER_MOUTH,
     SIDE_MOUTH,
@@ -38,6 +52,14 @@ from pool_env.sim.pockets import (
 from pool_env.sim.scalars import positive, real_number, within
 
 __all__ = ["CORNER_MOUTH", "SIDE_MOUTH", "JawSpec", "PocketJaws", "Table", "standard_pockets"]
+
+#: The model levels: "roll" (balls roll without spin, the cheap level) and "spin".
+MODELS = ("roll", "spin")
+#: pooltool 0.6.0's ``u_sp / R`` (its spin-deceleration default ``u_sp = 0.444 R``).
+SPIN_FRICTION_RATIO = 0.444
+#: Cushion nose height as a fraction of the ball diameter (WPA equipment specifications:
+#: 63.5% of the ball's height, 62.5-64.5%); pooltool 0.6.0 uses 0.64 x 2R.
+NOSE_HEIGHT_FRACTION = 0.635
 
 PocketSpec = (
     Literal["jaws", "standard", "circles", "none"]
@@ -87,6 +109,13 @@ def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray
     )
 
 
+def _non_negative(name: str, value: object) -> float:
+    value = real_number(name, value)
+    if value < 0.0:
+        raise ValueError(f"{name} must be a non-negative finite number, got {value!r}")
+    return value
+
+
 def _check_restitution(name: str, value: object) -> float:
     value = real_number(name, value)
     if not (0.0 <= value <= 1.0):
@@ -126,6 +155,27 @@ class Table:
             capture circles.
         e_jaw: Restitution of the jaw facings and points, in [0, 1]; ``None`` (default)
             takes ``e_cushion``.
+        model: ``"roll"`` (default): balls roll without spin and the parameters below are
+            ignored (bit for bit the original model); ``"spin"``: the spin level (sliding,
+            rolling, spinning, english, throw, cushion spin), see
+            :mod:`pool_env.sim.kernels.spin_loop`; every pocket model.
+        mu_slide: Sliding friction ball-cloth, 0.2 (Alciatore's physical-properties table:
+            0.15-0.4, typical 0.2; pooltool 0.6.0's default). A sliding ball decelerates at
+            ``mu_slide * g`` against its contact point's slip.
+        spin_decel: Deceleration of the vertical-axis spin (rad/s^2); ``None`` (default)
+            takes pooltool 0.6.0's ``(5 / 2) * 0.444 * g`` (its ``u_sp = 0.444 R``), about
+            10.9 rad/s^2 (Alciatore's table: 5-15 rad/s^2).
+        ball_friction: Ball-ball friction: ``"alciatore"`` (default) for Alciatore's fit
+            to Marlow's data ``0.00995 + 0.108 exp(-1.088 v_rel)`` (pooltool 0.6.0's
+            default), a constant ``>= 0``, or 0 for frictionless balls.
+        cushion_friction: Ball-cushion friction, 0.2 (pooltool 0.6.0's default).
+        cushion_height: Height of the cushion nose's contact above the cloth (m), in
+            ``[R, 2R)``; ``None`` (default) takes the WPA nose height, 63.5% of the ball
+            diameter (``1.27 R``; pooltool uses 0.64 x 2R).
+        cue_tip_radius: Radius of the cue tip (m), 0.0106 (pooltool 0.6.0; a 14 mm tip's
+            dome is flatter than its width suggests).
+        cue_end_mass: The cue's effective end mass for squirt (kg); ``None`` (default)
+            takes ``ball_mass / 30`` (pooltool 0.6.0, after Alciatore's TP A-31).
 
     Attributes:
         pockets: ``(K, 3)`` the pockets as ``(x, y, radius)`` capture circles. With
@@ -145,7 +195,10 @@ class Table:
             numeric limits of :mod:`pool_env.sim.kernels.limits` (or not a finite real
             number); a non-positive ``mu_roll`` or ``g``; a restitution outside [0, 1]; a
             table too small for one ball or for its pockets; or an unknown or malformed
-            pocket specification.
+            pocket specification; an unknown ``model``; a spin parameter that is not a
+            finite real number in its range (``mu_slide``, ``spin_decel``, ``cue_tip_radius``
+            and ``cue_end_mass`` positive, ``ball_friction`` and ``cushion_friction``
+            non-negative, ``cushion_height`` in ``[R, 2R)``).
 
     Examples:
         >>> from pool_env import Table
@@ -170,11 +223,20 @@ class Table:
     e_cushion: float = 0.65
     pockets: NDArray[np.float64] = field(default="jaws")  # type: ignore[assignment]
     e_jaw: float | None = None
+    model: str = "roll"
+    mu_slide: float = 0.2
+    spin_decel: float | None = None
+    ball_friction: str | float = "alciatore"
+    cushion_friction: float = 0.2
+    cushion_height: float | None = None
+    cue_tip_radius: float = 0.0106
+    cue_end_mass: float | None = None
     params: NDArray[np.float64] = field(init=False, repr=False)
     pocket_model: str = field(init=False, repr=False)
     jaws: tuple[PocketJaws, ...] = field(init=False, repr=False)
     rails: NDArray[np.float64] = field(init=False, repr=False)
     pocket_geometry: NDArray[np.float64] = field(init=False, repr=False)
+    spin_params: NDArray[np.float64] = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
         setter = object.__setattr__  # frozen dataclass: set validated values once
@@ -215,6 +277,60 @@ class Table:
         params[P_E_JAW] = self.e_jaw
         params.setflags(write=False)
         setter(self, "params", params)
+        self._set_spin_parameters(params)
+
+    def _set_spin_parameters(self, params: NDArray[np.float64]) -> None:
+        """Validate the model level and the spin parameters; build ``spin_params``."""
+        setter = object.__setattr__
+        if not isinstance(self.model, str) or self.model not in MODELS:
+            raise ValueError(f"model must be 'roll' or 'spin', got {self.model!r}")
+        r, g = self.ball_radius, self.g
+        low, high = limits.MIN_DECELERATION, limits.MAX_DECELERATION
+        setter(self, "mu_slide", positive("mu_slide", self.mu_slide))
+        within("the sliding deceleration mu_slide * g", self.mu_slide * g, low, high, "m/s^2")
+        spin_decel = 2.5 * SPIN_FRICTION_RATIO * g if self.spin_decel is None else self.spin_decel
+        setter(self, "spin_decel", within("spin_decel", spin_decel, low, high, "rad/s^2"))
+        friction = self.ball_friction
+        if isinstance(friction, str):
+            if friction != "alciatore":
+                raise ValueError(
+                    f"ball_friction must be 'alciatore' or a number >= 0, got {friction!r}"
+                )
+            mode, mu_ball = ALCIATORE_FRICTION, 0.0
+        else:
+            mu_ball = _non_negative("ball_friction", friction)
+            setter(self, "ball_friction", mu_ball)
+            mode = CONSTANT_FRICTION if mu_ball > 0.0 else FRICTIONLESS
+        setter(self, "cushion_friction", _non_negative("cushion_friction", self.cushion_friction))
+        height = (
+            2.0 * NOSE_HEIGHT_FRACTION * r if self.cushion_height is None else self.cushion_height
+        )
+        height = real_number("cushion_height", height)
+        if not r <= height < 2.0 * r:
+            raise ValueError(f"cushion_height must lie in [R, 2R) = [{r}, {2 * r}), got {height!r}")
+        setter(self, "cushion_height", height)
+        tip = within(
+            "cue_tip_radius", self.cue_tip_radius, limits.MIN_LENGTH, limits.MAX_LENGTH, "m"
+        )
+        setter(self, "cue_tip_radius", tip)
+        end_mass = self.ball_mass / 30.0 if self.cue_end_mass is None else self.cue_end_mass
+        setter(
+            self,
+            "cue_end_mass",
+            within("cue_end_mass", end_mass, limits.MIN_MASS, limits.MAX_MASS, "kg"),
+        )
+        spin = np.empty(N_SPIN_PARAMS, dtype=np.float64)
+        spin[: params.shape[0]] = params
+        spin[S_SLIDE_DECEL] = self.mu_slide * g
+        spin[S_SPIN_DECEL] = self.spin_decel
+        spin[S_FRICTION_MODE] = mode
+        spin[S_MU_BALL] = mu_ball
+        spin[S_CUSHION_FRICTION] = self.cushion_friction
+        spin[S_CUSHION_HEIGHT] = self.cushion_height
+        spin[S_TIP_RADIUS] = self.cue_tip_radius
+        spin[S_END_MASS] = self.cue_end_mass
+        spin.setflags(write=False)
+        setter(self, "spin_params", spin)
 
     def _parse_pockets(
         self, spec: object
@@ -271,10 +387,20 @@ class Table:
         """Time a free ball takes to roll from ``speed`` to rest: ``v / (mu g)``."""
         return speed / self.deceleration
 
+    def _spin_repr(self) -> str:
+        if self.model == "roll":
+            return ""
+        return (
+            f", model='spin', mu_slide={self.mu_slide}, spin_decel={self.spin_decel}, "
+            f"ball_friction={self.ball_friction!r}, cushion_friction={self.cushion_friction}, "
+            f"cushion_height={self.cushion_height}, cue_tip_radius={self.cue_tip_radius}, "
+            f"cue_end_mass={self.cue_end_mass}"
+        )
+
     def __repr__(self) -> str:
         return (
             f"Table(length={self.length}, width={self.width}, ball_radius={self.ball_radius}, "
             f"ball_mass={self.ball_mass}, mu_roll={self.mu_roll}, g={self.g}, "
             f"e_ball={self.e_ball}, e_cushion={self.e_cushion}, e_jaw={self.e_jaw}, "
-            f"pockets=<{self.n_pockets} {self.pocket_model}>)"
+            f"pockets=<{self.n_pockets} {self.pocket_model}>{self._spin_repr()})"
         )

@@ -41,7 +41,13 @@ from pool_env.sim.kernels.motion import (
     state_at,
 )
 from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_RADIUS, P_WIDTH
-from pool_env.sim.kernels.roots import APPROACH_RTOL, INF, first_contact, ray_circle_entry
+from pool_env.sim.kernels.roots import (
+    APPROACH_RTOL,
+    INF,
+    equal_accel_contact,
+    first_contact,
+    ray_circle_entry,
+)
 
 # Event kinds, in the order that breaks ties between simultaneous events.
 POCKET, BALL, CUSHION, STOP = 0, 1, 2, 3
@@ -229,19 +235,8 @@ def _both_moving(st, status, i, j, t_a, t_b, radius, a):
     scale = math.sqrt(vxi * vxi + vyi * vyi) + math.sqrt(vxj * vxj + vyj * vyj)
     if cx == 0.0 and cy == 0.0:
         # Same direction bit for bit: the gap is a quadratic in time (degree drop).
-        g0 = d0x * d0x + d0y * d0y - four_r2
-        dw = d0x * wx + d0y * wy
-        tol = APPROACH_RTOL * math.sqrt(d0x * d0x + d0y * d0y) * scale
-        if dw >= -tol:
-            return INF  # separating, or closing within rounding of zero
-        if g0 <= 0.0:
-            return t_a
-        w2 = wx * wx + wy * wy
-        disc = dw * dw - w2 * g0
-        if disc < 0.0:
-            return INF
-        tau = g0 / (-dw + math.sqrt(disc))
-        return t_a + tau if tau <= span else INF
+        tau = equal_accel_contact(d0x, d0y, wx, wy, four_r2, span, scale)
+        return t_a + tau if tau < INF else INF
     tau = first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, span, scale, a)
     return t_a + tau if tau < INF else INF
 

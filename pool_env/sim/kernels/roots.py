@@ -172,6 +172,38 @@ def first_contact(d0x, d0y, wx, wy, cx, cy, four_r2, t_end, speed_scale, accel):
 
 
 @kernel
+def equal_accel_contact(d0x, d0y, wx, wy, four_r2, span, scale):
+    """First ``t`` in ``[0, span]`` where the gap closes, for equal accelerations (``c = 0``).
+
+    The degree drop of :func:`first_contact`: the relative motion is uniform, the squared
+    gap a quadratic in time. Same contact rule: touching and approaching is an impact now.
+
+    Args:
+        d0x, d0y: Relative position at ``t = 0``.
+        wx, wy: Relative velocity.
+        four_r2: The squared contact distance.
+        span: End of the window.
+        scale: Sum of the two speeds, for the approach tolerance.
+
+    Returns:
+        The event time, or ``inf``.
+    """
+    g0 = d0x * d0x + d0y * d0y - four_r2
+    dw = d0x * wx + d0y * wy
+    tol = APPROACH_RTOL * math.sqrt(d0x * d0x + d0y * d0y) * scale
+    if dw >= -tol:
+        return INF  # separating, or closing within rounding of zero
+    if g0 <= 0.0:
+        return 0.0
+    w2 = wx * wx + wy * wy
+    disc = dw * dw - w2 * g0
+    if disc < 0.0:
+        return INF
+    tau = g0 / (-dw + math.sqrt(disc))
+    return tau if tau <= span else INF
+
+
+@kernel
 def ray_circle_entry(px, py, ux, uy, qx, qy, radius2, capture_inside):
     """Arc length ``s >= 0`` at which the ray ``p + u s`` (``|u| = 1``) enters a circle.
 

@@ -1,0 +1,256 @@
+"""The spin level beside pooltool 0.6.0 on equal models, and the 50-digit reference.
+
+Run (pooltool from ``bash bench/setup_pooltool.sh``)::
+
+    python -m bench.spin_vs_pooltool              # 200 shots -> results/spin_vs_pooltool.md
+    python -m bench.spin_vs_pooltool --shots 20   # smoke run (prints, writes nothing)
+    python -m bench.spin_vs_pooltool --time       # speed: pool_env's spin level and pooltool
+
+The seeded shots of :mod:`bench.spin_scenes` (a cue strike with side and vertical tip
+offsets and sometimes an elevated cue, 1-3 collisions, pocketless table) run through
+pooltool (frictional inelastic ball-ball with the same Alciatore fit, Han 2005 cushions,
+instantaneous-point strike with squirt, equal ball and table parameters), through the
+reference :mod:`pool_env.testing.spin_reference` and, once it exists, through pool_env's
+``Table(model="spin")``. Reported per pair: the per-shot largest final-position difference
+over the balls (median, 95th percentile, max, shots within 1e-6 m). pooltool runs twice:
+as released, and with its collision spacer ``MIN_DIST`` set to 1e-12 m, which isolates
+what that spacer contributes.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from bench.engines.pooltool_engine import run_pooltool
+from bench.spin_scenes import SpinShot, pooltool_strike, spin_shots, spin_table, worker_scene
+from pool_env.testing.spin_reference import spin_reference_simulate
+
+ROOT = Path(__file__).resolve().parents[1]
+TARGET = 1e-6  # m
+
+
+def pool_env_spin() -> bool:
+    """Whether this tree's pool_env has the spin level (``Table(model="spin")``)."""
+    from pool_env import Table
+
+    try:
+        Table(model="spin", pockets="none")  # type: ignore[call-arg]
+    except TypeError:
+        return False
+    return True
+
+
+def ours(table: Any, shot: SpinShot, record: bool = True) -> Any:
+    """pool_env's spin level on one shot (its own strike)."""
+    from pool_env import shoot
+
+    return shoot(  # type: ignore[call-arg]
+        table, shot.positions, shot.angle, shot.speed, 0, tip=shot.tip,
+        elevation=shot.elevation, record=record,
+    )  # fmt: skip
+
+
+def stats(diffs: list[float]) -> dict[str, float]:
+    """Median, 95th percentile, max and the count within the target of per-shot differences."""
+    d = np.asarray(diffs, dtype=np.float64)
+    return {
+        "n": float(d.size),
+        "median": float(np.median(d)),
+        "p95": float(np.percentile(d, 95)),
+        "max": float(d.max()),
+        "within": float(np.sum(d <= TARGET)),
+    }
+
+
+def row(label: str, s: dict[str, float]) -> str:
+    """One markdown table row."""
+    return (
+        f"| {label} | {s['n']:.0f} | {s['median']:.2e} | {s['p95']:.2e} | {s['max']:.2e} | "
+        f"{s['within']:.0f} ({100 * s['within'] / s['n']:.1f}%) |"
+    )
+
+
+def _diff(a: Any, b: Any) -> float:
+    return float(np.max(np.hypot(*(np.asarray(a) - np.asarray(b)).T)))
+
+
+def compare(n: int) -> tuple[list[str], dict[str, Any]]:
+    """Run the comparison; returns the report lines and the raw figures."""
+    table = spin_table()
+    t0 = time.perf_counter()
+    shots = spin_shots(n, table=table)
+    t_ref = time.perf_counter() - t0
+    scenes = [worker_scene(table, s) for s in shots]
+    released = run_pooltool(scenes, repeats=1, max_events=5000)
+    spacer = run_pooltool(scenes, repeats=1, max_events=5000, min_dist=1e-12)
+    native_scenes = [worker_scene(table, s, throw="pooltool") for s in shots]
+    native = run_pooltool(native_scenes, repeats=1, max_events=5000, min_dist=1e-12)
+    for out in (released, spacer, native):
+        if not out.get("available"):
+            raise SystemExit(f"pooltool did not run: {out.get('reason')}")
+    pairs: dict[str, list[float]] = {
+        "pooltool vs reference": [],
+        "pooltool (MIN_DIST 1e-12) vs reference": [],
+        "pooltool's own throw (MIN_DIST 1e-12) vs reference (throw=pooltool)": [],
+    }
+    have_ours = pool_env_spin()
+    if have_ours:
+        pairs.update(
+            {
+                "pool_env vs reference": [],
+                "pool_env vs pooltool": [],
+                "pool_env vs pooltool (MIN_DIST 1e-12)": [],
+            }
+        )
+    worst: list[tuple[float, str, str]] = []
+    same_events = 0
+    for k, shot in enumerate(shots):
+        pt, pt0 = released["results"][k], spacer["results"][k]
+        if pt.get("error") or pt0.get("error"):
+            raise SystemExit(f"pooltool failed on {shot.name}: {pt.get('error')}")
+        d = _diff(pt["positions"], shot.ref_positions)
+        pairs["pooltool vs reference"].append(d)
+        pairs["pooltool (MIN_DIST 1e-12) vs reference"].append(
+            _diff(pt0["positions"], shot.ref_positions)
+        )
+        own = spin_reference_simulate(
+            table, shot.positions, shot.velocities, shot.angular_velocities, max_events=400,
+            throw="pooltool",
+        )  # fmt: skip
+        own_final = [[float(x), float(y)] for x, y in own.positions]
+        pairs["pooltool's own throw (MIN_DIST 1e-12) vs reference (throw=pooltool)"].append(
+            _diff(native["results"][k]["positions"], own_final)
+        )
+        kinds = [e[1] for e in pt["events"] if "ball_ball" in e[1] or "cushion" in e[1]]
+        worst.append((d, shot.name, " ".join(k.split("_")[-1] for k in kinds)))
+        if have_ours:
+            res = ours(table, shot)
+            pairs["pool_env vs reference"].append(_diff(res.positions, shot.ref_positions))
+            pairs["pool_env vs pooltool"].append(_diff(res.positions, pt["positions"]))
+            pairs["pool_env vs pooltool (MIN_DIST 1e-12)"].append(
+                _diff(res.positions, pt0["positions"])
+            )
+            ev = [(e.kind, e.i, e.j) for e in res.events]
+            same_events += ev == list(shot.ref_events)
+    figures = {name: stats(d) for name, d in pairs.items()}
+    figures["_meta"] = {
+        "shots": len(shots),
+        "pooltool": released["pooltool"],
+        "reference_s": t_ref,
+        "same_events": same_events,
+        "have_ours": have_ours,
+        "worst": sorted(worst, reverse=True)[:5],
+        "table": {
+            k: getattr(table, k)
+            for k in ("e_ball", "e_cushion", "cushion_friction", "mu_slide", "mu_roll")
+        },
+        "pairs": pairs,
+    }
+    lines = [
+        "| pair | shots | median | 95th pct | max | within 1e-6 m |",
+        "|---|---:|---:|---:|---:|---:|",
+        *(row(name, s) for name, s in figures.items() if not name.startswith("_")),
+    ]
+    return lines, figures
+
+
+def time_mode(shots_n: int, breaks_n: int, repeats: int) -> None:
+    """Time pool_env's spin level and pooltool per shot in one run; prints a table."""
+    from pool_env import Table
+    from pool_env.sim.layouts import break_scene
+
+    table = spin_table()
+    shots = [s for s in spin_shots(4 * shots_n, table=table) if len(s.positions) == 2]
+    shots = shots[:shots_n]
+    rng = np.random.default_rng(9)
+    base = break_scene(Table(pockets="none"), "nine")
+    from bench.spin_scenes import strike_state
+
+    breaks = []
+    for k in range(breaks_n):
+        aim = base[1] - base[0]
+        angle = float(np.arctan2(aim[1], aim[0]) + rng.normal(0.0, np.radians(0.5)))
+        speed = float(rng.uniform(6.0, 9.0))
+        vel, ang = np.zeros((len(base), 2)), np.zeros((len(base), 3))
+        vel[0], ang[0] = strike_state(table, angle, speed, (0.0, 0.0), 0.0)
+        breaks.append(SpinShot(f"break{k}", base.copy(), angle, speed, (0.0, 0.0), 0.0, vel, ang))
+    scenes = [worker_scene(table, s) for s in [*shots, *breaks]]
+    have_ours = pool_env_spin()
+    mine = []
+    if have_ours:
+        for s in [*shots, *breaks]:
+            ours(table, s, record=False)  # warm up
+        for s in [*shots, *breaks]:
+            wall, cpu = [], []
+            for _ in range(2 * repeats + 1):
+                t0, c0 = time.perf_counter(), time.thread_time()
+                ours(table, s, record=False)
+                wall.append(time.perf_counter() - t0)
+                cpu.append(time.thread_time() - c0)
+            n_ev = ours(table, s).n_events
+            mine.append((float(np.median(wall)), float(np.median(cpu)), n_ev))
+    load = os.getloadavg()[0]
+    out = run_pooltool(scenes, repeats=repeats, max_events=20000, timeout=300.0)
+    if not out.get("available"):
+        raise SystemExit(f"pooltool did not run: {out.get('reason')}")
+    pt = [(float(np.median(r["times"])), float(np.median(r["cpu_times"])), r["n_events"])
+          for r in out["results"]]  # fmt: skip
+    print(f"pooltool {out['pooltool']}; load {load:.1f} -> {os.getloadavg()[0]:.1f}; "
+          f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")  # fmt: skip
+    print("| suite | scenes | pooltool wall | pooltool CPU | pooltool per event | pool_env wall "
+          "| pool_env CPU | pool_env per event | ratio wall | ratio CPU |")  # fmt: skip
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    n = len(shots)
+    for name, part in (("two-ball shots", slice(0, n)), ("9-ball breaks", slice(n, None))):
+        p = np.array(pt[part], dtype=float)
+        pw, pc = np.median(p[:, 0]), np.median(p[:, 1])
+        pe = np.median(p[:, 0] / np.maximum(p[:, 2], 1))
+        if have_ours:
+            o = np.array(mine[part], dtype=float)
+            ow, oc = np.median(o[:, 0]), np.median(o[:, 1])
+            oe = np.median(o[:, 0] / np.maximum(o[:, 2], 1))
+            tail = (f"{ow * 1e6:.1f} us | {oc * 1e6:.1f} us | {oe * 1e6:.2f} us | "
+                    f"{pw / ow:.0f}x | {pc / oc:.0f}x |")  # fmt: skip
+        else:
+            tail = "n/a | n/a | n/a | n/a | n/a |"
+        print(f"| {name} | {len(p)} | {pw * 1e3:.2f} ms | {pc * 1e3:.2f} ms | "
+              f"{pe * 1e6:.1f} us | {tail}")  # fmt: skip
+    if not have_ours:
+        print("pool_env has no spin level in this tree: only pooltool was timed.")
+
+
+def main() -> None:
+    """Entry point."""
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--shots", type=int, default=200)
+    ap.add_argument("--time", action="store_true", help="time pool_env's spin level and pooltool")
+    ap.add_argument("--breaks", type=int, default=4)
+    ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--out", type=Path, default=ROOT / "results" / "spin_vs_pooltool.md")
+    args = ap.parse_args()
+    if args.time:
+        time_mode(min(args.shots, 40), args.breaks, args.repeats)
+        return
+    t0 = time.perf_counter()
+    lines, fig = compare(args.shots)
+    meta = fig["_meta"]
+    print("\n".join(lines))
+    print(f"pool_env spin level: {meta['have_ours']}; same event sequences as the reference: "
+          f"{meta['same_events']}; {time.perf_counter() - t0:.0f} s")  # fmt: skip
+    for d, name, kinds in meta["worst"]:
+        print(f"  {name}: {d:.2e} m ({kinds})")
+    if args.shots >= 200:
+        from bench.spin_vs_pooltool_report import render
+
+        args.out.write_text(render(lines, fig, pooltool_strike.__doc__ or ""))
+        print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,356 @@
+"""The event loop of the spin level (compiled): one call simulates a whole shot to rest.
+
+A sibling of :mod:`~pool_env.sim.kernels.loop` (the roll level, whose code path this module
+does not touch): the same structure (ball anchors, each ball's next own event, an
+upper-triangular matrix of pair impact times, re-prediction of only the balls an event
+changed), the same total order of simultaneous events (time, kind, first id, second id),
+the same event cap and the same Zeno rules for ball-ball impacts, with:
+
+* ball state with angular velocity and a motion state
+  (:mod:`~pool_env.sim.kernels.spin_state`), motion on curved (parabolic) paths;
+* the transitions as events at closed-form times: ``SLIDE_ROLL``, ``STOP`` (a rolling ball
+  comes to rest), ``ROLL_SPIN`` (it comes to rest spinning in place), ``SPIN_STOP``
+  (:mod:`~pool_env.sim.kernels.spin_predict`), ordered after the roll level's kinds;
+* the closed-form resolution kernels of the spin level: ball-ball with throw
+  (:mod:`~pool_env.sim.kernels.spin_collide`), Han 2005 cushions
+  (:mod:`~pool_env.sim.kernels.spin_cushion`) for rails, jaw facings and jaw points (a
+  point's normal runs from its tip's centre to the ball's), with ``e_jaw`` at the jaws.
+
+Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slower than
+``V_ZENO`` is perfectly inelastic along the normal; a pair repeating ``ZENO_REPEATS`` times
+that closely sticks: it and every ball touching it leave with their common centre-of-mass
+velocity, their spins kept (momentum conserved, energy only lost). Simplification: the
+roll level's lump-against-rail and lump-against-jaw rules (``stick_cluster``'s rails,
+``unpress_lump``) are not reproduced; a lump wedged against a cushion ends at the event
+cap at worst, which is reported (``hit_event_cap``, ``stopped_by_cap``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.jaws import JAW, POINT, jaw_normal
+from pool_env.sim.kernels.loop import (
+    BALL_STOPPED,
+    N_BALL_ROWS,
+    OK,
+    _earlier,
+    _tally,
+    validate,
+)
+from pool_env.sim.kernels.params import P_E_BALL, P_E_CUSHION, P_E_JAW, P_MASS, P_RADIUS
+from pool_env.sim.kernels.predict import BALL, CUSHION, EV_ARG, EV_KIND, EV_T, POCKET
+from pool_env.sim.kernels.record import (
+    SegmentLog,
+    grown_event_log,
+    grown_segment_log,
+    log_event,
+    new_event_log,
+)
+from pool_env.sim.kernels.resolve import CONTACT_TOL, V_ZENO, ZENO_REPEATS, ZENO_WINDOW
+from pool_env.sim.kernels.roots import INF
+from pool_env.sim.kernels.spin_collide import ball_ball_spin
+from pool_env.sim.kernels.spin_cushion import cushion_han
+from pool_env.sim.kernels.spin_params import (
+    S_CUSHION_FRICTION,
+    S_CUSHION_HEIGHT,
+    S_FRICTION_MODE,
+    S_MU_BALL,
+)
+from pool_env.sim.kernels.spin_predict import SLIDE_ROLL, predict_own, predict_pair
+from pool_env.sim.kernels.spin_state import (
+    AX,
+    AY,
+    CLASSIFY,
+    FORCE_ROLL,
+    POTTED,
+    PX,
+    PY,
+    ROLLING,
+    SCOL,
+    VX,
+    VY,
+    WX,
+    WY,
+    WZ,
+    moving,
+    rest_point,
+    set_anchor,
+    set_potted,
+    state_at,
+)
+
+#: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
+SEG_COLS = 9
+#: Rails' unit normals into the table, by rail index (0: x = R, 1: x = L - R, 2, 3: y).
+_RAIL_NX = (1.0, -1.0, 0.0, 0.0)
+_RAIL_NY = (0.0, 0.0, 1.0, -1.0)
+
+
+@kernel
+def _new_segments(capacity):
+    return SegmentLog(
+        np.empty(capacity, dtype=np.int64),
+        np.empty(capacity, dtype=np.float64),
+        np.empty((capacity, SEG_COLS), dtype=np.float64),
+        np.zeros(capacity, dtype=np.bool_),
+    )
+
+
+@kernel
+def _log_segment(log, row, k, now, st, ms):
+    log.ball[row] = k
+    log.t[row] = now
+    # A still or potted ball's anchor holds zero velocity, surface spin and acceleration.
+    for c, col in enumerate((PX, PY, VX, VY, WX, WY, WZ, AX, AY)):
+        log.state[row, c] = st[k, col]
+    log.potted[row] = ms[k] == POTTED
+
+
+@kernel
+def _repredict(st, ms, k, now, prm, own, boxes, pair):
+    for j in range(st.shape[0]):
+        if j != k:
+            lo, hi = (k, j) if k < j else (j, k)
+            pair[lo, hi] = predict_pair(st, ms, lo, hi, now, prm, own, boxes)
+
+
+@kernel
+def _impact(st, ms, masses, i, j, now, prm, repeats, out):
+    """Resolve the impact of balls ``i`` and ``j``; return whether the pair must stick."""
+    xi, yi, vxi, vyi, wxi, wyi, wzi = state_at(st, ms, i, now, prm)
+    xj, yj, vxj, vyj, wxj, wyj, wzj = state_at(st, ms, j, now, prm)
+    dx, dy = xj - xi, yj - yi
+    dist = math.sqrt(dx * dx + dy * dy)
+    nx, ny = dx / dist, dy / dist
+    approach = (vxi - vxj) * nx + (vyi - vyj) * ny
+    e = prm[P_E_BALL]
+    e_eff = e if approach >= V_ZENO or (approach > 0.0 and repeats < 2) else 0.0
+    ball_ball_spin(
+        vxi, vyi, wxi, wyi, wzi, vxj, vyj, wxj, wyj, wzj, nx, ny, masses[i], masses[j],
+        prm[P_RADIUS], e_eff, int(prm[S_FRICTION_MODE]), prm[S_MU_BALL], out,
+    )  # fmt: skip
+    set_anchor(st, ms, i, now, xi, yi, out[0], out[1], out[2], out[3], out[4], prm, CLASSIFY)
+    set_anchor(st, ms, j, now, xj, yj, out[5], out[6], out[7], out[8], out[9], prm, CLASSIFY)
+    return repeats >= ZENO_REPEATS
+
+
+@kernel
+def _stick(st, ms, masses, i, now, prm, changed):
+    """Ball ``i`` and every ball touching it, transitively, leave with their common velocity.
+
+    Returns how many balls changed (their indices in ``changed``); spins are kept.
+    """
+    n = st.shape[0]
+    reach2 = (2.0 * prm[P_RADIUS] + CONTACT_TOL) ** 2
+    snap = np.empty((n, 7))
+    for k in range(n):
+        snap[k, 0], snap[k, 1], snap[k, 2], snap[k, 3], snap[k, 4], snap[k, 5], snap[k, 6] = (
+            state_at(st, ms, k, now, prm)
+        )
+    inside = np.zeros(n, dtype=np.bool_)
+    inside[i] = True
+    changed[0] = i
+    size = 1
+    head = 0
+    while head < size:
+        k = changed[head]
+        head += 1
+        for m in range(n):
+            if not inside[m] and ms[m] != POTTED:
+                dx, dy = snap[m, 0] - snap[k, 0], snap[m, 1] - snap[k, 1]
+                if dx * dx + dy * dy <= reach2:
+                    inside[m] = True
+                    changed[size] = m
+                    size += 1
+    px = py = total = 0.0
+    for c in range(size):
+        k = changed[c]
+        px += masses[k] * snap[k, 2]
+        py += masses[k] * snap[k, 3]
+        total += masses[k]
+    for c in range(size):
+        k = changed[c]
+        s = snap[k]
+        set_anchor(st, ms, k, now, s[0], s[1], px / total, py / total, s[4], s[5], s[6], prm, 0)
+    return size
+
+
+@kernel
+def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, record):
+    """Simulate one spin shot to rest (inputs validated); see :func:`packed_spin_shot`."""
+    n = positions.shape[0]
+    if masses.shape[0] == 0:
+        masses = np.full(n, prm[P_MASS])
+    st = np.zeros((n, SCOL), dtype=np.float64)
+    ms = np.zeros(n, dtype=np.int8)
+    for i in range(n):
+        set_anchor(
+            st, ms, i, 0.0, positions[i, 0], positions[i, 1], velocities[i, 0],
+            velocities[i, 1], angular[i, 0], angular[i, 1], angular[i, 2], prm, CLASSIFY,
+        )  # fmt: skip
+    own = np.empty((n, 4), dtype=np.float64)
+    boxes = np.empty((n, 4), dtype=np.float64)
+    for i in range(n):
+        predict_own(st, ms, i, prm, pockets, own, boxes)
+    pair = np.full((n, n), INF, dtype=np.float64)
+    for i in range(n):
+        for j in range(i + 1, n):
+            pair[i, j] = predict_pair(st, ms, i, j, 0.0, prm, own, boxes)
+    pair_last = np.full((n, n), -INF, dtype=np.float64)
+    pair_repeats = np.zeros((n, n), dtype=np.int64)
+    balls = np.full((N_BALL_ROWS, n), -1, dtype=np.int64)
+    balls[3] = 0  # BALL_CUSHIONS
+    balls[BALL_STOPPED] = 0
+    first_i = first_j = -1
+    events = new_event_log(16 if record else 0)
+    segments = _new_segments(max(2 * n, 16) if record else 0)
+    n_seg = 0
+    if record:
+        for i in range(n):
+            _log_segment(segments, n_seg, i, 0.0, st, ms)
+            n_seg += 1
+    out = np.empty(10, dtype=np.float64)
+    changed = np.empty(n, dtype=np.int64)
+    n_ev = 0
+    now = 0.0
+    capped = False
+    e_c, f_c, h = prm[P_E_CUSHION], prm[S_CUSHION_FRICTION], prm[S_CUSHION_HEIGHT]
+    e_jaw = prm[P_E_JAW]
+    radius = prm[P_RADIUS]
+    while True:
+        bt, bkind, bi, bj = INF, 99, n, n
+        for i in range(n):
+            t = own[i, EV_T]
+            if t < INF:
+                kind, arg = int(own[i, EV_KIND]), int(own[i, EV_ARG])
+                if _earlier(t, kind, i, arg, bt, bkind, bi, bj):
+                    bt, bkind, bi, bj = t, kind, i, arg
+        for i in range(n):
+            for j in range(i + 1, n):
+                t = pair[i, j]
+                if t < INF and _earlier(t, BALL, i, j, bt, bkind, bi, bj):
+                    bt, bkind, bi, bj = t, BALL, i, j
+        if bt == INF:
+            break
+        if n_ev >= max_events:
+            capped = True
+            break
+        now = bt
+        if record:
+            if n_ev == events.t.shape[0]:
+                events = grown_event_log(events)
+            log_event(events, n_ev, now, bkind, bi, bj, n_seg)
+        n_ev += 1
+        first_i, first_j = _tally(bkind, bi, bj, balls, first_i, first_j)
+        changed[0] = bi
+        n_changed = 1
+        if bkind == BALL:
+            if now - pair_last[bi, bj] <= ZENO_WINDOW:
+                pair_repeats[bi, bj] += 1
+            else:
+                pair_repeats[bi, bj] = 1
+            pair_last[bi, bj] = now
+            if _impact(st, ms, masses, bi, bj, now, prm, pair_repeats[bi, bj], out):
+                n_changed = _stick(st, ms, masses, bi, now, prm, changed)
+            else:
+                changed[1] = bj
+                n_changed = 2
+        else:
+            x, y, vx, vy, wx, wy, wz = state_at(st, ms, bi, now, prm)
+            if bkind == POCKET:
+                set_potted(st, ms, bi, now, x, y)
+            elif bkind == CUSHION or bkind == JAW or bkind == POINT:  # noqa: SIM109 (numba)
+                if bkind == CUSHION:
+                    nx, ny, e = _RAIL_NX[bj], _RAIL_NY[bj], e_c
+                else:
+                    nx, ny = jaw_normal(pockets, bkind, bj, x, y)
+                    e = e_jaw
+                cushion_han(vx, vy, wx, wy, wz, nx, ny, radius, h, e, f_c, out)
+                set_anchor(st, ms, bi, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, 0)
+            elif bkind == SLIDE_ROLL:
+                set_anchor(st, ms, bi, now, x, y, vx, vy, wx, wy, wz, prm, FORCE_ROLL)
+            else:  # STOP, ROLL_SPIN (a rolling ball rests), SPIN_STOP
+                if ms[bi] == ROLLING:
+                    x, y = rest_point(st, bi)
+                else:
+                    wz = 0.0
+                set_anchor(st, ms, bi, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
+        for c in range(n_changed):
+            predict_own(st, ms, changed[c], prm, pockets, own, boxes)
+        for c in range(n_changed):
+            _repredict(st, ms, changed[c], now, prm, own, boxes, pair)
+        if record:
+            if n_seg + n_changed > segments.t.shape[0]:
+                segments = grown_segment_log(segments)
+            for c in range(n_changed):
+                _log_segment(segments, n_seg, changed[c], now, st, ms)
+                n_seg += 1
+    if capped:
+        for i in range(n):
+            if moving(ms[i]):
+                balls[BALL_STOPPED, i] = 1
+                x, y, _, _, _, _, wz = state_at(st, ms, i, now, prm)
+                set_anchor(st, ms, i, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
+                if record:
+                    if n_seg == segments.t.shape[0]:
+                        segments = grown_segment_log(segments)
+                    _log_segment(segments, n_seg, i, now, st, ms)
+                    n_seg += 1
+    return st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
+
+
+@kernel
+def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_events, record):
+    """Validate and simulate one spin shot in a single call, for Python.
+
+    The layout of :func:`pool_env.sim.kernels.loop.packed_shot`, with segment states of
+    ``SEG_COLS`` columns (``x, y, vx, vy, wx, wy, wz, ax, ay``) and two blocks appended:
+    the final angular velocities ``(N, 3)`` at the end of ``floats`` and the final motion
+    states ``(N,)`` at the end of ``ints``. Angular velocities are checked by the caller.
+
+    Returns:
+        As ``packed_shot``.
+    """
+    code, ci, cj = validate(positions, velocities, masses, prm, pockets)
+    if code != OK:
+        empty_f = np.empty(0, dtype=np.float64)
+        empty_i = np.empty(0, dtype=np.int64)
+        return code, ci, cj, empty_f, empty_i, 0, 0, -1, -1, False, 0.0
+    st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = _shoot(
+        positions, velocities, angular, masses, prm, pockets, max_events, record
+    )
+    n = positions.shape[0]
+    n_log = n_ev if record else 0
+    floats = np.empty(2 * n + n_log + (1 + SEG_COLS) * n_seg + 3 * n, dtype=np.float64)
+    ints = np.empty(N_BALL_ROWS * n + 4 * n_log + 2 * n_seg + n, dtype=np.int64)
+    for i in range(n):
+        floats[2 * i] = st[i, PX]
+        floats[2 * i + 1] = st[i, PY]
+        for row in range(N_BALL_ROWS):
+            ints[row * n + i] = balls[row, i]
+    f, k = 2 * n, N_BALL_ROWS * n
+    for e in range(n_log):
+        floats[f + e] = events.t[e]
+        ints[k + e] = events.kind[e]
+        ints[k + n_log + e] = events.i[e]
+        ints[k + 2 * n_log + e] = events.j[e]
+        ints[k + 3 * n_log + e] = events.first_segment[e]
+    f, k = f + n_log, k + 4 * n_log
+    for r in range(n_seg):
+        floats[f + r] = segments.t[r]
+        for c in range(SEG_COLS):
+            floats[f + n_seg + SEG_COLS * r + c] = segments.state[r, c]
+        ints[k + r] = segments.ball[r]
+        ints[k + n_seg + r] = segments.potted[r]
+    f, k = f + (1 + SEG_COLS) * n_seg, k + 2 * n_seg
+    for i in range(n):
+        _, _, _, _, wx, wy, wz = state_at(st, ms, i, now, prm)
+        floats[f + 3 * i] = wx
+        floats[f + 3 * i + 1] = wy
+        floats[f + 3 * i + 2] = wz
+        ints[k + i] = ms[i]
+    return OK, -1, -1, floats, ints, n_ev, n_seg, first_i, first_j, capped, now

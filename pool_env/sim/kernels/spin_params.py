@@ -1,0 +1,31 @@
+"""The layout of a spin table's flat parameter array (``Table.spin_params``).
+
+It begins with the roll level's :mod:`~pool_env.sim.kernels.params` layout (the same
+indices, ``P_LENGTH`` ... ``P_E_JAW``) and appends the spin level's parameters, so the spin
+kernels read both by name. The roll level's own ``Table.params`` is untouched.
+"""
+
+from __future__ import annotations
+
+from pool_env.sim.kernels.params import N_PARAMS
+
+#: Indices after the roll layout: sliding deceleration ``mu_slide * g`` (m/s^2), spin
+#: deceleration (rad/s^2), ball-ball friction mode (0 frictionless, 1 constant, 2 Alciatore's
+#: fit), the constant ball-ball friction, cushion friction, cushion contact height (m), cue
+#: tip radius (m), cue end mass (kg).
+(
+    S_SLIDE_DECEL,
+    S_SPIN_DECEL,
+    S_FRICTION_MODE,
+    S_MU_BALL,
+    S_CUSHION_FRICTION,
+    S_CUSHION_HEIGHT,
+    S_TIP_RADIUS,
+    S_END_MASS,
+) = range(N_PARAMS, N_PARAMS + 8)
+
+#: Length of ``Table.spin_params``.
+N_SPIN_PARAMS = N_PARAMS + 8
+
+#: Ball-ball friction modes (the ``friction_mode`` argument of the resolution kernel).
+FRICTIONLESS, CONSTANT_FRICTION, ALCIATORE_FRICTION = 0, 1, 2

@@ -1,0 +1,103 @@
+"""The spin level's entry-point pieces: its argument checks, the cue strike, the run.
+
+Used by :func:`pool_env.simulate` and :func:`pool_env.shoot` on a ``Table(model="spin")``
+(and, for the roll level, only :func:`check_tip`, which refuses a tip there).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from pool_env.sim.inputs import as_masses, check_max_events, kernel_array, raise_invalid
+from pool_env.sim.kernels import limits, spin_loop
+from pool_env.sim.kernels.spin_strike import cue_strike
+from pool_env.sim.result import SpinShotResult
+from pool_env.sim.scalars import real_number
+from pool_env.sim.table import Table
+
+_NO_TIP = (0.0, 0.0)
+
+
+def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, float, float]:
+    """The cue's tip offset ``(a, b)`` in [-1, 1] and elevation in [0, pi/2) (radians).
+
+    Raises:
+        ValueError: On a malformed or out-of-range value, or a non-zero one on a roll table
+            (it has no spin: the message says to use ``model="spin"``).
+    """
+    if tip is _NO_TIP and type(elevation) is float and elevation == 0.0:
+        return 0.0, 0.0, 0.0  # the default, fast
+    try:
+        a_raw, b_raw = tip  # type: ignore[misc]
+    except (TypeError, ValueError):
+        raise ValueError(f"tip must be a pair (a, b) of numbers, got {tip!r}") from None
+    a, b = real_number("tip a", a_raw), real_number("tip b", b_raw)
+    elev = real_number("elevation", elevation)
+    if not (-1.0 <= a <= 1.0 and -1.0 <= b <= 1.0):
+        raise ValueError(f"tip offsets must lie in [-1, 1] (fractions of R), got {(a, b)}")
+    if not 0.0 <= elev < 0.5 * math.pi:
+        raise ValueError(f"elevation must lie in [0, pi/2) radians, got {elev!r}")
+    if table.model != "spin" and (a != 0.0 or b != 0.0 or elev != 0.0):
+        raise ValueError(
+            "a cue tip offset or elevation puts spin on the ball: the roll level has none, "
+            "use Table(model='spin')"
+        )
+    return a, b, elev
+
+
+def strike(
+    table: Table, speed: float, angle: float, a: float, b: float, elevation: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The cue ball's velocity ``(2,)`` and angular velocity ``(3,)`` after the strike."""
+    out = np.empty(5)
+    cue_strike(
+        speed, angle, a, b, elevation, table.ball_radius, table.ball_mass, table.cue_end_mass,
+        table.cue_tip_radius, out,
+    )  # fmt: skip
+    return out[:2], out[2:]
+
+
+def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.float64]:
+    """``(N, 3)`` finite angular velocities (zeros for ``None``) within the speed limit.
+
+    The surface speed ``R |w|`` of each ball must lie within ``limits.MAX_SPEED``.
+    """
+    if value is None:
+        return np.zeros((n, 3))
+    arr = kernel_array("angular_velocities", value, "an (N, 3) array")
+    if arr.shape != (n, 3):
+        raise ValueError(f"angular_velocities must have shape ({n}, 3), got {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise ValueError("angular_velocities must be finite")
+    surface = table.ball_radius * np.sqrt((arr * arr).sum(axis=1))
+    if np.any(surface > limits.MAX_SPEED):
+        i = int(np.argmax(surface))
+        raise ValueError(
+            f"ball {i} spins with surface speed R |w| = {surface[i]!r} m/s, beyond the "
+            f"simulator's numeric limit of {limits.MAX_SPEED:g} m/s"
+        )
+    return arr
+
+
+def run_spin(
+    table: Table,
+    pos: NDArray[np.float64],
+    vel: NDArray[np.float64],
+    ang: NDArray[np.float64],
+    masses: ArrayLike | None,
+    max_events: int,
+    record: bool,
+) -> SpinShotResult:
+    """Simulate a spin shot from kernel arrays of matching shapes (one compiled call)."""
+    mass = as_masses(masses, pos.shape[0])
+    max_events = check_max_events(max_events)
+    record = bool(record)
+    raw = spin_loop.packed_spin_shot(
+        pos, vel, ang, mass, table.spin_params, table.pocket_geometry, max_events, record
+    )
+    if raw[0] != spin_loop.OK:
+        raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
+    return SpinShotResult(raw, pos.shape[0], table.deceleration, record)

@@ -1,0 +1,156 @@
+"""The spin level's API: Table fields and their checks, shoot/simulate arguments, refusals.
+
+The roll level must stay as it was: its defaults, its parameter array and its refusal of
+anything that needs spin.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from pool_env import Table, shoot, simulate
+from pool_env.sim import STATE_NAMES, SpinShotResult, simulate_batch, simulate_batch_threads
+from pool_env.sim.kernels.params import N_PARAMS
+from pool_env.sim.kernels.spin_params import (
+    ALCIATORE_FRICTION,
+    CONSTANT_FRICTION,
+    FRICTIONLESS,
+    S_CUSHION_HEIGHT,
+    S_FRICTION_MODE,
+    S_MU_BALL,
+    S_SLIDE_DECEL,
+    S_SPIN_DECEL,
+)
+
+
+def test_defaults_and_sources() -> None:
+    t = Table(model="spin", pockets="none")
+    r = t.ball_radius
+    assert Table().model == "roll"
+    assert t.mu_slide == 0.2
+    assert t.spin_decel == pytest.approx(2.5 * 0.444 * 9.81, rel=1e-15)
+    assert t.ball_friction == "alciatore"
+    assert t.cushion_friction == 0.2
+    assert t.cushion_height == pytest.approx(1.27 * r, rel=1e-15)
+    assert t.cue_tip_radius == 0.0106
+    assert t.cue_end_mass == pytest.approx(t.ball_mass / 30.0, rel=1e-15)
+    p = t.spin_params
+    np.testing.assert_array_equal(p[:N_PARAMS], t.params)
+    assert p[S_SLIDE_DECEL] == 0.2 * 9.81
+    assert p[S_SPIN_DECEL] == t.spin_decel
+    assert p[S_FRICTION_MODE] == ALCIATORE_FRICTION
+    assert p[S_CUSHION_HEIGHT] == t.cushion_height
+    assert not p.flags.writeable
+
+
+@pytest.mark.parametrize(
+    ("friction", "mode", "mu"),
+    [
+        (0.0, FRICTIONLESS, 0.0),
+        (0.06, CONSTANT_FRICTION, 0.06),
+        ("alciatore", ALCIATORE_FRICTION, 0),
+    ],
+)
+def test_ball_friction_modes(friction, mode, mu) -> None:
+    t = Table(model="spin", pockets="none", ball_friction=friction)
+    assert t.spin_params[S_FRICTION_MODE] == mode
+    assert t.spin_params[S_MU_BALL] == mu
+
+
+def test_roll_params_unchanged() -> None:
+    """The roll level's parameter array is the one it always was (same length, values)."""
+    t = Table()
+    assert t.params.shape == (N_PARAMS,)
+    assert t.params.tolist() == [2.54, 1.27, 0.028575, 0.01 * 9.81, 0.95, 0.65, 0.17, 0.65]
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "match"),
+    [
+        ({"model": "slide"}, "model must be"),
+        ({"model": 3}, "model must be"),
+        ({"mu_slide": 0.0}, "mu_slide"),
+        ({"mu_slide": math.nan}, "mu_slide"),
+        ({"spin_decel": -1.0}, "spin_decel"),
+        ({"spin_decel": math.inf}, "spin_decel"),
+        ({"ball_friction": "marlow"}, "ball_friction"),
+        ({"ball_friction": -0.01}, "ball_friction"),
+        ({"ball_friction": True}, "ball_friction"),
+        ({"cushion_friction": -0.2}, "cushion_friction"),
+        ({"cushion_height": 0.02}, "cushion_height"),
+        ({"cushion_height": 2 * 0.028575}, "cushion_height"),
+        ({"cue_tip_radius": 0.0}, "cue_tip_radius"),
+        ({"cue_end_mass": 0.0}, "cue_end_mass"),
+    ],
+)
+def test_bad_spin_parameters(kwargs, match) -> None:
+    with pytest.raises(ValueError, match=match):
+        Table(**{"pockets": "none", **kwargs} if "model" not in kwargs else kwargs)
+
+
+def test_roll_table_refuses_spin() -> None:
+    t = Table()
+    pos = [[1.0, 0.6]]
+    with pytest.raises(ValueError, match="model='spin'"):
+        shoot(t, pos, 0.0, 1.0, tip=(0.0, 0.3))
+    with pytest.raises(ValueError, match="model='spin'"):
+        shoot(t, pos, 0.0, 1.0, elevation=0.1)
+    with pytest.raises(ValueError, match="model='spin'"):
+        simulate(t, pos, [[1.0, 0.0]], angular_velocities=[[0.0, 0.0, 0.0]])
+    # An explicit zero tip is no spin and is accepted.
+    assert shoot(t, pos, 0.0, 1.0, tip=(0.0, 0.0)).positions.tolist() == (
+        shoot(t, pos, 0.0, 1.0).positions.tolist()
+    )
+
+
+@pytest.mark.parametrize(
+    ("tip", "elevation", "match"),
+    [((1.5, 0.0), 0.0, "tip"), ((0.0, -1.01), 0.0, "tip"), ((0.1,), 0.0, "tip"),
+     ((0.0, math.nan), 0.0, "tip"), ((0.0, 0.0), -0.1, "elevation"),
+     ((0.0, 0.0), math.pi / 2, "elevation")],
+)  # fmt: skip
+def test_bad_tip(tip, elevation, match) -> None:
+    t = Table(model="spin", pockets="none")
+    with pytest.raises(ValueError, match=match):
+        shoot(t, [[1.0, 0.6]], 0.0, 1.0, tip=tip, elevation=elevation)
+
+
+def test_bad_angular_velocities() -> None:
+    t = Table(model="spin", pockets="none")
+    pos, vel = [[1.0, 0.6]], [[1.0, 0.0]]
+    for bad, match in (([[0.0, 0.0]], "shape"), ([[0.0, math.inf, 0.0]], "finite"),
+                       ([[0.0, 0.0, 1e6]], "surface speed")):  # fmt: skip
+        with pytest.raises(ValueError, match=match):
+            simulate(t, pos, vel, angular_velocities=bad)
+
+
+def test_spin_input_not_modified_and_results_do_not_alias() -> None:
+    t = Table(model="spin", pockets="none")
+    pos = np.array([[1.0, 0.6], [1.5, 0.62]])
+    vel = np.array([[1.0, 0.0], [0.0, 0.0]])
+    ang = np.array([[0.0, -20.0, 5.0], [0.0, 0.0, 0.0]])
+    copies = pos.copy(), vel.copy(), ang.copy()
+    r = simulate(t, pos, vel, angular_velocities=ang)
+    for a, b in zip((pos, vel, ang), copies, strict=True):
+        np.testing.assert_array_equal(a, b)
+    assert isinstance(r, SpinShotResult)
+    assert not np.shares_memory(r.positions, pos)
+    assert r.angular_velocities.shape == (2, 3)
+    assert [STATE_NAMES[s] for s in r.motion_states] == ["stationary", "stationary"]
+
+
+def test_roll_result_has_no_spin() -> None:
+    r = shoot(Table(pockets="none"), [[1.0, 0.6]], 0.0, 1.0)
+    np.testing.assert_array_equal(r.angular_velocities, np.zeros((1, 3)))
+    assert r.motion_states.tolist() == [0]
+
+
+def test_batches_refuse_spin_tables() -> None:
+    t = Table(model="spin", pockets="none")
+    pos = np.array([[[1.0, 0.6]]])
+    for fn in (simulate_batch, simulate_batch_threads):
+        with pytest.raises(ValueError, match="roll level only"):
+            fn(t, pos, np.zeros_like(pos), None)
