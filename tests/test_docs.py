@@ -139,3 +139,15 @@ def test_every_public_name_is_documented() -> None:
             obj = getattr(package, name)
             doc = inspect.getdoc(obj) if callable(obj) or inspect.ismodule(obj) else "constant"
             assert doc, f"{package.__name__}.{name} has no docstring"
+
+
+def test_one_version_everywhere() -> None:
+    """pool_env.__version__ is the one source: the metadata, CITATION.cff and CHANGELOG agree."""
+    from importlib.metadata import version
+
+    assert version("pool_env") == pool_env.__version__
+    citation = (ROOT / "CITATION.cff").read_text()
+    assert f"\nversion: {pool_env.__version__}\n" in citation
+    assert f"## {pool_env.__version__} (" in (ROOT / "CHANGELOG.md").read_text()
+    pyproject = (ROOT / "pyproject.toml").read_text()
+    assert 'dynamic = ["version"]' in pyproject and "pool_env._version.__version__" in pyproject
