@@ -11,9 +11,10 @@ lumps of light balls pressed into a rail by a heavy one, and tables, radii and s
 scaled to the edges of the numeric limits.
 
 ``python -m bench.fuzz --model spin`` (from the repository's root) runs the same scene
-kinds on spin tables (``Table(model="spin")``) with random spin parameters, cue strikes with random tips and elevations, and random initial
-angular velocities (:mod:`bench.fuzz_spin`); every invariant then includes the spin (energy
-with the rotational part, and M, the motion states and transitions).
+kinds on spin tables (``Table(model="spin")``) with random spin parameters, cue strikes
+with random tips and elevations, and random initial angular velocities
+(:mod:`bench.fuzz_spin`); every invariant then includes the spin (energy with the
+rotational part, and M, the motion states and transitions).
 
 Every invariant is checked on every shot. The termination target is no event-cap hit on a
 damped table (``mu_roll >= 1e-3``, both restitutions below 1); an undamped table (elastic,
@@ -189,6 +190,7 @@ def main() -> None:
     parser.add_argument("--samples", type=int, default=400, help="G samples between events")
     parser.add_argument("--out", type=Path, default=None, help="default results/fuzz.md (roll)")
     parser.add_argument("--model", choices=["roll", "spin"], default="roll")
+    parser.add_argument("--progress", type=int, default=10000, help="shots per progress line")
     parser.add_argument("--only", type=int, default=None, help="rerun one shot and print it")
     args = parser.parse_args()
     if args.only is not None:
@@ -233,9 +235,11 @@ def main() -> None:
             kinds.update({p[0] for p in problems})
             failures.append(f"shot {shot}: {problems[:3]}")
             print(failures[-1], flush=True)
-        if (shot + 1) % 10000 == 0:
+        if (shot + 1) % args.progress == 0:
             print(
-                f"{shot + 1} shots, {len(failures)} with violations, {time.time() - started:.0f} s",
+                f"{shot + 1} shots, {len(failures)} with violations {dict(sorted(kinds.items()))}"
+                f", {damped_caps} damped caps, events median {np.median(events):.0f}, "
+                f"{time.time() - started:.0f} s",
                 flush=True,
             )
     ev = np.array(events)
