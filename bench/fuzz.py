@@ -10,6 +10,12 @@ so that jaws are hit often; and what issue 11 found: masses spread over ratios u
 lumps of light balls pressed into a rail by a heavy one, and tables, radii and speeds
 scaled to the edges of the numeric limits.
 
+``python -m bench.fuzz --model spin`` (from the repository's root) runs the same scene
+kinds on spin tables (``Table(model="spin")``) with random spin parameters, cue strikes
+with random tips and elevations, and random initial angular velocities
+(:mod:`bench.fuzz_spin`); every invariant then includes the spin (energy with the
+rotational part, and M, the motion states and transitions).
+
 Every invariant is checked on every shot. The termination target is no event-cap hit on a
 damped table (``mu_roll >= 1e-3``, both restitutions below 1); an undamped table (elastic,
 or nearly frictionless) can legitimately need any number of events, and its cap hits are
@@ -20,10 +26,15 @@ from __future__ import annotations
 
 import argparse
 import time
+from collections import Counter
+from collections.abc import Iterator
+from functools import partial
+from itertools import islice
 from pathlib import Path
 
 import numpy as np
 
+from bench import fuzz_spin
 from pool_env import Table, simulate
 from pool_env.sim.inputs import max_speed
 from pool_env.sim.kernels import limits
@@ -45,12 +56,13 @@ def is_damped(table: Table) -> bool:
     return table.mu_roll >= 1e-3 and table.e_ball < 1.0 and table.e_cushion < 1.0
 
 
-def random_table(rng: np.random.Generator) -> tuple[Table, float]:
+def random_table(rng: np.random.Generator, **spin: object) -> tuple[Table, float]:
     """A random table and its length scale relative to the default table.
 
     One in ten is scaled (sizes, radius, pockets) by a log-uniform factor that reaches the
     numeric limits on both sides; rolling resistance spans 1e-4 to 0.1 (below 1e-3 for one
-    table in ten).
+    table in ten). ``spin`` holds further keyword arguments of :class:`Table` (a spin
+    table's model and parameters); they draw nothing from ``rng``.
     """
     scale = 1.0
     if rng.random() < 0.1:
@@ -67,6 +79,8 @@ def random_table(rng: np.random.Generator) -> tuple[Table, float]:
         if u < 0.45
         else float(10 ** rng.uniform(-3, -1) if u < 0.9 else 10 ** rng.uniform(-4, -3))
     )
+    if spin:
+        spin = fuzz_spin.spin_table_kwargs(spin, DEFAULT.ball_radius * scale)
     table = Table(
         length=DEFAULT.length * scale,
         width=DEFAULT.width * scale,
@@ -76,6 +90,7 @@ def random_table(rng: np.random.Generator) -> tuple[Table, float]:
         e_cushion=e_cushion,
         pockets=DEFAULT.pockets * scale if pockets == "circles" else pockets,
         e_jaw=float(rng.choice([e_cushion, rng.uniform(0, 1), 0.0])),
+        **spin,  # type: ignore[arg-type]
     )
     return table, scale
 
@@ -88,9 +103,11 @@ def _is_valid(table: Table, positions: np.ndarray) -> bool:
     return True
 
 
-def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray, np.ndarray]:
-    """One random table, layout, initial velocities and masses."""
-    table, scale = random_table(rng)
+def random_case(
+    rng: np.random.Generator, **spin: object
+) -> tuple[Table, np.ndarray, np.ndarray, np.ndarray]:
+    """One random table, layout, initial velocities and masses (``spin``: as random_table)."""
+    table, scale = random_table(rng, **spin)
     kind = rng.integers(5)
     if kind == 4:  # a heavy ball drives a chain of light ones into a rail
         speed = min(float(rng.uniform(0.05, 5) * np.sqrt(scale)), 0.999 * max_speed(table))
@@ -154,24 +171,52 @@ def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray
     return table, pos, within_limits(table, vel, masses), masses
 
 
+def cases(seed: int, model: str = "roll") -> Iterator[tuple]:
+    """The fuzz's shots in order: ``(table, positions, velocities, masses, run)``.
+
+    ``run()`` simulates the shot. Scenes are drawn without simulating, so shot ``k`` of a
+    seed can be regenerated alone (``--only k``) to reproduce a violation.
+    """
+    rng = np.random.default_rng(seed)
+    while True:
+        if model == "spin":
+            table, pos, vel, masses = random_case(rng, **fuzz_spin.random_spin_parameters(rng))
+            yield table, pos, vel, masses, fuzz_spin.spin_shot(rng, table, pos, vel, masses)
+        else:
+            table, pos, vel, masses = random_case(rng)
+            yield table, pos, vel, masses, partial(simulate, table, pos, vel, masses)
+
+
 def main() -> None:
     """Run the fuzz and write ``results/fuzz.md``."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--shots", type=int, default=100_000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--samples", type=int, default=400, help="G samples between events")
-    parser.add_argument("--out", type=Path, default=Path("results/fuzz.md"))
+    parser.add_argument("--out", type=Path, default=None, help="default results/fuzz.md (roll)")
+    parser.add_argument("--model", choices=["roll", "spin"], default="roll")
+    parser.add_argument("--progress", type=int, default=10000, help="shots per progress line")
+    parser.add_argument("--only", type=int, default=None, help="rerun one shot and print it")
     args = parser.parse_args()
-    rng = np.random.default_rng(args.seed)
+    if args.only is not None:
+        table, pos, vel, masses, run = next(islice(cases(args.seed, args.model), args.only, None))
+        result = run()
+        print(table, pos.tolist(), vel.tolist(), masses.tolist(), result, sep="\n")
+        print(check_shot(table, result, masses, samples=args.samples))
+        return
+    if args.out is None:  # the spin report is summarised by hand in results/fuzz.md
+        args.out = Path("results/fuzz.md" if args.model == "roll" else "fuzz_spin_report.md")
     started = time.time()
     failures: list[str] = []
     long_shots: list[str] = []
     damped_caps = 0
     damped_shots = 0
     events = []
-    for shot in range(args.shots):
-        table, pos, vel, masses = random_case(rng)
-        result = simulate(table, pos, vel, masses)
+    kinds: Counter[str] = Counter()
+    for shot, (table, _pos, _vel, masses, run) in enumerate(cases(args.seed, args.model)):
+        if shot == args.shots:
+            break
+        result = run()
         events.append(result.n_events)
         damped = is_damped(table)
         damped_shots += damped
@@ -186,26 +231,31 @@ def main() -> None:
                 problems.append("T: a damped table hit the event cap")
             long_shots.append(f"shot {shot}: capped at {result.duration:.3g} s ({table!r})")
         if shot % 10 == 0:
-            again = simulate(table, pos, vel, masses)
+            again = run()
             if not np.array_equal(again.positions, result.positions) or not np.array_equal(
                 again.event_times, result.event_times
             ):
                 problems.append("D: rerun differs")
         if problems:
+            kinds.update({p[0] for p in problems})
             failures.append(f"shot {shot}: {problems[:3]}")
             print(failures[-1], flush=True)
-        if (shot + 1) % 10000 == 0:
+        if (shot + 1) % args.progress == 0:
             print(
-                f"{shot + 1} shots, {len(failures)} with violations, {time.time() - started:.0f} s",
+                f"{shot + 1} shots, {len(failures)} with violations {dict(sorted(kinds.items()))}"
+                f", {damped_caps} damped caps, events median {np.median(events):.0f}, "
+                f"{time.time() - started:.0f} s",
                 flush=True,
             )
     ev = np.array(events)
     report = [
         "# Fuzz: invariants over random scenes and shots",
         "",
-        f"Command: `python bench/fuzz.py --shots {args.shots} --seed {args.seed}`",
+        f"Command: `python bench/fuzz.py --shots {args.shots} --seed {args.seed}"
+        f"{' --model spin' if args.model == 'spin' else ''}`",
         "",
-        f"- shots: {args.shots}; shots with any violation (G, P, E, T, D): {len(failures)}",
+        f"- shots: {args.shots}; shots with any violation (G, P, E, T, O, M, D): {len(failures)}",
+        f"- shots with a violation, by kind: {dict(sorted(kinds.items()))}",
         f"- damped tables (mu_roll >= 1e-3, e_ball < 1, e_cushion < 1): {damped_shots} "
         f"shots, {damped_caps} event-cap hits",
         f"- events per shot: median {np.median(ev):.0f}, p99 {np.percentile(ev, 99):.0f}, "

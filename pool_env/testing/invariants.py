@@ -11,6 +11,12 @@ The named invariants of the design notes:
   impulses out of the contacts it touches).
 * **E** (energy): kinetic energy never increases, across impacts or in between.
 * **T** (termination): the shot ends at rest without reaching the event cap.
+* **O** (order): event times never decrease, nor do the trajectory rows' times.
+
+On the spin level (``Table(model="spin")``) the same checks take the spin into account
+(energy is translational plus rotational, velocities follow each state's acceleration), and
+:func:`~pool_env.testing.spin_invariants.check_motion` adds **M** (motion states,
+transitions and the final state); see :mod:`pool_env.testing.spin_invariants`.
 
 Each check returns a list of human-readable violations (empty when it holds).
 """
@@ -24,6 +30,7 @@ from pool_env.sim.kernels.jaws import LOC_CIRCLE, LOC_FREE, locate_many
 from pool_env.sim.kernels.resolve import CONTACT_TOL
 from pool_env.sim.result import ShotResult
 from pool_env.sim.table import Table
+from pool_env.testing import spin_invariants
 
 GEOMETRY_TOL = 1e-9  # m
 MOMENTUM_RTOL = 1e-12
@@ -62,6 +69,7 @@ def impacts(result: ShotResult) -> list[tuple[int, float, list[int], NDArray, ND
     n_checked = result.n_events - 1 if result.hit_event_cap else result.n_events
     out = []
     decel = result._deceleration
+    spin = spin_invariants.is_spin(result)
     # At the cap, the rows after the last event's are the balls stopped by the cap.
     for k, (t, kind) in enumerate(zip(result.event_times, result.event_kinds, strict=True)):
         if k >= n_checked:
@@ -70,7 +78,12 @@ def impacts(result: ShotResult) -> list[tuple[int, float, list[int], NDArray, ND
         if kind == 1:
             balls = [int(ball[r]) for r in rows]
             before = np.array(
-                [_velocity(state[latest[b]], seg_t[latest[b]], t, decel) for b in balls]
+                [
+                    spin_invariants.velocity_at(state[latest[b]], seg_t[latest[b]], t)
+                    if spin
+                    else _velocity(state[latest[b]], seg_t[latest[b]], t, decel)
+                    for b in balls
+                ]
             )
             after = np.array([state[r, 2:4] for r in rows])
             out.append((k, float(t), balls, before, after))
@@ -231,10 +244,18 @@ def _energy_after_each_event(result: ShotResult, masses: NDArray) -> NDArray:
     return energy
 
 
-def check_energy(result: ShotResult, masses: ArrayLike) -> list[str]:
-    """E: kinetic energy, taken just after each event, never increases."""
+def check_energy(result: ShotResult, masses: ArrayLike, table: Table | None = None) -> list[str]:
+    """E: kinetic energy, taken just after each event, never increases.
+
+    On the spin level the energy includes the spin's (``table`` is then required).
+    """
     m = np.asarray(masses, dtype=np.float64)
-    energy = _energy_after_each_event(result, m)
+    if spin_invariants.is_spin(result):
+        if table is None:
+            raise ValueError("check_energy needs the table of a spin-level result")
+        energy = spin_invariants.energy_after_each_event(table, result, m)
+    else:
+        energy = _energy_after_each_event(result, m)
     times = np.concatenate([[0.0], result.event_times])
     rises = np.flatnonzero(np.diff(energy) > ENERGY_RTOL * max(energy[0], 1e-300))
     return [
@@ -291,14 +312,27 @@ def check_termination(result: ShotResult) -> list[str]:
     return ["T: the shot hit the event cap"] if result.hit_event_cap else []
 
 
+def check_order(result: ShotResult) -> list[str]:
+    """O: event times and trajectory rows come in chronological order."""
+    problems = []
+    for name, times in (("event", result.event_times), ("segment", result.segments[1])):
+        back = np.flatnonzero(np.diff(times) < 0.0)
+        problems += [f"O: {name} {k + 1} at t={times[k + 1]} before t={times[k]}" for k in back]
+    return problems[:10]
+
+
 def check_shot(
     table: Table, result: ShotResult, masses: ArrayLike | None = None, samples: int = 2000
 ) -> list[str]:
-    """All of G, P, E and T for one recorded shot."""
+    """All of G, P, E, T and O for one recorded shot, and M on the spin level."""
     m = np.full(result.n_balls, table.ball_mass) if masses is None else np.asarray(masses)
-    return (
+    problems = (
         check_termination(result)
+        + check_order(result)
         + check_geometry(table, result, samples)
         + check_momentum(result, m, table)
-        + check_energy(result, m)
+        + check_energy(result, m, table)
     )
+    if spin_invariants.is_spin(result):
+        problems += spin_invariants.check_motion(table, result)
+    return problems

@@ -1,0 +1,143 @@
+"""The spin share of the robustness fuzz (``python -m bench.fuzz --model spin``).
+
+Random spin parameters for a table and a random way to set a scene's balls spinning, drawn
+after the roll fuzz's scene (:func:`bench.fuzz.random_case`), so that the scene kinds are
+the roll fuzz's: touching layouts, breaks, lumps driven into rails, masses spread over a
+million to one, jaw, capture-circle and pocketless tables, tables scaled to the numeric
+limits. What the spin level refuses: batches (``simulate_batch``: spin tables are simulated
+one shot at a time), so the fuzz runs single shots only.
+
+Spin draws (each documented range of :class:`pool_env.Table`, its edges included):
+
+* ``mu_slide``: 0.2 (default) or log-uniform over 0.01-1;
+* ``spin_decel``: the default, or log-uniform over 0.1-1000 rad/s^2;
+* ``ball_friction``: Alciatore's fit, a constant in [0, 0.3], or 0 (frictionless);
+* ``cushion_friction``: 0.2, uniform in [0, 1], or 0;
+* ``cushion_height``: the WPA default, ``R`` (contact at the equator), or uniform in
+  ``[R, 2R)`` (up to a hair below the top of the ball);
+* a single struck ball (four shots in five): half by :func:`pool_env.shoot` with a tip
+  ``(a, b)`` inside the safe range (contact offset up to half a radius) or anywhere in
+  ``[-1, 1]^2`` (one time in three), and an elevation of 0, uniform in ``[0, pi/2)``, or
+  close to vertical; half by :func:`pool_env.simulate` with random angular velocities;
+* several balls moving: random angular velocities for each (zero, natural roll, pure side
+  spin about ``z``, or random with a surface speed up to twice the ball's speed, rarely up
+  to the speed limit).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from pool_env import Table, shoot, simulate
+from pool_env.sim.inputs import max_speed
+from pool_env.sim.result import ShotResult
+
+DEFAULT = Table()
+
+
+def random_spin_parameters(rng: np.random.Generator) -> dict[str, object]:
+    """Keyword arguments of a random spin :class:`Table`.
+
+    ``cushion_height`` comes back as a fraction of ``R`` (or ``None``):
+    :func:`spin_table_kwargs` turns it into metres once the table's radius is known.
+    """
+    u = rng.random()
+    friction: str | float = (
+        "alciatore" if u < 0.5 else (float(rng.uniform(0, 0.3)) if u < 0.8 else 0.0)
+    )
+    height = rng.random()
+    return {
+        "model": "spin",
+        "mu_slide": 0.2 if rng.random() < 0.5 else float(10 ** rng.uniform(-2, 0)),
+        "spin_decel": None if rng.random() < 0.5 else float(10 ** rng.uniform(-1, 3)),
+        "ball_friction": friction,
+        "cushion_friction": float(rng.choice([0.2, rng.uniform(0, 1), 0.0])),
+        "cushion_height": None if height < 0.5 else (1.0 if height < 0.6 else rng.uniform(1, 2)),
+    }
+
+
+def spin_table_kwargs(spin: dict[str, object], radius: float) -> dict[str, object]:
+    """``spin`` with the cushion height in metres for a ball of ``radius``."""
+    out = dict(spin)
+    fraction = out.pop("cushion_height")
+    out["cushion_height"] = (
+        None
+        if fraction is None
+        else min(float(fraction) * radius, math.nextafter(2.0 * radius, 0.0))
+    )
+    return out
+
+
+def _random_tip(rng: np.random.Generator, table: Table) -> tuple[float, float]:
+    """A tip axis offset: inside the safe range (contact offset <= R / 2) or anywhere."""
+    if rng.random() < 1 / 3:
+        return float(rng.uniform(-1, 1)), float(rng.uniform(-1, 1))
+    reach = 0.5 * (1.0 + table.cue_tip_radius / table.ball_radius)  # axis offset, safe
+    rho = reach * math.sqrt(rng.random())
+    phi = rng.uniform(0, 2 * math.pi)
+    # A scaled table keeps the regulation tip: its safe reach can pass the API's [-1, 1].
+    return float(np.clip(rho * math.cos(phi), -1, 1)), float(np.clip(rho * math.sin(phi), -1, 1))
+
+
+def _random_elevation(rng: np.random.Generator) -> float:
+    u = rng.random()
+    if u < 0.5:
+        return 0.0
+    if u < 0.9:
+        return float(rng.uniform(0, 0.5 * math.pi))
+    return float(0.5 * math.pi - 10 ** rng.uniform(-6, -1))  # close to vertical
+
+
+def random_angular(rng: np.random.Generator, table: Table, velocities: np.ndarray) -> np.ndarray:
+    """Random ``(N, 3)`` angular velocities for balls moving at ``velocities``."""
+    r = table.ball_radius
+    n = velocities.shape[0]
+    w = np.zeros((n, 3))
+    fastest = max_speed(table)
+    for i in range(n):
+        v = velocities[i]
+        speed = float(np.hypot(*v))
+        u = rng.random()
+        if u < 0.2:
+            continue  # no spin: a moving ball starts sliding
+        if u < 0.4:
+            w[i] = (-v[1] / r, v[0] / r, 0.0)  # natural roll
+        elif u < 0.5:
+            w[i, 2] = rng.normal(0, 1) * max(speed, 0.1) / r  # side spin only
+        else:
+            limit = fastest if rng.random() < 0.05 else min(2.0 * speed + 1e-3, fastest)
+            direction = rng.normal(0, 1, 3)
+            direction /= np.linalg.norm(direction)
+            w[i] = direction * float(rng.uniform(0, 0.999 * limit)) / r
+    return w
+
+
+def spin_shot(
+    rng: np.random.Generator,
+    table: Table,
+    positions: np.ndarray,
+    velocities: np.ndarray,
+    masses: np.ndarray,
+) -> Callable[[], ShotResult]:
+    """A random spin shot of the scene, as a call that runs it (for the rerun check)."""
+    movers = np.flatnonzero(np.any(velocities != 0.0, axis=1))
+    if movers.size == 1 and movers[0] == 0 and rng.random() < 0.5:
+        v = velocities[0]
+        speed = float(np.hypot(*v))
+        angle = float(np.arctan2(v[1], v[0]))
+        tip = _random_tip(rng, table)
+        elevation = _random_elevation(rng)
+
+        def struck() -> ShotResult:
+            return shoot(table, positions, angle, speed, 0, masses, tip=tip, elevation=elevation)
+
+        return struck
+    angular = random_angular(rng, table, velocities)
+
+    def rolled() -> ShotResult:
+        return simulate(table, positions, velocities, masses, angular_velocities=angular)
+
+    return rolled
