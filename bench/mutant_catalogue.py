@@ -92,6 +92,9 @@ GAMES = ("tests/test_games.py", "tests/test_wpa.py")
 # The two-player front (PettingZoo), on the same compiled step as the env (so, like
 # tests/test_games.py, it needs the compiled random-number intrinsics: never interpreted).
 DUEL = ("tests/test_multiagent.py",)
+# The first contact as the rules read it (issue 20): simultaneous hits and the kitchen,
+# through the env and against the reference reading the recorded trajectory.
+CONTACT = ("tests/test_first_contact_rules.py", "tests/test_games.py")
 # Jaw tables: the regulation numbers and closed forms first, then the hard cases and the
 # reference scenes (facings, points and fall lines against the 50-digit reference).
 JAWS = (
@@ -978,6 +981,36 @@ _ALL: tuple[Mutant, ...] = (
         DUEL,
         "the agent selection not moved to the rack's shooter after a shot",
         "PoolDuelEnv.step: who plays next",
+    ),
+    Mutant(
+        "duel-truncate-only-the-shooter",
+        "rules",
+        "pool_env/multiagent.py",
+        "self.truncations = {name: True for name in self.agents}",
+        "self.truncations[agent] = True",
+        DUEL,
+        "at the shot limit only the player who shot is truncated: the other shoots past it",
+        "PoolDuelEnv.step: the shot limit truncates both players",
+    ),
+    Mutant(
+        "rules-kitchen-crossing-ignored",
+        "rules",
+        _W,
+        "first_x < head_x and not crossed",
+        "first_x < head_x",
+        CONTACT,
+        "a cue ball that crossed the head string and came back is still held to the kitchen",
+        "wpa.kitchen_foul: unless it crossed the line first",
+    ),
+    Mutant(
+        "rules-tie-by-ball-number",
+        "rules",
+        _G + "contact.py",
+        "return next((g for g in met if legal[g]), met[0])",
+        "return met[0]",
+        CONTACT,
+        "a simultaneous first contact decided by the simulator's order (ball numbers)",
+        "contact.shooters_benefit: the shooter gets the benefit of a simultaneous hit",
     ),
     # -- the decision process ------------------------------------------------------------
     Mutant(

@@ -116,7 +116,10 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ball anywhere in the kitchen: the first shot is the break), a fixed ``(N, 2)`` layout, or
     a callable ``(table, np_random) -> (N, 2)``. Random layouts never overlap and keep out of
     the pockets. ``reset(options={"positions": ..., "on_table": ...})`` starts one episode
-    from a given layout (``on_table`` optional; the cue ball must be on the table).
+    from a given layout (``on_table`` optional; the cue ball must be on the table; every
+    row must be finite, a ball off the table included: its row is kept as its position, so
+    NaN is refused rather than handed back through ``positions``). ``options`` must be a
+    dict (or ``None``); a seed is a non-negative Python or numpy integer, of any size.
 
     ## Episode End
 
@@ -129,7 +132,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     ## Info
 
     ``potted`` (tuple of object balls potted by the shot), ``scratch`` (bool),
-    ``first_contact`` (first ball the cue ball hit, -1 for none), ``n_events`` (simulator
+    ``first_contact`` (first ball the cue ball hit, -1 for none; under the rules, the one
+    they read of balls met at the same instant), ``n_events`` (simulator
     events), ``hit_event_cap`` (bool), ``angle`` and ``speed`` (the executed shot, radians
     from +x and m/s), ``is_success`` (the table is cleared). ``reset`` returns ``{}``.
 
@@ -172,15 +176,42 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     ``pool_env/NineBallGame-v0`` and ``pool_env/EightBallGame-v0`` (or ``game=`` with the
     ``nine_ball`` / ``eight_ball`` scene, or any layout of 9 / 15 object balls) play one rack
-    under the WPA rules, compiled in :mod:`pool_env.game.kernels.wpa` (its docstring lists
-    every rule and simplification: no push-out, no called shots but the 8's pocket, an
-    illegal break is a foul with ball in hand, ...). One agent shoots every shot: a foul
-    gives ball in hand to its next shot (practice mode, ``end_on_foul=False``), or ends the
-    episode (run-out mode, ``end_on_foul=True``: so does a legal shot that does not keep
-    the table). A rack scene starts with the break: the cue ball in hand behind the head
-    string, the speed mapped onto ``break_speed_range`` (8 .. 12 m/s; a pro breaks at 11-13).
-    Without ``noise`` a break from the same spot at the same speed is the same every
-    episode.
+    under the WPA rules, compiled in :mod:`pool_env.game.kernels.wpa` (its docstring states
+    every rule). One agent shoots every shot: a foul gives ball in hand to its next shot
+    (practice mode, ``end_on_foul=False``), or ends the episode (run-out mode,
+    ``end_on_foul=True``: so does a legal shot that does not keep the table). A rack scene
+    starts with the break: the cue ball in hand behind the head string, the speed mapped
+    onto ``break_speed_range`` (8 .. 12 m/s; a pro breaks at 11-13). Without ``noise`` a
+    break from the same spot at the same speed is the same every episode.
+
+    Enforced besides the fouls below: with the cue ball in hand behind the head string
+    (the break, and after a scratch on the 8-ball break) the cue ball may not first meet a
+    ball whose base lies behind the head string (``x < L / 4``; on the line it is
+    playable) unless it crossed the line first (foul ``"kitchen_ball_first"``); a cue ball
+    that meets several balls within 1e-9 s of its first contact gives the shooter the
+    benefit (legal if any of them may be hit first, whatever their numbers); the 8 potted
+    on a legal 8-ball break is re-spotted and the breaker continues.
+
+    Simplifications that remain, all deliberate:
+
+    * No push-out (9-ball), no called shots but the 8's pocket (any object ball potted
+      counts), no called safeties, no warning before a third foul, no jump, masse or
+      "bad cue ball" fouls (the simulator has no spin and no cue), no stalemate rule, no
+      three-foul rule in 8-ball (WPA has none either).
+    * An illegal break is a foul with ball in hand on the table as it lies (no re-rack or
+      re-break choice); the 8 on a legal break is always re-spotted (no re-break choice).
+    * Balls potted on a foul stay down, except the 9 (re-spotted) and the 8 (the rack is
+      lost, or re-spotted on the break); a re-spotted ball goes on the foot spot or the
+      free point nearest to it (WPA: on the long string behind it).
+    * A pocket jaw counts as a cushion for "a ball touched a rail".
+    * One foul reason per shot (the first in the order scratch, kitchen_ball_first,
+      no_contact, wrong_ball_first, no_rail; on a break scratch, kitchen_ball_first,
+      illegal_break).
+    * One player: the agent is also the incoming player after its own fouls; a lost rack
+      is a win of the absent opponent.
+    * Reset's ``options["rules"]`` may only give racks the rules can finish: the 9 (the
+      8) on the table, an open 8-ball table with a ball besides the 8, no groups on the
+      break, fouls 0-2.
 
     Action ``Box(-1, 1, (5,), float32)``, each component mapped linearly:
 
@@ -214,12 +245,13 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     time limit (100 shots 9-ball, 150 8-ball).
 
     Info adds ``foul`` (``None`` or ``"scratch"``, ``"wrong_ball_first"``, ``"no_rail"``,
-    ``"no_contact"``, ``"illegal_break"``), ``legal``, ``ball_on`` (the ball on before the
-    shot; -1 in 8-ball before the group is cleared), ``winner`` (-1 while undecided, 0 the
-    agent, 1 its absent opponent: a lost rack; an integer rather than ``None`` so that
-    vector envs keep one dtype per key), ``loss`` (``None`` or ``"three_fouls"``,
-    ``"eight_early"``, ``"eight_wrong_pocket"``, ``"eight_on_foul"``) and ``turn_over``
-    (a foul, or a shot that would pass the table to an opponent). ``env.unwrapped.rack``
+    ``"no_contact"``, ``"illegal_break"``, ``"kitchen_ball_first"``), ``legal``,
+    ``ball_on`` (the ball on before the shot; -1 in 8-ball before the group is cleared),
+    ``winner`` (-1 while undecided, 0 the agent, 1 its absent opponent: a lost rack; an
+    integer rather than ``None`` so that vector envs keep one dtype per key), ``loss``
+    (``None`` or ``"three_fouls"``, ``"eight_early"``, ``"eight_wrong_pocket"``,
+    ``"eight_on_foul"``) and ``turn_over`` (a foul, or a shot that would pass the table to
+    an opponent). ``env.unwrapped.rack``
     is the rack state; ``reset(options={"positions": ..., "on_table": ..., "rules":
     {...}})`` sets it (keys ``break``, ``ball_in_hand``, ``behind_head_string``,
     ``groups`` (``"open"``, ``"solids"``, ``"stripes"`` per player), ``fouls``; by default

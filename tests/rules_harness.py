@@ -14,7 +14,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from pool_env.game.config import GameConfig, make_config
+from pool_env.game.contact import shooters_benefit
 from pool_env.game.kernels import wpa as cw
+from pool_env.game.kernels.params import GAME as GAME_CODE
 from pool_env.game.rules import (
     BALL_ON,
     FOUL,
@@ -77,6 +79,9 @@ def compiled_judge(
     order: ArrayLike,
     called: int | None,
     players: int = 2,
+    simultaneous: tuple[int, ...] = (),
+    crossed: bool = True,
+    start: ArrayLike | None = None,
 ) -> tuple[dict[str, Any], RackState]:
     """Judge a shot with the compiled rules from a reference state.
 
@@ -91,6 +96,12 @@ def compiled_judge(
         order: ``(M,)`` the order the rows dropped, -1 none.
         called: The called pocket (None: none).
         players: 1 or 2.
+        simultaneous: Other balls (numbers) the cue ball met at its first contact's
+            instant: the first ball is then read as the product reads it
+            (:func:`pool_env.game.contact.shooters_benefit`).
+        crossed: The cue ball crossed the head string before its first contact.
+        start: ``(M, 2)`` positions before the shot (default: ``positions``); the kitchen
+            rule reads the first ball's.
 
     Returns:
         The verdict as a dict (``foul``, ``legal``, ``ball_on`` (None for -1), ``respot``
@@ -101,15 +112,19 @@ def compiled_judge(
     n = config.n_balls
     final = np.asarray(positions, dtype=np.float64).reshape(1, -1, 2)
     pos = np.zeros((1, n, 2))
-    pos[0, balls] = final[0]
+    pos[0, balls] = final[0] if start is None else np.asarray(start, dtype=np.float64)
     on = np.array([state.on_table], dtype=np.bool_)
     rack = rack_row(state)[None].copy()
     first = np.array([first_contact if first_contact is not None else (-1, -1)], np.int64)
+    if first_contact is not None and simultaneous:
+        met = [int(balls[first_contact[1]]), *simultaneous]
+        chosen = shooters_benefit(int(config.params[GAME_CODE]), rack[0], on[0], met)
+        first[0, 1] = int(np.flatnonzero(balls == chosen)[0])
     _, _, hits = judge_rules(
         config.params, table.pockets, np.zeros(1, np.intp), balls, pos, on,
         np.zeros(1, np.int64), rack, final, np.array([pocketed], np.int64), first,
         np.array([cushions], np.int64), np.array([order], np.int64),
-        np.array([-1 if called is None else called], np.int64),
+        np.array([-1 if called is None else called], np.int64), np.array([crossed]),
     )  # fmt: skip
     h = hits[0]
     verdict = {

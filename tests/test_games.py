@@ -11,6 +11,7 @@ on random outcomes.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 import gymnasium as gym
@@ -329,13 +330,20 @@ def outcomes(draw: st.DrawFn) -> tuple:
     groups = draw(st.sampled_from([(OPEN, OPEN), (SOLIDS, STRIPES), (STRIPES, SOLIDS)]))
     if game == "nine":
         groups = (OPEN, OPEN)
+    in_hand = draw(st.booleans())
     state = RackState(
         game=game, on_table=tuple(on), shooter=draw(st.integers(0, 1)),
         breaking=draw(st.booleans()), fouls=(draw(st.integers(0, 2)), draw(st.integers(0, 2))),
-        groups=groups,
+        groups=groups, ball_in_hand=in_hand, behind_head_string=in_hand and draw(st.booleans()),
     )  # fmt: skip
     first_row = draw(st.integers(-1, m - 1))
     first = None if first_row <= 0 else (0, first_row)
+    # Balls met at the first contact's instant, and whether the cue ball crossed the head
+    # string first; rows 1-3 lie behind the head string (x = 0.3 + 0.1 row < L / 4).
+    others = [r for r in range(1, m) if r != first_row]
+    rows = draw(st.lists(st.sampled_from(others), unique=True, max_size=2)) if others else []
+    simultaneous = () if first is None else tuple(numbers[r] for r in rows)
+    crossed = draw(st.booleans())
     dropped = draw(st.lists(st.integers(0, m - 1), unique=True, max_size=m))
     pocketed = [-1] * m
     order = [-1] * m
@@ -346,26 +354,40 @@ def outcomes(draw: st.DrawFn) -> tuple:
     if first is None:
         cushions = [0] * m  # nothing counts before the first contact
     called = draw(st.none() | st.integers(0, 5))
-    return state, numbers, first, cushions, pocketed, order, called
+    return state, numbers, first, cushions, pocketed, order, called, simultaneous, crossed
 
 
 @settings(max_examples=examples(400), deadline=None)
 @given(outcomes())
 def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> None:
-    state, numbers, first, cushions, pocketed, order, called = case
+    state, numbers, first, cushions, pocketed, order, called, simultaneous, crossed = case
     nb = np.array(numbers)
     hit = np.full(len(numbers), -1)
     if first is not None:
         hit[0] = first[1]
-    shot = ShotOutcome.from_arrays(hit, cushions, pocketed, order, nb)
-    verdict, after = judge(state, shot, called)
     positions = [(0.3 + 0.1 * k, 0.3) for k in range(len(numbers))]
+    shot = ShotOutcome.from_arrays(hit, cushions, pocketed, order, nb)
+    met = () if first is None else (numbers[first[1]], *simultaneous)
+    kitchen = tuple(b for b in met if positions[numbers.index(b)][0] < TABLE.length / 4)
+    shot = replace(shot, simultaneous=simultaneous, kitchen=kitchen, crossed_head_string=crossed)
+    verdict, after = judge(state, shot, called)
+    extra = {"simultaneous": simultaneous, "crossed": crossed}
     got, got_after = compiled_judge(
-        TABLE, state, positions, numbers, first, cushions, pocketed, order, called
+        TABLE, state, positions, numbers, first, cushions, pocketed, order, called, **extra
     )
     same_verdict(verdict, after, got, got_after)
     one, one_after = compiled_judge(
-        TABLE, state, positions, numbers, first, cushions, pocketed, order, called, players=1
+        TABLE,
+        state,
+        positions,
+        numbers,
+        first,
+        cushions,
+        pocketed,
+        order,
+        called,
+        players=1,
+        **extra,
     )  # one player: the same verdict, the shooter kept
     assert {k: one[k] for k in ("foul", "winner", "loss")} == {
         k: got[k] for k in ("foul", "winner", "loss")

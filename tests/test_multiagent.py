@@ -281,3 +281,29 @@ def test_numpy_integer_seeds_play_as_python_ints(seed) -> None:
         duel.step(np.zeros(5, np.float32))
         runs.append(duel.positions.tobytes())
     assert runs[0] == runs[2] and runs[1] == runs[3]
+
+
+def test_the_opponent_winning_in_its_turn_gives_the_agent_minus_one() -> None:
+    # The agent misses everything (a foul); the opponent, with ball in hand, places the cue
+    # ball on the 9's diagonal and pots it: the agent's step ends the episode with -1.
+    def potter(obs: np.ndarray) -> np.ndarray:
+        table = env.duel.table
+        r = table.ball_radius
+        x = y = 0.45 / math.sqrt(2)
+        u = 2 * (x - r) / (table.length - 2 * r) - 1
+        v = 2 * (y - r) / (table.width - 2 * r) - 1
+        return np.array([TOWARD_CORNER / math.pi, speed, u, v, 0.0], np.float32)
+
+    env = VersusPolicyEnv(opponent=potter, game="nine")
+    speed = _speed_action(env.duel, 1.5)
+    pos = np.array([[1.5, 0.6]] * 10)
+    on = np.zeros(10, bool)
+    on[[0, 9]] = True
+    pos[0], pos[9] = (1.0, 1.0), (0.25 / math.sqrt(2),) * 2
+    env.reset(seed=0, options={"positions": pos, "on_table": on})
+    _, reward, term, trunc, info = env.step(
+        np.array([0.5, _speed_action(env.duel, 0.3), 0, 0, 0], np.float32)  # up the table
+    )
+    assert info["foul"] == "no_contact" and info["opponent_shots"] == 1
+    assert reward == -1.0 and term and not trunc
+    assert env.duel.rack["winner"] == 1

@@ -28,10 +28,14 @@ def shot(
     scratch: bool = False,
     rail: bool = True,
     to_rail: int = 0,
+    simultaneous: tuple[int, ...] = (),
+    kitchen: tuple[int, ...] = (),
+    crossed: bool = False,
 ) -> ShotOutcome:
     """An outcome by hand (every potted ball into pocket 0 unless told)."""
     where = (0,) * len(potted) if pockets is None else pockets
-    return ShotOutcome(first, potted, where, scratch, rail, to_rail)
+    return ShotOutcome(first, potted, where, scratch, rail, to_rail, simultaneous, kitchen,
+                       crossed)  # fmt: skip
 
 
 def nine(off: tuple[int, ...] = (), **kw) -> RackState:
@@ -216,6 +220,59 @@ def test_the_eight_on_any_foul_loses(scratch: bool) -> None:
     verdict, after = judge(state, shot(first=11, potted=(8,), scratch=scratch), called_pocket=0)
     assert verdict.foul == ("scratch" if scratch else "wrong_ball_first")
     assert verdict.loss == "eight_on_foul" and after.winner == 1
+
+
+# --- the first contact: simultaneous hits and the kitchen -----------------------------------
+
+
+@pytest.mark.parametrize(
+    ("groups", "first", "simultaneous", "foul"),
+    [
+        ((SOLIDS, STRIPES), 3, (11,), None),
+        ((SOLIDS, STRIPES), 11, (3,), None),  # the order of the simulator does not matter
+        ((STRIPES, SOLIDS), 3, (11,), None),
+        ((STRIPES, SOLIDS), 11, (3,), None),
+        ((STRIPES, SOLIDS), 3, (8,), "wrong_ball_first"),  # neither may be hit first
+        ((STRIPES, SOLIDS), 3, (), "wrong_ball_first"),
+    ],
+)
+def test_a_simultaneous_first_contact_gives_the_shooter_the_benefit(
+    groups: tuple[int, int], first: int, simultaneous: tuple[int, ...], foul: str | None
+) -> None:
+    verdict, _ = judge(eight(groups=groups), shot(first=first, simultaneous=simultaneous))
+    assert verdict.foul == foul
+
+
+def test_a_simultaneous_contact_on_a_nine_ball_break_with_the_one_is_legal() -> None:
+    verdict, _ = judge(RackState.new_rack("nine"), shot(first=2, simultaneous=(1,), to_rail=4))
+    assert verdict.legal
+
+
+@pytest.mark.parametrize(
+    ("behind", "kitchen", "crossed", "foul"),
+    [
+        (True, (3,), False, "kitchen_ball_first"),
+        (True, (3,), True, None),  # it crossed the head string first
+        (True, (), False, None),  # the 3 lies on or past the head string
+        (False, (3,), False, None),  # ball in hand anywhere: no kitchen rule
+    ],
+)
+def test_the_kitchen_rule(
+    behind: bool, kitchen: tuple[int, ...], crossed: bool, foul: str | None
+) -> None:
+    state = eight(ball_in_hand=True, behind_head_string=behind)
+    verdict, after = judge(state, shot(first=3, kitchen=kitchen, crossed=crossed))
+    assert verdict.foul == foul
+    if foul:
+        assert after.shooter == 1 and after.ball_in_hand and not after.behind_head_string
+
+
+def test_the_kitchen_rule_comes_after_a_scratch_and_before_the_break_check() -> None:
+    state = replace(RackState.new_rack("eight"), ball_in_hand=True, behind_head_string=True)
+    verdict, _ = judge(state, shot(first=3, kitchen=(3,), scratch=True))
+    assert verdict.foul == "scratch"
+    verdict, _ = judge(state, shot(first=3, kitchen=(3,), to_rail=0))
+    assert verdict.foul == "kitchen_ball_first"
 
 
 # --- the outcome the rules read ------------------------------------------------------------

@@ -54,7 +54,15 @@ Simplifications, all deliberate:
 * A pocket jaw counts as a cushion: every cushion impact the simulator reports after the
   first contact satisfies "a ball touched a rail".
 * One foul reason is reported per shot, the first that applies in the order scratch,
-  no_contact, wrong_ball_first, no_rail (on a break: scratch, then illegal_break).
+  kitchen_ball_first, no_contact, wrong_ball_first, no_rail (on a break: scratch,
+  kitchen_ball_first, then illegal_break).
+
+Both games: with the cue ball in hand behind the head string, a first ball whose base lies
+behind the head string (x < L / 4; on the line it is playable) is a foul
+("kitchen_ball_first") unless the cue ball crossed the head string first. When the cue ball
+meets several balls at its first contact's instant (within :data:`SIMULTANEOUS`), the
+shooter gets the benefit: the contact is legal if any of them may be hit first
+(:func:`first_read`), whatever their numbers.
 """
 
 from __future__ import annotations
@@ -69,7 +77,9 @@ from pool_env.sim.batch import BatchResult
 from pool_env.sim.result import ShotResult
 
 Game = Literal["nine", "eight"]
-FoulReason = Literal["scratch", "wrong_ball_first", "no_rail", "no_contact", "illegal_break"]
+FoulReason = Literal[
+    "scratch", "wrong_ball_first", "no_rail", "no_contact", "illegal_break", "kitchen_ball_first"
+]
 
 #: Group codes of 8-ball: the table is open, solids (1-7), stripes (9-15).
 OPEN, SOLIDS, STRIPES = 0, 1, 2
@@ -77,6 +87,9 @@ OPEN, SOLIDS, STRIPES = 0, 1, 2
 N_BALLS: dict[str, int] = {"nine": 10, "eight": 16}
 #: Object balls driven to a cushion that make a break legal without a pot.
 BREAK_RAILS = 4
+#: Impacts of the cue ball this close in time (s) to its first are simultaneous (the
+#: tolerance the product documents, pool_env.game.contact.SIMULTANEOUS).
+SIMULTANEOUS = 1e-9
 
 
 def group_of(ball: int) -> int:
@@ -100,6 +113,11 @@ class ShotOutcome:
         rail_after_contact: Whether any ball (the cue ball included) touched a cushion
             after the cue ball's first contact.
         object_balls_to_rail: How many object balls touched a cushion after that contact.
+        simultaneous: Other balls the cue ball met at the instant of its first contact.
+        kitchen: Of :attr:`first_hit` and :attr:`simultaneous`, the balls whose base lay
+            behind the head string before the shot.
+        crossed_head_string: Whether the cue ball's centre passed the head string before
+            its first contact.
     """
 
     first_hit: int
@@ -108,6 +126,9 @@ class ShotOutcome:
     scratch: bool
     rail_after_contact: bool
     object_balls_to_rail: int
+    simultaneous: tuple[int, ...] = ()
+    kitchen: tuple[int, ...] = ()
+    crossed_head_string: bool = True
 
     @classmethod
     def from_arrays(
@@ -154,20 +175,44 @@ class ShotOutcome:
         )
 
 
-def outcome_of(result: ShotResult, balls: ArrayLike | None = None) -> ShotOutcome:
+def outcome_of(
+    result: ShotResult, balls: ArrayLike | None = None, head_x: float | None = None
+) -> ShotOutcome:
     """The :class:`ShotOutcome` of a simulated shot (recorded or not).
 
     Args:
         result: The shot, the cue ball in row 0.
         balls: The ball number of each row (see :meth:`ShotOutcome.from_arrays`).
+        head_x: The head string's x: with a recorded shot, the balls met at the first
+            contact's instant, those behind the head string, and whether the cue ball
+            crossed it first are read from the trajectory (events and exact positions).
     """
-    return ShotOutcome.from_arrays(
+    out = ShotOutcome.from_arrays(
         result.first_hit,
         result.cushions_after_contact,
         result.pocketed,
         result.pocket_order,
         balls,
     )
+    if head_x is None or not result.recorded or out.first_hit < 0:
+        return out
+    number = np.arange(result.n_balls) if balls is None else np.asarray(balls, np.int64)
+    events = result.events
+    hits = [e for e in events if e.kind == "ball" and 0 in (e.i, e.j)]
+    t1 = hits[0].time
+    met: list[int] = []
+    for e in hits:
+        if e.time <= t1 + SIMULTANEOUS and int(number[e.j if e.i == 0 else e.i]) not in met:
+            met.append(int(number[e.j if e.i == 0 else e.i]))
+    start = result.positions_at(0.0)
+    row = {int(b): r for r, b in enumerate(number)}
+    kitchen = tuple(b for b in met if start[row[b], 0] < head_x)
+    # The cue ball moves straight between its events: its largest x before the contact is
+    # at one of them (or the start).
+    times = [0.0] + [e.time for e in events if e.time <= t1]
+    crossed = any(result.positions_at(t)[0, 0] > head_x for t in times)
+    return replace(out, simultaneous=tuple(met[1:]), kitchen=kitchen,
+                   crossed_head_string=crossed)  # fmt: skip
 
 
 def batch_outcome(batch: BatchResult, b: int) -> ShotOutcome:
@@ -279,17 +324,38 @@ class Verdict:
     shooter_continues: bool
 
 
+def _may_hit_first(state: RackState, ball: int) -> bool:
+    if state.breaking:
+        return state.game == "eight" or ball == 1
+    return ball in state.legal_first_balls()
+
+
+def first_read(state: RackState, shot: ShotOutcome) -> int:
+    """The first ball the rules read (the shooter gets the benefit of a simultaneous hit).
+
+    Of the balls met at the first instant, the first that may be hit first, else the first.
+    """
+    if shot.first_hit < 0:
+        return -1
+    met = (shot.first_hit, *shot.simultaneous)
+    return next((b for b in met if _may_hit_first(state, b)), shot.first_hit)
+
+
 def _foul(state: RackState, shot: ShotOutcome) -> FoulReason | None:
     """The first foul reason that applies to ``shot`` from ``state``, or None."""
     if shot.scratch:
         return "scratch"
+    first = first_read(state, shot)
+    if (state.ball_in_hand and state.behind_head_string and first in shot.kitchen
+            and not shot.crossed_head_string):  # fmt: skip
+        return "kitchen_ball_first"
     if state.breaking:
-        legal_first = state.game == "eight" or shot.first_hit == 1
         spread = bool(shot.potted) or shot.object_balls_to_rail >= BREAK_RAILS
-        return None if (shot.first_hit >= 0 and legal_first and spread) else "illegal_break"
-    if shot.first_hit < 0:
+        ok = first >= 0 and _may_hit_first(state, first) and spread
+        return None if ok else "illegal_break"
+    if first < 0:
         return "no_contact"
-    if shot.first_hit not in state.legal_first_balls():
+    if first not in state.legal_first_balls():
         return "wrong_ball_first"
     if not shot.potted and not shot.rail_after_contact:
         return "no_rail"

@@ -43,6 +43,7 @@ from pool_env.game.kernels.params import (
     FOOT_X,
     FOOT_Y,
     GAME,
+    HEAD_X,
     PLAYERS,
     REACH,
     SHOT_LIMIT,
@@ -224,7 +225,7 @@ def _spot(positions, on_table, ball, x, y, params, pockets, others):
 
 @kernel
 def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack, final,
-                pocketed, first, cushions, order, called):  # fmt: skip
+                pocketed, first, cushions, order, called, crossed):  # fmt: skip
     """Apply a batch of simulated shots to the tables by the 9-ball or 8-ball rules.
 
     Args:
@@ -242,6 +243,9 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
         cushions: ``(K, M)`` each ball's cushion impacts after the first contact.
         order: ``(K, M)`` the order the balls dropped (0 first), -1 if they did not.
         called: ``(K,)`` the pocket called for the 8.
+        crossed: ``(K,)`` the cue ball's centre passed the head string before its first
+            contact (read only when the cue ball was in hand behind the head string and
+            its first ball lies behind it: :func:`pool_env.game.contact.read_first`).
 
     Returns:
         ``(rewards, flags, hits)``: ``(K,)``; ``(K, 6)`` booleans (:data:`TERMINATED` ..
@@ -261,6 +265,9 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
     for k in range(n_shots):
         b = tables[k]
         before[:] = on_table[b]
+        first_ball = _first_ball(balls, first, k)
+        first_x = positions[b, first_ball, 0] if first_ball >= 0 else 0.0  # still at rest
+        kitchen = wpa.kitchen_foul(rack[b], first_ball, first_x, params[HEAD_X], crossed[k])
         _, bits, scratch = _settle(positions, on_table, b, balls, final, pocketed, k, potted)
         rail, to_rail = False, 0
         first_dropped, first_order, eight_pocket = -1, n_cols + 1, -1
@@ -276,11 +283,10 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
                 elif order[k, c] < first_order:
                     first_order, first_dropped = order[k, c], j
         shots[b] += 1
-        first_ball = _first_ball(balls, first, k)
         shooter = rack[b, wpa.SHOOTER]
         foul, on, respot, loss, keeps = wpa.judge_rack(
             game, players, rack[b], before, first_ball, scratch, potted, first_dropped,
-            eight_pocket, called[k], rail, to_rail,
+            eight_pocket, called[k], rail, to_rail, kitchen,
         )  # fmt: skip
         winner = rack[b, wpa.WINNER]
         legal_pots = 0  # the 8 of 8-ball is no pot: it wins or loses the rack

@@ -22,6 +22,7 @@ from numpy.typing import NDArray
 
 from pool_env.game.checks import check_options
 from pool_env.game.config import CUE, GameConfig
+from pool_env.game.contact import read_first
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
 from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, place_in_hand
@@ -237,9 +238,14 @@ def _step_rules(
         rack,
     )  # fmt: skip
     out = _simulate(table, state, tables, velocities, record, parallel)
+    crossed = read_first(
+        table, params, int(params[kp.GAME]), state.positions, state.on_table, rack, tables,
+        out.balls, velocities, out.first, out.shot,
+    )  # fmt: skip
     rewards, flags, hits = judge_rules(
         params, table.pockets, tables, out.balls, state.positions, state.on_table,
         state.shots, rack, out.final, out.pocketed, out.first, out.cushions, out.order, called,
+        crossed,
     )  # fmt: skip
     if flags[:, RESPOT_TAKEN].any():  # something covers the foot spot
         foot = params[[kp.FOOT_X, kp.FOOT_Y]].copy()

@@ -14,6 +14,15 @@ legal shot wins (the break and combinations included); potted on a foul it is re
 A player who fouls on three successive shots loses the rack. After a foul the incoming
 player has the cue ball in hand anywhere on the table.
 
+Both games: with the cue ball in hand behind the head string (the break, and after a
+scratch on an 8-ball break), the cue ball may not first contact a ball whose base lies
+behind the head string (``x < L / 4``; a ball on the line is playable) unless it crossed
+the head string first (``kitchen_ball_first``, :func:`kitchen_foul`). When the cue ball
+meets several balls at its first contact's instant (within
+:data:`pool_env.game.contact.SIMULTANEOUS`), the shooter gets the benefit: the contact is
+legal if any of them is a legal first ball (:func:`pool_env.game.contact.read_first`),
+whatever their numbers.
+
 8-ball (WPA rules 1, 3): the break is legal if a ball is potted or at least four object
 balls touch a cushion (any first contact). The table is open after the break; the first
 legal shot after the break that pots an object ball other than the 8 assigns that ball's
@@ -47,13 +56,16 @@ Simplifications, all deliberate:
 * A pocket jaw counts as a cushion: every cushion impact the simulator reports after the
   first contact satisfies "a ball touched a rail".
 * One foul reason is reported per shot, the first that applies in the order scratch,
-  no_contact, wrong_ball_first, no_rail (on a break: scratch, then illegal_break).
+  kitchen_ball_first, no_contact, wrong_ball_first, no_rail (on a break: scratch,
+  kitchen_ball_first, then illegal_break).
 * With one player (practice), the shooter never changes: after a foul the agent itself is
   the incoming player, with ball in hand; a lost rack (three fouls, the 8 lost) is a
   win of the absent opponent, player 1.
 """
 
 from __future__ import annotations
+
+import numpy as np
 
 from pool_env.sim.kernels._jit import kernel
 
@@ -70,8 +82,10 @@ OPEN, SOLIDS, STRIPES = 0, 1, 2
 
 #: Foul codes and their ``info["foul"]`` names.
 NO_FOUL, FOUL_SCRATCH, FOUL_WRONG_BALL, FOUL_NO_RAIL, FOUL_NO_CONTACT, FOUL_BREAK = range(6)
+FOUL_KITCHEN = 6
 FOUL_NAMES: tuple[str | None, ...] = (
     None, "scratch", "wrong_ball_first", "no_rail", "no_contact", "illegal_break",
+    "kitchen_ball_first",
 )  # fmt: skip
 
 #: Why a rack was lost, and the names.
@@ -145,7 +159,7 @@ def legal_targets(game, rack, on_table, player, out):
 
 
 @kernel
-def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail):
+def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitchen):
     """The first foul that applies to a shot (:data:`NO_FOUL` for a legal one).
 
     Args:
@@ -157,9 +171,13 @@ def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail):
         n_potted: Object balls potted.
         rail: Some ball touched a cushion after the first contact.
         to_rail: Object balls that touched a cushion after the first contact.
+        kitchen: The cue ball, in hand behind the head string, first met a ball whose base
+            lies behind it without crossing it first (:func:`kitchen_foul`).
     """
     if scratch:
         return FOUL_SCRATCH
+    if kitchen:
+        return FOUL_KITCHEN
     if rack[BREAKING] != 0:
         first_ok = first >= 0 and (game == EIGHT or first == 1)
         spread = n_potted > 0 or to_rail >= BREAK_RAILS
@@ -176,8 +194,74 @@ def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail):
 
 
 @kernel
+def kitchen_foul(rack, first, first_x, head_x, crossed):
+    """Whether the first contact breaks the kitchen rule.
+
+    With the cue ball in hand behind the head string (``rack[BEHIND]``: the break, and
+    after a scratch on an 8-ball break), the cue ball may not first meet a ball whose base
+    (the point under its centre) lies behind the head string, ``first_x < head_x``, unless
+    the cue ball crossed the head string before that contact (a ball on the line is
+    playable).
+
+    Args:
+        rack: The rack-state row before the shot.
+        first: The ball the cue ball met first, -1 for none.
+        first_x: That ball's centre x before the shot (it rests until the cue ball meets it).
+        head_x: The head string's x (``L / 4``).
+        crossed: The cue ball's centre passed ``head_x`` before the contact.
+    """
+    return rack[BEHIND] != 0 and first >= 0 and first_x < head_x and not crossed
+
+
+@kernel
+def needs_replay(game, head_x, near, tables, balls, positions, on_table, rack, first):
+    """The shots whose first contact the rules cannot read from the fast path's outcome.
+
+    Two cases, both rare: the cue ball was in hand behind the head string and its first
+    ball lies behind the head string (did the cue ball cross the line first?), or its
+    first ball is not a legal one and a legal ball lies within ``near`` (4R) of it (did the
+    cue ball meet that one at the same instant?). :mod:`pool_env.game.contact` replays
+    those shots with their trajectories.
+
+    Args:
+        game: :data:`NINE` or :data:`EIGHT`.
+        head_x: The head string's x.
+        near: Centre distance within which two resting balls can both touch the cue ball.
+        tables: ``(K,)`` the tables that shot.
+        balls: ``(M,)`` ball number of each result column.
+        positions: ``(B, N, 2)`` positions before the shot.
+        on_table: ``(B, N)`` before the shot.
+        rack: ``(B, N_RACK)`` before the shot.
+        first: ``(K, 2)`` result columns of the first ball-ball impact (cue first), -1 none.
+
+    Returns:
+        ``(K,)`` booleans.
+    """
+    out = np.zeros(tables.shape[0], dtype=np.bool_)
+    for k in range(tables.shape[0]):
+        if first[k, 0] < 0:
+            continue
+        b = tables[k]
+        f = balls[first[k, 1]]
+        if rack[b, BEHIND] != 0 and positions[b, f, 0] < head_x:
+            out[k] = True
+            continue
+        player = rack[b, SHOOTER]
+        on = ball_on(game, rack[b], on_table[b], player)
+        if legal_first(game, rack[b], on_table[b], player, on, f):
+            continue
+        for g in range(1, on_table.shape[1]):
+            if g != f and legal_first(game, rack[b], on_table[b], player, on, g):
+                dx = positions[b, g, 0] - positions[b, f, 0]
+                dy = positions[b, g, 1] - positions[b, f, 1]
+                if dx * dx + dy * dy <= near * near:
+                    out[k] = True
+    return out
+
+
+@kernel
 def judge_rack(game, players, rack, on_table, first, scratch, potted, first_dropped,
-               eight_pocket, called, rail, to_rail):  # fmt: skip
+               eight_pocket, called, rail, to_rail, kitchen):  # fmt: skip
     """Judge one shot and move the rack state on (``rack`` is updated in place).
 
     Args:
@@ -193,6 +277,7 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
         called: The pocket called for the 8 (-1: none).
         rail: Some ball touched a cushion after the first contact.
         to_rail: Object balls that touched a cushion after the first contact.
+        kitchen: The first contact breaks the kitchen rule (:func:`kitchen_foul`).
 
     Returns:
         ``(foul, ball_on, respot, loss, keeps)``: the foul code, the ball on before the
@@ -209,7 +294,7 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
         if potted[j]:
             n_potted += 1
     on = ball_on(game, rack, on_table, shooter)
-    foul = foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail)
+    foul = foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitchen)
     breaking = rack[BREAKING] != 0
     respot, loss, winner = -1, NO_LOSS, -1
     if game == NINE:
