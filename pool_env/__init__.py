@@ -3,19 +3,50 @@
 Layers, imports pointing down only: :mod:`pool_env.sim` (the simulator), :mod:`pool_env.game`
 (the decision process over B tables), and the Gymnasium fronts (:class:`PoolEnv`,
 :class:`PoolVectorEnv`, registration, rendering). This module is the public API.
+
+Importing it loads the simulator only: the decision process and the fronts load (and with
+them Gymnasium) on first use of one of their names, so ``import pool_env.sim`` needs no
+Gymnasium. The ids are registered with Gymnasium all the same, whichever of the two is
+imported first (:func:`pool_env.registration.register_on_gymnasium_import`).
 """
 
-from pool_env._version import __version__
-from pool_env.env import PoolEnv
-from pool_env.game.config import AIM_MODES, DEFAULT_AIM_RANGE, DEFAULT_SPEED_RANGE, GameConfig
-from pool_env.game.kernels.actions import decode_shots, nearest_object_ball
-from pool_env.game.kernels.observe import encode_observations
-from pool_env.game.scenes import SCENES, check_layout, free_spot
-from pool_env.registration import ENV_IDS, register_envs
-from pool_env.sim import Event, ShotResult, Table, shoot, simulate
-from pool_env.vector import PoolVectorEnv
+from __future__ import annotations
 
-register_envs()
+import importlib
+from typing import TYPE_CHECKING, Any
+
+from pool_env._version import __version__
+from pool_env.registration import ENV_IDS, register_envs, register_on_gymnasium_import
+from pool_env.sim import Event, ShotResult, Table, shoot, simulate
+
+if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
+    from pool_env.env import PoolEnv
+    from pool_env.game.config import (
+        AIM_MODES,
+        DEFAULT_AIM_RANGE,
+        DEFAULT_SPEED_RANGE,
+        GameConfig,
+    )
+    from pool_env.game.kernels.actions import decode_shots, nearest_object_ball
+    from pool_env.game.kernels.observe import encode_observations
+    from pool_env.game.scenes import SCENES, check_layout, free_spot
+    from pool_env.vector import PoolVectorEnv
+
+#: Public names of the game layer and the fronts -> the module defining each.
+_LAZY: dict[str, str] = {
+    "AIM_MODES": "pool_env.game.config",
+    "DEFAULT_AIM_RANGE": "pool_env.game.config",
+    "DEFAULT_SPEED_RANGE": "pool_env.game.config",
+    "GameConfig": "pool_env.game.config",
+    "PoolEnv": "pool_env.env",
+    "PoolVectorEnv": "pool_env.vector",
+    "SCENES": "pool_env.game.scenes",
+    "check_layout": "pool_env.game.scenes",
+    "decode_shots": "pool_env.game.kernels.actions",
+    "encode_observations": "pool_env.game.kernels.observe",
+    "free_spot": "pool_env.game.scenes",
+    "nearest_object_ball": "pool_env.game.kernels.actions",
+}
 
 __all__ = [
     "AIM_MODES",
@@ -39,3 +70,19 @@ __all__ = [
     "shoot",
     "simulate",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Import a name of the game layer or a front on its first use (PEP 562)."""
+    if name not in _LAZY:
+        raise AttributeError(f"module 'pool_env' has no attribute {name!r}")
+    value = getattr(importlib.import_module(_LAZY[name]), name)
+    globals()[name] = value  # later uses find it without this call
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
+
+register_on_gymnasium_import()

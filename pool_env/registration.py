@@ -1,10 +1,18 @@
-"""Gymnasium registration of the pool environments (idempotent: safe to call again)."""
+"""Gymnasium registration of the pool environments (idempotent: safe to call again).
+
+``import pool_env`` registers the ids without importing Gymnasium itself, so that the
+simulator (``import pool_env.sim``, which runs ``pool_env/__init__.py``) stands alone:
+:func:`register_on_gymnasium_import` registers them at once if Gymnasium is loaded, and
+otherwise the moment its import completes.
+"""
 
 from __future__ import annotations
 
+import importlib.abc
+import importlib.machinery
+import sys
+from types import ModuleType
 from typing import Any
-
-import gymnasium as gym
 
 ENTRY_POINT = "pool_env.env:PoolEnv"
 
@@ -32,6 +40,8 @@ ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {
 
 def register_envs() -> None:
     """Register every id of :data:`ENV_IDS` that is not registered yet."""
+    import gymnasium as gym  # here, not at the top: see the module's docstring
+
     for env_id, (kwargs, max_steps) in ENV_IDS.items():
         if env_id not in gym.registry:
             gym.register(
@@ -46,3 +56,60 @@ def register_envs() -> None:
 #: The ids played under the 9-ball or 8-ball rules (``Box(5)`` actions); the others are
 #: solitaire (``Box(2)``).
 GAME_IDS: tuple[str, ...] = tuple(k for k, (kw, _) in ENV_IDS.items() if "game" in kw)
+
+
+class _RegisteringLoader(importlib.abc.Loader):
+    """Gymnasium's own loader, followed by :func:`register_envs` once its module is complete."""
+
+    def __init__(self, loader: importlib.abc.Loader) -> None:
+        self._loader = loader
+
+    def create_module(self, spec: importlib.machinery.ModuleSpec) -> ModuleType | None:
+        """Whatever Gymnasium's loader creates (None: the default module)."""
+        return self._loader.create_module(spec)
+
+    def exec_module(self, module: ModuleType) -> None:
+        """Run Gymnasium's ``__init__``, then register the ids."""
+        module.__loader__ = self._loader  # Gymnasium keeps its own loader, as if never wrapped
+        if module.__spec__ is not None:
+            module.__spec__.loader = self._loader
+        self._loader.exec_module(module)
+        _remove_hook()
+        register_envs()
+
+
+class _GymnasiumHook(importlib.abc.MetaPathFinder):
+    """Finds Gymnasium through the other finders and hands back its spec, loader wrapped."""
+
+    def find_spec(
+        self, fullname: str, path: Any = None, target: ModuleType | None = None
+    ) -> importlib.machinery.ModuleSpec | None:
+        """Gymnasium's spec with a registering loader; None (not ours) for any other name."""
+        if fullname != "gymnasium":
+            return None
+        for finder in sys.meta_path:
+            if finder is self or not hasattr(finder, "find_spec"):
+                continue
+            spec = finder.find_spec(fullname, path, target)
+            if spec is not None:
+                if spec.loader is not None:
+                    spec.loader = _RegisteringLoader(spec.loader)
+                return spec
+        return None
+
+
+def _remove_hook() -> None:
+    sys.meta_path[:] = [f for f in sys.meta_path if not isinstance(f, _GymnasiumHook)]
+
+
+def register_on_gymnasium_import() -> None:
+    """Register the ids now if Gymnasium is loaded, else as soon as its import completes.
+
+    ``import pool_env`` calls this, so ``gymnasium.make("pool_env/...")`` works whether
+    Gymnasium or pool_env was imported first, while ``import pool_env.sim`` loads no
+    Gymnasium. Idempotent: at most one hook waits in ``sys.meta_path``.
+    """
+    if "gymnasium" in sys.modules:
+        register_envs()
+    elif not any(isinstance(f, _GymnasiumHook) for f in sys.meta_path):
+        sys.meta_path.insert(0, _GymnasiumHook())

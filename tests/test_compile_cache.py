@@ -13,9 +13,11 @@ import sys
 import tempfile
 from pathlib import Path
 
+import grimp
 import pytest
 
 import pool_env
+from pool_env.sim import jit
 
 PACKAGE = Path(pool_env.__file__).parent
 
@@ -126,14 +128,12 @@ for k in (loop.packed_shot, loop.validate, timeline.positions_at):
 
 def _warm_cache_copy(root: Path) -> Path:
     """A copy of this process's compile cache, as ``$NUMBA_CACHE_DIR`` would hold it."""
-    from pool_env.sim.kernels import _jit
-
-    if _jit.CACHE_FOLDER is None:
+    if jit.CACHE_FOLDER is None:
         pytest.skip("no on-disk compile cache in this process")
-    tag = _jit.CACHE_FOLDER.name.rsplit("-", 1)[-1]
+    tag = jit.CACHE_FOLDER.name.rsplit("-", 1)[-1]
     out = subprocess.run([sys.executable, "-c", HEAL], capture_output=True, text=True)
     assert out.returncode == 0, out.stderr  # the package's cache now holds every kernel used
-    shutil.copytree(_jit.CACHE_FOLDER, root / f"pool_env-{tag}")
+    shutil.copytree(jit.CACHE_FOLDER, root / f"pool_env-{tag}")
     return root / f"pool_env-{tag}"
 
 
@@ -176,3 +176,53 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
     assert "unreadable compile cache" not in err
     assert all(hits > 0 and misses == 0 for hits, misses in stats.values()), (stats, err)
     assert not list(folder.rglob("*.tmp.*"))  # written through numba's atomic rename
+
+
+# The cache key: the folder's name hashes the sources of jit.KERNEL_MODULES, an explicit
+# list, so that an edit of any module with compiled code (or of constants compiled into it)
+# starts a fresh cache; a listed module missing from the key would let a stale kernel load.
+
+
+def test_every_compiled_module_is_in_the_cache_key() -> None:
+    """The list holds every module that compiles, every kernels module, and all they import."""
+    graph = grimp.build_graph("pool_env")
+    listed = set(jit.KERNEL_MODULES)
+    compiling = set()
+    for decorators in ("pool_env.sim.jit", "pool_env.sim.kernels._jit"):
+        if decorators in graph.modules:
+            compiling |= graph.find_modules_that_directly_import(decorators)
+    kernels = {
+        m
+        for package in ("pool_env.sim.kernels", "pool_env.game.kernels")
+        for m in graph.find_descendants(package)
+    }
+    assert compiling, "no module compiles through pool_env.sim.jit?"
+    assert not (compiling | kernels) - listed
+    imported = {i for m in listed for i in graph.find_modules_directly_imported_by(m)}
+    package_init = {"pool_env", "pool_env.sim", "pool_env.sim.kernels", "pool_env.game.kernels"}
+    inside = {m for m in imported if m.startswith("pool_env.")} - package_init
+    assert not inside - listed, "a compiled module reads a module the key does not hash"
+    for module in listed:
+        assert jit.module_file(PACKAGE.parent, module).is_file(), module
+
+
+def test_the_key_changes_with_every_listed_module_and_no_other(tmp_path: Path) -> None:
+    """Editing any one listed file gives a new key; editing a file not listed does not."""
+    shutil.copytree(PACKAGE, tmp_path / "pool_env", ignore=shutil.ignore_patterns("__pycache__"))
+    key = jit.source_hash(tmp_path)
+    assert key == jit.source_hash(PACKAGE.parent)  # the key reads the sources only
+    assert jit.CACHE_FOLDER is None or jit.CACHE_FOLDER.name.endswith(key)
+    keys = {key}
+    for module in jit.KERNEL_MODULES:
+        path = jit.module_file(tmp_path, module)
+        source = path.read_bytes()
+        path.write_bytes(source + b"\n")  # any edit, a blank line too, is a new key
+        keys.add(jit.source_hash(tmp_path))
+        path.write_bytes(source)
+    assert len(keys) == len(jit.KERNEL_MODULES) + 1
+    assert jit.source_hash(tmp_path) == key
+    (tmp_path / "pool_env" / "env.py").write_text("# not compiled\n")
+    assert jit.source_hash(tmp_path) == key
+    jit.module_file(tmp_path, jit.KERNEL_MODULES[-1]).unlink()
+    with pytest.raises(RuntimeError, match="has no file"):
+        jit.source_hash(tmp_path)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import subprocess
 import sys
 import warnings
+from pathlib import Path
 
 import gymnasium as gym
 import pytest
@@ -14,6 +15,7 @@ import pool_env
 from pool_env.registration import ENV_IDS, register_envs
 
 IDS = list(ENV_IDS)
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def test_every_id_is_registered_with_its_time_limit() -> None:
@@ -89,3 +91,29 @@ def test_import_stays_light() -> None:
 def test_module_colon_id_imports_the_package() -> None:
     env = gym.make("pool_env:pool_env/OneBall-v0")
     assert isinstance(env.unwrapped, pool_env.PoolEnv)
+
+
+@pytest.mark.parametrize(
+    "imports",
+    [
+        "import pool_env; import gymnasium as gym",
+        "import gymnasium as gym; import pool_env",
+        "import pool_env.sim; import gymnasium.spaces; import gymnasium as gym",
+    ],
+)
+def test_ids_are_registered_whichever_is_imported_first(imports: str) -> None:
+    """pool_env's import registers the ids without loading Gymnasium itself.
+
+    They are registered when Gymnasium's import completes; Gymnasium keeps its own loader
+    and no import hook stays behind.
+    """
+    code = (
+        f"{imports}; import sys, importlib.machinery as m;"
+        "from pool_env.registration import ENV_IDS, _GymnasiumHook;"
+        "assert set(ENV_IDS) <= set(gym.registry), sorted(gym.registry);"
+        "assert gym.make('pool_env/OneBall-v0').observation_space.shape == (6,);"
+        "assert type(gym.__loader__) is m.SourceFileLoader, gym.__loader__;"
+        "assert gym.__spec__.loader is gym.__loader__;"
+        "assert not [f for f in sys.meta_path if isinstance(f, _GymnasiumHook)]"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True, cwd=ROOT)

@@ -56,7 +56,7 @@ from pool_env.game.kernels.params import (
     W_SHAPING,
     W_WIN,
 )
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 CUE = 0  # the cue ball's row in every layout
 

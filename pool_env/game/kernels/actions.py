@@ -33,7 +33,7 @@ from pool_env.game.kernels.params import (
 )
 from pool_env.game.kernels.rng import standard_normal
 from pool_env.game.kernels.wpa import BEHIND, BREAKING, IN_HAND, SHOOTER, legal_targets
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 
 @kernel

@@ -15,7 +15,7 @@ from pool_env.game.kernels.params import (
     Y_LOW,
 )
 from pool_env.game.kernels.rng import next_double
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 
 @kernel

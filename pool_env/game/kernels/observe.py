@@ -18,7 +18,7 @@ from pool_env.game.kernels.wpa import (
     SHOOTER,
     legal_targets,
 )
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 
 @kernel

@@ -29,7 +29,7 @@ from numba.np.random._constants import (
     ziggurat_nor_r,
 )
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 #: Columns of the per-table address rows built by :func:`pool_env.vector` callers.
 STATE, NEXT_DOUBLE, NEXT_UINT64 = 0, 1, 2

@@ -67,7 +67,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 #: Rule codes of ``params[GAME]``.
 SOLITAIRE, NINE, EIGHT = 0, 1, 2

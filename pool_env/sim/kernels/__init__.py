@@ -1,1 +1,1 @@
-"""Compiled kernels: arrays and scalars in, arrays and scalars out; no package imports."""
+"""Compiled kernels (through :mod:`pool_env.sim.jit`): arrays and scalars in and out."""

@@ -12,7 +12,7 @@ from collections import namedtuple
 import numpy as np
 from numba import prange
 
-from pool_env.sim.kernels._jit import kernel, parallel_kernel
+from pool_env.sim.jit import kernel, parallel_kernel
 from pool_env.sim.kernels.loop import BEHIND_LINE, IN_JAW, IN_POCKET, OK, run_shot, validate
 
 #: What :func:`run_batch` returns, by name; ball indices count all ``N`` balls of a table.

@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.motion import set_anchor, state_at
 from pool_env.sim.kernels.params import (
     P_DECEL,

@@ -28,7 +28,7 @@ so that a change of a limit changes the compile-cache tag. Why these values:
 
 from __future__ import annotations
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 MIN_LENGTH = 1e-4  # m
 MAX_LENGTH = 1e4  # m

@@ -24,7 +24,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import inline_kernel, kernel
+from pool_env.sim.jit import inline_kernel, kernel
 from pool_env.sim.kernels.jaws import (
     JAW,
     JAW_COLS,

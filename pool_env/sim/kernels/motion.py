@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 # Columns of the (N, NCOL) ball-state array.
 PX, PY, VX, VY, T0, SPD, UX, UY, TSTOP = range(9)

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import JAW_COLS, opening_of, predict_pocket, throat_of
 from pool_env.sim.kernels.motion import (
     MOVING,

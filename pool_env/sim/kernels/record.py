@@ -12,7 +12,7 @@ from collections import namedtuple
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import inline_kernel, kernel
+from pool_env.sim.jit import inline_kernel, kernel
 from pool_env.sim.kernels.motion import POTTED, PX, PY, VX, VY
 
 #: The events of a shot, one row each: time, kind code, the two ids, and the first row of

@@ -47,7 +47,7 @@ import math
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.motion import POTTED, set_anchor, state_at
 from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_LENGTH, P_RADIUS, P_WIDTH
 

@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 
 @kernel

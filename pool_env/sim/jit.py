@@ -1,0 +1,233 @@
+"""One place for the numba options of every compiled kernel, and for where they are cached.
+
+The simulator's kernels (:mod:`pool_env.sim.kernels`) and the decision process's
+(:mod:`pool_env.game.kernels`, :mod:`pool_env.game.rules`) all compile through
+:func:`kernel`, :func:`inline_kernel` and :func:`parallel_kernel`, with the same options (no
+fastmath, for bit-for-bit determinism) and one cache folder.
+
+Kernels are cached on disk so a fresh process (every ``SubprocVecEnv`` worker) loads machine
+code instead of compiling. numba keys a cached function on its own file's time stamp only,
+not on the files of the functions it calls: after an edit of ``resolve.py``, the cached
+event loop of ``loop.py`` would still hold the old impact code (and numba freezes the
+constants a kernel reads from other modules, such as ``params.py``, into its machine code).
+So the cache lives in a folder named after a hash of the modules of :data:`KERNEL_MODULES`,
+every module whose code or constants are compiled: any change of one of them starts a fresh
+cache. The list is explicit; ``tests/test_compile_cache.py`` checks from the import graph
+that every module compiling through this one, every module in a ``kernels`` package and
+every module they import is on it.
+
+The folder is the first writable of: ``$NUMBA_CACHE_DIR/pool_env-<hash>`` (if that variable
+is set), the package's ``__pycache__/numba-<hash>``, and ``~/.cache/pool_env/numba-<hash>``.
+With none writable (a read-only install and home), kernels compile in memory, with a
+warning. numba writes cache files through a temporary file and an atomic rename, so several
+processes compiling at once neither crash nor corrupt the cache.
+
+A cache file can still be damaged from outside (a full disk, a copy cut short, a bad
+sector): numba then raises from its loader (``EOFError``, ``UnpicklingError``) in this and
+every later process. Each kernel's cache is therefore a :class:`HealingCache`: a cache that
+cannot be read is deleted, the kernel compiles (one warning per process) and the fresh
+cache is written back through numba's atomic rename, for every later process to load.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import tempfile
+import warnings
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any, TypeVar
+
+import numba
+from numba.core.caching import FunctionCache
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+# fastmath stays off: reassociation would break bit-for-bit determinism and the exactness
+# of the stable root formulas. error_model="numpy" removes Python's zero-division checks.
+_OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": False}
+
+_PACKAGE = Path(__file__).resolve().parents[1]
+
+#: Every module whose code or constants end up in compiled code, the simulator's and the
+#: decision process's, this one included (its options). A module added to a ``kernels``
+#: package, or compiling through this one, goes here: ``tests/test_compile_cache.py`` fails
+#: until it does.
+KERNEL_MODULES: tuple[str, ...] = (
+    "pool_env.sim.jit",
+    "pool_env.sim.kernels._jit",
+    "pool_env.sim.kernels.batch",
+    "pool_env.sim.kernels.jaws",
+    "pool_env.sim.kernels.limits",
+    "pool_env.sim.kernels.loop",
+    "pool_env.sim.kernels.motion",
+    "pool_env.sim.kernels.params",
+    "pool_env.sim.kernels.predict",
+    "pool_env.sim.kernels.record",
+    "pool_env.sim.kernels.resolve",
+    "pool_env.sim.kernels.roots",
+    "pool_env.sim.kernels.spin_collide",
+    "pool_env.sim.kernels.spin_cushion",
+    "pool_env.sim.kernels.spin_jaws",
+    "pool_env.sim.kernels.spin_loop",
+    "pool_env.sim.kernels.spin_params",
+    "pool_env.sim.kernels.spin_predict",
+    "pool_env.sim.kernels.spin_state",
+    "pool_env.sim.kernels.spin_strike",
+    "pool_env.sim.kernels.spin_timeline",
+    "pool_env.sim.kernels.timeline",
+    "pool_env.game.kernels.actions",
+    "pool_env.game.kernels.layout",
+    "pool_env.game.kernels.observe",
+    "pool_env.game.kernels.params",
+    "pool_env.game.kernels.rng",
+    "pool_env.game.kernels.wpa",
+    "pool_env.game.rules",
+)
+
+
+def module_file(root: Path, module: str) -> Path:
+    """The source file of ``module`` (a dotted name) under the folder ``root`` holding it."""
+    return root.joinpath(*module.split(".")).with_suffix(".py")
+
+
+def source_hash(root: Path, modules: tuple[str, ...] = KERNEL_MODULES) -> str:
+    """A short hash of the names and sources of ``modules``, read under ``root``.
+
+    Args:
+        root: The folder holding the top-level package (``pool_env``'s parent).
+        modules: Dotted names of the modules to hash.
+
+    Returns:
+        16 hex digits.
+
+    Raises:
+        RuntimeError: A listed module has no source file (it moved: update the list).
+    """
+    digest = hashlib.sha256()
+    for module in sorted(modules):
+        path = module_file(root, module)
+        if not path.is_file():
+            raise RuntimeError(f"pool_env: compiled module {module} has no file {path}")
+        digest.update(module.encode())
+        digest.update(path.read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def _writable(folder: Path) -> bool:
+    try:
+        folder.mkdir(parents=True, exist_ok=True)
+        tempfile.TemporaryFile(dir=folder).close()
+    except OSError:
+        return False
+    return True
+
+
+def _cache_folder() -> Path | None:
+    """The first writable cache folder for this version of the sources, or None."""
+    tag = source_hash(_PACKAGE.parent)
+    candidates = []
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        candidates.append(Path(os.environ["NUMBA_CACHE_DIR"]) / f"pool_env-{tag}")
+    candidates.append(_PACKAGE / "__pycache__" / f"numba-{tag}")
+    candidates.append(Path.home() / ".cache" / "pool_env" / f"numba-{tag}")
+    for folder in candidates:
+        if _writable(folder):
+            return folder
+    return None
+
+
+CACHE_FOLDER = _cache_folder()
+_warned = False
+_healed = False
+
+
+class HealingCache(FunctionCache):
+    """numba's on-disk cache of one kernel, deleting itself when it cannot be read."""
+
+    def load_overload(self, sig: Any, target_context: Any) -> Any:
+        """The cached compile result for ``sig``, or None (compile) if absent or unreadable."""
+        try:
+            return super().load_overload(sig, target_context)
+        except Exception as exc:  # any unreadable cache: compiling instead is always right
+            self._discard(exc)
+            return None
+
+    def save_overload(self, sig: Any, data: Any) -> None:
+        """Write the compile result, replacing an index damaged since it was read."""
+        try:
+            super().save_overload(sig, data)
+        except Exception as exc:  # the index cannot be read back: start it afresh
+            self._discard(exc)
+            super().save_overload(sig, data)
+
+    def _discard(self, exc: Exception) -> None:
+        """Delete this kernel's index and data files, warning once per process."""
+        global _healed
+        folder = Path(self._cache_path)
+        base = self._impl.filename_base
+        for path in folder.glob("*"):
+            name = path.name
+            if name == f"{base}.nbi" or (name.startswith(f"{base}.") and name.endswith(".nbc")):
+                path.unlink(missing_ok=True)
+        if not _healed:
+            warnings.warn(
+                f"pool_env: unreadable compile cache for {self._py_func.__qualname__} in {folder} "
+                f"({type(exc).__name__}: {exc}); discarded it and compiling afresh",
+                RuntimeWarning,
+                stacklevel=2,
+            )
+            _healed = True
+
+
+def _compile(fn: F, options: dict[str, Any]) -> F:
+    global _warned
+    if CACHE_FOLDER is not None:
+        # numba picks a function's cache location when it is decorated, from
+        # numba.config.CACHE_DIR first: point it at our folder for that moment only.
+        saved = numba.config.CACHE_DIR
+        numba.config.CACHE_DIR = str(CACHE_FOLDER)
+        try:
+            dispatcher = numba.njit(cache=True, **options)(fn)
+            dispatcher._cache = HealingCache(fn)
+            return dispatcher  # type: ignore[no-any-return]
+        except RuntimeError:  # numba found the folder unwritable after all
+            pass
+        finally:
+            numba.config.CACHE_DIR = saved
+    if not _warned:
+        warnings.warn(
+            "pool_env: no writable numba cache location; compiling in memory. Set "
+            "NUMBA_CACHE_DIR to a writable folder to keep compiled code.",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+        _warned = True
+    return numba.njit(cache=False, **options)(fn)  # type: ignore[no-any-return]
+
+
+def kernel(fn: F) -> F:
+    """Compile ``fn`` with the project's options, cached on disk when possible.
+
+    Args:
+        fn: A function written in numba's nopython subset.
+
+    Returns:
+        The numba dispatcher (typed as the original function).
+    """
+    return _compile(fn, _OPTIONS)
+
+
+def inline_kernel(fn: F) -> F:
+    """Like :func:`kernel`, but inlined into its callers by numba (``inline="always"``).
+
+    For pieces of a hot loop split out to be read on their own: an ordinary call there costs
+    measurably per event (array arguments are passed field by field and reference-counted).
+    """
+    return _compile(fn, {**_OPTIONS, "inline": "always"})
+
+
+def parallel_kernel(fn: F) -> F:
+    """Like :func:`kernel` but with ``parallel=True`` (for ``prange`` loops over tables)."""
+    return _compile(fn, {**_OPTIONS, "parallel": True})
