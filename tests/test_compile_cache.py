@@ -185,7 +185,7 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
 
 def test_every_compiled_module_is_in_the_cache_key() -> None:
     """The list holds every module that compiles, every kernels module, and all they import."""
-    graph = grimp.build_graph("pool_env")
+    graph = grimp.build_graph("pool_env", cache_dir=None)
     listed = set(jit.KERNEL_MODULES)
     compiling = set()
     for decorators in ("pool_env.sim.jit", "pool_env.sim.kernels._jit"):
