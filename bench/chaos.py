@@ -93,7 +93,7 @@ def reference_growth(scene: Scene, max_events: int = 5000) -> tuple[Growth, Grow
         perturbation in the reference; the second compares our simulator with the
         reference on the unperturbed break (float64 rounding, amplified by each collision).
     """
-    from tests.reference import reference_simulate
+    from pool_env.testing.reference import reference_simulate
 
     ref = reference_simulate(
         scene.table, scene.positions, scene.velocities, scene.masses, max_events

@@ -1,7 +1,7 @@
 """Error measures against the 50-digit reference, and its cached outcomes.
 
-The reference is ``tests.reference.reference_simulate`` (mpmath, 50 digits). Its outcome of
-a scene is reduced to floats once (rounding a 50-digit number to float64 costs at most
+The reference is ``pool_env.testing.reference.reference_simulate`` (mpmath, 50 digits). Its
+outcome of a scene is reduced to floats once (rounding a 50-digit number to float64 costs at most
 1e-16 relative, far below every error measured here) and cached in memory and, optionally,
 on disk under ``results/.cache`` keyed by the scene and the reference's source.
 """
@@ -21,7 +21,7 @@ from bench.scenes import Scene
 from pool_env import ShotResult, Table
 
 ROOT = Path(__file__).resolve().parents[1]
-REFERENCE_SOURCE = ROOT / "tests" / "reference.py"
+REFERENCE_SOURCE = ROOT / "pool_env" / "testing" / "reference.py"
 
 
 @dataclass
@@ -174,7 +174,7 @@ class ReferenceCache:
     def _compute(self, scene: Scene) -> dict:
         import time
 
-        from tests.reference import reference_simulate
+        from pool_env.testing.reference import reference_simulate
 
         t0 = time.perf_counter()
         n = scene.n_balls

@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 
 from pool_env import Table, simulate
+from pool_env.testing.reference import reference_simulate
 from tests.helpers_sim import normal_velocities
-from tests.reference import reference_simulate
 
 TABLE = Table(pockets="none")
 R = TABLE.ball_radius

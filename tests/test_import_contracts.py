@@ -51,7 +51,17 @@ PLANTED = {
     "pool_env imports agents": (
         "pool_env/render.py",
         "import agents.geometry",
-        "agents sit on pool_env",
+        "the repository in layers",
+    ),
+    "a benchmark imports the tests": (
+        "bench/chaos.py",
+        "import tests.helpers_sim",
+        "the repository in layers",
+    ),
+    "a tool imports a benchmark": (
+        "tools/mutants.py",
+        "import bench.scenes",
+        "the repository in layers",
     ),
     "sim imports gymnasium": (
         "pool_env/sim/layouts.py",

@@ -21,8 +21,8 @@ import pytest
 from pool_env import Table, shoot, simulate
 from pool_env.sim.table import JawSpec
 from pool_env.testing.invariants import check_shot
+from pool_env.testing.reference import reference_simulate
 from tests.helpers_sim import normal_velocities
-from tests.reference import reference_simulate
 
 INCH = 0.0254  # m, exactly
 CORNER_MOUTH_SPEC = 4.5 * INCH

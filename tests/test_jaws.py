@@ -3,7 +3,7 @@
 Expected values are derived here from the table's documented geometry (``Table.jaws``:
 points, rail ends, tip centres, facings, fall lines), offset by ``R`` in this file, never
 from the kernels' own rows. Scenes with several impacts are also compared with the
-independent 50-digit reference (``tests/reference.py``).
+independent 50-digit reference (``pool_env/testing/reference.py``).
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import pytest
 from pool_env import Table, shoot, simulate
 from pool_env.sim.pockets import CORNER_CUT_DEG, CORNER_MOUTH, SIDE_CUT_DEG, SIDE_MOUTH
 from pool_env.testing.invariants import check_shot
-from tests.reference import reference_simulate
+from pool_env.testing.reference import reference_simulate
 
 TABLE = Table()
 R = TABLE.ball_radius

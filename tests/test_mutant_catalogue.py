@@ -1,4 +1,4 @@
-"""The mutation catalogue (bench/mutant_catalogue.py) stays anchored in the current tree.
+"""The mutation catalogue (tools/mutant_catalogue.py) stays anchored in the current tree.
 
 The mutation runner itself is not part of CI (it takes minutes); this fast check makes sure
 that every planted bug still points at code that exists, exactly once, so that an edit which
@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-from bench.mutant_catalogue import CATALOGUE, Mutant
+from tools.mutant_catalogue import CATALOGUE, Mutant
 
 ROOT = Path(__file__).resolve().parents[1]
 

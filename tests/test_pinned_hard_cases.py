@@ -2,7 +2,7 @@
 
 Invariants (no overlap, momentum, energy) cannot see a wrong restitution: balls that pass
 through, re-collide at once and stick conserve momentum, lose energy and never overlap.
-So each case here also has its exact outcome: the 50-digit reference (tests/reference.py)
+So each case here also has its exact outcome: the 50-digit reference (pool_env/testing/reference.py)
 where it resolves the scene, else a closed form of the documented rules.
 """
 
@@ -17,9 +17,9 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from pool_env import Table, simulate
+from pool_env.testing.reference import ReferenceSimulationError, reference_simulate
 from pool_env.testing.scenes_random import random_layout
 from tests.profiles import examples
-from tests.reference import ReferenceSimulationError, reference_simulate
 
 R = Table().ball_radius
 

@@ -1,4 +1,6 @@
-"""The compiled simulator against the independent 50-digit reference (tests/reference.py).
+"""The compiled simulator against the independent 50-digit reference.
+
+The reference is ``pool_env/testing/reference.py``.
 
 Random scenes of 2-4 balls with 1-3 ball-ball impacts (plus cushions, pockets and stops) on
 jaw, capture-circle and pocketless tables, and random jaw-table scenes with 1-3 impacts that
@@ -19,8 +21,8 @@ import numpy as np
 import pytest
 
 from pool_env import Table, simulate
+from pool_env.testing.reference import reference_simulate
 from pool_env.testing.scenes_random import random_layout
-from tests.reference import reference_simulate
 
 TOLERANCE = 1e-9  # m
 # Error allowed relative to the scene's response to a one-ulp input change.

@@ -1,7 +1,7 @@
 """Self-checks of the 50-digit reference simulator against closed forms and invariants.
 
-The reference (``tests/reference.py``) is the oracle for the float64 kernels, so it must be
-checked on its own: every expected value here is derived in the test from the model's
+The reference (``pool_env/testing/reference.py``) is the oracle for the float64 kernels, so it
+must be checked on its own: every expected value here is derived in the test from the model's
 formulas, not taken from the reference.
 """
 
@@ -16,7 +16,8 @@ import pytest
 from mpmath import mp, mpf
 
 from pool_env.sim.table import Table
-from tests.reference import (
+from pool_env.testing import reference
+from pool_env.testing.reference import (
     ReferenceSimulationError,
     _first_contact,
     _gap_poly,
@@ -565,7 +566,7 @@ def test_three_ball_three_collision_scene() -> None:
 
 def test_reference_imports_nothing_from_the_simulator() -> None:
     """Independence: only pool_env.sim.table.Table, and only for type checking."""
-    src = (Path(__file__).parent / "reference.py").read_text()
+    src = Path(reference.__file__).read_text()
     tree = ast.parse(src)
     type_checking_nodes = set()
     for node in ast.walk(tree):

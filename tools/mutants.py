@@ -2,10 +2,10 @@
 
 Usage (from the repository root)::
 
-    python -m bench.mutants                       # every mutant, 2 workers
-    python -m bench.mutants --only tie-kind-order zeno-threshold-1e-3
-    python -m bench.mutants --workers 1 --out results/mutants.md
-    python -m bench.mutants --budget 20           # start no mutant after 20 min
+    python -m tools.mutants                       # every mutant, 2 workers
+    python -m tools.mutants --only tie-kind-order zeno-threshold-1e-3
+    python -m tools.mutants --workers 1 --out results/mutants.md
+    python -m tools.mutants --budget 20           # start no mutant after 20 min
 
 Cost, measured on the shared 2-core machine at load average 10 (``nice -n 5``, 2 workers,
 99 mutants, 2026-12-02): 33 min in all. The baselines (the union of each mode's subsets)
@@ -13,7 +13,7 @@ took 6 min (compiled) and 8.5 min (interpreted); an interpreted mutant 4-50 s (m
 a compiled one recompiles the kernels before its tests, 11-290 s (median 2 min). Most
 mutants die in the first seconds of their subset (``-x``); a survivor runs all of it.
 
-Each mutant of :data:`bench.mutant_catalogue.CATALOGUE` is applied to a fresh scratch copy
+Each mutant of :data:`tools.mutant_catalogue.CATALOGUE` is applied to a fresh scratch copy
 of the tracked tree (never to the tree itself), and its focused test subset runs there with
 ``pytest -x`` and the derandomized hypothesis profile ``ci``. A failing subset *kills* the
 mutant (the table names the first failing test); a passing one lets it *survive*. A
@@ -24,7 +24,7 @@ and the kill rate counts only the mutants that ran. The unmutated tree runs the 
 subsets first: if that baseline fails, no kill means anything and the run says so.
 
 Interpreted kernels: a mutant whose subset only uses the simulator (the files of
-:data:`bench.mutant_catalogue.INTERPRETABLE`) runs with ``NUMBA_DISABLE_JIT=1``: the same
+:data:`tools.mutant_catalogue.INTERPRETABLE`) runs with ``NUMBA_DISABLE_JIT=1``: the same
 kernels as plain Python, so no ~25 s compile of a fresh cache per mutant (the suite's
 simulator tests pass that way too: that is its baseline). ``--compiled`` compiles every
 mutant instead.
@@ -55,7 +55,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
-from bench.mutant_catalogue import CATALOGUE, INTERPRETABLE, Mutant
+from tools.mutant_catalogue import CATALOGUE, INTERPRETABLE, Mutant
 
 ROOT = Path(__file__).resolve().parents[1]
 #: Default limit on one mutant's subset (s); the baseline, the union of all subsets, gets
@@ -389,7 +389,7 @@ def report(
         f"error {sum(o.status == 'error' for o in outcomes)}.",
         "",
         "Each mutant runs in a scratch copy of the tree with its own numba cache; the "
-        "catalogue is `bench/mutant_catalogue.py`. Mode `interp.`: the subset ran with the "
+        "catalogue is `tools/mutant_catalogue.py`. Mode `interp.`: the subset ran with the "
         "kernels interpreted (`NUMBA_DISABLE_JIT=1`, no compile); `jit`: compiled afresh "
         "(`--compiled` forces it for all).",
         "",
@@ -448,7 +448,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 130
     wall = time.perf_counter() - start
     given = sys.argv[1:] if argv is None else list(argv)
-    command = shlex.join(["python", "-m", "bench.mutants", *given])
+    command = shlex.join(["python", "-m", "tools.mutants", *given])
     text = report(baselines, outcomes, command, wall, load_start, commit)
     print(text)
     if args.out:

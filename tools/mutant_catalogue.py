@@ -1,4 +1,4 @@
-"""The catalogue of planted bugs for :mod:`bench.mutants`: data only.
+"""The catalogue of planted bugs for :mod:`tools.mutants`: data only.
 
 Each entry is one realistic bug: the file, a short snippet of the current source that must
 occur exactly once in it (``tests/test_mutant_catalogue.py`` checks that, so the catalogue
@@ -1357,5 +1357,5 @@ _SPIN_RESOLVE: tuple[Mutant, ...] = (
     ),
 )
 
-#: The mutants :mod:`bench.mutants` runs.
+#: The mutants :mod:`tools.mutants` runs.
 CATALOGUE: tuple[Mutant, ...] = (*_ALL, *_SPIN_RESOLVE)
