@@ -68,6 +68,8 @@ def local_ray():  # type: ignore[no-untyped-def]
     if ray.is_initialized():
         ray.shutdown()
     ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    # tests/conftest.py set RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER=0: traffic stays on loopback.
+    assert {n["NodeManagerAddress"] for n in ray.nodes()} == {"127.0.0.1"}
     yield
     ray.shutdown()
 
