@@ -13,8 +13,10 @@ truncated after ``max_shots`` shots (0 to both).
 
 Action (``Box(-1, 1, (5,))``): aim, speed, cue ball x and y (used only with the cue ball in
 hand), called pocket (used only when shooting at the 8); see :class:`pool_env.PoolEnv`.
-Default aim ``"absolute"`` (-pi .. pi from the table's +x axis) and speeds 0.5 .. 10 m/s
-(the break: ``break_speed_range``, 8 .. 12 m/s).
+Every default is the game id's (``pool_env/NineBallGame-v0``, ``pool_env/EightBallGame-v0``):
+its registered arguments, :func:`pool_env.game.config.make_config`'s defaults for the rest
+(``"cut"`` aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as
+the shot limit of the rack (both players' shots).
 
 Observation of each agent: the game ids' observation
 (:func:`pool_env.game.kernels.observe.encode_rule_observations`) from that agent's seat:
@@ -44,11 +46,17 @@ from pool_env.game.kernels import wpa
 from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TRUNCATED
 from pool_env.game.state import GameState, new_state
+from pool_env.registration import ENV_IDS
 from pool_env.sim.table import Table
 
 AGENTS = ("player_0", "player_1")
 _ONE = np.zeros(1, dtype=np.intp)
-_SCENES = {"nine": "nine_ball", "eight": "eight_ball"}
+#: game -> the registered arguments (less ``game``) and ``max_episode_steps`` of its id.
+_GAME_IDS: dict[str, tuple[dict[str, Any], int]] = {
+    kwargs["game"]: ({k: v for k, v in kwargs.items() if k != "game"}, steps)
+    for kwargs, steps in ENV_IDS.values()
+    if "game" in kwargs
+}
 _OPTIONS = ("positions", "on_table", "rules")
 
 
@@ -58,12 +66,11 @@ class PoolDuelEnv(AECEnv):
     Args:
         game: ``"nine"`` or ``"eight"``.
         table: The table (default ``Table()``), or ``Table`` keyword arguments.
-        speed_range: Cue ball speeds (m/s) for action[1] = -1 and +1.
-        noise: Optional execution noise ``(sigma_angle, sigma_speed)`` (rad, m/s), drawn
-            from the generator seeded by ``reset(seed=...)``.
-        max_shots: Shots after which the rack is truncated.
+        max_shots: Shots of both players after which the rack is truncated (default: the
+            game id's ``max_episode_steps``).
         **kwargs: Any other :func:`pool_env.game.config.make_config` argument (``aim``,
-            ``break_speed_range``, ...).
+            ``speed_range``, ``noise`` drawn from the generator seeded by
+            ``reset(seed=...)``, ``break_speed_range``, ...); the defaults are the game id's.
 
     Raises:
         ValueError: On an unknown game or a bad argument.
@@ -79,23 +86,22 @@ class PoolDuelEnv(AECEnv):
         self,
         game: str = "nine",
         table: Table | dict[str, Any] | None = None,
-        speed_range: tuple[float, float] = (0.5, 10.0),
-        noise: tuple[float, float] | None = None,
-        max_shots: int = 200,
+        max_shots: int | None = None,
         **kwargs: Any,
     ) -> None:
         super().__init__()
-        if game not in _SCENES:
+        if game not in _GAME_IDS:
             raise ValueError(f"game must be 'nine' or 'eight', got {game!r}")
         self.game = game
+        registered, steps = _GAME_IDS[game]
         self.config: GameConfig = make_config(
-            **{"aim": "absolute", **kwargs}, table=table, scene=_SCENES[game],
-            speed_range=speed_range, noise=noise, max_shots=max_shots, game=game, players=2,
+            **{**registered, **kwargs}, table=table, game=game, players=2,
+            max_shots=steps if max_shots is None else max_shots,
         )  # fmt: skip
         self.table = self.config.table
         self.speed_range = self.config.speed_range
         self.noise = self.config.noise
-        self.max_shots = max_shots
+        self.max_shots = self.config.max_shots
         self.possible_agents = list(AGENTS)
         n = self.config.n_balls
         self._action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)

@@ -11,6 +11,8 @@ from pettingzoo.test import api_test
 from pool_env.multiagent import PoolDuelEnv, VersusPolicyEnv
 
 TOWARD_CORNER = -3 * math.pi / 4
+# Tests that aim by direction (-pi .. pi from +x) pass aim="absolute": the default is the
+# game ids' cut aim (tests/test_front_defaults.py).
 
 
 def _speed_action(env: PoolDuelEnv, speed: float) -> float:
@@ -42,7 +44,7 @@ def test_same_seed_same_game() -> None:
 
 
 def test_a_break_that_touches_nothing_gives_the_opponent_ball_in_hand() -> None:
-    env = PoolDuelEnv("nine", break_speed_range=(0.5, 10.0))
+    env = PoolDuelEnv("nine", aim="absolute", break_speed_range=(0.5, 10.0))
     env.reset(seed=0)
     # Observation: 3 x 10 ball entries, 9 legal-ball flags, then ball in hand (39), behind
     # the head string (40), break (41), open table (42), own fouls (43), opponent's (44).
@@ -60,7 +62,7 @@ def test_a_break_that_touches_nothing_gives_the_opponent_ball_in_hand() -> None:
 
 
 def test_the_nine_straight_in_wins_the_rack() -> None:
-    env = PoolDuelEnv("nine")
+    env = PoolDuelEnv("nine", aim="absolute")
     pos = np.array([[1.5, 0.6]] * 10)
     on = np.zeros(10, bool)
     on[[0, 9]] = True
@@ -149,7 +151,7 @@ def test_an_opponent_failure_takes_the_agents_shot_back(policy, match: str) -> N
     # The agent's break touches nothing (a foul): the opponent comes to the table and fails.
     # The step raises naming the opponent, and the game is as before the step: the agent is
     # still to break, the generators have not moved; the next step plays the agent's shot.
-    env = VersusPolicyEnv(opponent=_miss_then(policy), game="nine",
+    env = VersusPolicyEnv(opponent=_miss_then(policy), game="nine", aim="absolute",
                           break_speed_range=(0.5, 10.0))  # fmt: skip
     env.reset(seed=0)
     r = env.duel.table.ball_radius
@@ -199,7 +201,7 @@ def test_the_shot_limit_truncates_both_players(limit: int) -> None:
     # Every shot misses (a soft shot away from the 9): the turn passes each time, so the
     # last shot is player_0's (odd limits) or player_1's (even). Both are truncated at
     # once, whoever shot, and the AEC loop then only removes them: no shot past the limit.
-    env = PoolDuelEnv("nine", max_shots=limit)
+    env = PoolDuelEnv("nine", max_shots=limit, aim="absolute")
     _straight_nine(env)
     away = np.array([0.25, -0.9, 0.0, 0.0, 0.0], np.float32)  # +pi/4: off the 9's line
     shooters = []
@@ -218,7 +220,7 @@ def test_the_shot_limit_truncates_both_players(limit: int) -> None:
 
 
 def test_a_win_on_the_last_allowed_shot_terminates_rather_than_truncates() -> None:
-    env = PoolDuelEnv("nine", max_shots=1)
+    env = PoolDuelEnv("nine", max_shots=1, aim="absolute")
     _straight_nine(env)
     env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0], np.float32))
     assert env.terminations == {"player_0": True, "player_1": True}
@@ -228,7 +230,7 @@ def test_a_win_on_the_last_allowed_shot_terminates_rather_than_truncates() -> No
 
 def test_the_loser_sees_its_minus_one_and_the_rewards_sum_to_zero() -> None:
     # player_1 shoots the 9 in: player_0 (who did not shoot) gets -1 through last().
-    env = PoolDuelEnv("nine")
+    env = PoolDuelEnv("nine", aim="absolute")
     _straight_nine(env, shooter=1)
     assert env.agent_selection == "player_1"
     env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0], np.float32))
@@ -246,7 +248,8 @@ def test_versus_policy_truncates_at_the_shot_limit_inside_the_opponents_turn() -
     # The agent's soft break fouls; a passive opponent then runs into the limit: the
     # agent's step reports the truncation, and a further step is refused.
     env = VersusPolicyEnv(opponent=lambda obs: np.array([0.5, -1, 0, 0, 0], np.float32),
-                          game="nine", max_shots=2, break_speed_range=(0.5, 10.0))  # fmt: skip
+                          game="nine", max_shots=2, aim="absolute",
+                          break_speed_range=(0.5, 10.0))  # fmt: skip
     env.reset(seed=0)
     r = env.duel.table.ball_radius
     ax = 2 * (0.3 - r) / (env.duel.table.length / 4 - r) - 1
@@ -294,7 +297,7 @@ def test_the_opponent_winning_in_its_turn_gives_the_agent_minus_one() -> None:
         v = 2 * (y - r) / (table.width - 2 * r) - 1
         return np.array([TOWARD_CORNER / math.pi, speed, u, v, 0.0], np.float32)
 
-    env = VersusPolicyEnv(opponent=potter, game="nine")
+    env = VersusPolicyEnv(opponent=potter, game="nine", aim="absolute")
     speed = _speed_action(env.duel, 1.5)
     pos = np.array([[1.5, 0.6]] * 10)
     on = np.zeros(10, bool)
