@@ -16,12 +16,14 @@ from __future__ import annotations
 
 import math
 
+import gymnasium as gym
+import numpy as np
 import pytest
 
 from pool_env import shoot
 from pool_env.game.contact import SIMULTANEOUS
 from tests.rules_harness import compiled_judge, same_verdict
-from tests.test_games import MID, action, layout, make
+from tests.test_games import IDS, KWARGS, MID, action, layout, make
 from tests.test_wpa import TABLE, R, parked
 from tests.wpa_reference import N_BALLS, OPEN, SOLIDS, STRIPES, RackState, judge, outcome_of
 
@@ -143,3 +145,22 @@ def test_the_tolerance_is_far_above_rounding_and_far_below_sight() -> None:
     # moves 10 nm in that time.
     assert SIMULTANEOUS > 1000 * 2.2e-16 and 10.0 * SIMULTANEOUS <= 1e-8
     assert math.isclose(SIMULTANEOUS, 1e-9)
+
+
+def test_the_vector_env_reads_the_first_contact_alike() -> None:
+    # The batch path reports every ball's column (the single path only those on the table):
+    # the replay maps its rows back alike. Table 0: a tie, the shooter on stripes; table 1:
+    # a straight shot at a kitchen ball with the cue ball in hand behind the head string.
+    env = gym.make_vec(IDS["eight"], 2, vectorization_mode="vector_entry_point", **KWARGS)
+    env.reset(seed=0)
+    stripes = {"groups": ("stripes", "solids")}
+    in_hand = {"ball_in_hand": True, "behind_head_string": True}
+    for k, (balls, rules) in enumerate(
+        [(_tie(3, 11), stripes), (_kitchen((0.2, MID), (0.5, MID)), in_hand)]
+    ):
+        mask = np.arange(2) == k
+        env.reset(options={**layout("eight", balls), "rules": rules, "reset_mask": mask})
+    actions = np.stack([action(0.0, 2.0), action(0.0, 1.5, _place(0.2, MID))])
+    *_, info = env.step(actions)
+    assert list(info["foul"]) == [None, "kitchen_ball_first"]
+    assert list(info["first_contact"]) == [11, 3]

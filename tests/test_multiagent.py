@@ -310,3 +310,16 @@ def test_the_opponent_winning_in_its_turn_gives_the_agent_minus_one() -> None:
     assert info["foul"] == "no_contact" and info["opponent_shots"] == 1
     assert reward == -1.0 and term and not trunc
     assert env.duel.rack["winner"] == 1
+
+
+def test_a_bad_action_in_the_duel_changes_nothing() -> None:
+    env = PoolDuelEnv("nine")
+    env.reset(seed=0)
+    before = (env.positions.tobytes(), env.rack, env.shots, env.agent_selection,
+              env._state.generators[0].bit_generator.state)  # fmt: skip
+    for bad in (np.full(5, np.nan), np.zeros(4), "break"):
+        with pytest.raises(ValueError, match="the action"):
+            env.step(bad)
+        after = (env.positions.tobytes(), env.rack, env.shots, env.agent_selection,
+                 env._state.generators[0].bit_generator.state)  # fmt: skip
+        assert after == before

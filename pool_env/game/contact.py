@@ -44,6 +44,9 @@ from pool_env.sim.table import Table
 SIMULTANEOUS = 1e-9
 
 _BALL = KIND_NAMES.index("ball")
+# The common one-table answer, shared: the rules only read it. Writable, as every array the
+# kernels get, so that numba keeps one compiled version of judge_rules.
+_CROSSED = np.ones(1, dtype=np.bool_)
 
 
 def first_contacts(shot: ShotResult, head_x: float) -> tuple[list[int], bool]:
@@ -118,11 +121,11 @@ def read_first(
         ``(K,)`` whether the cue ball crossed the head string before its first contact
         (True where the rules do not read it).
     """
+    replay = wpa.needs_replay(params, tables, balls, positions, on_table, rack, first)
+    if tables.shape[0] == 1 and not replay[0]:
+        return _CROSSED  # the common case: nothing to replay, nothing allocated
     crossed = np.ones(tables.shape[0], dtype=np.bool_)
     head_x = float(params[kp.HEAD_X])
-    near = 4.0 * table.ball_radius + 1e-6
-    replay = wpa.needs_replay(game, head_x, near, tables, balls, positions, on_table, rack,
-                              first)  # fmt: skip
     for k in np.flatnonzero(replay).tolist():
         b = int(tables[k])
         rows = np.flatnonzero(on_table[b])

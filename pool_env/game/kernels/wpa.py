@@ -67,6 +67,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from pool_env.game.kernels.params import GAME, HEAD_X, RADIUS
 from pool_env.sim.jit import kernel
 
 #: Rule codes of ``params[GAME]``.
@@ -214,19 +215,17 @@ def kitchen_foul(rack, first, first_x, head_x, crossed):
 
 
 @kernel
-def needs_replay(game, head_x, near, tables, balls, positions, on_table, rack, first):
+def needs_replay(params, tables, balls, positions, on_table, rack, first):
     """The shots whose first contact the rules cannot read from the fast path's outcome.
 
     Two cases, both rare: the cue ball was in hand behind the head string and its first
     ball lies behind the head string (did the cue ball cross the line first?), or its
-    first ball is not a legal one and a legal ball lies within ``near`` (4R) of it (did the
-    cue ball meet that one at the same instant?). :mod:`pool_env.game.contact` replays
-    those shots with their trajectories.
+    first ball is not a legal one and a legal ball lies within 4R of it (did the cue ball
+    meet that one at the same instant?). :mod:`pool_env.game.contact` replays those shots
+    with their trajectories.
 
     Args:
-        game: :data:`NINE` or :data:`EIGHT`.
-        head_x: The head string's x.
-        near: Centre distance within which two resting balls can both touch the cue ball.
+        params: The config's numbers (the game, the ball radius, the head string's x).
         tables: ``(K,)`` the tables that shot.
         balls: ``(M,)`` ball number of each result column.
         positions: ``(B, N, 2)`` positions before the shot.
@@ -237,6 +236,8 @@ def needs_replay(game, head_x, near, tables, balls, positions, on_table, rack, f
     Returns:
         ``(K,)`` booleans.
     """
+    game, head_x = int(params[GAME]), params[HEAD_X]
+    near = 4.0 * params[RADIUS] + 1e-6  # two resting balls both touching the cue ball
     out = np.zeros(tables.shape[0], dtype=np.bool_)
     for k in range(tables.shape[0]):
         if first[k, 0] < 0:
