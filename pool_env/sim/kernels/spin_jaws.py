@@ -27,7 +27,7 @@ from pool_env.sim.kernels.roots import INF, first_contact, quadratic_roots
 
 
 @kernel
-def _facing_time(row, col, x, y, vx, vy, ax, ay, span, tol):
+def _facing_time(row, col, x, y, vx, vy, ax, ay, span, tol, curv_tol):
     """First ``tau`` in ``[0, span]`` of a contact with the facing at ``row[col:]``."""
     fx, fy = row[col], row[col + 1]
     dx, dy = row[col + 2], row[col + 3]
@@ -38,8 +38,8 @@ def _facing_time(row, col, x, y, vx, vy, ax, ay, span, tol):
     g1 = -(vx * nx + vy * ny)
     g2 = -0.5 * (ax * nx + ay * ny)
     cand = [INF, INF, INF]
-    if g0 >= 0.0 and g1 > tol:
-        cand[0] = 0.0
+    if g0 >= 0.0 and (g1 > tol or (g1 >= -tol and g2 > curv_tol)):
+        cand[0] = 0.0  # the contact rule, and a ball pressed in by its slip
     r1, r2 = quadratic_roots(g2, g1, g0)
     for m, r in enumerate((r1, r2)):
         if r > 0.0 and r <= span and g1 + 2.0 * g2 * r > tol:
@@ -55,7 +55,7 @@ def _facing_time(row, col, x, y, vx, vy, ax, ay, span, tol):
 
 
 @kernel
-def predict_jaws(pockets, x, y, vx, vy, ax, ay, span, tol, scale, accel, t0, best):
+def predict_jaws(pockets, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale, accel, t0, best):
     """Fold every pocket's fall line, facings and points into ``best = (t, kind, arg)``.
 
     Ties at equal times keep the lower kind (a fall before a jaw contact, a facing before a
@@ -83,7 +83,7 @@ def predict_jaws(pockets, x, y, vx, vy, ax, ay, span, tol, scale, accel, t0, bes
         if tau < INF and (t < best_t or (t == best_t and best_kind > 0)):
             best_t, best_kind, best_arg = t, 0, k
         for side in range(2):
-            tau = _facing_time(row, J_FACING0 + 7 * side, x, y, vx, vy, ax, ay, span, tol)
+            tau = _facing_time(row, J_FACING0 + 7 * side, x, y, vx, vy, ax, ay, span, tol, curv_tol)
             t = t0 + tau
             if tau < INF and (t < best_t or (t == best_t and best_kind > JAW)):
                 best_t, best_kind, best_arg = t, JAW, 2 * k + side

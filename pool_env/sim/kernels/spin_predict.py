@@ -24,9 +24,8 @@ predicted over the window up to the earlier own event of its two balls, and re-p
 whenever either ball is re-anchored (an impact or a transition): that is how a prediction
 covers a piecewise path. Pairs are culled first by the bounding boxes of the two pieces.
 
-Simplification: a ball touching a rail with no normal speed whose sliding curvature turns
-it into the rail (a measure-zero start) is not held by the rail; the rail test requires a
-normal approach beyond rounding.
+A ball at a rail or facing with no normal speed whose slip presses it in is an impact now
+(the loop's pressed-cushion rule then sets it rolling along the cushion).
 """
 
 from __future__ import annotations
@@ -74,14 +73,16 @@ CULL_MARGIN = 1e-9
 
 
 @kernel
-def first_rise(g0, g1, g2, span, tol):
+def first_rise(g0, g1, g2, span, tol, curv_tol):
     """First ``tau`` in ``[0, span]`` where ``g0 + g1 tau + g2 tau^2`` reaches 0 rising.
 
     ``g`` is a ball's penetration past a rail line. At ``tau = 0`` the contact rule: at or
     past the line (``g0 >= 0``) and moving in faster than ``tol``, an impact now; moving
-    in slower is rounding (a ball just reflected or rolling along the rail): no event.
+    in slower is rounding (a ball just reflected or rolling along the rail): no event,
+    unless the ball is pressed in, its acceleration into the rail beyond rounding
+    (``g2 > curv_tol``, a sliding ball's slip driving it into the rail): an impact now.
     """
-    if g0 >= 0.0 and g1 > tol:
+    if g0 >= 0.0 and (g1 > tol or (g1 >= -tol and g2 > curv_tol)):
         return 0.0
     r1, r2 = quadratic_roots(g2, g1, g0)
     for r in (r1, r2):
@@ -141,12 +142,13 @@ def predict_own(st, ms, i, prm, pockets, own, boxes):
         vx, vy, ax, ay = st[i, VX], st[i, VY], st[i, AX], st[i, AY]
         scale = math.sqrt(vx * vx + vy * vy) + prm[S_SLIDE_DECEL] * span
         tol = APPROACH_RTOL * scale
+        curv_tol = APPROACH_RTOL * prm[S_SLIDE_DECEL]
         jaws = pockets.shape[1] == JAW_COLS
         lines = (radius - x, x - (length - radius), radius - y, y - (width - radius))
         for rail in range(4):
             sign = -1.0 if rail % 2 == 0 else 1.0
             v, a = (vx, ax) if rail < 2 else (vy, ay)
-            tau = first_rise(lines[rail], sign * v, 0.5 * sign * a, span, tol)
+            tau = first_rise(lines[rail], sign * v, 0.5 * sign * a, span, tol, curv_tol)
             t = t0 + tau
             if tau < INF and (t < best_t or (t == best_t and best_kind > CUSHION)):
                 # On a jaw table a crossing inside a pocket's opening is no rail hit.
@@ -162,9 +164,10 @@ def predict_own(st, ms, i, prm, pockets, own, boxes):
             xl, xh = _extent(x, vx, ax, span)
             yl, yh = _extent(y, vy, ay, span)
             if xl < radius or xh > length - radius or yl < radius or yh > width - radius:
+                best = (best_t, best_kind, best_arg)
                 best_t, best_kind, best_arg = predict_jaws(
-                    pockets, x, y, vx, vy, ax, ay, span, tol, scale, prm[S_SLIDE_DECEL], t0,
-                    (best_t, best_kind, best_arg),
+                    pockets, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale,
+                    prm[S_SLIDE_DECEL], t0, best,
                 )  # fmt: skip
         else:
             for k in range(pockets.shape[0]):
