@@ -161,9 +161,12 @@ def _transition_problems(table: Table, result: SpinShotResult) -> list[str]:
     bounds = np.append(result.event_first_segment, ball.shape[0])
     latest = {int(b): row for row, b in enumerate(ball[: result.n_balls])}
     problems = []
+    n_checked = result.n_events - 1 if result.hit_event_cap else result.n_events
     for k, (t, kind, i) in enumerate(
         zip(result.event_times, result.event_kinds, result.event_i, strict=True)
     ):
+        if k >= n_checked:
+            break  # at the cap, the last event's rows run on into the balls the cap stopped
         rows = range(bounds[k], bounds[k + 1])
         if kind in (SLIDE_ROLL, STOP, ROLL_SPIN, SPIN_STOP) and len(rows) == 1:
             before = state[latest[int(i)]]
@@ -173,6 +176,8 @@ def _transition_problems(table: Table, result: SpinShotResult) -> list[str]:
             after = state[rows[0]]
             if kind == SLIDE_ROLL:
                 left = float(np.hypot(v[0, 0] - r * w[0, 1], v[0, 1] + r * w[0, 0]))
+                # The slip is a difference of the ball's speeds: rounded relative to them.
+                scale = max(scale, float(np.hypot(*v[0]) + r * np.hypot(*w[0, :2])))
                 wrote = after[4] == -after[3] / r and after[5] == after[2] / r
             elif kind == SPIN_STOP:
                 left, wrote = abs(w[0, 2]), not np.any(after[2:9])
@@ -202,3 +207,21 @@ def energy_after_each_event(table: Table, result: SpinShotResult, masses: NDArra
             rows[ball[r]] = r
         energy[k + 1] = kinetic_energy(table, state[rows], float(t) - seg_t[rows], masses)
     return energy
+
+
+def lump_cloth_impulse(
+    table: Table, result: SpinShotResult, rows: list[int], t: float, masses: NDArray
+) -> float:
+    """The largest cloth impulse a sticking lump may take when its slides end at once (N s).
+
+    Each ball of the lump ends its slide at the natural-roll velocity ``v - (2/7) u``, so the
+    cloth changes its momentum by ``(2/7) m |u|`` at most, with ``u`` the slip the impact left
+    it (unseen in the log). The impact adds no energy, so with ``E`` the lump's kinetic
+    energy before it and ``M`` its mass, ``sum m |u| <= sum m (|v| + R |w|) <=
+    sqrt(M sum m (2 |v|^2 + 2 R^2 |w|^2)) <= sqrt(10 M E)``: the bound is
+    ``(2/7) sqrt(10 M E)``.
+    """
+    _, seg_t, state, _ = result.segments
+    idx = np.asarray(rows)
+    energy = kinetic_energy(table, state[idx], t - seg_t[idx], masses)
+    return 2.0 / 7.0 * float(np.sqrt(10.0 * masses.sum() * energy))
