@@ -51,13 +51,30 @@ def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, floa
 def strike(
     table: Table, speed: float, angle: float, a: float, b: float, elevation: float
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The cue ball's velocity ``(2,)`` and angular velocity ``(3,)`` after the strike."""
+    """The cue ball's velocity ``(2,)`` and angular velocity ``(3,)`` after the strike.
+
+    Raises:
+        ValueError: If the strike spins the ball beyond the speed limit (the spin grows as
+            ``1 / cos(elevation)``: a near-vertical cue), as :func:`as_angular` would.
+    """
     out = np.empty(5)
     cue_strike(
         speed, angle, a, b, elevation, table.ball_radius, table.ball_mass, table.cue_end_mass,
         table.cue_tip_radius, out,
     )  # fmt: skip
+    _check_surface_speed(table, out[None, 2:], "the cue's strike (lower the elevation)")
     return out[:2], out[2:]
+
+
+def _check_surface_speed(table: Table, angular: NDArray[np.float64], source: str) -> None:
+    """Refuse a ball whose surface speed ``R |w|`` passes ``limits.MAX_SPEED``."""
+    surface = table.ball_radius * np.sqrt((angular * angular).sum(axis=1))
+    if np.any(surface > limits.MAX_SPEED):
+        i = int(np.argmax(surface))
+        raise ValueError(
+            f"{source}: ball {i} spins with surface speed R |w| = {surface[i]!r} m/s, beyond "
+            f"the simulator's numeric limit of {limits.MAX_SPEED:g} m/s"
+        )
 
 
 def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.float64]:
@@ -72,13 +89,7 @@ def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.floa
         raise ValueError(f"angular_velocities must have shape ({n}, 3), got {arr.shape}")
     if not np.all(np.isfinite(arr)):
         raise ValueError("angular_velocities must be finite")
-    surface = table.ball_radius * np.sqrt((arr * arr).sum(axis=1))
-    if np.any(surface > limits.MAX_SPEED):
-        i = int(np.argmax(surface))
-        raise ValueError(
-            f"ball {i} spins with surface speed R |w| = {surface[i]!r} m/s, beyond the "
-            f"simulator's numeric limit of {limits.MAX_SPEED:g} m/s"
-        )
+    _check_surface_speed(table, arr, "angular_velocities")
     return arr
 
 

@@ -176,8 +176,11 @@ def _transition_problems(table: Table, result: SpinShotResult) -> list[str]:
             after = state[rows[0]]
             if kind == SLIDE_ROLL:
                 left = float(np.hypot(v[0, 0] - r * w[0, 1], v[0, 1] + r * w[0, 0]))
-                # The slip is a difference of the ball's speeds: rounded relative to them.
-                scale = max(scale, float(np.hypot(*v[0]) + r * np.hypot(*w[0, :2])))
+                # The slip is a difference of the ball's speeds: rounded relative to them,
+                # at the anchor, at the event, and to the change in between.
+                change = 3.5 * float(np.hypot(*before[7:9])) * float(tau[0])
+                anchor = float(np.hypot(*before[2:4]) + r * np.hypot(*before[4:6]))
+                scale += change + anchor + float(np.hypot(*v[0]) + r * np.hypot(*w[0, :2]))
                 wrote = after[4] == -after[3] / r and after[5] == after[2] / r
             elif kind == SPIN_STOP:
                 left, wrote = abs(w[0, 2]), not np.any(after[2:9])
