@@ -10,6 +10,14 @@ so that jaws are hit often; and what issue 11 found: masses spread over ratios u
 lumps of light balls pressed into a rail by a heavy one, and tables, radii and speeds
 scaled to the edges of the numeric limits.
 
+``--spin`` runs the spin level (``Table(model="spin")``): the same scenes on spin tables
+with random sliding friction, ball-ball friction (Alciatore's fit, a constant, or none) and
+cushion friction; the struck ball gets a random cue tip offset in [-0.7, 0.7]^2 and an
+elevation up to 0.5 rad through ``cue_strike``, and when every ball moves each gets a
+random spin. Checks: G, T, D as above and E with rotation
+(:mod:`pool_env.testing.spin_invariants`); P is not checked on the spin level (the cloth's
+friction changes momentum when a stuck lump's slide ends).
+
 Every invariant is checked on every shot. The termination target is no event-cap hit on a
 damped table (``mu_roll >= 1e-3``, both restitutions below 1); an undamped table (elastic,
 or nearly frictionless) can legitimately need any number of events, and its cap hits are
@@ -28,8 +36,10 @@ from pool_env import Table, simulate
 from pool_env.sim.inputs import max_speed
 from pool_env.sim.kernels import limits
 from pool_env.sim.layouts import break_scene
-from pool_env.testing.invariants import check_shot
+from pool_env.sim.spin_inputs import strike
+from pool_env.testing.invariants import check_geometry, check_shot, check_termination
 from pool_env.testing.scenes_random import log_uniform_masses, lump_at_rail, random_layout
+from pool_env.testing.spin_invariants import check_spin_energy
 
 DEFAULT = Table()
 MASS_RATIO = 1e6
@@ -40,7 +50,7 @@ def is_damped(table: Table) -> bool:
     return table.mu_roll >= 1e-3 and table.e_ball < 1.0 and table.e_cushion < 1.0
 
 
-def random_table(rng: np.random.Generator) -> tuple[Table, float]:
+def random_table(rng: np.random.Generator, spin: bool = False) -> tuple[Table, float]:
     """A random table and its length scale relative to the default table.
 
     One in ten is scaled (sizes, radius, pockets) by a log-uniform factor that reaches the
@@ -71,8 +81,19 @@ def random_table(rng: np.random.Generator) -> tuple[Table, float]:
         e_cushion=e_cushion,
         pockets=DEFAULT.pockets * scale if pockets == "circles" else pockets,
         e_jaw=float(rng.choice([e_cushion, rng.uniform(0, 1), 0.0])),
+        **(_spin_parameters(rng) if spin else {}),
     )
     return table, scale
+
+
+def _spin_parameters(rng: np.random.Generator) -> dict:
+    """Random parameters of a spin table."""
+    return {
+        "model": "spin",
+        "mu_slide": float(rng.choice([0.2, rng.uniform(0.05, 0.5)])),
+        "ball_friction": ["alciatore", 0.0, float(rng.uniform(0, 0.3))][int(rng.integers(3))],
+        "cushion_friction": float(rng.choice([0.2, 0.0, rng.uniform(0, 0.5)])),
+    }
 
 
 def _is_valid(table: Table, positions: np.ndarray) -> bool:
@@ -83,9 +104,11 @@ def _is_valid(table: Table, positions: np.ndarray) -> bool:
     return True
 
 
-def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray, np.ndarray]:
+def random_case(
+    rng: np.random.Generator, spin: bool = False
+) -> tuple[Table, np.ndarray, np.ndarray, np.ndarray]:
     """One random table, layout, initial velocities and masses."""
-    table, scale = random_table(rng)
+    table, scale = random_table(rng, spin)
     kind = rng.integers(5)
     if kind == 4:  # a heavy ball drives a chain of light ones into a rail
         speed = min(float(rng.uniform(0.05, 5) * np.sqrt(scale)), 0.999 * max_speed(table))
@@ -149,14 +172,43 @@ def random_case(rng: np.random.Generator) -> tuple[Table, np.ndarray, np.ndarray
     return table, pos, vel, masses
 
 
+def _random_spins(rng: np.random.Generator, table: Table, vel: np.ndarray) -> np.ndarray:
+    """Angular velocities: a random cue strike for the struck ball, random spins if all move.
+
+    The struck ball's state comes from ``cue_strike`` (random tip in [-0.7, 0.7]^2 and
+    elevation up to 0.5 rad; its velocity is replaced by the strike's, squirt included).
+    """
+    n = vel.shape[0]
+    spins = np.zeros((n, 3))
+    moving = np.flatnonzero(np.hypot(vel[:, 0], vel[:, 1]) > 0)
+    if len(moving) == 1:
+        i = int(moving[0])
+        # The strike's surface speed R |w| reaches ~2.1 v: keep it within the limits.
+        speed = min(float(np.hypot(*vel[i])), 0.45 * limits.MAX_SPEED)
+        angle = float(np.arctan2(vel[i, 1], vel[i, 0]))
+        a, b = rng.uniform(-0.7, 0.7, 2)
+        vel[i], spins[i] = strike(table, speed, angle, a, b, float(rng.uniform(0, 0.5)))
+    elif len(moving) > 1:
+        spins[moving] = rng.normal(0.0, 1.0, (len(moving), 3)) * (
+            np.hypot(vel[moving, 0], vel[moving, 1])[:, None] / table.ball_radius
+        )
+        surface = table.ball_radius * np.hypot.reduce(spins, axis=1)
+        over = surface > 0.9 * limits.MAX_SPEED
+        spins[over] *= (0.9 * limits.MAX_SPEED / surface[over])[:, None]
+    return spins
+
+
 def main() -> None:
     """Run the fuzz and write ``results/fuzz.md``."""
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--shots", type=int, default=100_000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--samples", type=int, default=400, help="G samples between events")
-    parser.add_argument("--out", type=Path, default=Path("results/fuzz.md"))
+    parser.add_argument("--out", type=Path, default=None, help="default results/fuzz.md")
+    parser.add_argument("--spin", action="store_true", help="the spin level (see above)")
     args = parser.parse_args()
+    if args.out is None:
+        args.out = Path("results/fuzz_spin.md" if args.spin else "results/fuzz.md")
     rng = np.random.default_rng(args.seed)
     started = time.time()
     failures: list[str] = []
@@ -165,12 +217,20 @@ def main() -> None:
     damped_shots = 0
     events = []
     for shot in range(args.shots):
-        table, pos, vel, masses = random_case(rng)
-        result = simulate(table, pos, vel, masses)
+        table, pos, vel, masses = random_case(rng, args.spin)
+        spins = _random_spins(rng, table, vel) if args.spin else None
+        result = simulate(table, pos, vel, masses, angular_velocities=spins)
         events.append(result.n_events)
         damped = is_damped(table)
         damped_shots += damped
-        problems = check_shot(table, result, masses, samples=args.samples)
+        if args.spin:
+            problems = (
+                check_termination(result)
+                + check_geometry(table, result, args.samples)
+                + check_spin_energy(table, result, masses)
+            )
+        else:
+            problems = check_shot(table, result, masses, samples=args.samples)
         if result.hit_event_cap:
             # The target: a damped table always comes to rest under the cap. An undamped
             # one (elastic, or nearly frictionless) can need any number of events: a light
@@ -181,7 +241,7 @@ def main() -> None:
                 problems.append("T: a damped table hit the event cap")
             long_shots.append(f"shot {shot}: capped at {result.duration:.3g} s ({table!r})")
         if shot % 10 == 0:
-            again = simulate(table, pos, vel, masses)
+            again = simulate(table, pos, vel, masses, angular_velocities=spins)
             if not np.array_equal(again.positions, result.positions) or not np.array_equal(
                 again.event_times, result.event_times
             ):
@@ -198,7 +258,8 @@ def main() -> None:
     report = [
         "# Fuzz: invariants over random scenes and shots",
         "",
-        f"Command: `python bench/fuzz.py --shots {args.shots} --seed {args.seed}`",
+        f"Command: `python bench/fuzz.py --shots {args.shots} --seed {args.seed}"
+        f"{' --spin' if args.spin else ''}`",
         "",
         f"- shots: {args.shots}; shots with any violation (G, P, E, T, D): {len(failures)}",
         f"- damped tables (mu_roll >= 1e-3, e_ball < 1, e_cushion < 1): {damped_shots} "

@@ -16,19 +16,7 @@ the same event cap and the same Zeno rules for ball-ball impacts, with:
   (:mod:`~pool_env.sim.kernels.spin_cushion`) for rails, jaw facings and jaw points (a
   point's normal runs from its tip's centre to the ball's), with ``e_jaw`` at the jaws.
 
-The pressed-cushion rule (:func:`_pressed_roll`): a ball left at a cushion with a normal
-speed below ``V_ZENO`` whose slip drives it back into the cushion rolls at once (its
-slide's end state, the part into the cushion dropped): the model has no constrained slide
-along a cushion.
-
-Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slower than
-``V_ZENO`` is perfectly inelastic along the normal; a pair repeating ``ZENO_REPEATS`` times
-that closely sticks: it and every ball touching it roll on together (:func:`_stick`: each
-ball's slide ends at once, and all take the mean rolling velocity; energy only lost).
-Simplification: the roll level's lump-against-rail and lump-against-jaw rules
-(``stick_cluster``'s rails, ``unpress_lump``) are not reproduced; a lump wedged against a
-cushion ends at the event cap at worst, which is reported (``hit_event_cap``,
-``stopped_by_cap``).
+The Zeno rules and the pressed-cushion rule: :mod:`~pool_env.sim.kernels.spin_zeno`.
 """
 
 from __future__ import annotations
@@ -56,8 +44,12 @@ from pool_env.sim.kernels.record import (
     log_event,
     new_event_log,
 )
-from pool_env.sim.kernels.resolve import CONTACT_TOL, V_ZENO, ZENO_REPEATS, ZENO_WINDOW
-from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
+from pool_env.sim.kernels.resolve import (
+    V_ZENO,
+    ZENO_REPEATS,
+    ZENO_WINDOW,
+)
+from pool_env.sim.kernels.roots import INF
 from pool_env.sim.kernels.spin_collide import ball_ball_spin
 from pool_env.sim.kernels.spin_cushion import cushion_han
 from pool_env.sim.kernels.spin_params import (
@@ -88,12 +80,10 @@ from pool_env.sim.kernels.spin_state import (
     set_potted,
     state_at,
 )
+from pool_env.sim.kernels.spin_zeno import RAIL_NX, RAIL_NY, pressed_roll, stick
 
 #: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
 SEG_COLS = 9
-#: Rails' unit normals into the table, by rail index (0: x = R, 1: x = L - R, 2, 3: y).
-_RAIL_NX = (1.0, -1.0, 0.0, 0.0)
-_RAIL_NY = (0.0, 0.0, 1.0, -1.0)
 
 
 @kernel
@@ -142,94 +132,6 @@ def _impact(st, ms, masses, i, j, now, prm, repeats, out):
     set_anchor(st, ms, i, now, xi, yi, out[0], out[1], out[2], out[3], out[4], prm, CLASSIFY)
     set_anchor(st, ms, j, now, xj, yj, out[5], out[6], out[7], out[8], out[9], prm, CLASSIFY)
     return repeats >= ZENO_REPEATS
-
-
-@kernel
-def _stick(st, ms, masses, i, now, prm, changed):
-    """Ball ``i`` and every ball touching it, transitively, roll on together.
-
-    The lump ends its slide at once: each ball's natural-roll velocity ``v - (2/7) u``
-    (angular momentum about its cloth contact conserved), and all roll at their
-    momentum-weighted mean, side spins ``wz`` kept. Each step only loses energy (a slide's
-    end; the mean of rolling velocities at fixed momentum); the momentum changes only by
-    the cloth's friction impulse the slides would have applied. Rolling with one velocity,
-    the lump's balls have one acceleration and no slip that presses them together.
-
-    Returns how many balls changed (their indices in ``changed``).
-    """
-    n = st.shape[0]
-    reach2 = (2.0 * prm[P_RADIUS] + CONTACT_TOL) ** 2
-    snap = np.empty((n, 7))
-    for k in range(n):
-        snap[k, 0], snap[k, 1], snap[k, 2], snap[k, 3], snap[k, 4], snap[k, 5], snap[k, 6] = (
-            state_at(st, ms, k, now, prm)
-        )
-    inside = np.zeros(n, dtype=np.bool_)
-    inside[i] = True
-    changed[0] = i
-    size = 1
-    head = 0
-    while head < size:
-        k = changed[head]
-        head += 1
-        for m in range(n):
-            if not inside[m] and ms[m] != POTTED:
-                dx, dy = snap[m, 0] - snap[k, 0], snap[m, 1] - snap[k, 1]
-                if dx * dx + dy * dy <= reach2:
-                    inside[m] = True
-                    changed[size] = m
-                    size += 1
-    # Each ball's natural-roll velocity v - (2/7) u (its slide's end), then their
-    # momentum-weighted mean: the lump rolls together, with no slip left to press it.
-    radius = prm[P_RADIUS]
-    px = py = total = 0.0
-    for c in range(size):
-        k = changed[c]
-        ux = snap[k, 2] - radius * snap[k, 5]
-        uy = snap[k, 3] + radius * snap[k, 4]
-        px += masses[k] * (snap[k, 2] - 2.0 / 7.0 * ux)
-        py += masses[k] * (snap[k, 3] - 2.0 / 7.0 * uy)
-        total += masses[k]
-    vx, vy = px / total, py / total
-    for c in range(size):
-        k = changed[c]
-        s = snap[k]
-        set_anchor(
-            st, ms, k, now, s[0], s[1], vx, vy, -vy / radius, vx / radius, s[6], prm, FORCE_ROLL
-        )
-    return size
-
-
-@kernel
-def _pressed_roll(out, nx, ny, radius):
-    """The pressed-cushion rule: a ball held at a cushion by its own slip rolls at once.
-
-    ``out`` holds a cushion impact's result ``(vx, vy, wx, wy, wz)``, ``n`` the cushion's
-    normal into the table. If the ball leaves slower than ``V_ZENO`` along ``n`` while its
-    slip drives it back into the cushion (the cloth's friction ``-mu g u / |u|`` has a
-    component against ``n``), the model's free slide would re-hit the cushion endlessly
-    (a Zeno sequence) or, at rounding speed, pass it. The cushion's reaction would hold
-    the ball at it while the slip dies; this rule ends that slide at once instead: the
-    ball takes the rolling velocity its slide would end in, ``v - (2/7) u`` (angular
-    momentum about the cloth contact conserved), loses any part of it into the cushion
-    and rolls. Energy only drops. Returns whether the rule applied (``out`` rewritten).
-    """
-    vx, vy, wx, wy = out[0], out[1], out[2], out[3]
-    if abs(vx * nx + vy * ny) >= V_ZENO:
-        return False
-    ux, uy = vx - radius * wy, vy + radius * wx
-    slip = math.sqrt(ux * ux + uy * uy)
-    if not ux * nx + uy * ny > APPROACH_RTOL * slip:
-        return False  # the slip does not press the ball into the cushion
-    vx -= 2.0 / 7.0 * ux
-    vy -= 2.0 / 7.0 * uy
-    vn = vx * nx + vy * ny
-    if vn < 0.0:
-        vx -= vn * nx
-        vy -= vn * ny
-    out[0], out[1] = vx, vy
-    out[2], out[3] = -vy / radius, vx / radius
-    return True
 
 
 @kernel
@@ -308,7 +210,7 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
                 pair_repeats[bi, bj] = 1
             pair_last[bi, bj] = now
             if _impact(st, ms, masses, bi, bj, now, prm, pair_repeats[bi, bj], out):
-                n_changed = _stick(st, ms, masses, bi, now, prm, changed)
+                n_changed = stick(st, ms, masses, bi, now, prm, pockets, changed)
             else:
                 changed[1] = bj
                 n_changed = 2
@@ -318,12 +220,12 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
                 set_potted(st, ms, bi, now, x, y)
             elif bkind == CUSHION or bkind == JAW or bkind == POINT:  # noqa: SIM109 (numba)
                 if bkind == CUSHION:
-                    nx, ny, e = _RAIL_NX[bj], _RAIL_NY[bj], e_c
+                    nx, ny, e = RAIL_NX[bj], RAIL_NY[bj], e_c
                 else:
                     nx, ny = jaw_normal(pockets, bkind, bj, x, y)
                     e = e_jaw
                 cushion_han(vx, vy, wx, wy, wz, nx, ny, radius, h, e, f_c, out)
-                mode = FORCE_ROLL if _pressed_roll(out, nx, ny, radius) else CLASSIFY
+                mode = FORCE_ROLL if pressed_roll(out, nx, ny, radius) else CLASSIFY
                 set_anchor(st, ms, bi, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
             elif bkind == SLIDE_ROLL:
                 set_anchor(st, ms, bi, now, x, y, vx, vy, wx, wy, wz, prm, FORCE_ROLL)
