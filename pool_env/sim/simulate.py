@@ -148,7 +148,6 @@ def shoot(
         vel = np.zeros((n, 2))
         ang = np.zeros((n, 3))
         vel[cue], ang[cue] = strike(table, speed, angle, a, b, elevation)
-        ang = as_angular(table, ang, n)  # the strike's spin within the limits
         return run_spin(table, pos, vel, ang, masses, max_events, record)
     vel = np.zeros((n, 2))
     vel[cue, 0] = speed * math.cos(angle)

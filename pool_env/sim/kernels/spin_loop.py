@@ -27,6 +27,7 @@ import numpy as np
 
 from pool_env.sim.kernels._jit import kernel
 from pool_env.sim.kernels.jaws import JAW, POINT, jaw_normal
+from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.kernels.loop import (
     BALL_STOPPED,
     N_BALL_ROWS,
@@ -259,6 +260,25 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
     return st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
 
 
+#: Validation codes of the spin level, after the roll level's (``loop.OK`` ...): a
+#: non-finite angular velocity, a surface speed ``R |w|`` beyond ``MAX_SPEED``.
+BAD_SPIN, SPIN_TOO_FAST = 10, 11
+
+
+@kernel
+def validate_spins(angular, radius):
+    """Check ``(N, 3)`` angular velocities; return ``(code, i, -1)`` (``OK`` if none)."""
+    for i in range(angular.shape[0]):
+        w2 = 0.0
+        for c in range(3):
+            if not np.isfinite(angular[i, c]):
+                return BAD_SPIN, i, -1
+            w2 += angular[i, c] * angular[i, c]
+        if not radius * math.sqrt(w2) <= MAX_SPEED:
+            return SPIN_TOO_FAST, i, -1
+    return OK, -1, -1
+
+
 @kernel
 def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_events, record):
     """Validate and simulate one spin shot in a single call, for Python.
@@ -272,6 +292,8 @@ def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_e
         As ``packed_shot``.
     """
     code, ci, cj = validate(positions, velocities, masses, prm, pockets)
+    if code == OK:
+        code, ci, cj = validate_spins(angular, prm[P_RADIUS])
     if code != OK:
         empty_f = np.empty(0, dtype=np.float64)
         empty_i = np.empty(0, dtype=np.int64)
