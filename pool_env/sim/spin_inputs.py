@@ -74,7 +74,8 @@ def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.floa
     return arr
 
 
-def _raise_bad_spin(code: int, i: int, table: Table, ang: NDArray[np.float64]) -> None:
+def raise_bad_spin(code: int, i: int, table: Table, ang: NDArray[np.float64]) -> None:
+    """Raise the ``ValueError`` for a spin validation code of ``spin_loop.validate_spins``."""
     if code == spin_loop.BAD_SPIN:
         raise ValueError(f"angular_velocities must be finite: ball {i} has {ang[i].tolist()}")
     surface = table.ball_radius * float(np.sqrt(ang[i] @ ang[i]))
@@ -101,7 +102,7 @@ def run_spin(
         pos, vel, ang, mass, table.spin_params, table.pocket_geometry, max_events, record
     )
     if raw[0] in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
-        _raise_bad_spin(raw[0], raw[1], table, ang)
+        raise_bad_spin(raw[0], raw[1], table, ang)
     if raw[0] != spin_loop.OK:
         raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
     return SpinShotResult(raw, pos.shape[0], table.deceleration, record)

@@ -29,6 +29,7 @@ from pool_env.sim.kernels._jit import kernel
 from pool_env.sim.kernels.jaws import JAW, POINT, jaw_normal
 from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.kernels.loop import (
+    BALL_CUSHIONS,
     BALL_STOPPED,
     N_BALL_ROWS,
     OK,
@@ -136,8 +137,14 @@ def _impact(st, ms, masses, i, j, now, prm, repeats, out):
 
 
 @kernel
-def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, record):
-    """Simulate one spin shot to rest (inputs validated); see :func:`packed_spin_shot`."""
+def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events, record):
+    """Simulate one spin shot to rest (inputs validated); see :func:`packed_spin_shot`.
+
+    Returns:
+        ``(st, ms, balls, first_i, first_j, n_events, now, capped, events, segments,
+        n_segments)``: the final anchors and motion states, the per-ball rows of
+        :mod:`~pool_env.sim.kernels.loop`, and as the roll loop's ``_shoot``.
+    """
     n = positions.shape[0]
     if masses.shape[0] == 0:
         masses = np.full(n, prm[P_MASS])
@@ -159,7 +166,7 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
     pair_last = np.full((n, n), -INF, dtype=np.float64)
     pair_repeats = np.zeros((n, n), dtype=np.int64)
     balls = np.full((N_BALL_ROWS, n), -1, dtype=np.int64)
-    balls[3] = 0  # BALL_CUSHIONS
+    balls[BALL_CUSHIONS] = 0
     balls[BALL_STOPPED] = 0
     first_i = first_j = -1
     events = new_event_log(16 if record else 0)
@@ -298,7 +305,7 @@ def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_e
         empty_f = np.empty(0, dtype=np.float64)
         empty_i = np.empty(0, dtype=np.int64)
         return code, ci, cj, empty_f, empty_i, 0, 0, -1, -1, False, 0.0
-    st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = _shoot(
+    st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = shoot_spin(
         positions, velocities, angular, masses, prm, pockets, max_events, record
     )
     n = positions.shape[0]
