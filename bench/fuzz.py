@@ -192,7 +192,10 @@ def main() -> None:
     parser.add_argument("--model", choices=["roll", "spin"], default="roll")
     parser.add_argument("--progress", type=int, default=10000, help="shots per progress line")
     parser.add_argument("--only", type=int, default=None, help="rerun one shot and print it")
+    parser.add_argument("--spin", action="store_true", help="the same as --model spin")
     args = parser.parse_args()
+    if args.spin:
+        args.model = "spin"
     if args.only is not None:
         table, pos, vel, masses, run = next(islice(cases(args.seed, args.model), args.only, None))
         result = run()

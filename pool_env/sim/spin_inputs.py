@@ -51,46 +51,38 @@ def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, floa
 def strike(
     table: Table, speed: float, angle: float, a: float, b: float, elevation: float
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """The cue ball's velocity ``(2,)`` and angular velocity ``(3,)`` after the strike.
-
-    Raises:
-        ValueError: If the strike spins the ball beyond the speed limit (the spin grows as
-            ``1 / cos(elevation)``: a near-vertical cue), as :func:`as_angular` would.
-    """
+    """The cue ball's velocity ``(2,)`` and angular velocity ``(3,)`` after the strike."""
     out = np.empty(5)
     cue_strike(
         speed, angle, a, b, elevation, table.ball_radius, table.ball_mass, table.cue_end_mass,
         table.cue_tip_radius, out,
     )  # fmt: skip
-    _check_surface_speed(table, out[None, 2:], "the cue's strike (lower the elevation)")
     return out[:2], out[2:]
 
 
-def _check_surface_speed(table: Table, angular: NDArray[np.float64], source: str) -> None:
-    """Refuse a ball whose surface speed ``R |w|`` passes ``limits.MAX_SPEED``."""
-    surface = table.ball_radius * np.sqrt((angular * angular).sum(axis=1))
-    if np.any(surface > limits.MAX_SPEED):
-        i = int(np.argmax(surface))
-        raise ValueError(
-            f"{source}: ball {i} spins with surface speed R |w| = {surface[i]!r} m/s, beyond "
-            f"the simulator's numeric limit of {limits.MAX_SPEED:g} m/s"
-        )
-
-
 def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.float64]:
-    """``(N, 3)`` finite angular velocities (zeros for ``None``) within the speed limit.
+    """``(N, 3)`` angular velocities as a kernel array (zeros for ``None``).
 
-    The surface speed ``R |w|`` of each ball must lie within ``limits.MAX_SPEED``.
+    Their values (finite, a surface speed ``R |w|`` within ``limits.MAX_SPEED``) are checked
+    by the compiled validation of :func:`run_spin`, in one call with the rest.
     """
     if value is None:
         return np.zeros((n, 3))
     arr = kernel_array("angular_velocities", value, "an (N, 3) array")
     if arr.shape != (n, 3):
         raise ValueError(f"angular_velocities must have shape ({n}, 3), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("angular_velocities must be finite")
-    _check_surface_speed(table, arr, "angular_velocities")
     return arr
+
+
+def raise_bad_spin(code: int, i: int, table: Table, ang: NDArray[np.float64]) -> None:
+    """Raise the ``ValueError`` for a spin validation code of ``spin_loop.validate_spins``."""
+    if code == spin_loop.BAD_SPIN:
+        raise ValueError(f"angular_velocities must be finite: ball {i} has {ang[i].tolist()}")
+    surface = table.ball_radius * float(np.sqrt(ang[i] @ ang[i]))
+    raise ValueError(
+        f"ball {i} spins with surface speed R |w| = {surface!r} m/s, beyond the "
+        f"simulator's numeric limit of {limits.MAX_SPEED:g} m/s"
+    )
 
 
 def run_spin(
@@ -109,6 +101,8 @@ def run_spin(
     raw = spin_loop.packed_spin_shot(
         pos, vel, ang, mass, table.spin_params, table.pocket_geometry, max_events, record
     )
+    if raw[0] in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
+        raise_bad_spin(raw[0], raw[1], table, ang)
     if raw[0] != spin_loop.OK:
         raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
     return SpinShotResult(raw, pos.shape[0], table.deceleration, record)

@@ -25,7 +25,7 @@ and that a shot that ends under the cap ends with every ball still or potted, wi
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from pool_env.sim.result import KIND_NAMES, SpinShotResult
 from pool_env.sim.table import Table
@@ -72,7 +72,7 @@ def motion_at(
     return v, w
 
 
-def kinetic_energy(table: Table, state: NDArray, tau: NDArray, masses: NDArray) -> float:
+def rows_energy(table: Table, state: NDArray, tau: NDArray, masses: NDArray) -> float:
     """Translational plus rotational kinetic energy of rows ``state`` after ``tau`` (J)."""
     v, w = motion_at(table, state, tau)
     r = table.ball_radius
@@ -210,11 +210,11 @@ def energy_after_each_event(table: Table, result: SpinShotResult, masses: NDArra
     rows = np.arange(result.n_balls)
     bounds = np.append(result.event_first_segment, ball.shape[0])
     energy = np.empty(result.n_events + 1)
-    energy[0] = kinetic_energy(table, state[rows], np.zeros(rows.shape[0]), masses)
+    energy[0] = rows_energy(table, state[rows], np.zeros(rows.shape[0]), masses)
     for k, t in enumerate(result.event_times):
         for r in range(bounds[k], bounds[k + 1]):
             rows[ball[r]] = r
-        energy[k + 1] = kinetic_energy(table, state[rows], float(t) - seg_t[rows], masses)
+        energy[k + 1] = rows_energy(table, state[rows], float(t) - seg_t[rows], masses)
     return energy
 
 
@@ -232,5 +232,15 @@ def lump_cloth_impulse(
     """
     _, seg_t, state, _ = result.segments
     idx = np.asarray(rows)
-    energy = kinetic_energy(table, state[idx], t - seg_t[idx], masses)
+    energy = rows_energy(table, state[idx], t - seg_t[idx], masses)
     return 2.0 / 7.0 * float(np.sqrt(10.0 * masses.sum() * energy))
+
+
+def check_spin_energy(
+    table: Table, result: SpinShotResult, masses: ArrayLike | None = None
+) -> list[str]:
+    """E on the spin level alone: :func:`pool_env.testing.invariants.check_energy`'s check."""
+    from pool_env.testing.invariants import check_energy  # that module imports this one
+
+    m = np.full(result.n_balls, table.ball_mass) if masses is None else masses
+    return check_energy(result, m, table)
