@@ -197,7 +197,10 @@ def main() -> None:
     parser.add_argument("--model", choices=["roll", "spin"], default="roll")
     parser.add_argument("--progress", type=int, default=10000, help="shots per progress line")
     parser.add_argument("--only", type=int, default=None, help="rerun one shot and print it")
+    parser.add_argument("--spin", action="store_true", help="the same as --model spin")
     args = parser.parse_args()
+    if args.spin:
+        args.model = "spin"
     if args.only is not None:
         table, pos, vel, masses, run = next(islice(cases(args.seed, args.model), args.only, None))
         result = run()
@@ -213,10 +216,15 @@ def main() -> None:
     damped_shots = 0
     events = []
     kinds: Counter[str] = Counter()
+    refused: list[str] = []
     for shot, (table, _pos, _vel, masses, run) in enumerate(cases(args.seed, args.model)):
         if shot == args.shots:
             break
-        result = run()
+        try:
+            result = run()
+        except ValueError as exc:  # a strike the spin level refuses (listed, not a failure)
+            refused.append(f"shot {shot}: {exc}")
+            continue
         events.append(result.n_events)
         damped = is_damped(table)
         damped_shots += damped
@@ -243,8 +251,8 @@ def main() -> None:
         if (shot + 1) % args.progress == 0:
             print(
                 f"{shot + 1} shots, {len(failures)} with violations {dict(sorted(kinds.items()))}"
-                f", {damped_caps} damped caps, events median {np.median(events):.0f}, "
-                f"{time.time() - started:.0f} s",
+                f", {damped_caps} damped caps, {len(refused)} refused, events median "
+                f"{np.median(events):.0f}, {time.time() - started:.0f} s",
                 flush=True,
             )
     ev = np.array(events)
@@ -256,6 +264,8 @@ def main() -> None:
         "",
         f"- shots: {args.shots}; shots with any violation (G, P, E, T, O, M, D): {len(failures)}",
         f"- shots with a violation, by kind: {dict(sorted(kinds.items()))}",
+        f"- shots refused by a ValueError (not simulated): {len(refused)}",
+        *[f"  - {s}" for s in refused[:5]],
         f"- damped tables (mu_roll >= 1e-3, e_ball < 1, e_cushion < 1): {damped_shots} "
         f"shots, {damped_caps} event-cap hits",
         f"- events per shot: median {np.median(ev):.0f}, p99 {np.percentile(ev, 99):.0f}, "

@@ -148,9 +148,39 @@ def test_roll_result_has_no_spin() -> None:
     assert r.motion_states.tolist() == [0]
 
 
-def test_batches_refuse_spin_tables() -> None:
-    t = Table(model="spin", pockets="none")
+def test_spin_batches_equal_single_shots() -> None:
+    """A spin batch (serial, parallel, threads) equals one simulate() per table, bit for bit."""
+    t = Table(model="spin", pockets="circles")
+    rng = np.random.default_rng(3)
+    pos = np.array([[[0.5, 0.6], [1.5, 0.62], [2.0, 0.3]], [[0.7, 0.2], [0.7, 0.9], [2.2, 1.0]]])
+    vel = np.zeros_like(pos)
+    vel[:, 0] = rng.normal(0, 2.0, (2, 2))
+    ang = rng.normal(0, 30.0, (2, 3, 3))
+    active = np.array([[True, True, True], [True, False, True]])
+    single = []
+    for b in range(2):
+        on = active[b]
+        r = simulate(t, pos[b][on], vel[b][on], angular_velocities=ang[b][on], record=False)
+        single.append((r.positions, r.pocketed, r.n_events))
+    for run in (
+        lambda: simulate_batch(t, pos, vel, active=active, angular_velocities=ang),
+        lambda: simulate_batch(t, pos, vel, active=active, angular_velocities=ang, parallel=True),
+        lambda: simulate_batch_threads(t, pos, vel, active, threads=2, angular_velocities=ang),
+    ):
+        out = run()
+        for b in range(2):
+            np.testing.assert_array_equal(out.positions[b][active[b]], single[b][0])
+            np.testing.assert_array_equal(out.pocketed[b][active[b]], single[b][1])
+            assert out.n_events[b] == single[b][2]
+        np.testing.assert_array_equal(out.positions[1, 1], pos[1, 1])  # inactive: unchanged
+
+
+def test_batch_spin_arguments() -> None:
     pos = np.array([[[1.0, 0.6]]])
-    for fn in (simulate_batch, simulate_batch_threads):
-        with pytest.raises(ValueError, match="roll level only"):
-            fn(t, pos, np.zeros_like(pos), None)
+    with pytest.raises(ValueError, match="model='spin'"):
+        simulate_batch(Table(), pos, np.zeros_like(pos), angular_velocities=np.zeros((1, 1, 3)))
+    t = Table(model="spin", pockets="none")
+    with pytest.raises(ValueError, match="shape"):
+        simulate_batch(t, pos, np.zeros_like(pos), angular_velocities=np.zeros((1, 3)))
+    with pytest.raises(ValueError, match="table 0: angular_velocities must be finite"):
+        simulate_batch(t, pos, np.zeros_like(pos), angular_velocities=np.full((1, 1, 3), np.nan))

@@ -15,8 +15,8 @@ from hypothesis import strategies as st
 from pool_env import Table, shoot, simulate
 from pool_env.testing.invariants import check_geometry, check_termination
 from pool_env.testing.scenes_random import random_layout
+from pool_env.testing.spin_invariants import check_spin_energy
 from tests.profiles import examples
-from tests.spin_helpers import kinetic_energy
 
 tables = st.builds(
     Table,
@@ -26,18 +26,6 @@ tables = st.builds(
     e_cushion=st.sampled_from([1.0, 0.65, 0.2]),
     ball_friction=st.sampled_from(["alciatore", 0.0, 0.2]),
 )
-
-
-def _energy_never_rises(table: Table, result) -> list[str]:
-    """E: kinetic energy (with rotation) at each event, never above the one before."""
-    times = np.unique(np.concatenate([[0.0], result.event_times, [result.duration]]))
-    energy = [kinetic_energy(table, result, t) for t in times]
-    rises = [
-        f"E: energy rose from {a!r} to {b!r} at t={t}"
-        for a, b, t in zip(energy, energy[1:], times[1:], strict=False)
-        if b > a * (1 + 1e-12) + 1e-15
-    ]
-    return rises[:5]
 
 
 @settings(max_examples=examples(60))
@@ -56,7 +44,7 @@ def test_random_strike(table, n, seed, gap, speed, angle, tip, elevation) -> Non
     result = shoot(table, positions, angle, speed, tip=tip, elevation=elevation)
     assert check_termination(result) == []
     assert check_geometry(table, result, samples=300) == []
-    assert _energy_never_rises(table, result) == []
+    assert check_spin_energy(table, result) == []
     again = shoot(table, positions, angle, speed, tip=tip, elevation=elevation)
     np.testing.assert_array_equal(result.positions, again.positions)
     np.testing.assert_array_equal(result.event_times, again.event_times)
@@ -74,4 +62,4 @@ def test_random_velocities_and_spins(table, n, seed) -> None:
     result = simulate(table, positions, velocities, angular_velocities=spins)
     assert check_termination(result) == []
     assert check_geometry(table, result, samples=300) == []
-    assert _energy_never_rises(table, result) == []
+    assert check_spin_energy(table, result) == []

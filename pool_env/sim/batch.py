@@ -22,25 +22,37 @@ from pool_env.sim.inputs import (
     as_batch_points,
     check_max_events,
     check_table,
+    kernel_array,
     raise_invalid,
 )
 from pool_env.sim.kernels import batch as _batch
-from pool_env.sim.kernels import loop
+from pool_env.sim.kernels import loop, spin_loop
+from pool_env.sim.kernels import spin_batch as _spin_batch
+from pool_env.sim.spin_inputs import raise_bad_spin
 from pool_env.sim.table import Table
 
 #: Batches this large and larger run in parallel by default.
 PARALLEL_FROM = 64
 
 
-def _roll_table(table: object) -> Table:
-    """``table`` if it is a roll-level :class:`Table` (batches do not run the spin level)."""
-    table = check_table(table)
-    if table.model != "roll":
+def _no_spin(angular_velocities: object) -> None:
+    if angular_velocities is not None:
         raise ValueError(
-            "batches run the roll level only so far: simulate spin tables "
-            "(Table(model='spin')) one shot at a time with pool_env.simulate or shoot"
+            "angular_velocities need the spin level: use Table(model='spin'); the roll "
+            "level has no spin"
         )
-    return table
+
+
+def _batch_angular(value: ArrayLike | None, n_tables: int, n_balls: int) -> NDArray[np.float64]:
+    """``(B, N, 3)`` angular velocities of a spin batch (zeros for ``None``)."""
+    if value is None:
+        return np.zeros((n_tables, n_balls, 3))
+    arr = kernel_array("angular_velocities", value, "a (B, N, 3) array")
+    if arr.shape != (n_tables, n_balls, 3):
+        raise ValueError(
+            f"angular_velocities must have shape {(n_tables, n_balls, 3)}, got {arr.shape}"
+        )
+    return arr
 
 
 @dataclass(frozen=True, slots=True)
@@ -81,6 +93,7 @@ def simulate_batch(
     active: ArrayLike | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
     parallel: bool | None = None,
+    angular_velocities: ArrayLike | None = None,
 ) -> BatchResult:
     """Simulate ``B`` tables, each from its own state, until everything rests.
 
@@ -93,17 +106,18 @@ def simulate_batch(
         max_events: Event cap per table.
         parallel: Spread the tables over numba's threads; ``None`` does so from
             :data:`PARALLEL_FROM` tables on, where it pays for the threads' start-up.
+        angular_velocities: ``(B, N, 3)`` initial angular velocities on a spin table
+            (``Table(model="spin")``; ``None``: no spin); must be ``None`` on a roll table.
+            A spin batch gives bit for bit one :func:`pool_env.simulate` per table.
 
     Returns:
         The :class:`BatchResult`.
 
     Raises:
         ValueError: On malformed arrays, or naming the first invalid table and its problem
-            (as :func:`pool_env.simulate` would); no table is simulated then. A spin
-            table (``Table(model="spin")``) is refused: batches run the roll level only
-            so far; simulate spin shots one by one with :func:`pool_env.simulate`.
+            (as :func:`pool_env.simulate` would); no table is simulated then.
     """
-    table = _roll_table(table)
+    table = check_table(table)
     pos = as_batch_points("positions", positions)
     vel = as_batch_points("velocities", velocities, pos.shape)
     n_tables, n_balls = pos.shape[:2]
@@ -112,14 +126,22 @@ def simulate_batch(
     max_events = check_max_events(max_events)
     if parallel is None:
         parallel = n_tables >= PARALLEL_FROM
-    run = _batch.run_batch_parallel if parallel else _batch.run_batch
-    out = run(pos, vel, mass, on, table.params, table.pocket_geometry, max_events)
+    if table.model == "spin":
+        ang = _batch_angular(angular_velocities, n_tables, n_balls)
+        run = _spin_batch.run_spin_batch_parallel if parallel else _spin_batch.run_spin_batch
+        out = run(pos, vel, ang, mass, on, table.spin_params, table.pocket_geometry, max_events)
+    else:
+        _no_spin(angular_velocities)
+        run = _batch.run_batch_parallel if parallel else _batch.run_batch
+        out = run(pos, vel, mass, on, table.params, table.pocket_geometry, max_events)
     error = out.error
     bad = np.flatnonzero(error[:, 0] != loop.OK)
     if bad.size:
         b = int(bad[0])
         code, i, j = (int(v) for v in error[b])
         try:
+            if code in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
+                raise_bad_spin(code, i, table, ang[b])
             raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
         except ValueError as exc:
             raise ValueError(f"table {b}: {exc}") from None
@@ -180,6 +202,7 @@ def simulate_batch_threads(
     active: ArrayLike,
     threads: int | None = None,
     max_events: int = DEFAULT_MAX_EVENTS,
+    angular_velocities: ArrayLike | None = None,
 ) -> BatchResult:
     """:func:`simulate_batch` split into one serial batch per thread, results joined.
 
@@ -195,6 +218,7 @@ def simulate_batch_threads(
         active: ``(B, N)`` which balls are on each table.
         threads: Parts to split into, a positive integer (default: :func:`available_cpus`).
         max_events: Event cap per table.
+        angular_velocities: ``(B, N, 3)`` on a spin table, as for :func:`simulate_batch`.
 
     Returns:
         The joined :class:`BatchResult`.
@@ -202,10 +226,14 @@ def simulate_batch_threads(
     Raises:
         ValueError: As :func:`simulate_batch`, naming the table by its index in the batch.
     """
-    table = _roll_table(table)
+    table = check_table(table)
     positions = as_batch_points("positions", positions)
     velocities = as_batch_points("velocities", velocities, positions.shape)
     n = positions.shape[0]
+    if table.model == "spin":
+        angular_velocities = _batch_angular(angular_velocities, n, positions.shape[1])
+    else:
+        _no_spin(angular_velocities)
     active = as_active(active, n, positions.shape[1])
     max_events = check_max_events(max_events)
     if threads is not None and (
@@ -214,14 +242,19 @@ def simulate_batch_threads(
         raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
     parts = min(threads or available_cpus(), n)
     if parts <= 1:
-        return simulate_batch(table, positions, velocities, active=active, max_events=max_events)
+        return simulate_batch(
+            table, positions, velocities, active=active, max_events=max_events,
+            angular_velocities=angular_velocities,
+        )  # fmt: skip
     edges = np.linspace(0, n, parts + 1).astype(np.int64).tolist()
+    ang = angular_velocities
 
     def part(lo: int, hi: int) -> BatchResult:
         try:
             return simulate_batch(
                 table, positions[lo:hi], velocities[lo:hi], active=active[lo:hi],
                 max_events=max_events, parallel=False,
+                angular_velocities=None if ang is None else ang[lo:hi],
             )  # fmt: skip
         except ValueError as exc:
             first, rest = str(exc).split(":", 1)  # "table k: ..." counted from lo

@@ -152,9 +152,10 @@ def shoot(
 
     Raises:
         ValueError: On a non-finite angle, a negative or non-finite speed, a cue index out
-            of range, a tip or elevation out of range, a non-zero tip or elevation on a
-            roll table (use ``Table(model="spin")``), or any problem :func:`simulate`
-            rejects.
+            of range, a tip or elevation out of range, a strike that would spin the ball
+            beyond the speed limit (``R |w|`` above ``limits.MAX_SPEED``: a near-vertical
+            cue), a non-zero tip or elevation on a roll table (use
+            ``Table(model="spin")``), or any problem :func:`simulate` rejects.
 
     Examples:
         >>> from pool_env import Table, shoot

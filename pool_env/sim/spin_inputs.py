@@ -61,25 +61,28 @@ def strike(
 
 
 def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.float64]:
-    """``(N, 3)`` finite angular velocities (zeros for ``None``) within the speed limit.
+    """``(N, 3)`` angular velocities as a kernel array (zeros for ``None``).
 
-    The surface speed ``R |w|`` of each ball must lie within ``limits.MAX_SPEED``.
+    Their values (finite, a surface speed ``R |w|`` within ``limits.MAX_SPEED``) are checked
+    by the compiled validation of :func:`run_spin`, in one call with the rest.
     """
     if value is None:
         return np.zeros((n, 3))
     arr = kernel_array("angular_velocities", value, "an (N, 3) array")
     if arr.shape != (n, 3):
         raise ValueError(f"angular_velocities must have shape ({n}, 3), got {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise ValueError("angular_velocities must be finite")
-    surface = table.ball_radius * np.sqrt((arr * arr).sum(axis=1))
-    if np.any(surface > limits.MAX_SPEED):
-        i = int(np.argmax(surface))
-        raise ValueError(
-            f"ball {i} spins with surface speed R |w| = {surface[i]!r} m/s, beyond the "
-            f"simulator's numeric limit of {limits.MAX_SPEED:g} m/s"
-        )
     return arr
+
+
+def raise_bad_spin(code: int, i: int, table: Table, ang: NDArray[np.float64]) -> None:
+    """Raise the ``ValueError`` for a spin validation code of ``spin_loop.validate_spins``."""
+    if code == spin_loop.BAD_SPIN:
+        raise ValueError(f"angular_velocities must be finite: ball {i} has {ang[i].tolist()}")
+    surface = table.ball_radius * float(np.sqrt(ang[i] @ ang[i]))
+    raise ValueError(
+        f"ball {i} spins with surface speed R |w| = {surface!r} m/s, beyond the "
+        f"simulator's numeric limit of {limits.MAX_SPEED:g} m/s"
+    )
 
 
 def run_spin(
@@ -98,6 +101,8 @@ def run_spin(
     raw = spin_loop.packed_spin_shot(
         pos, vel, ang, mass, table.spin_params, table.pocket_geometry, max_events, record
     )
+    if raw[0] in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
+        raise_bad_spin(raw[0], raw[1], table, ang)
     if raw[0] != spin_loop.OK:
         raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
     return SpinShotResult(raw, pos.shape[0], table.deceleration, record)

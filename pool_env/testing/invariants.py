@@ -63,6 +63,11 @@ def impacts(result: ShotResult) -> list[tuple[int, float, list[int], NDArray, ND
     Returns:
         Tuples ``(event_index, time, balls, before (B, 2), after (B, 2))``.
     """
+    return [(k, t, balls, before, after) for k, t, balls, before, after, _ in _impacts(result)]
+
+
+def _impacts(result: ShotResult) -> list[tuple[int, float, list[int], NDArray, NDArray, list]]:
+    """:func:`impacts`, each with the segment rows the balls moved on before the impact."""
     ball, seg_t, state, _ = result.segments
     latest = {int(b): r for r, b in enumerate(ball[: result.n_balls])}
     bounds = np.append(result.event_first_segment, ball.shape[0])
@@ -86,7 +91,7 @@ def impacts(result: ShotResult) -> list[tuple[int, float, list[int], NDArray, ND
                 ]
             )
             after = np.array([state[r, 2:4] for r in rows])
-            out.append((k, float(t), balls, before, after))
+            out.append((k, float(t), balls, before, after, [latest[b] for b in balls]))
         for r in rows:
             latest[int(ball[r])] = r
     return out
@@ -187,13 +192,16 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
     momentum into it (any direction if ``table`` is not given, within ``ZENO_SPEED * mass``); a
     sticking lump against a jaw loses its velocity into it if below ``ZENO_SPEED``; and a lump
     wedged between jaws and rails, pressing slowly into all of them, stops (see
-    :func:`pool_env.sim.kernels.jaws.unpress_lump`).
+    :func:`pool_env.sim.kernels.jaws.unpress_lump`). On the spin level a sticking lump ends
+    its balls' slides at once and rolls on together, so the cloth's friction changes its
+    momentum: by at most :func:`~pool_env.testing.spin_invariants.lump_cloth_impulse`.
     """
     m = np.asarray(masses, dtype=np.float64)
     problems = []
     ball, _, state, _ = result.segments
     bounds = np.append(result.event_first_segment, ball.shape[0])
-    for k, t, balls, before, after in impacts(result):
+    spin = spin_invariants.is_spin(result)
+    for k, t, balls, before, after, rows in _impacts(result):
         mb = m[balls][:, None]
         p0 = (mb * before).sum(axis=0)
         p1 = (mb * after).sum(axis=0)
@@ -207,6 +215,10 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
                 continue
             if np.all(after == 0.0) and change <= allowed + float(np.abs(p0).max()):
                 continue  # wedged between jaws and rails, the lump stops
+            if spin and table is not None:
+                bound = spin_invariants.lump_cloth_impulse(table, result, rows, t, m[balls])
+                if float(np.hypot(*(p1 - p0))) <= allowed + bound:
+                    continue  # the slides' cloth friction, taken at once
             at = state[bounds[k] : bounds[k + 1], 0:2]
             if table is not None and _rail_impulse_allowed(table, at, p0, p1 - p0, allowed):
                 continue

@@ -16,19 +16,7 @@ the same event cap and the same Zeno rules for ball-ball impacts, with:
   (:mod:`~pool_env.sim.kernels.spin_cushion`) for rails, jaw facings and jaw points (a
   point's normal runs from its tip's centre to the ball's), with ``e_jaw`` at the jaws.
 
-The pressed-cushion rule (:func:`_pressed_roll`): a ball left at a cushion with a normal
-speed below ``V_ZENO`` whose slip drives it back into the cushion rolls at once (its
-slide's end state, the part into the cushion dropped): the model has no constrained slide
-along a cushion.
-
-Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slower than
-``V_ZENO`` is perfectly inelastic along the normal; a pair repeating ``ZENO_REPEATS`` times
-that closely sticks: it and every ball touching it roll on together (:func:`_stick`: each
-ball's slide ends at once, and all take the mean rolling velocity; energy only lost).
-Simplification: the roll level's lump-against-rail and lump-against-jaw rules
-(``stick_cluster``'s rails, ``unpress_lump``) are not reproduced; a lump wedged against a
-cushion ends at the event cap at worst, which is reported (``hit_event_cap``,
-``stopped_by_cap``).
+The Zeno rules and the pressed-cushion rule: :mod:`~pool_env.sim.kernels.spin_zeno`.
 """
 
 from __future__ import annotations
@@ -39,7 +27,9 @@ import numpy as np
 
 from pool_env.sim.kernels._jit import kernel
 from pool_env.sim.kernels.jaws import JAW, POINT, jaw_normal
+from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.kernels.loop import (
+    BALL_CUSHIONS,
     BALL_STOPPED,
     N_BALL_ROWS,
     OK,
@@ -56,8 +46,12 @@ from pool_env.sim.kernels.record import (
     log_event,
     new_event_log,
 )
-from pool_env.sim.kernels.resolve import CONTACT_TOL, V_ZENO, ZENO_REPEATS, ZENO_WINDOW
-from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
+from pool_env.sim.kernels.resolve import (
+    V_ZENO,
+    ZENO_REPEATS,
+    ZENO_WINDOW,
+)
+from pool_env.sim.kernels.roots import INF
 from pool_env.sim.kernels.spin_collide import ball_ball_spin
 from pool_env.sim.kernels.spin_cushion import cushion_han
 from pool_env.sim.kernels.spin_params import (
@@ -88,12 +82,10 @@ from pool_env.sim.kernels.spin_state import (
     set_potted,
     state_at,
 )
+from pool_env.sim.kernels.spin_zeno import RAIL_NX, RAIL_NY, pressed_roll, stick
 
 #: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
 SEG_COLS = 9
-#: Rails' unit normals into the table, by rail index (0: x = R, 1: x = L - R, 2, 3: y).
-_RAIL_NX = (1.0, -1.0, 0.0, 0.0)
-_RAIL_NY = (0.0, 0.0, 1.0, -1.0)
 
 
 @kernel
@@ -145,96 +137,14 @@ def _impact(st, ms, masses, i, j, now, prm, repeats, out):
 
 
 @kernel
-def _stick(st, ms, masses, i, now, prm, changed):
-    """Ball ``i`` and every ball touching it, transitively, roll on together.
+def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events, record):
+    """Simulate one spin shot to rest (inputs validated); see :func:`packed_spin_shot`.
 
-    The lump ends its slide at once: each ball's natural-roll velocity ``v - (2/7) u``
-    (angular momentum about its cloth contact conserved), and all roll at their
-    momentum-weighted mean, side spins ``wz`` kept. Each step only loses energy (a slide's
-    end; the mean of rolling velocities at fixed momentum); the momentum changes only by
-    the cloth's friction impulse the slides would have applied. Rolling with one velocity,
-    the lump's balls have one acceleration and no slip that presses them together.
-
-    Returns how many balls changed (their indices in ``changed``).
+    Returns:
+        ``(st, ms, balls, first_i, first_j, n_events, now, capped, events, segments,
+        n_segments)``: the final anchors and motion states, the per-ball rows of
+        :mod:`~pool_env.sim.kernels.loop`, and as the roll loop's ``_shoot``.
     """
-    n = st.shape[0]
-    reach2 = (2.0 * prm[P_RADIUS] + CONTACT_TOL) ** 2
-    snap = np.empty((n, 7))
-    for k in range(n):
-        snap[k, 0], snap[k, 1], snap[k, 2], snap[k, 3], snap[k, 4], snap[k, 5], snap[k, 6] = (
-            state_at(st, ms, k, now, prm)
-        )
-    inside = np.zeros(n, dtype=np.bool_)
-    inside[i] = True
-    changed[0] = i
-    size = 1
-    head = 0
-    while head < size:
-        k = changed[head]
-        head += 1
-        for m in range(n):
-            if not inside[m] and ms[m] != POTTED:
-                dx, dy = snap[m, 0] - snap[k, 0], snap[m, 1] - snap[k, 1]
-                if dx * dx + dy * dy <= reach2:
-                    inside[m] = True
-                    changed[size] = m
-                    size += 1
-    # Each ball's natural-roll velocity v - (2/7) u (its slide's end), then their
-    # momentum-weighted mean: the lump rolls together, with no slip left to press it.
-    radius = prm[P_RADIUS]
-    px = py = total = 0.0
-    for c in range(size):
-        k = changed[c]
-        ux = snap[k, 2] - radius * snap[k, 5]
-        uy = snap[k, 3] + radius * snap[k, 4]
-        px += masses[k] * (snap[k, 2] - 2.0 / 7.0 * ux)
-        py += masses[k] * (snap[k, 3] - 2.0 / 7.0 * uy)
-        total += masses[k]
-    vx, vy = px / total, py / total
-    for c in range(size):
-        k = changed[c]
-        s = snap[k]
-        set_anchor(
-            st, ms, k, now, s[0], s[1], vx, vy, -vy / radius, vx / radius, s[6], prm, FORCE_ROLL
-        )
-    return size
-
-
-@kernel
-def _pressed_roll(out, nx, ny, radius):
-    """The pressed-cushion rule: a ball held at a cushion by its own slip rolls at once.
-
-    ``out`` holds a cushion impact's result ``(vx, vy, wx, wy, wz)``, ``n`` the cushion's
-    normal into the table. If the ball leaves slower than ``V_ZENO`` along ``n`` while its
-    slip drives it back into the cushion (the cloth's friction ``-mu g u / |u|`` has a
-    component against ``n``), the model's free slide would re-hit the cushion endlessly
-    (a Zeno sequence) or, at rounding speed, pass it. The cushion's reaction would hold
-    the ball at it while the slip dies; this rule ends that slide at once instead: the
-    ball takes the rolling velocity its slide would end in, ``v - (2/7) u`` (angular
-    momentum about the cloth contact conserved), loses any part of it into the cushion
-    and rolls. Energy only drops. Returns whether the rule applied (``out`` rewritten).
-    """
-    vx, vy, wx, wy = out[0], out[1], out[2], out[3]
-    if abs(vx * nx + vy * ny) >= V_ZENO:
-        return False
-    ux, uy = vx - radius * wy, vy + radius * wx
-    slip = math.sqrt(ux * ux + uy * uy)
-    if not ux * nx + uy * ny > APPROACH_RTOL * slip:
-        return False  # the slip does not press the ball into the cushion
-    vx -= 2.0 / 7.0 * ux
-    vy -= 2.0 / 7.0 * uy
-    vn = vx * nx + vy * ny
-    if vn < 0.0:
-        vx -= vn * nx
-        vy -= vn * ny
-    out[0], out[1] = vx, vy
-    out[2], out[3] = -vy / radius, vx / radius
-    return True
-
-
-@kernel
-def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, record):
-    """Simulate one spin shot to rest (inputs validated); see :func:`packed_spin_shot`."""
     n = positions.shape[0]
     if masses.shape[0] == 0:
         masses = np.full(n, prm[P_MASS])
@@ -256,7 +166,7 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
     pair_last = np.full((n, n), -INF, dtype=np.float64)
     pair_repeats = np.zeros((n, n), dtype=np.int64)
     balls = np.full((N_BALL_ROWS, n), -1, dtype=np.int64)
-    balls[3] = 0  # BALL_CUSHIONS
+    balls[BALL_CUSHIONS] = 0
     balls[BALL_STOPPED] = 0
     first_i = first_j = -1
     events = new_event_log(16 if record else 0)
@@ -308,7 +218,7 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
                 pair_repeats[bi, bj] = 1
             pair_last[bi, bj] = now
             if _impact(st, ms, masses, bi, bj, now, prm, pair_repeats[bi, bj], out):
-                n_changed = _stick(st, ms, masses, bi, now, prm, changed)
+                n_changed = stick(st, ms, masses, bi, now, prm, pockets, changed)
             else:
                 changed[1] = bj
                 n_changed = 2
@@ -318,12 +228,12 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
                 set_potted(st, ms, bi, now, x, y)
             elif bkind == CUSHION or bkind == JAW or bkind == POINT:  # noqa: SIM109 (numba)
                 if bkind == CUSHION:
-                    nx, ny, e = _RAIL_NX[bj], _RAIL_NY[bj], e_c
+                    nx, ny, e = RAIL_NX[bj], RAIL_NY[bj], e_c
                 else:
                     nx, ny = jaw_normal(pockets, bkind, bj, x, y)
                     e = e_jaw
                 cushion_han(vx, vy, wx, wy, wz, nx, ny, radius, h, e, f_c, out)
-                mode = FORCE_ROLL if _pressed_roll(out, nx, ny, radius) else CLASSIFY
+                mode = FORCE_ROLL if pressed_roll(out, nx, ny, radius) else CLASSIFY
                 set_anchor(st, ms, bi, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
             elif bkind == SLIDE_ROLL:
                 set_anchor(st, ms, bi, now, x, y, vx, vy, wx, wy, wz, prm, FORCE_ROLL)
@@ -357,6 +267,25 @@ def _shoot(positions, velocities, angular, masses, prm, pockets, max_events, rec
     return st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
 
 
+#: Validation codes of the spin level, after the roll level's (``loop.OK`` ...): a
+#: non-finite angular velocity, a surface speed ``R |w|`` beyond ``MAX_SPEED``.
+BAD_SPIN, SPIN_TOO_FAST = 10, 11
+
+
+@kernel
+def validate_spins(angular, radius):
+    """Check ``(N, 3)`` angular velocities; return ``(code, i, -1)`` (``OK`` if none)."""
+    for i in range(angular.shape[0]):
+        w2 = 0.0
+        for c in range(3):
+            if not np.isfinite(angular[i, c]):
+                return BAD_SPIN, i, -1
+            w2 += angular[i, c] * angular[i, c]
+        if not radius * math.sqrt(w2) <= MAX_SPEED:
+            return SPIN_TOO_FAST, i, -1
+    return OK, -1, -1
+
+
 @kernel
 def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_events, record):
     """Validate and simulate one spin shot in a single call, for Python.
@@ -370,11 +299,13 @@ def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_e
         As ``packed_shot``.
     """
     code, ci, cj = validate(positions, velocities, masses, prm, pockets)
+    if code == OK:
+        code, ci, cj = validate_spins(angular, prm[P_RADIUS])
     if code != OK:
         empty_f = np.empty(0, dtype=np.float64)
         empty_i = np.empty(0, dtype=np.int64)
         return code, ci, cj, empty_f, empty_i, 0, 0, -1, -1, False, 0.0
-    st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = _shoot(
+    st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = shoot_spin(
         positions, velocities, angular, masses, prm, pockets, max_events, record
     )
     n = positions.shape[0]

@@ -1,0 +1,187 @@
+"""The spin level's rules for contacts that would repeat without end (compiled).
+
+The pressed-cushion rule (:func:`pressed_roll`): a ball left at a cushion with a normal
+speed below ``V_ZENO`` whose slip drives it back into the cushion rolls at once (its
+slide's end state, the part into the cushion dropped): the model has no constrained slide
+along a cushion.
+
+Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slower than
+``V_ZENO`` is perfectly inelastic along the normal; a pair repeating ``ZENO_REPEATS`` times
+that closely sticks: it and every ball touching it roll on together (:func:`stick`: each
+ball's slide ends at once, and all take the mean rolling velocity; energy only lost).
+The lump then meets the cushions it touches as one body (the roll level's
+``lump_off_contacts``). Simplification: the roll level's jam rule for lumps wedged between
+jaws (``unpress_lump``'s wedge test) is not reproduced; such a lump ends at the event cap
+at worst, which is reported (``hit_event_cap``, ``stopped_by_cap``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.kernels.jaws import (
+    J_FACING0,
+    J_TIP0,
+    JAW,
+    JAW_COLS,
+    POINT,
+    jaw_normal,
+    opening_of,
+    throat_of,
+)
+from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
+from pool_env.sim.kernels.resolve import CONTACT_TOL, V_ZENO, lump_off_contacts
+from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
+from pool_env.sim.kernels.spin_state import FORCE_ROLL, POTTED, set_anchor, state_at
+
+#: Rails' unit normals into the table, by rail index (0: x = R, 1: x = L - R, 2, 3: y).
+RAIL_NX = (1.0, -1.0, 0.0, 0.0)
+RAIL_NY = (0.0, 0.0, 1.0, -1.0)
+
+
+@kernel
+def _lump_off_cushions(snap, changed, size, vx, vy, prm, pockets):
+    """A lump's common velocity after it meets the cushions its balls touch, as one body.
+
+    The roll level's rule (``resolve.lump_off_contacts``): each touched rail, jaw facing
+    or jaw point (centre within ``CONTACT_TOL`` of it) reflects the lump's normal velocity
+    into it with its restitution (0 below ``V_ZENO``); a rail is touched only outside the
+    pocket openings. Energy only drops; a ball wedged between a ball and a cushion would
+    otherwise re-collide endlessly at one instant.
+    """
+    radius, length, width = prm[P_RADIUS], prm[P_LENGTH], prm[P_WIDTH]
+    jaws = pockets.shape[1] == JAW_COLS
+    normals = np.zeros((8 * size, 2))
+    es = np.full(8 * size, prm[P_E_CUSHION])
+    count = 0
+    for c in range(size):
+        x, y = snap[changed[c], 0], snap[changed[c], 1]
+        for rail in range(4):
+            coord = y if rail < 2 else x
+            line = (radius, length - radius, radius, width - radius)[rail]
+            here = x if rail < 2 else y
+            if abs(here - line) <= CONTACT_TOL and not (
+                jaws and opening_of(pockets, rail, coord) >= 0
+            ):
+                normals[count, 0], normals[count, 1] = RAIL_NX[rail], RAIL_NY[rail]
+                count += 1
+        if jaws:
+            k = throat_of(x, y, prm, pockets)
+            for side in range(2 if k >= 0 else 0):
+                for kind in (JAW, POINT):
+                    nx, ny = jaw_normal(pockets, kind, 2 * k + side, x, y)
+                    gap = _jaw_gap(pockets, kind, 2 * k + side, x, y)
+                    if gap <= CONTACT_TOL:
+                        normals[count, 0], normals[count, 1] = nx, ny
+                        es[count] = prm[P_E_JAW]
+                        count += 1
+    return lump_off_contacts(vx, vy, normals, es, count)
+
+
+@kernel
+def _jaw_gap(pockets, kind, arg, x, y):
+    """Distance of a centre from facing or point ``arg`` (``inf`` beyond a facing's ends)."""
+    row = pockets[arg // 2]
+    side = arg % 2
+    if kind == JAW:
+        col = J_FACING0 + 7 * side
+        along = (x - row[col]) * row[col + 2] + (y - row[col + 1]) * row[col + 3]
+        if along < 0.0 or along > row[col + 6]:
+            return INF
+        return abs((x - row[col]) * row[col + 4] + (y - row[col + 1]) * row[col + 5])
+    col = J_TIP0 + 3 * side
+    return abs(math.sqrt((x - row[col]) ** 2 + (y - row[col + 1]) ** 2) - row[col + 2])
+
+
+@kernel
+def stick(st, ms, masses, i, now, prm, pockets, changed):
+    """Ball ``i`` and every ball touching it, transitively, roll on together.
+
+    The lump ends its slide at once: each ball's natural-roll velocity ``v - (2/7) u``
+    (angular momentum about its cloth contact conserved), and all roll at their
+    momentum-weighted mean, side spins ``wz`` kept. Each step only loses energy (a slide's
+    end; the mean of rolling velocities at fixed momentum); the momentum changes only by
+    the cloth's friction impulse the slides would have applied. Rolling with one velocity,
+    the lump's balls have one acceleration and no slip that presses them together.
+
+    The lump then meets every cushion one of its balls touches as one body
+    (:func:`_lump_off_cushions`).
+
+    Returns how many balls changed (their indices in ``changed``).
+    """
+    n = st.shape[0]
+    reach2 = (2.0 * prm[P_RADIUS] + CONTACT_TOL) ** 2
+    snap = np.empty((n, 7))
+    for k in range(n):
+        snap[k, 0], snap[k, 1], snap[k, 2], snap[k, 3], snap[k, 4], snap[k, 5], snap[k, 6] = (
+            state_at(st, ms, k, now, prm)
+        )
+    inside = np.zeros(n, dtype=np.bool_)
+    inside[i] = True
+    changed[0] = i
+    size = 1
+    head = 0
+    while head < size:
+        k = changed[head]
+        head += 1
+        for m in range(n):
+            if not inside[m] and ms[m] != POTTED:
+                dx, dy = snap[m, 0] - snap[k, 0], snap[m, 1] - snap[k, 1]
+                if dx * dx + dy * dy <= reach2:
+                    inside[m] = True
+                    changed[size] = m
+                    size += 1
+    # Each ball's natural-roll velocity v - (2/7) u (its slide's end), then their
+    # momentum-weighted mean: the lump rolls together, with no slip left to press it.
+    radius = prm[P_RADIUS]
+    px = py = total = 0.0
+    for c in range(size):
+        k = changed[c]
+        ux = snap[k, 2] - radius * snap[k, 5]
+        uy = snap[k, 3] + radius * snap[k, 4]
+        px += masses[k] * (snap[k, 2] - 2.0 / 7.0 * ux)
+        py += masses[k] * (snap[k, 3] - 2.0 / 7.0 * uy)
+        total += masses[k]
+    vx, vy = _lump_off_cushions(snap, changed, size, px / total, py / total, prm, pockets)
+    for c in range(size):
+        k = changed[c]
+        s = snap[k]
+        set_anchor(
+            st, ms, k, now, s[0], s[1], vx, vy, -vy / radius, vx / radius, s[6], prm, FORCE_ROLL
+        )
+    return size
+
+
+@kernel
+def pressed_roll(out, nx, ny, radius):
+    """The pressed-cushion rule: a ball held at a cushion by its own slip rolls at once.
+
+    ``out`` holds a cushion impact's result ``(vx, vy, wx, wy, wz)``, ``n`` the cushion's
+    normal into the table. If the ball leaves slower than ``V_ZENO`` along ``n`` while its
+    slip drives it back into the cushion (the cloth's friction ``-mu g u / |u|`` has a
+    component against ``n``), the model's free slide would re-hit the cushion endlessly
+    (a Zeno sequence) or, at rounding speed, pass it. The cushion's reaction would hold
+    the ball at it while the slip dies; this rule ends that slide at once instead: the
+    ball takes the rolling velocity its slide would end in, ``v - (2/7) u`` (angular
+    momentum about the cloth contact conserved), loses any part of it into the cushion
+    and rolls. Energy only drops. Returns whether the rule applied (``out`` rewritten).
+    """
+    vx, vy, wx, wy = out[0], out[1], out[2], out[3]
+    if abs(vx * nx + vy * ny) >= V_ZENO:
+        return False
+    ux, uy = vx - radius * wy, vy + radius * wx
+    slip = math.sqrt(ux * ux + uy * uy)
+    if not ux * nx + uy * ny > APPROACH_RTOL * slip:
+        return False  # the slip does not press the ball into the cushion
+    vx -= 2.0 / 7.0 * ux
+    vy -= 2.0 / 7.0 * uy
+    vn = vx * nx + vy * ny
+    if vn < 0.0:
+        vx -= vn * nx
+        vy -= vn * ny
+    out[0], out[1] = vx, vy
+    out[2], out[3] = -vy / radius, vx / radius
+    return True
