@@ -13,7 +13,13 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from pool_env.sim.kernels.spin_collide import ALCIATORE, CONSTANT, FRICTIONLESS, ball_ball_spin
+from pool_env.sim.kernels.spin_collide import (
+    ALCIATORE,
+    CONSTANT,
+    FRICTIONLESS,
+    POOLTOOL,
+    ball_ball_spin,
+)
 from pool_env.sim.kernels.spin_cushion import cushion_han
 
 R = 0.028575
@@ -101,6 +107,34 @@ def test_maximum_throw_against_speed_is_spin_md_curve(speed, spin_md, cut_deg):
     best = int(np.argmax(throws))
     assert round(throws[best], 1) == spin_md
     assert math.degrees(cuts[best]) == pytest.approx(cut_deg, abs=0.1)
+
+
+@pytest.mark.parametrize(
+    ("speed", "maximum"), [(0.2, 5.857), (0.5, 5.088), (1.0, 4.238), (2.0, 3.281), (4.0, 2.387)]
+)
+def test_pooltool_mode_gives_pooltool_throw(speed, maximum):
+    """Mode 3: pooltool's impulse mu e c, so its maximum throw is below the Coulomb curve's.
+
+    Closed form ``atan(min(mu e v cos, v sin / 7) / ((1 + e) v cos / 2))``; the maxima are
+    the figures pooltool 0.6.0's FrictionalInelastic gives (derived from its formulas).
+    """
+    e = 0.95
+    best = 0.0
+    for cut in np.radians(np.linspace(0.5, 89.5, 17801)):
+        _, _, v2, _ = collide((speed, 0.0), (0, 0, 0), (0, 0), (0, 0, 0), unit(cut), mode=POOLTOOL)
+        throw = math.degrees(cut - math.atan2(v2[1], v2[0]))
+        mu = alciatore(speed * math.sin(cut))
+        tangent = min(mu * e * math.cos(cut), math.sin(cut) / 7)
+        assert throw == pytest.approx(
+            math.degrees(math.atan(tangent / ((1 + e) / 2 * math.cos(cut)))), abs=1e-10
+        )
+        best = max(best, throw)
+    assert best == pytest.approx(maximum, abs=1e-3)
+    _, _, same, _ = collide(
+        (speed, 0.0), (0, 0, 30.0), (0, 0), (0, 0, 0), unit(0.3), e=1.0, mode=POOLTOOL
+    )
+    _, _, ref, _ = collide((speed, 0.0), (0, 0, 30.0), (0, 0), (0, 0, 0), unit(0.3), e=1.0)
+    assert (same == ref).all()  # the two agree at e = 1
 
 
 @pytest.mark.parametrize(("m1", "m2"), [(M, M), (0.1, 0.4), (0.5, 0.05)])
