@@ -148,6 +148,22 @@ def test_from_pooltool_ports_a_shot_exactly(shot):
     np.testing.assert_allclose(w, w_pt, rtol=1e-12, atol=1e-12)
 
 
+@given(
+    v0=st.floats(0.05, 10.0),
+    phi=st.floats(-720.0, 720.0),
+    theta=st.floats(0.0, 85.0),
+    radius=st.floats(0.0, 0.72),
+    turn=st.floats(0.0, 2 * math.pi),
+)
+def test_from_pooltool_ports_random_shots(v0, phi, theta, radius, turn):
+    shot = (v0, phi, theta, radius * math.cos(turn), radius * math.sin(turn))
+    angle, speed, tip, elevation = from_pooltool(*shot, table=POOLTOOL)
+    v, w = strike(speed, angle, tip[0], tip[1], elevation)
+    v_pt, w_pt = pooltool_strike(*shot)
+    np.testing.assert_allclose(v, v_pt, rtol=1e-12, atol=1e-13 * v0)
+    np.testing.assert_allclose(w, w_pt, rtol=1e-11, atol=1e-11 * v0 / R / math.cos(elevation))
+
+
 def test_from_pooltool_centre_hit_is_1_54_times_the_stick_speed():
     _, speed, tip, elevation = from_pooltool(1.0, 0.0, 0.0, 0.0, 0.0, table=POOLTOOL)
     assert speed == pytest.approx(2.0 / (1.0 + M / 0.567), rel=1e-15)
