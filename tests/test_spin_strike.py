@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import doctest
 import math
 from types import SimpleNamespace
 
@@ -10,6 +11,7 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from pool_env.sim import cue
 from pool_env.sim.cue import POOLTOOL_CUE_MASS, from_pooltool
 from pool_env.sim.kernels.spin_strike import cue_strike
 
@@ -209,3 +211,7 @@ def test_from_pooltool_reads_a_spin_table():
     _, speed, tip, _ = from_pooltool(1.0, 0.0, 0.0, 0.0, 0.3)
     assert tip[1] == pytest.approx(0.3 * (1 + default.cue_tip_radius / default.ball_radius))
     assert speed == pytest.approx(2.0 / (1 + default.ball_mass / 0.567 + 2.5 * 0.09))
+
+
+def test_from_pooltool_docstring_example_holds():
+    assert doctest.testmod(cue, raise_on_error=True).attempted >= 1
