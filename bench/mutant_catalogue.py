@@ -1283,6 +1283,16 @@ _SPIN_RESOLVE: tuple[Mutant, ...] = (
         "cushion_han: the spin",
     ),
     Mutant(
+        "spin-han-slide-along-sign",
+        "cushions",
+        _SU,
+        "if into < 0.0:",
+        "if into > 0.0:",
+        SPIN_RESOLVE,
+        "the slide-along rule with the wrong sign: it removes every rebound instead",
+        "cushion_han: a ball left moving into the cushion",
+    ),
+    Mutant(
         "spin-strike-no-tip-scale",
         "strike",
         _SS,

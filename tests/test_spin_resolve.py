@@ -339,6 +339,15 @@ def test_equator_contact_without_friction_is_the_textbook_reflection():
     np.testing.assert_allclose(v, [-0.72, 0.7], rtol=1e-15)
 
 
+def test_a_ball_han_leaves_moving_into_the_cushion_slides_along_it():
+    """e_c = 0 at h = 1.27 R: Han leaves vx sin^2(theta) into the cushion; it becomes 0."""
+    v, w = bounce((1.0, 0.5), (0, 0, 0), e=0.0, f=0.0)
+    assert v.tolist() == [0.0, 0.5] and (w == 0).all()
+    v, _ = bounce((1.0, 0.5), (0, 0, 0), e=0.1, f=0.0)  # (1 + e) cos^2 > 1: Han's own rebound
+    sin_t = H / R - 1.0
+    assert v[0] == pytest.approx(1.0 - 1.1 * (1 - sin_t * sin_t), rel=1e-14) and v[0] < 0.0
+
+
 def rebound_angle(wz):
     """Rebound angle (deg) off the normal of a 45-degree shot at the rail, spin wz."""
     v, _ = bounce((1.0, 1.0), (0.0, 0.0, wz))
