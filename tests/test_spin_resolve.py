@@ -408,11 +408,15 @@ def test_han_laws(v, w, angle, h, e, f):
         return
     assert energy(1.0, a, b) <= energy(1.0, vel, spin) * (1 + 1e-13)
     assert a @ n >= -1e-15 * np.abs(vel).max()  # it leaves the cushion, or slides along it
+    # the rail-frame closed forms (x = -n into the cushion, y = z x x), any orientation
+    x, y = -n, np.array([n[1], -n[0]])
+    vx_ref, vy_ref = han_rail_frame(vel @ x, vel @ y, spin[:2] @ x, spin[:2] @ y, spin[2], h, e, f)
+    tol = 1e-12 * (np.abs(vel).max() + R * np.abs(spin).max())
+    np.testing.assert_allclose([a @ x, a @ y], [min(vx_ref, 0.0), vy_ref], atol=tol)
     # mirror in the normal's line: the tangent flips; w is a pseudo-vector
     t = np.array([-n[1], n[0]])
     mirror = np.eye(2) - 2.0 * np.outer(t, t)
     spin_m = np.array([*(-(mirror @ spin[:2])), -spin[2]])
     a_m, b_m = bounce(mirror @ vel, spin_m, n, h, e, f)
-    tol = 1e-12 * (np.abs(vel).max() + R * np.abs(spin).max())
     np.testing.assert_allclose(a_m, mirror @ a, atol=tol)
     np.testing.assert_allclose(b_m, [*(-(mirror @ b[:2])), -b[2]], atol=tol / R)
