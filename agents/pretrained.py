@@ -95,7 +95,7 @@ class PretrainedPolicy:
 
     ``predict`` takes the environment's own observations (``(D,)`` or ``(B, D)``; already
     wrapped ones, of the model's input size, pass through unchanged) and has SB3's
-    signature, so it works with ``evaluate_policy`` and :func:`agents.evaluate.run_episodes`.
+    signature, so it works with ``evaluate_policy`` and :func:`agents.episodes.run_episodes`.
 
     Args:
         model: The loaded SB3 model.

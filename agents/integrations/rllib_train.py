@@ -203,7 +203,7 @@ def build_config(run: RLlibRun) -> Any:
 
 
 class RLlibPolicy:
-    """A trained RLlib module with SB3's ``predict``, for :func:`agents.evaluate.run_episodes`.
+    """A trained RLlib module with SB3's ``predict``, for :func:`agents.episodes.run_episodes`.
 
     The deterministic action is the mean of the Gaussian, clipped to the action box (what
     RLlib's module-to-env connector sends to the env).
