@@ -1,20 +1,27 @@
 """Agents for pool_env: baselines with SB3's ``predict``, evaluation, and training on SB3.
 
-``RandomAgent(env)``, ``ConstantAgent(env)``, ``GhostBallAgent(env)`` (the geometric
-heuristic, no simulation) and ``SearchAgent(env)`` (candidate shots checked on the simulator)
-work with SB3's ``evaluate_policy``;
-:func:`agents.evaluate.run_episodes` reports pots per shot, clean pots, scratches and clears.
-Training (``agents.train_lib``, ``train.py``) needs the ``train`` extra (SB3, torch).
-:func:`agents.load` loads a pretrained model with the observation wrapper of its saved
-config (:mod:`agents.pretrained`), so ``agents.load("models/ppo_oneball.zip").predict(obs)``
-plays on the env's own observations.
+Where a change goes:
+
+* ``baselines/``: agents that play from geometry or the simulator (``RandomAgent``,
+  ``ConstantAgent``, ``GhostBallAgent``, ``SearchAgent``); no stable-baselines3 needed.
+* ``episodes``, ``metrics``, ``evaluate``: play episodes and count (pots per shot, clean
+  pots, scratches, clears, with 95% intervals); ``python -m agents.evaluate`` compares agents.
+* ``envs``, ``features``: the envs a learner sees (observation wrappers by name).
+* ``pretrained``: :func:`agents.load`, a saved model with the wrapper of its config.
+* ``training/`` and ``train`` (``python train.py``): training on SB3 (the ``train`` extra).
+* ``vec/``: vector-env adapters (SB3 ``VecEnv``, Gymnasium's same-step stack).
+* ``integrations/``: Ray RLlib and RL Zoo.
+
+``agents.load("models/ppo_oneball.zip").predict(obs)`` plays on the env's own observations.
 """
 
 from typing import Any
 
-from agents.ghost_ball import GhostBallAgent
-from agents.random_agent import ConstantAgent, RandomAgent
-from agents.search import SearchAgent
+from agents.baselines.ghost_ball import GhostBallAgent
+from agents.baselines.random_agent import ConstantAgent, RandomAgent
+from agents.baselines.search import SearchAgent
+from agents.episodes import run_episodes
+from agents.pretrained import load
 
 __all__ = [
     "ConstantAgent",
@@ -28,13 +35,10 @@ __all__ = [
 
 
 def __getattr__(name: str) -> Any:
-    # Lazy, so that ``python -m agents.evaluate`` does not import its own module twice.
-    if name in ("evaluate_agent", "run_episodes"):
+    # Lazy, so that ``python -m agents.evaluate`` does not import its own module twice
+    # (runpy warns when the package has already imported the module it runs as __main__).
+    if name == "evaluate_agent":
         from agents import evaluate
 
-        return getattr(evaluate, name)
-    if name == "load":  # SB3 and torch only when a model is loaded
-        from agents.pretrained import load
-
-        return load
+        return evaluate.evaluate_agent
     raise AttributeError(f"module 'agents' has no attribute {name!r}")

@@ -12,9 +12,9 @@ sidecar ``<name>_config.yaml``.
 
 Agents by name: ``random`` (uniform actions), ``const[:a0,a1]`` (one action, default the
 full hit ``0,1``), ``best-const`` (the best action of a grid scan, see
-:mod:`agents.constant_scan`), ``ghost`` (the geometric ghost-ball heuristic, no simulation,
-:mod:`agents.ghost_ball`) and ``search`` (candidate shots checked on the simulator: the
-oracle upper bound, :mod:`agents.search`).
+:mod:`agents.baselines.constant_scan`), ``ghost`` (the geometric ghost-ball heuristic, no
+simulation, :mod:`agents.baselines.ghost_ball`) and ``search`` (candidate shots checked on
+the simulator: the oracle upper bound, :mod:`agents.baselines.search`).
 """
 
 from __future__ import annotations
@@ -24,11 +24,26 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from agents.baselines.constant_scan import best_constant_agent
+from agents.baselines.ghost_ball import GameGhostBallAgent, GhostBallAgent
+from agents.baselines.random_agent import ConstantAgent, RandomAgent
+from agents.baselines.search import SearchAgent
 from agents.envs import make_env
-from agents.ghost_ball import GameGhostBallAgent, GhostBallAgent
-from agents.metrics import EpisodeLog, Estimate
-from agents.random_agent import ConstantAgent, RandomAgent
-from agents.search import SearchAgent
+from agents.episodes import run_episodes
+from agents.metrics import Estimate
+from agents.pretrained import load_model, model_config
+
+__all__ = [
+    "BASELINES",
+    "evaluate_agent",
+    "format_table",
+    "load_model",
+    "main",
+    "make_agent",
+    "model_config",
+    "one_line",
+    "run_episodes",
+]
 
 #: The baselines by name (``const`` also takes ``const:a0,a1``).
 BASELINES = ("random", "const", "best-const", "ghost", "search")
@@ -58,93 +73,6 @@ GAME_COLUMNS: tuple[tuple[str, str, bool], ...] = (
 )
 
 
-def run_episodes(
-    agent: Any, env: Any, episodes: int, seed: int, deterministic: bool = True
-) -> EpisodeLog:
-    """Play ``episodes`` episodes (episode ``k`` reset with ``seed + k``) and count.
-
-    Args:
-        agent: Anything with SB3's ``predict(obs, state, episode_start, deterministic)``.
-        env: A Gymnasium ``PoolEnv`` (wrapped or not).
-        episodes: Number of episodes.
-        seed: Seed of the first episode.
-        deterministic: Passed to ``predict``.
-
-    Returns:
-        The per-episode counts.
-
-    Examples:
-        >>> import gymnasium as gym
-        >>> from agents import GhostBallAgent, RandomAgent, run_episodes
-        >>> env = gym.make("pool_env/OneBall-v0")
-        >>> log = run_episodes(GhostBallAgent(env), env, episodes=20, seed=10000)
-        >>> print(log.summary()["pots_per_shot"])  # rate [95% interval]
-        1.000 [0.839, 1.000]
-        >>> random = run_episodes(RandomAgent(env, seed=0), env, episodes=20, seed=10000)
-        >>> random.summary()["pots_per_shot"].value < 0.5
-        True
-    """
-    log = EpisodeLog()
-    for k in range(episodes):
-        obs, _ = env.reset(seed=seed + k)
-        shots = pots = clean = scratches = turns = fouls = 0
-        reward, first_turn = 0.0, True
-        while True:
-            action, _ = agent.predict(obs, deterministic=deterministic)
-            obs, r, terminated, truncated, info = env.step(action)
-            n_pot, scratch = len(info["potted"]), bool(info["scratch"])
-            shots, pots, reward = shots + 1, pots + n_pot, reward + float(r)
-            clean += n_pot > 0 and not scratch
-            scratches += scratch
-            rules = "foul" in info  # a game id: the rules say when the turn ends
-            fouls += rules and info["foul"] is not None
-            turn_over = bool(info["turn_over"]) if rules else (n_pot == 0 or scratch)
-            if turn_over:
-                turns += 1
-                first_turn = False
-            if terminated or truncated:
-                turns += not turn_over  # the last turn ends with the episode
-                break
-        cleared = bool(info.get("is_success", False))
-        log.shots.append(shots)
-        log.pots.append(pots)
-        log.clean.append(clean)
-        log.scratches.append(scratches)
-        log.turns.append(turns)
-        log.rewards.append(reward)
-        log.cleared.append(cleared)
-        log.run_out.append(cleared and first_turn)
-        if rules:
-            log.fouls.append(fouls)
-    return log
-
-
-def model_config(path: str | Path) -> dict[str, Any]:
-    """The saved run config of a model: ``config.yaml`` beside it or ``<stem>_config.yaml``."""
-    import yaml  # pyyaml comes with the train extra
-
-    path = Path(path)
-    for candidate in (path.with_name(f"{path.stem}_config.yaml"), path.parent / "config.yaml"):
-        if candidate.is_file():
-            return yaml.safe_load(candidate.read_text()) or {}
-    return {}
-
-
-def load_model(path: str | Path, algo: str | None = None) -> Any:
-    """Load an SB3 model; the algorithm from ``algo``, the saved config, or the file name."""
-    from agents.train_lib import ALGOS  # SB3 only when a model is loaded
-
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"no model file {path}")
-    algo = algo or model_config(path).get("algo")
-    if algo is None:
-        algo = next((name for name in ALGOS if name in path.name.lower()), None)
-    if algo is None:
-        raise ValueError(f"cannot tell the algorithm of {path}: pass algo= (one of {list(ALGOS)})")
-    return ALGOS[algo].load(str(path), device="cpu")
-
-
 def make_agent(name: str, env: Any, seed: int = 0) -> Any:
     """One of :data:`BASELINES` (``"const:a0,a1"`` too) or an SB3 ``.zip`` path, playing ``env``."""
     if name == "random":
@@ -156,8 +84,6 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Any:
     if name == "search":
         return SearchAgent(env, seed=seed)
     if name == "best-const":
-        from agents.constant_scan import best_constant_agent  # it imports this module
-
         return best_constant_agent(env)
     if name.startswith("const"):  # "const" (full hit, hardest) or "const:a0,a1"
         _, _, values = name.partition(":")
@@ -241,6 +167,13 @@ def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
     return "pots per shot: " + " | ".join(parts)
 
 
+def _yaml_mapping(text: str) -> Any:
+    """``--env-kwargs`` parsed as YAML."""
+    import yaml  # pyyaml: an extra (train), not the core install; needed for --env-kwargs only
+
+    return yaml.safe_load(text)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Command-line entry point."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -263,9 +196,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.episodes < 1:
         parser.error("--episodes must be >= 1")
-    import yaml
-
-    kwargs = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
+    kwargs = _yaml_mapping(args.env_kwargs) if args.env_kwargs else {}
     if not isinstance(kwargs, dict):
         parser.error("--env-kwargs must be a YAML mapping")
     if args.aim:

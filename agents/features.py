@@ -3,9 +3,11 @@
 ``PocketFeatures`` appends the pockets as seen along the aim line; ``GhostBallFeatures``
 appends, per pocket, the ghost-ball shot on the env's reference ball (the aim action that
 plays it, its cut, distances, approach, whether the paths are clear, the speed action the
-geometric model asks for), and ``GhostFeaturesVecEnv`` does the same on an SB3 ``VecEnv``
-(the native one), batched over the tables (:func:`ghost_feature_batch`). With them PPO and
-SAC learn to aim on OneBall-v0 (results/agents.md); without, PPO plays the best constant.
+geometric model asks for), batched over observations (:func:`ghost_feature_batch`); its SB3
+``VecEnv`` counterpart for training is :class:`agents.training.vec_features.GhostFeaturesVecEnv`.
+This module needs no stable-baselines3: a saved model's evaluation applies these wrappers.
+With them PPO and SAC learn to aim on OneBall-v0 (results/agents.md); without, PPO plays the
+best constant.
 
 PocketFeatures: the raw observation plus the pockets as seen along the aim line.
 
@@ -29,12 +31,10 @@ import math
 import gymnasium as gym
 import numpy as np
 from numpy.typing import NDArray
-from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
-from stable_baselines3.common.vec_env.base_vec_env import VecEnvStepReturn
 
-from agents.base import EnvSpec, env_spec
-from agents.geometry import MAX_CUT, MIN_APPROACH_COS, PocketMouths, pocket_mouths
-from agents.ghost_ball import ARRIVAL_SPEED
+from agents.baselines.base import EnvSpec, env_spec
+from agents.baselines.geometry import MAX_CUT, MIN_APPROACH_COS, PocketMouths, pocket_mouths
+from agents.baselines.ghost_ball import ARRIVAL_SPEED
 from pool_env import nearest_object_ball
 
 
@@ -87,7 +87,7 @@ class GhostShotFeatures:
 
     The reference ball is the one the action aims relative to (the nearest object ball;
     :func:`pool_env.nearest_object_ball`). For each direct shot of
-    :func:`agents.geometry.ghost_shots` on it (a cut under 85 degrees, the mouth open to
+    :func:`agents.baselines.geometry.ghost_shots` on it (a cut under 85 degrees, the mouth open to
     the ball's path, the ghost-ball point on the table) that the aim mode can play, easiest
     first (largest aim tolerance), :data:`PER_SHOT` features:
 
@@ -96,12 +96,12 @@ class GhostShotFeatures:
     ``-sin(cut)``, the cut offset in ball diameters), ``cos(cut)``, the cue-to-ghost-point
     distance and the ghost-point-to-pocket distance over the table diagonal, the cosine of
     the approach to the mouth, and the speed action (action[1]) of the speed the geometric
-    model asks for (:func:`agents.geometry.cue_speed` at the ghost-ball agent's arrival
+    model asks for (:func:`agents.baselines.geometry.cue_speed` at the ghost-ball agent's arrival
     speed; clipped to ``[-1, 1]``). Pockets without a playable shot give zero rows at the
     end. Everything comes from the layout and the table's public geometry; no simulation.
 
     Args:
-        spec: The environment's table, aim mode and ranges (:func:`agents.base.env_spec`).
+        spec: The environment's table, aim mode and ranges (:func:`agents.baselines.base.env_spec`).
     """
 
     #: Features per shot (see above).
@@ -127,7 +127,7 @@ class GhostShotFeatures:
         Decoding the observation (float32, ~0.1 um) rather than reading the env's state
         makes the features a function of the observation alone: the same for a training
         step, a terminal observation and an evaluation env. Touching balls are not pushed
-        apart as :func:`agents.base.decode_observation` does for the simulator: the
+        apart as :func:`agents.baselines.base.decode_observation` does for the simulator: the
         geometry here does not need a valid layout.
         """
         table = self.spec.table
@@ -165,42 +165,6 @@ class GhostBallFeatures(gym.ObservationWrapper):
         return np.concatenate([observation, extra])
 
 
-class GhostFeaturesVecEnv(VecEnvWrapper):
-    """The SB3 ``VecEnv`` counterpart of :class:`GhostBallFeatures` (``--vec native``).
-
-    It appends the same features to every observation, terminal observations included, so
-    that the native vector env (all tables in one compiled call) trains on what a
-    ``GhostBallFeatures`` env evaluates on.
-
-    Args:
-        venv: A ``VecEnv`` of ``PoolEnv`` tables (e.g. :class:`agents.native_vec.NativeVecEnv`).
-    """
-
-    def __init__(self, venv: VecEnv) -> None:
-        self.ghost_features = GhostShotFeatures(env_spec(venv))
-        raw = venv.observation_space.shape[0]
-        space = gym.spaces.Box(-1.0, 1.0, (raw + self.ghost_features.size,), np.float32)
-        super().__init__(venv, observation_space=space)
-
-    def _append(self, observations: NDArray[np.float32]) -> NDArray[np.float32]:
-        extra = self.ghost_features.of_observations(observations)
-        return np.concatenate([observations, extra], axis=1)
-
-    def reset(self) -> NDArray[np.float32]:
-        """Reset every table; observations with their features."""
-        return self._append(self.venv.reset())
-
-    def step_wait(self) -> VecEnvStepReturn:
-        """Step every table; observations (and terminal ones) with their features."""
-        obs, rewards, dones, infos = self.venv.step_wait()
-        ended = [i for i, info in enumerate(infos) if "terminal_observation" in info]
-        if ended:  # one batch for all of them (one shot per episode: often every table)
-            final = self._append(np.stack([infos[i]["terminal_observation"] for i in ended]))
-            for i, row in zip(ended, final, strict=True):
-                infos[i]["terminal_observation"] = row
-        return self._append(obs), rewards, dones, infos
-
-
 def ghost_feature_batch(
     spec: EnvSpec,
     mouths: PocketMouths,
@@ -209,16 +173,16 @@ def ghost_feature_batch(
 ) -> NDArray[np.float32]:
     """:class:`GhostShotFeatures` of ``B`` layouts at once, ``(B, K * PER_SHOT)`` float32.
 
-    The same shots as :func:`agents.geometry.ghost_shots` on each layout's nearest object
-    ball (offset 0), the same tolerance order, speed (:func:`agents.geometry.cue_speed`)
-    and action (:func:`agents.aiming.shot_to_action`), computed for every layout and
+    The same shots as :func:`agents.baselines.geometry.ghost_shots` on each layout's nearest object
+    ball (offset 0), the same tolerance order, speed (:func:`agents.baselines.geometry.cue_speed`)
+    and action (:func:`agents.baselines.aiming.shot_to_action`), computed for every layout and
     pocket in array operations: about 40 times faster than a loop over the layouts, which
     is what lets the native vector env train on them. ``tests/test_features.py`` checks it
     against those functions on random layouts of both pocket models.
 
     Args:
         spec: The environment's table, aim mode and ranges.
-        mouths: The table's pockets (:func:`agents.geometry.pocket_mouths`).
+        mouths: The table's pockets (:func:`agents.baselines.geometry.pocket_mouths`).
         positions: ``(B, N, 2)`` ball centres, cue (ball 0) first.
         on_table: ``(B, N)`` which balls are on the table.
     """
@@ -331,7 +295,7 @@ def _travel(mouths: PocketMouths, start: NDArray, u: NDArray) -> NDArray[np.floa
 def _path_clear(
     start: NDArray, end: NDArray, pos: NDArray, others: NDArray[np.bool_], reach: float
 ) -> NDArray[np.bool_]:
-    """:func:`agents.geometry.path_clear` for ``(B, K, 2)`` segments against ``(B, N)`` balls."""
+    """``agents.baselines.geometry.path_clear`` for ``(B, K, 2)`` segments, ``(B, N)`` balls."""
     start, end = np.broadcast_arrays(start, end)
     seg = end - start  # (B, K, 2)
     length2 = np.sum(seg * seg, axis=-1)
@@ -347,7 +311,7 @@ def _path_clear(
 def _aim_parameter(
     spec: EnvSpec, angle: NDArray, base: NDArray, dist: NDArray
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """:func:`agents.aiming.aim_parameter` for arrays of directions: ``(param, representable)``."""
+    """``agents.baselines.aiming.aim_parameter`` for arrays of directions: ``(param, ok)``."""
     lo, hi = spec.aim_range
     tol = 1e-9
     if spec.aim == "absolute":

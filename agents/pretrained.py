@@ -34,10 +34,60 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.base import batch_obs, decode_observation
+from agents.baselines.base import batch_obs, decode_observation
 from agents.envs import make_env
 
-__all__ = ["PretrainedPolicy", "load"]
+__all__ = ["ALGO_CLASSES", "PretrainedPolicy", "algo_class", "load", "load_model", "model_config"]
+
+#: The SB3 algorithms by the name used in ``hyperparams.yml``, on the command line and in a
+#: model's file name: their class names in ``stable_baselines3``.
+ALGO_CLASSES = {"ppo": "PPO", "sac": "SAC", "a2c": "A2C", "td3": "TD3"}
+
+
+def algo_class(name: str) -> Any:
+    """The SB3 algorithm class of ``name`` (a key of :data:`ALGO_CLASSES`).
+
+    Raises:
+        ValueError: On an unknown name.
+    """
+    if name not in ALGO_CLASSES:
+        raise ValueError(f"unknown algorithm {name!r}: use one of {list(ALGO_CLASSES)}")
+    # stable-baselines3 (and torch) come with the train extra: imported only when a model is
+    # loaded or built, so that the baselines and their evaluation run on the core install.
+    import stable_baselines3
+
+    return getattr(stable_baselines3, ALGO_CLASSES[name])
+
+
+def model_config(path: str | Path) -> dict[str, Any]:
+    """The saved run config of a model: ``config.yaml`` beside it or ``<stem>_config.yaml``."""
+    import yaml  # pyyaml comes with the train extra, which a saved model needs anyway
+
+    path = Path(path)
+    for candidate in (path.with_name(f"{path.stem}_config.yaml"), path.parent / "config.yaml"):
+        if candidate.is_file():
+            return yaml.safe_load(candidate.read_text()) or {}
+    return {}
+
+
+def load_model(path: str | Path, algo: str | None = None) -> Any:
+    """Load an SB3 model; the algorithm from ``algo``, the saved config, or the file name.
+
+    Raises:
+        FileNotFoundError: If there is no model file.
+        ValueError: If the algorithm cannot be told or is unknown.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no model file {path}")
+    algo = algo or model_config(path).get("algo")
+    if algo is None:
+        algo = next((name for name in ALGO_CLASSES if name in path.name.lower()), None)
+    if algo is None:
+        raise ValueError(
+            f"cannot tell the algorithm of {path}: pass algo= (one of {list(ALGO_CLASSES)})"
+        )
+    return algo_class(algo).load(str(path), device="cpu")
 
 
 class PretrainedPolicy:
@@ -45,7 +95,7 @@ class PretrainedPolicy:
 
     ``predict`` takes the environment's own observations (``(D,)`` or ``(B, D)``; already
     wrapped ones, of the model's input size, pass through unchanged) and has SB3's
-    signature, so it works with ``evaluate_policy`` and :func:`agents.evaluate.run_episodes`.
+    signature, so it works with ``evaluate_policy`` and :func:`agents.episodes.run_episodes`.
 
     Args:
         model: The loaded SB3 model.
@@ -147,8 +197,6 @@ def load(path: str | Path, algo: str | None = None) -> PretrainedPolicy:
         >>> agents.load("models/ppo_oneball.zip").model.__class__.__name__
         'PPO'
     """
-    from agents.evaluate import load_model, model_config  # SB3 only when a model is loaded
-
     path = Path(path)
     config = model_config(path)
     if not path.is_file():

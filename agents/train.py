@@ -1,17 +1,17 @@
-"""Train an SB3 agent on a pool environment; a thin command line over :mod:`agents.train_lib`.
+"""Train an SB3 agent on a pool environment; a thin command line over ``agents.training``.
 
 Three names for one command: ``python train.py`` in a clone, ``python -m agents.train`` or
 the console script ``pool-env-train`` wherever the package is installed (the hyperparameter
 file ships with it). With no arguments it trains PPO on ``pool_env/OneBall-v0`` with the
-hyperparameters of ``agents/hyperparams.yml`` (300k steps on the ghost-ball features over
+hyperparameters of ``agents/training/hyperparams.yml`` (300k steps on the ghost-ball features over
 the native vector env), then prints its pot rate next to random, the best constant action,
 the ghost-ball and the search baselines on the same layouts. Each run writes
 ``runs/<env>/<algo>_s<seed>_<steps>_<time>/``: config.yaml, command.txt, model.zip,
 evaluation.md/.json, curve.csv, learning_curve.png and tensorboard logs (tb/).
 
-With ``--backend rllib`` it trains PPO on Ray RLlib instead (:mod:`agents.rllib_train`):
-EnvRunners sample in parallel, each with its own batch of tables, on this machine or on
-every node of the Ray cluster that ``RAY_ADDRESS`` names.
+With ``--backend rllib`` it trains PPO on Ray RLlib instead
+(:mod:`agents.integrations.rllib_train`): EnvRunners sample in parallel, each with its own
+batch of tables, on this machine or on every node of the Ray cluster that ``RAY_ADDRESS`` names.
 
 Examples::
 
@@ -30,7 +30,9 @@ from typing import Any
 
 import yaml
 
-from agents.train_lib import ALGOS, NATIVE_WRAPPERS, VEC_KINDS, resolve_config, train
+from agents.integrations.rllib_train import resolve_run
+from agents.integrations.rllib_train import train as train_rllib
+from agents.training.train_lib import ALGOS, NATIVE_WRAPPERS, VEC_KINDS, resolve_config, train
 
 
 def parse_sets(items: list[str]) -> dict[str, Any]:
@@ -78,7 +80,7 @@ def build_parser() -> argparse.ArgumentParser:
         "--wrapper",
         help="observation wrapper: ghost_features (the OneBall default), pocket_features, none",
     )
-    p.add_argument("--hyperparams", help="YAML file (default: agents/hyperparams.yml)")
+    p.add_argument("--hyperparams", help="YAML file (default: agents/training/hyperparams.yml)")
     p.add_argument("--runs", default="runs", help="parent folder of run folders")
     p.add_argument("--set", nargs="*", default=[], metavar="KEY=VALUE", help="algorithm kwargs")
     return p
@@ -134,9 +136,6 @@ def _train_rllib(
         parser.error("--backend rllib trains PPO only")
     if args.vec or args.wrapper:
         parser.error("--backend rllib always samples the native vector env: no --vec/--wrapper")
-    from agents.rllib_train import resolve_run
-    from agents.rllib_train import train as train_rllib
-
     overrides: dict[str, Any] = {
         "seed": args.seed,
         "n_timesteps": args.timesteps,

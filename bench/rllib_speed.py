@@ -7,7 +7,7 @@ Every configuration uses a ``PoolVectorEnv`` of ``--tables`` tables of OneBall-v
 
 * RLlib: ``foreach_env_runner(sample)`` on every remote EnvRunner at once (they run in
   parallel), wall time of the round;
-* SB3: ``PPO.collect_rollouts`` on ``agents.native_vec`` (one process).
+* SB3: ``PPO.collect_rollouts`` on ``agents.vec.native_vec`` (one process).
 
 Usage::
 
@@ -41,7 +41,7 @@ def rllib_rate(
         Median wall-clock env steps/s of all runners together, median env steps per
         CPU-second of one runner (its own process time), and the loads seen.
     """
-    from agents.rllib_train import build_config, resolve_run
+    from agents.integrations.rllib_train import build_config, resolve_run
 
     run = resolve_run(ENV_ID, {"env_runners": runners, "n_envs": tables})
     algo = build_config(run).build_algo()
@@ -71,7 +71,7 @@ def sb3_rate(tables: int, steps: int, repeats: int) -> tuple[float, list[str]]:
     from stable_baselines3 import PPO
     from stable_baselines3.common.callbacks import CallbackList
 
-    from agents.native_vec import make_native_vec_env
+    from agents.vec.native_vec import make_native_vec_env
 
     env = make_native_vec_env(ENV_ID, tables, 0)
     n_steps = max(1, steps // tables)

@@ -12,7 +12,7 @@ a warm-up, ``--repeats`` runs of about ``--seconds`` each give the median and th
 numba disk cache, and for the process-based kinds spawning the workers.
 
 Kinds: ``native`` (:class:`pool_env.vector.PoolVectorEnv`), ``native+sb3`` (the same
-behind ``agents.native_vec``'s SB3 adapter, per-table info dicts included), Gymnasium's
+behind ``agents.vec.native_vec``'s SB3 adapter, per-table info dicts included), Gymnasium's
 ``SyncVectorEnv`` and ``AsyncVectorEnv``, SB3's ``DummyVecEnv`` and ``SubprocVecEnv``
 (``make_vec_env``, with its ``Monitor``). The PPO part trains the same budget with the
 project's OneBall PPO settings on the native env and on ``SubprocVecEnv``.
@@ -40,7 +40,7 @@ N_VALUES = (1, 16, 256, 4096)
 WORKER_MB = 200  # private memory of one SubprocVecEnv worker here (it imports SB3 and torch)
 TARGET_SHOTS = 200_000  # OneBall-v0, native, N >= 256
 TARGET_RATIO = 10.0  # native against SubprocVecEnv at the same N
-PPO_SETTINGS = {  # agents/hyperparams.yml, pool_env/OneBall-v0, ppo
+PPO_SETTINGS = {  # agents/training/hyperparams.yml, pool_env/OneBall-v0, ppo
     "n_steps": 256,
     "batch_size": 256,
     "n_epochs": 10,
@@ -61,7 +61,7 @@ def make(kind: str, env_id: str, n: int, seed: int) -> Any:
     if kind == "native":
         return gym.make_vec(env_id, n, vectorization_mode="vector_entry_point", **same_step)
     if kind == "native+sb3":
-        from agents.native_vec import make_native_vec_env
+        from agents.vec.native_vec import make_native_vec_env
 
         return make_native_vec_env(env_id, n, seed)
     if kind in ("sync", "async"):
@@ -143,7 +143,7 @@ def ppo(kind: str, timesteps: int, n_envs: int, seed: int) -> dict[str, Any]:
     torch.set_num_threads(1)  # as train.py: fastest on this machine
     env_id = "pool_env/OneBall-v0"
     if kind == "native":
-        from agents.native_vec import make_native_vec_env
+        from agents.vec.native_vec import make_native_vec_env
 
         inner = VecMonitor(make_native_vec_env(env_id, n_envs, seed))
     else:
@@ -215,7 +215,7 @@ def report(speed: dict, runs: dict, args: argparse.Namespace, loads: list[float]
         "2.0 means both cores busy), same-step autoreset (every step is one shot per table;",
         "resets included). Each configuration runs in a fresh process.",
         "`native`: `gym.make_vec(id, N)` (PoolVectorEnv); `native+sb3`: the same through",
-        "`agents.native_vec.make_native_vec_env` (SB3 `VecEnv`, per-table info dicts);",
+        "`agents.vec.native_vec.make_native_vec_env` (SB3 `VecEnv`, per-table info dicts);",
         "`sync`/`async`: Gymnasium's `SyncVectorEnv`/`AsyncVectorEnv` of `gym.make(id)`;",
         "`dummy`/`subproc`: SB3's `make_vec_env` with `DummyVecEnv`/`SubprocVecEnv`.",
         "",
@@ -268,9 +268,9 @@ def report(speed: dict, runs: dict, args: argparse.Namespace, loads: list[float]
             "",
             f"## PPO, same budget: {args.ppo_steps:,} steps of OneBall-v0",
             "",
-            "Project settings (agents/hyperparams.yml: n_steps x n_envs = 2,048 per update, "
-            "batch 256, 10 epochs, gamma 0), one torch thread. `env s`: time inside the vector "
-            "env's steps and resets; the rest is the policy and the updates.",
+            "Project settings (agents/training/hyperparams.yml: n_steps x n_envs = 2,048 per "
+            "update, batch 256, 10 epochs, gamma 0), one torch thread. `env s`: time inside the "
+            "vector env's steps and resets; the rest is the policy and the updates.",
             "",
             "| vector env | n_envs | wall s | env s | mean reward (last 100 episodes) |",
             "|---|---|---|---|---|",

@@ -59,7 +59,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
       reward 0, not terminated, not truncated, and no info for it.
     * ``SAME_STEP``: a finished table is reset within the step that ends it; its final
       observation is ``info["final_obs"][i]`` and its step info ``info["final_info"]``
-      (Stable-Baselines3's convention; ``agents.native_vec`` uses this mode).
+      (Stable-Baselines3's convention; ``agents.vec.native_vec`` uses this mode).
     * ``DISABLED``: finished tables wait for ``reset(options={"reset_mask": mask})``.
 
     ## Seeding

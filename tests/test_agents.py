@@ -13,10 +13,10 @@ import pytest
 
 import pool_env
 from agents import GhostBallAgent, RandomAgent, SearchAgent, run_episodes
-from agents.aiming import decode, shot_to_action
-from agents.base import decode_observation, env_spec
+from agents.baselines.aiming import decode, shot_to_action
+from agents.baselines.base import decode_observation, env_spec
+from agents.baselines.random_agent import ConstantAgent
 from agents.features import PocketFeatures
-from agents.random_agent import ConstantAgent
 
 ONE = "pool_env/OneBall-v0"
 

@@ -9,8 +9,8 @@ import numpy as np
 import pytest
 
 import pool_env  # noqa: F401  (registers the ids)
+from agents.baselines.ghost_ball import GameGhostBallAgent, GhostBallAgent
 from agents.evaluate import format_table, make_agent, run_episodes
-from agents.ghost_ball import GameGhostBallAgent, GhostBallAgent
 from tests.test_games import KWARGS, layout, parked, straight_in
 
 CUT = {k: v for k, v in KWARGS.items() if k != "aim"}  # the default cut aim

@@ -16,7 +16,7 @@ import pytest
 
 import pool_env
 from agents import GhostBallAgent, RandomAgent, SearchAgent, run_episodes
-from agents.geometry import cue_speed, pocket_mouths
+from agents.baselines.geometry import cue_speed, pocket_mouths
 from pool_env.sim.kernels import loop
 from pool_env.sim.table import CORNER_MOUTH, SIDE_MOUTH, standard_pockets
 
@@ -237,7 +237,7 @@ def test_ghost_ball_features_by_hand() -> None:
 
 def test_cue_ball_trace_predicts_the_simulators_scratches() -> None:
     """Tangent line and cushions, cue ball alone: it must agree with the full simulation."""
-    from agents.geometry import cue_ball_scratches, ghost_shots
+    from agents.baselines.geometry import cue_ball_scratches, ghost_shots
 
     env = gym.make(ONE, table=CIRCLES)  # rails the whole length, as the trace assumes
     table = env.unwrapped.table

@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 from gymnasium.vector import AutoresetMode
 
-from agents.gym_vec import SameStepEpisodeStatistics, make_cleanrl_envs, make_vec
-from agents.native_vec import make_native_vec_env
+from agents.vec.gym_vec import SameStepEpisodeStatistics, make_cleanrl_envs, make_vec
+from agents.vec.native_vec import make_native_vec_env
 
 ONE = "pool_env/OneBall-v0"
 

@@ -12,7 +12,7 @@ from gymnasium.utils.env_checker import data_equivalence
 from stable_baselines3.common.vec_env import DummyVecEnv, VecMonitor, VecNormalize
 
 import pool_env  # noqa: F401
-from agents.native_vec import NativeVecEnv, make_native_vec_env
+from agents.vec.native_vec import NativeVecEnv, make_native_vec_env
 from pool_env.vector import PoolVectorEnv
 
 

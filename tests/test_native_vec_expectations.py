@@ -1,4 +1,4 @@
-"""The SB3 adapter (agents/native_vec.py) against outcomes worked out by hand.
+"""The SB3 adapter (agents/vec/native_vec.py) against outcomes worked out by hand.
 
 ``test_native_vec.py`` compares the adapter with a ``DummyVecEnv`` of the same
 environments, which shares every reward, observation and seeding function with it; here
@@ -14,7 +14,7 @@ import pytest
 
 pytest.importorskip("stable_baselines3")
 
-from agents.native_vec import make_native_vec_env
+from agents.vec.native_vec import make_native_vec_env
 from pool_env.env import PoolEnv
 from tests.env_scenes import SHOTS, Shot
 

@@ -18,8 +18,8 @@ pytest.importorskip("ray.rllib", reason="needs the rllib extra: pip install -e '
 from gymnasium.vector import AutoresetMode  # noqa: E402
 
 from agents import hyperparams  # noqa: E402
-from agents.rllib_env import make_env, register  # noqa: E402
-from agents.rllib_train import (  # noqa: E402
+from agents.integrations.rllib_env import make_env, register  # noqa: E402
+from agents.integrations.rllib_train import (  # noqa: E402
     RLlibRun,
     build_config,
     fit,

@@ -20,7 +20,7 @@ pytest.importorskip("ray.rllib", reason="needs the rllib extra: pip install -e '
 
 from ray.cluster_utils import Cluster  # noqa: E402
 
-from agents.rllib_train import build_config, resolve_run  # noqa: E402
+from agents.integrations.rllib_train import build_config, resolve_run  # noqa: E402
 
 ONE = "pool_env/OneBall-v0"
 

@@ -11,9 +11,9 @@ import pytest
 import yaml
 
 import train
-from agents import hyperparams
 from agents.evaluate import evaluate_agent, load_model
-from agents.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
+from agents.training import hyperparams
+from agents.training.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
 from pool_env import ENV_IDS
 
 TINY = [
@@ -81,7 +81,7 @@ def test_subproc_vec_env_steps() -> None:
 
 
 def test_native_vec_missing_is_a_clear_error(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setitem(sys.modules, "agents.native_vec", None)  # as if not installed
+    monkeypatch.setitem(sys.modules, "agents.vec.native_vec", None)  # as if not installed
     with pytest.raises(ImportError, match="native_vec"):
         make_vec(TrainConfig(n_envs=2, vec="native"))
 

@@ -9,8 +9,8 @@ from pathlib import Path
 import pytest
 import yaml
 
-from agents import hyperparams
-from agents.zoo import ZOO_ALGOS, ZOO_DIR, zoo_entry, zoo_file_text
+from agents.integrations.zoo import ZOO_ALGOS, ZOO_DIR, zoo_entry, zoo_file_text
+from agents.training import hyperparams
 from pool_env.registration import ENV_IDS
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -19,7 +19,7 @@ ROOT = Path(__file__).resolve().parents[1]
 @pytest.mark.parametrize("algo", ZOO_ALGOS)
 def test_shipped_zoo_files_are_what_hyperparams_yml_generates(algo: str) -> None:
     assert (ZOO_DIR / f"{algo}.yml").read_text() == zoo_file_text(algo), (
-        "agents/zoo is out of date: run python -m agents.zoo"
+        "agents/integrations/zoo is out of date: run python -m agents.integrations.zoo"
     )
 
 
@@ -52,7 +52,7 @@ def test_zoo_trains_ppo_with_the_shipped_file(tmp_path: Path) -> None:
     pytest.importorskip("rl_zoo3", reason="needs the zoo extra: pip install -e '.[zoo]'")
     command = [
         sys.executable, "-m", "rl_zoo3.train", "--algo", "ppo", "--env", "pool_env/OneBall-v0",
-        "--gym-packages", "pool_env", "-conf", "agents/zoo/ppo.yml", "-n", "2048",
+        "--gym-packages", "pool_env", "-conf", "agents/integrations/zoo/ppo.yml", "-n", "2048",
         "--num-threads", "1", "-f", str(tmp_path), "--eval-freq", "-1", "--seed", "0",
     ]  # fmt: skip
     done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=300)

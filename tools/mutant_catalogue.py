@@ -1182,7 +1182,7 @@ _ALL: tuple[Mutant, ...] = (
     Mutant(
         "sb3-terminal-observation",
         "sb3",
-        "agents/native_vec.py",
+        "agents/vec/native_vec.py",
         'infos[i]["terminal_observation"] = final_obs[i]',
         'infos[i]["terminal_observation"] = obs[i]',
         SB3,
@@ -1191,7 +1191,7 @@ _ALL: tuple[Mutant, ...] = (
     Mutant(
         "sb3-time-limit-flag",
         "sb3",
-        "agents/native_vec.py",
+        "agents/vec/native_vec.py",
         "columns.append((truncated & ~terminated).tolist())",
         "columns.append(truncated.tolist())",
         SB3,
@@ -1200,7 +1200,7 @@ _ALL: tuple[Mutant, ...] = (
     Mutant(
         "sb3-seed",
         "sb3",
-        "agents/native_vec.py",
+        "agents/vec/native_vec.py",
         "vec_env.seed(seed)",
         "vec_env.seed(seed + 1)",
         SB3,

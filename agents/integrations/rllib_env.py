@@ -14,7 +14,7 @@ Autoreset: RLlib 2.60's ``SingleAgentEnvRunner`` implements only Gymnasium's nex
 autoreset (it records the observation of the step after an episode ends as the next
 episode's first observation), so the tables run in ``NEXT_STEP`` mode and one-shot episodes
 cost two vector steps each (measured: 0.5 episodes per vector step per table; the SB3
-adapter, :mod:`agents.native_vec`, runs same-step: 1.0). Another mode is refused rather
+adapter, :mod:`agents.vec.native_vec`, runs same-step: 1.0). Another mode is refused rather
 than silently corrupting the episodes.
 """
 
@@ -73,7 +73,7 @@ def register(env_id: str) -> None:
     Raises:
         ValueError: If ``env_id`` is not a pool_env id.
     """
-    from ray.tune.registry import register_env
+    from ray.tune.registry import register_env  # the rllib extra: only when registering
 
     from pool_env.registration import ENV_IDS
 

@@ -15,9 +15,9 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluate import run_episodes
+from agents.baselines.random_agent import ConstantAgent
+from agents.episodes import run_episodes
 from agents.metrics import Estimate
-from agents.random_agent import ConstantAgent
 
 #: First seed of the scan's episodes (evaluations use 10_000 and 20_000 onwards).
 SCAN_SEED = 30_000

@@ -1,13 +1,14 @@
 """SearchAgent: ghost-ball candidate shots, checked shot by shot on the simulator.
 
 The oracle upper bound among the baselines (it was called ``GhostBallAgent`` before the
-geometric heuristic of :mod:`agents.ghost_ball` took that name). For every legal object ball
-and pocket it aims at a few points across the pocket's mouth (:func:`agents.geometry.
-ghost_shots`), keeps the shots whose paths are clear, and takes a few speeds from the known
-rolling deceleration (:func:`agents.geometry.cue_speed`) so that the object ball arrives
-with a margin. Each candidate is then played on :func:`pool_env.shoot` (a shot costs ~10-20
-us): the ones that pot without scratching are replayed with small aim and speed errors, and
-the most forgiving one wins (ties: the softer and straighter shot). When no candidate pots
+geometric heuristic of :mod:`agents.baselines.ghost_ball` took that name). For every legal
+object ball and pocket it aims at a few points across the pocket's mouth
+(:func:`agents.baselines.geometry.ghost_shots`), keeps the shots whose paths are clear, and
+takes a few speeds from the known rolling deceleration
+(:func:`agents.baselines.geometry.cue_speed`) so that the object ball arrives with a margin.
+Each candidate is then played on :func:`pool_env.shoot` (a shot costs ~10-20 us): the ones
+that pot without scratching are replayed with small aim and speed errors, and the most
+forgiving one wins (ties: the softer and straighter shot). When no candidate pots
 (a rack, a blocked ball), a random search over actions, also simulated, picks the best shot
 it finds.
 
@@ -25,9 +26,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.aiming import decode, shot_to_action
-from agents.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
-from agents.geometry import (
+from agents.baselines.aiming import decode, shot_to_action
+from agents.baselines.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
+from agents.baselines.geometry import (
     MAX_CUT,
     LegalTargets,
     any_object_ball,

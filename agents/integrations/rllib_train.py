@@ -7,7 +7,7 @@ a local Ray on this machine, or joins the cluster that ``RAY_ADDRESS`` (or ``--a
 names, so the same command trains on one machine or many: more EnvRunners sample in
 parallel across the nodes; the single learner does not scale out.
 
-The hyperparameters are the SB3 ones of ``agents/hyperparams.yml`` (PPO entry of the env
+The hyperparameters are the SB3 ones of ``agents/training/hyperparams.yml`` (PPO entry of the env
 id), translated by :func:`rllib_training_kwargs`: the same file drives both backends.
 A run writes ``runs/<env>/rllib_ppo_s<seed>_<steps>_<time>/``: ``config.yaml``,
 ``command.txt``, ``progress.csv`` (per iteration), ``checkpoint/`` and ``evaluation.md`` /
@@ -27,8 +27,9 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
-from agents import hyperparams, runs
 from agents.evaluate import evaluate_agent, format_table, one_line
+from agents.integrations.rllib_env import register
+from agents.training import hyperparams, runs
 
 #: SB3 PPO's defaults: what an entry that does not set a key means (RLlib's differ).
 SB3_PPO_DEFAULTS: dict[str, Any] = {
@@ -178,10 +179,9 @@ def _learning_rate(value: Any, n_timesteps: int) -> float | list[list[float]]:
 
 def build_config(run: RLlibRun) -> Any:
     """The RLlib ``PPOConfig`` of ``run`` (registers the env creator with Ray first)."""
+    # Ray (the rllib extra) is heavy: imported when a run is configured, not with this module.
     from ray.rllib.algorithms.ppo import PPOConfig
     from ray.rllib.core.rl_module.default_model_config import DefaultModelConfig
-
-    from agents.rllib_env import register
 
     register(run.env_id)
     training = rllib_training_kwargs(run.algo_kwargs, run.n_timesteps, run.sb3_n_envs)
@@ -203,7 +203,7 @@ def build_config(run: RLlibRun) -> Any:
 
 
 class RLlibPolicy:
-    """A trained RLlib module with SB3's ``predict``, for :func:`agents.evaluate.run_episodes`.
+    """A trained RLlib module with SB3's ``predict``, for :func:`agents.episodes.run_episodes`.
 
     The deterministic action is the mean of the Gaussian, clipped to the action box (what
     RLlib's module-to-env connector sends to the env).
@@ -217,7 +217,7 @@ class RLlibPolicy:
         deterministic: bool = True,
     ) -> tuple[NDArray[np.float32], None]:  # fmt: skip
         """The action for one observation (``deterministic=False`` samples the Gaussian)."""
-        import torch
+        import torch  # heavy (the rllib extra): only when the policy acts
 
         with torch.no_grad():
             batch = {"obs": torch.as_tensor(np.asarray(obs, dtype=np.float32)[None])}
@@ -238,7 +238,7 @@ def train(run: RLlibRun, root: str | Path = "runs", address: str | None = None) 
     Returns:
         The run folder.
     """
-    import ray
+    import ray  # heavy (the rllib extra): only when a run starts
 
     out = runs.run_folder(root, run.env_id, "rllib_ppo", run.seed, run.n_timesteps)
     started_here = not ray.is_initialized()
@@ -260,7 +260,7 @@ def fit(algo: Any, run: RLlibRun, out: Path) -> int:
     Returns:
         The environment steps sampled (whole iterations).
     """
-    import torch
+    import torch  # heavy (the rllib extra): only when a run starts
 
     # The learner's small MLP: torch's default of one thread per core makes the threads
     # fight each other and the EnvRunners on a small machine (15-20x slower measured with

@@ -4,16 +4,16 @@ For every legal object ball and pocket it puts the cue ball on the ghost-ball po
 behind the object ball on the line to the pocket's mouth), keeps the shots whose paths are
 clear of the other balls and whose pocket is open to the object ball's path, and plays the
 easiest: the one that forgives the largest aim error (thin cuts, long distances and a mouth
-seen at an angle all shrink it; :func:`agents.geometry.ghost_shots`) among those whose cue
+seen at an angle all shrink it; :func:`agents.baselines.geometry.ghost_shots`) among those whose cue
 ball, followed along the tangent line and off the cushions, stays out of the pockets
-(:func:`agents.geometry.cue_ball_scratches`). The speed comes from
+(:func:`agents.baselines.geometry.cue_ball_scratches`). The speed comes from
 the distances, the rolling resistance and the ball-ball restitution
-(:func:`agents.geometry.cue_speed`) so that the object ball drops at a gentle
+(:func:`agents.baselines.geometry.cue_speed`) so that the object ball drops at a gentle
 :data:`ARRIVAL_SPEED`. When no direct shot exists (a rack, a ball in the way) it hits the
 nearest legal ball full at the top speed: the break, or a shot that opens the table.
 
 It never calls the simulator: everything it knows is the table's public geometry and
-constants and the layout. Compare :class:`agents.search.SearchAgent`, which checks
+constants and the layout. Compare :class:`agents.baselines.search.SearchAgent`, which checks
 candidate shots on the simulator (the oracle upper bound).
 """
 
@@ -25,9 +25,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.aiming import shot_to_action
-from agents.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
-from agents.geometry import (
+from agents.baselines.aiming import shot_to_action
+from agents.baselines.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
+from agents.baselines.geometry import (
     GhostShot,
     LegalTargets,
     any_object_ball,

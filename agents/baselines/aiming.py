@@ -17,7 +17,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.base import EnvSpec
+from agents.baselines.base import EnvSpec
 from pool_env import AIM_MODES, decode_shots, nearest_object_ball
 
 # Slack when testing a parameter against its range: the float32 round trip moves it ~1e-7.

@@ -2,9 +2,9 @@
 
 Usage::
 
-    python -m agents.summarize runs            # every run under runs/
-    python -m agents.summarize runs/OneBall-v0 --env pool_env/OneBall-v0
-    python -m agents.summarize runs --plot results/oneball_cut_learning.png --title "..."
+    python -m agents.training.summarize runs            # every run under runs/
+    python -m agents.training.summarize runs/OneBall-v0 --env pool_env/OneBall-v0
+    python -m agents.training.summarize runs --plot results/oneball_cut_learning.png --title "..."
 
 The means over seeds carry a 95% interval (Student's t over the seeds' values: it says how
 much the *training* varies, the per-run brackets how much the evaluation does).
@@ -146,7 +146,7 @@ def plot(
 
     The baselines are the first run's that evaluated them, else ``given`` (name: pot rate).
     """
-    from agents.plots import seeds_curve  # matplotlib only now
+    from agents.training.plots import seeds_curve  # matplotlib only now
 
     curves: dict[str, list] = defaultdict(list)
     baselines: dict[str, float] = dict(given or {})

@@ -22,7 +22,6 @@ from typing import Any
 
 import numpy as np
 import yaml
-from stable_baselines3 import A2C, PPO, SAC, TD3
 from stable_baselines3.common.base_class import BaseAlgorithm
 from stable_baselines3.common.callbacks import BaseCallback
 from stable_baselines3.common.env_util import make_vec_env
@@ -34,14 +33,17 @@ from stable_baselines3.common.vec_env import (
     VecMonitor,
 )
 
-from agents import hyperparams, runs
+from agents.baselines.constant_scan import best_constant_agent
 from agents.envs import EnvFactory, make_env
-from agents.evaluate import evaluate_agent, format_table, one_line, run_episodes
-from agents.features import GhostFeaturesVecEnv
+from agents.episodes import run_episodes
+from agents.evaluate import evaluate_agent, format_table, one_line
 from agents.metrics import Estimate
+from agents.pretrained import ALGO_CLASSES, algo_class
+from agents.training import hyperparams, runs
+from agents.training.vec_features import GhostFeaturesVecEnv
 
 #: Algorithms by the name used in ``hyperparams.yml`` and on the command line.
-ALGOS: dict[str, type[BaseAlgorithm]] = {"ppo": PPO, "sac": SAC, "a2c": A2C, "td3": TD3}
+ALGOS: dict[str, type[BaseAlgorithm]] = {name: algo_class(name) for name in ALGO_CLASSES}
 
 #: Vectorized environment kinds (``--vec``).
 VEC_KINDS = ("dummy", "subproc", "native")
@@ -106,7 +108,7 @@ def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = 
 
     Raises:
         ValueError: On an unknown kind, or a wrapper the native kind cannot apply.
-        ImportError: For ``native`` when ``agents.native_vec`` is not installed.
+        ImportError: For ``native`` when ``agents.vec.native_vec`` is not installed.
     """
     n = n_envs or config.n_envs
     seed = config.seed if seed is None else seed
@@ -116,11 +118,11 @@ def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = 
                 f"--vec native applies only the wrappers {sorted(NATIVE_WRAPPERS)}, not "
                 f"{config.wrapper!r}; use --vec dummy"
             )
-        try:
-            from agents.native_vec import make_native_vec_env
+        try:  # optional: the native adapter is the one VecEnv this module does not need
+            from agents.vec.native_vec import make_native_vec_env
         except ImportError as exc:
             raise ImportError(
-                "--vec native needs agents/native_vec.py (make_native_vec_env), which is not "
+                "--vec native needs agents/vec/native_vec.py (make_native_vec_env), which is not "
                 f"available here ({exc}); use --vec dummy or --vec subproc"
             ) from exc
         venv = VecMonitor(make_native_vec_env(config.env_id, n, seed, config.env_kwargs or None))
@@ -231,7 +233,7 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     Returns:
         The run folder.
     """
-    import torch
+    import torch  # heavy (the train extra): only when a run starts
 
     # Why one thread: the policy is a small MLP, and torch's default (one thread per core)
     # spends more on synchronising threads than on the matrix products; on the 2-core
@@ -274,7 +276,7 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     model.save(out / "model.zip")
 
     rows, best_const = _final_evaluation(config, model)
-    from agents.plots import learning_curve  # matplotlib only now
+    from agents.training.plots import learning_curve  # matplotlib only now
 
     _write_curve(out, history)
     learning_curve(out / "learning_curve.png", history, rows, config)
@@ -321,8 +323,6 @@ def _final_evaluation(
     Returns:
         The rows by agent name, and the best constant action (``None`` without baselines).
     """
-    from agents.constant_scan import best_constant_agent
-
     n, kw, wrap = config.final_episodes, config.env_kwargs, config.wrapper
     name = f"{config.algo} (this run)"
     rows = {name: evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, wrap, agent=model)}

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.base import BaselineAgent
+from agents.baselines.base import BaselineAgent
 
 
 class RandomAgent(BaselineAgent):

@@ -1,0 +1,8 @@
+"""The baselines: agents that play from geometry or the simulator, with SB3's ``predict``.
+
+Nothing here needs stable-baselines3 or torch: the core install plays and evaluates them.
+``random_agent`` (uniform or one constant action), ``constant_scan`` (the best constant of a
+grid), ``ghost_ball`` (the geometric ghost-ball heuristic), ``search`` (candidate shots checked
+on the simulator); ``base``, ``aiming`` and ``geometry`` are what they share (the env's spec
+and observation, the action codec, the table's shots).
+"""

@@ -1,0 +1,54 @@
+"""The ghost-ball features on an SB3 ``VecEnv``: what ``--vec native`` trains on.
+
+The ``gym.Env`` wrapper of the same features is :class:`agents.features.GhostBallFeatures`,
+which the evaluation envs use; both compute them with :class:`agents.features.GhostShotFeatures`.
+"""
+
+from __future__ import annotations
+
+import gymnasium as gym
+import numpy as np
+from numpy.typing import NDArray
+from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
+from stable_baselines3.common.vec_env.base_vec_env import VecEnvStepReturn
+
+from agents.baselines.base import env_spec
+from agents.features import GhostShotFeatures
+
+__all__ = ["GhostFeaturesVecEnv"]
+
+
+class GhostFeaturesVecEnv(VecEnvWrapper):
+    """The SB3 ``VecEnv`` counterpart of :class:`GhostBallFeatures` (``--vec native``).
+
+    It appends the same features to every observation, terminal observations included, so
+    that the native vector env (all tables in one compiled call) trains on what a
+    ``GhostBallFeatures`` env evaluates on.
+
+    Args:
+        venv: A ``VecEnv`` of ``PoolEnv`` tables (e.g. :class:`agents.vec.native_vec.NativeVecEnv`).
+    """
+
+    def __init__(self, venv: VecEnv) -> None:
+        self.ghost_features = GhostShotFeatures(env_spec(venv))
+        raw = venv.observation_space.shape[0]
+        space = gym.spaces.Box(-1.0, 1.0, (raw + self.ghost_features.size,), np.float32)
+        super().__init__(venv, observation_space=space)
+
+    def _append(self, observations: NDArray[np.float32]) -> NDArray[np.float32]:
+        extra = self.ghost_features.of_observations(observations)
+        return np.concatenate([observations, extra], axis=1)
+
+    def reset(self) -> NDArray[np.float32]:
+        """Reset every table; observations with their features."""
+        return self._append(self.venv.reset())
+
+    def step_wait(self) -> VecEnvStepReturn:
+        """Step every table; observations (and terminal ones) with their features."""
+        obs, rewards, dones, infos = self.venv.step_wait()
+        ended = [i for i, info in enumerate(infos) if "terminal_observation" in info]
+        if ended:  # one batch for all of them (one shot per episode: often every table)
+            final = self._append(np.stack([infos[i]["terminal_observation"] for i in ended]))
+            for i, row in zip(ended, final, strict=True):
+                infos[i]["terminal_observation"] = row
+        return self._append(obs), rewards, dones, infos
