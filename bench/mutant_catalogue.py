@@ -116,6 +116,7 @@ INTERPRETABLE = frozenset(
         "tests/test_wpa.py",
         "tests/test_layout_rules.py",
         "tests/test_spin_resolve.py",
+        "tests/test_spin_cushion.py",
         "tests/test_spin_strike.py",
     }
 )
@@ -1176,6 +1177,7 @@ _ALL: tuple[Mutant, ...] = (
 
 # The spin level's resolution kernels (issue 19): their closed-form and property tests.
 SPIN_RESOLVE = ("tests/test_spin_resolve.py",)
+SPIN_CUSHION = ("tests/test_spin_cushion.py",)
 SPIN_STRIKE = ("tests/test_spin_strike.py",)
 _SC = _K + "spin_collide.py"
 _SU = _K + "spin_cushion.py"
@@ -1258,7 +1260,7 @@ _SPIN_RESOLVE: tuple[Mutant, ...] = (
         _SU,
         "pt = min(f_c * pn, (2.0 / 7.0) * slip)",
         "pt = (2.0 / 7.0) * slip if (2.0 / 7.0) * slip <= pn else f_c * pn",
-        SPIN_RESOLVE,
+        SPIN_CUSHION,
         "Han's slip/stick boundary without mu (the paper's typo, pooltool before PR #247)",
         "cushion_han: the tangential impulse",
     ),
@@ -1268,7 +1270,7 @@ _SPIN_RESOLVE: tuple[Mutant, ...] = (
         _SU,
         "sin_t = h / R - 1.0",
         "sin_t = 1.0 - h / R",
-        SPIN_RESOLVE,
+        SPIN_CUSHION,
         "the contact angle misread: the nose below the equator",
         "cushion_han: the contact angle",
     ),
@@ -1278,9 +1280,19 @@ _SPIN_RESOLVE: tuple[Mutant, ...] = (
         _SU,
         "k = 2.5 / R",
         "k = -2.5 / R",
-        SPIN_RESOLVE,
+        SPIN_CUSHION,
         "the torque as P x r instead of r x P",
         "cushion_han: the spin",
+    ),
+    Mutant(
+        "spin-han-slide-along-sign",
+        "cushions",
+        _SU,
+        "if into < 0.0:",
+        "if into > 0.0:",
+        SPIN_CUSHION,
+        "the slide-along rule with the wrong sign: it removes every rebound instead",
+        "cushion_han: a ball left moving into the cushion",
     ),
     Mutant(
         "spin-strike-no-tip-scale",

@@ -11,11 +11,11 @@ Prints, per model, the largest absolute difference of the velocities (m/s) and s
 (rad/s, times R to compare with velocities), and for the ball-ball model the split by
 restitution (pooltool's friction impulse is ``mu e_b c`` where this model has Coulomb's
 ``mu (1 + e_b) c / 2``: they agree at ``e_b = 1``, see ``spin_collide``'s docstring; the
-line "with pooltool's mu e c" runs this kernel with pooltool's impulse as a constant
-``mu' = mu 2 e_b / (1 + e_b)`` to show that this is the only difference).
+line "friction mode 3" runs this kernel with pooltool's impulse, to show that this is the
+only difference).
 
 Measured (seed 19, n 200): ball-ball at ``e_b = 1`` 4.0e-15 m/s, at 0.95 5.0e-3 m/s (3.4e-15
-with pooltool's impulse), cushion 2.7e-15, strike 5.7e-15.
+in mode 3), cushion 2.7e-15, strike 5.7e-15.
 """
 
 from __future__ import annotations
@@ -117,7 +117,7 @@ def _ours(cases: dict) -> dict:
     from types import SimpleNamespace
 
     from pool_env.sim.cue import from_pooltool
-    from pool_env.sim.kernels.spin_collide import ALCIATORE, CONSTANT, ball_ball_spin, ball_friction
+    from pool_env.sim.kernels.spin_collide import ALCIATORE, POOLTOOL, ball_ball_spin
     from pool_env.sim.kernels.spin_cushion import cushion_han
     from pool_env.sim.kernels.spin_strike import cue_strike
 
@@ -126,12 +126,7 @@ def _ours(cases: dict) -> dict:
     for v1, w1, v2, w2, n, e in cases["ball_ball"]:
         ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, ALCIATORE, 0.0, buf)
         out["ball_ball"].append(buf.tolist())
-        # pooltool's friction impulse mu e c as a constant mu' = mu 2 e / (1 + e) here
-        n3 = np.array([*n, 0.0])
-        rel = np.array([v1[0] - v2[0], v1[1] - v2[1], 0.0])
-        rel += R * np.cross(np.add(w1, w2), n3) - (rel @ n3) * n3
-        mu = ball_friction(ALCIATORE, 0.0, float(np.linalg.norm(rel))) * 2 * e / (1 + e)
-        ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, CONSTANT, mu, buf)
+        ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, POOLTOOL, 0.0, buf)
         out["ball_ball_pt_mu"].append(buf.tolist())
     for v, w, n, h, e, f in cases["cushion"]:
         cushion_han(*v, *w, *n, R, h, e, f, buf)
@@ -189,7 +184,7 @@ def main() -> None:
     _report("ball-ball, e_b = 1", bb_o[elastic], bb_t[elastic], 10)
     _report("ball-ball, e_b = 0.95", bb_o[~elastic], bb_t[~elastic], 10)
     bb_p = np.array(ours["ball_ball_pt_mu"])
-    _report("  with pooltool's mu e c", bb_p[~elastic], bb_t[~elastic], 10)
+    _report("  friction mode 3", bb_p[~elastic], bb_t[~elastic], 10)
     _report("cushion (Han 2005)", ours["cushion"], theirs["cushion"], 5)
     _report("strike (from_pooltool)", ours["strike"], theirs["strike"], 5)
 

@@ -182,3 +182,34 @@ def test_rerun_is_bit_identical() -> None:
     for name in fields:
         assert np.array_equal(getattr(a, name), getattr(b, name))
     assert check_geometry(t, a, samples=500) == [] and check_termination(a) == []
+
+
+@pytest.mark.parametrize("tilt", [0.0, 1e-12, -1e-12, 1e-7])
+def test_along_a_rail_a_hair_off_parallel(tilt: float) -> None:
+    """A rolling ball along the bottom rail line, a hair off parallel (G, T)."""
+    t = Table(model="spin", pockets="none")
+    v = 1.2
+    vel = [[v * math.cos(tilt), -v * math.sin(tilt)]]
+    res = simulate(t, [[0.3, R]], vel, angular_velocities=[[-vel[0][1] / R, vel[0][0] / R, 0.0]])
+    assert check_geometry(t, res, samples=2000) == [] and check_termination(res) == []
+
+
+@pytest.mark.parametrize("wx", [-40.0, 40.0])
+def test_slip_presses_a_ball_into_the_rail(wx: float) -> None:
+    """A ball on the bottom rail line sliding along it, its slip turning it in or away.
+
+    Slip ``u_y = R wx``: the cloth's friction ``-mu g u / |u|`` turns the ball into the
+    rail for ``wx > 0``, away for ``wx < 0``. Held at the rail by the pressed-cushion rule,
+    never through it (G, T, E).
+    """
+    from pool_env.testing.spin_invariants import check_spin_energy
+
+    t = Table(model="spin", pockets="none")
+    res = simulate(t, [[0.5, R]], [[1.0, 0.0]], angular_velocities=[[wx, 1.0 / R, 0.0]])
+    assert check_geometry(t, res, samples=2000) == [] and check_termination(res) == []
+    assert check_spin_energy(t, res) == []
+    if wx > 0:  # pressed in from the start: an impact now, then it rolls along the rail
+        assert res.events[0].kind == "cushion" and res.events[0].time == 0.0
+        assert not any(e.kind == "cushion" and e.j == 2 for e in res.events[1:])
+    else:
+        assert res.events[0].kind == "slide_roll"

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import doctest
 import math
 from types import SimpleNamespace
 
@@ -10,6 +11,7 @@ import pytest
 from hypothesis import assume, given
 from hypothesis import strategies as st
 
+from pool_env.sim import cue
 from pool_env.sim.cue import POOLTOOL_CUE_MASS, from_pooltool
 from pool_env.sim.kernels.spin_strike import cue_strike
 
@@ -148,6 +150,22 @@ def test_from_pooltool_ports_a_shot_exactly(shot):
     np.testing.assert_allclose(w, w_pt, rtol=1e-12, atol=1e-12)
 
 
+@given(
+    v0=st.floats(0.05, 10.0),
+    phi=st.floats(-720.0, 720.0),
+    theta=st.floats(0.0, 85.0),
+    radius=st.floats(0.0, 0.72),
+    turn=st.floats(0.0, 2 * math.pi),
+)
+def test_from_pooltool_ports_random_shots(v0, phi, theta, radius, turn):
+    shot = (v0, phi, theta, radius * math.cos(turn), radius * math.sin(turn))
+    angle, speed, tip, elevation = from_pooltool(*shot, table=POOLTOOL)
+    v, w = strike(speed, angle, tip[0], tip[1], elevation)
+    v_pt, w_pt = pooltool_strike(*shot)
+    np.testing.assert_allclose(v, v_pt, rtol=1e-12, atol=1e-13 * v0)
+    np.testing.assert_allclose(w, w_pt, rtol=1e-11, atol=1e-11 * v0 / R / math.cos(elevation))
+
+
 def test_from_pooltool_centre_hit_is_1_54_times_the_stick_speed():
     _, speed, tip, elevation = from_pooltool(1.0, 0.0, 0.0, 0.0, 0.0, table=POOLTOOL)
     assert speed == pytest.approx(2.0 / (1.0 + M / 0.567), rel=1e-15)
@@ -193,3 +211,7 @@ def test_from_pooltool_reads_a_spin_table():
     _, speed, tip, _ = from_pooltool(1.0, 0.0, 0.0, 0.0, 0.3)
     assert tip[1] == pytest.approx(0.3 * (1 + default.cue_tip_radius / default.ball_radius))
     assert speed == pytest.approx(2.0 / (1 + default.ball_mass / 0.567 + 2.5 * 0.09))
+
+
+def test_from_pooltool_docstring_example_holds():
+    assert doctest.testmod(cue, raise_on_error=True).attempted >= 1

@@ -5,6 +5,7 @@ This layer knows nothing of Gymnasium: arrays and a frozen :class:`Table` in, a
 """
 
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
+from pool_env.sim.cue import from_pooltool
 from pool_env.sim.kernels.spin_state import STATE_NAMES
 from pool_env.sim.result import Event, ShotResult, SpinShotResult
 from pool_env.sim.simulate import check_layout, shoot, simulate
@@ -17,6 +18,7 @@ __all__ = [
     "SpinShotResult",
     "Table",
     "check_layout",
+    "from_pooltool",
     "shoot",
     "simulate",
     "simulate_batch",

@@ -48,10 +48,11 @@ with ``vx > 0``, ``w = (wx, wy, wz)``). The slip has the components
 english (``wz`` that lowers ``|s_y|``) leaves more of ``vy`` and widens the rebound angle,
 reverse english narrows it; with the contact above the equator (``theta > 0``), incoming
 topspin (``wy > 0``) speeds the rebound and draw slows it, and a stun ball leaves with
-topspin for its rebound. A
-head-on stun ball (``vy = 0``, ``w = 0``) sticks when ``tan(theta) <= (7/2) f_c (1 + e_c)``
-and rebounds at ``vx [(1 + e_c) cos^2(theta) + (2/7) sin^2(theta) - 1]`` with topspin
-``(5/7)(vx / R) sin(theta)``; with ``theta = 0`` that is the textbook ``-e_c vx``.
+topspin for its rebound. A head-on stun ball (``vy = 0``, ``w = 0``) sticks when
+``tan(theta) <= (7/2) f_c (1 + e_c)`` and rebounds at
+``vx [(1 + e_c) cos^2(theta) + (2/7) sin^2(theta) - 1]`` with topspin
+``(5/7)(vx / R) sin(theta)``; with ``theta = 0`` that is the textbook ``-e_c vx``, and at the
+defaults (``e_c = 0.85``, ``f_c = 0.2``, ``h = 1.27 R``) it is ``0.736 vx``.
 
 Simplifications. The vertical velocity the impulse gives (into the cloth, or up for a
 sliding ball with strong draw) is dropped: the model is planar, the cloth takes the downward
@@ -63,12 +64,15 @@ unrolled, are these. A ball that is not moving into the cushion (``v . n >= 0``)
 unchanged.
 
 One addition to Han's model. Its in-plane normal velocity after the impact is
-``vx [1 - (1 + e_c) cos^2(theta)]`` plus the friction terms: when ``(1 + e_c) cos^2(theta) < 1``
-(``e_c < 0.08`` at the WPA height ``h = 1.27 R``, more with draw) the ball would still move into
-the cushion once its vertical velocity is dropped, and pooltool meets the same cushion again
-at once, shrinking that velocity geometrically. Here it is set to zero instead: the ball
-slides along the cushion (the limit of those repeats without their events). With the
-defaults (``e_c = 0.85``) this never happens.
+``vx [1 - (1 + e_c) cos^2(theta)]`` plus friction's part, at most ``f_c (1 + e_c) vx
+cos(theta) sin(theta)`` against the rebound (with draw). When ``(1 + e_c) cos^2(theta) < 1``
+(``e_c < 0.08`` at the WPA height ``h = 1.27 R``), or friction outweighs the rest, the ball
+would still move into the cushion once its vertical velocity is dropped, and pooltool meets
+the same cushion again at once, shrinking that velocity geometrically. Here it is set to zero
+instead: the ball slides along the cushion (the limit of those repeats, without their
+events). It cannot happen while ``(1 + e_c) cos^2(theta) - 1 > f_c (1 + e_c) cos(theta)
+sin(theta)``, as with the defaults (``e_c = 0.85``, ``f_c = 0.2``, ``h = 1.27 R``: 0.715 against
+0.096).
 
 Energy never increases: the normal part loses ``(1 - e_c^2) m c^2 / 2``, friction removes
 ``|P_t| (|s| + |s'|) / 2`` of slip energy, and dropping a vertical velocity only removes.

@@ -11,7 +11,8 @@ the ball *centre* touches it) against a ball whose position is quadratic in time
   an impact now (the contact rule);
 * a **point** (a tip circle of radius ``rho``): the squared distance less ``rho^2`` is a
   quartic, the bracketed :func:`~pool_env.sim.kernels.roots.first_contact`;
-* the **fall line**: a quadratic half-plane crossing; on or behind it, potted now.
+* the **fall line**: a quadratic half-plane crossing inside the pocket's own throat; on or
+  behind it, potted now.
 
 Culling: every offset facing and tip lies outside the open rectangle of the rail lines, so
 a piece of motion whose bounding box stays inside it needs no jaw at all; otherwise every
@@ -22,7 +23,17 @@ relies on straight paths).
 from __future__ import annotations
 
 from pool_env.sim.kernels._jit import kernel
-from pool_env.sim.kernels.jaws import J_FACING0, J_FNX, J_FNY, J_FX, J_FY, J_TIP0, JAW, POINT
+from pool_env.sim.kernels.jaws import (
+    J_FACING0,
+    J_FNX,
+    J_FNY,
+    J_FX,
+    J_FY,
+    J_TIP0,
+    JAW,
+    POINT,
+    throat_of,
+)
 from pool_env.sim.kernels.roots import INF, first_contact, quadratic_roots
 
 
@@ -55,7 +66,7 @@ def _facing_time(row, col, x, y, vx, vy, ax, ay, span, tol, curv_tol):
 
 
 @kernel
-def predict_jaws(pockets, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale, accel, t0, best):
+def predict_jaws(pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale, accel, t0, best):
     """Fold every pocket's fall line, facings and points into ``best = (t, kind, arg)``.
 
     Ties at equal times keep the lower kind (a fall before a jaw contact, a facing before a
@@ -79,6 +90,13 @@ def predict_jaws(pockets, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale, acce
             for r in (r1, r2):
                 if tau == INF and r > 0.0 and r <= span and g1 + 2.0 * g2 * r > 0.0:
                     tau = r
+        if tau < INF:
+            # A fall line counts in its own pocket's throat only: the line extended
+            # crosses the other pockets' throats (a side pocket's, a corner's).
+            px = x + tau * (vx + 0.5 * ax * tau)
+            py = y + tau * (vy + 0.5 * ay * tau)
+            if throat_of(px, py, prm, pockets) != k:
+                tau = INF
         t = t0 + tau
         if tau < INF and (t < best_t or (t == best_t and best_kind > 0)):
             best_t, best_kind, best_arg = t, 0, k

@@ -166,7 +166,7 @@ def predict_own(st, ms, i, prm, pockets, own, boxes):
             if xl < radius or xh > length - radius or yl < radius or yh > width - radius:
                 best = (best_t, best_kind, best_arg)
                 best_t, best_kind, best_arg = predict_jaws(
-                    pockets, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale,
+                    pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale,
                     prm[S_SLIDE_DECEL], t0, best,
                 )  # fmt: skip
         else:
