@@ -204,7 +204,9 @@ def main() -> None:
     parser.add_argument("--shots", type=int, default=100_000)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--samples", type=int, default=400, help="G samples between events")
-    parser.add_argument("--out", type=Path, default=None, help="default results/fuzz.md (roll)")
+    parser.add_argument(
+        "--out", type=Path, default=None, help="default results/fuzz.md or results/fuzz_spin.md"
+    )
     parser.add_argument("--model", choices=["roll", "spin"], default="roll")
     parser.add_argument("--progress", type=int, default=10000, help="shots per progress line")
     parser.add_argument("--only", type=int, default=None, help="rerun one shot and print it")
@@ -218,8 +220,8 @@ def main() -> None:
         print(table, pos.tolist(), vel.tolist(), masses.tolist(), result, sep="\n")
         print(check_shot(table, result, masses, samples=args.samples))
         return
-    if args.out is None:  # the spin report is summarised by hand in results/fuzz.md
-        args.out = Path("results/fuzz.md" if args.model == "roll" else "fuzz_spin_report.md")
+    if args.out is None:
+        args.out = Path("results/fuzz.md" if args.model == "roll" else "results/fuzz_spin.md")
     started = time.time()
     failures: list[str] = []
     long_shots: list[str] = []
