@@ -11,7 +11,8 @@ Spin draws (each documented range of :class:`pool_env.Table`, its edges included
 
 * ``mu_slide``: 0.2 (default) or log-uniform over 0.01-1;
 * ``spin_decel``: the default, or log-uniform over 0.1-1000 rad/s^2;
-* ``ball_friction``: Alciatore's fit, a constant in [0, 0.3], or 0 (frictionless);
+* ``ball_friction``: Alciatore's fit (with this level's impulse or pooltool's), a constant
+  in [0, 0.3], or 0 (frictionless);
 * ``cushion_friction``: 0.2, uniform in [0, 1], or 0;
 * ``cushion_height``: the WPA default, ``R`` (contact at the equator), or uniform in
   ``[R, 2R)`` (up to a hair below the top of the ball);
@@ -46,7 +47,9 @@ def random_spin_parameters(rng: np.random.Generator) -> dict[str, object]:
     """
     u = rng.random()
     friction: str | float = (
-        "alciatore" if u < 0.5 else (float(rng.uniform(0, 0.3)) if u < 0.8 else 0.0)
+        "alciatore"
+        if u < 0.4
+        else ("pooltool" if u < 0.5 else (float(rng.uniform(0, 0.3)) if u < 0.8 else 0.0))
     )
     height = rng.random()
     return {

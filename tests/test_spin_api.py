@@ -18,6 +18,7 @@ from pool_env.sim.kernels.spin_params import (
     ALCIATORE_FRICTION,
     CONSTANT_FRICTION,
     FRICTIONLESS,
+    POOLTOOL_FRICTION,
     S_CUSHION_HEIGHT,
     S_FRICTION_MODE,
     S_MU_BALL,
@@ -52,6 +53,7 @@ def test_defaults_and_sources() -> None:
         (0.0, FRICTIONLESS, 0.0),
         (0.06, CONSTANT_FRICTION, 0.06),
         ("alciatore", ALCIATORE_FRICTION, 0),
+        ("pooltool", POOLTOOL_FRICTION, 0),
     ],
 )
 def test_ball_friction_modes(friction, mode, mu) -> None:

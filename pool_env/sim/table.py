@@ -31,6 +31,7 @@ from pool_env.sim.kernels.spin_params import (
     CONSTANT_FRICTION,
     FRICTIONLESS,
     N_SPIN_PARAMS,
+    POOLTOOL_FRICTION,
     S_CUSHION_FRICTION,
     S_CUSHION_HEIGHT,
     S_END_MASS,
@@ -167,7 +168,10 @@ class Table:
             10.9 rad/s^2 (Alciatore's table: 5-15 rad/s^2).
         ball_friction: Ball-ball friction: ``"alciatore"`` (default) for Alciatore's fit
             to Marlow's data ``0.00995 + 0.108 exp(-1.088 v_rel)`` (pooltool 0.6.0's
-            default), a constant ``>= 0``, or 0 for frictionless balls.
+            default), ``"pooltool"`` for the same fit with pooltool 0.6.0's friction impulse
+            ``mu e_b c`` (its exact model, for comparisons; see
+            :mod:`~pool_env.sim.kernels.spin_collide`), a constant ``>= 0``, or 0 for
+            frictionless balls.
         cushion_friction: Ball-cushion friction, 0.2 (pooltool 0.6.0's default).
         cushion_height: Height of the cushion nose's contact above the cloth (m), in
             ``[R, 2R)``; ``None`` (default) takes the WPA nose height, 63.5% of the ball
@@ -292,11 +296,13 @@ class Table:
         setter(self, "spin_decel", within("spin_decel", spin_decel, low, high, "rad/s^2"))
         friction = self.ball_friction
         if isinstance(friction, str):
-            if friction != "alciatore":
+            modes = {"alciatore": ALCIATORE_FRICTION, "pooltool": POOLTOOL_FRICTION}
+            if friction not in modes:
                 raise ValueError(
-                    f"ball_friction must be 'alciatore' or a number >= 0, got {friction!r}"
+                    "ball_friction must be 'alciatore', 'pooltool' or a number >= 0, got "
+                    f"{friction!r}"
                 )
-            mode, mu_ball = ALCIATORE_FRICTION, 0.0
+            mode, mu_ball = modes[friction], 0.0
         else:
             mu_ball = _non_negative("ball_friction", friction)
             setter(self, "ball_friction", mu_ball)

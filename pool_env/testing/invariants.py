@@ -181,6 +181,19 @@ def _contact_impulse_allowed(
     return False
 
 
+def _cone_distance(d: NDArray, normals: list[NDArray]) -> float:
+    """Distance from ``d`` to the cone of non-negative combinations of ``normals`` (2D)."""
+    best = float(np.hypot(*d))
+    for n in normals:
+        best = min(best, float(np.hypot(*(d - max(0.0, float(n @ d)) * n))))
+    for a in range(len(normals)):
+        for b in range(a + 1, len(normals)):
+            basis = np.column_stack([normals[a], normals[b]])
+            if abs(np.linalg.det(basis)) >= 1e-12 and np.linalg.solve(basis, d).min() >= 0.0:
+                return 0.0  # inside the cone of the pair
+    return best
+
+
 def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = None) -> list[str]:
     """P: every ball-ball impact conserves the momentum of the balls it changed.
 
@@ -194,7 +207,8 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
     wedged between jaws and rails, pressing slowly into all of them, stops (see
     :func:`pool_env.sim.kernels.jaws.unpress_lump`). On the spin level a sticking lump ends
     its balls' slides at once and rolls on together, so the cloth's friction changes its
-    momentum: by at most :func:`~pool_env.testing.spin_invariants.lump_cloth_impulse`.
+    momentum (by at most :func:`~pool_env.testing.spin_invariants.lump_cloth_impulse`), and
+    then meets the cushions it touches as one body (impulses out of them).
     """
     m = np.asarray(masses, dtype=np.float64)
     problems = []
@@ -216,9 +230,12 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
             if np.all(after == 0.0) and change <= allowed + float(np.abs(p0).max()):
                 continue  # wedged between jaws and rails, the lump stops
             if spin and table is not None:
+                # The slides' cloth friction, taken at once, then the contacts the lump
+                # touches, met as one body (impulses out of them).
                 bound = spin_invariants.lump_cloth_impulse(table, result, rows, t, m[balls])
-                if float(np.hypot(*(p1 - p0))) <= allowed + bound:
-                    continue  # the slides' cloth friction, taken at once
+                normals = _contact_normals(table, state[bounds[k] : bounds[k + 1], 0:2])
+                if _cone_distance(p1 - p0, normals) <= allowed + bound:
+                    continue
             at = state[bounds[k] : bounds[k + 1], 0:2]
             if table is not None and _rail_impulse_allowed(table, at, p0, p1 - p0, allowed):
                 continue

@@ -40,6 +40,7 @@ ACC_RTOL = 1e-9  # relative: an acceleration's magnitude and direction
 TRANSITION_RTOL = 1e-9
 # A row lasts at most its own transition time, up to the rounding of event times.
 DURATION_RTOL = 1e-9
+REST_SPEED = 1e-9  # m/s: slower (also at the surface, R |w|) is at rest (the documented rule)
 
 
 def is_spin(result: object) -> bool:
@@ -187,7 +188,9 @@ def _transition_problems(table: Table, result: SpinShotResult) -> list[str]:
             else:  # a rolling ball rests, still or spinning
                 left = float(np.hypot(*v[0]))
                 wrote = not np.any(after[2:6]) and not np.any(after[7:9])
-                wrote = wrote and (after[6] != 0.0) == (kind == ROLL_SPIN)
+                # A spin left slower than the rest speed at the surface rests as well.
+                spins = abs(w[0, 2]) * r >= REST_SPEED
+                wrote = wrote and (after[6] != 0.0) == (kind == ROLL_SPIN and spins)
             # The event time is rounded to ulp(t): the quantity runs on at its rate that long.
             rate = (
                 table.spin_decel

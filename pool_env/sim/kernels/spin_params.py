@@ -11,8 +11,8 @@ from pool_env.sim.kernels.params import N_PARAMS
 
 #: Indices after the roll layout: sliding deceleration ``mu_slide * g`` (m/s^2), spin
 #: deceleration (rad/s^2), ball-ball friction mode (0 frictionless, 1 constant, 2 Alciatore's
-#: fit), the constant ball-ball friction, cushion friction, cushion contact height (m), cue
-#: tip radius (m), cue end mass (kg).
+#: fit, 3 the same with pooltool's impulse), the constant ball-ball friction, cushion
+#: friction, cushion contact height (m), cue tip radius (m), cue end mass (kg).
 (
     S_SLIDE_DECEL,
     S_SPIN_DECEL,
@@ -27,5 +27,7 @@ from pool_env.sim.kernels.params import N_PARAMS
 #: Length of ``Table.spin_params``.
 N_SPIN_PARAMS = N_PARAMS + 8
 
-#: Ball-ball friction modes (the ``friction_mode`` argument of the resolution kernel).
-FRICTIONLESS, CONSTANT_FRICTION, ALCIATORE_FRICTION = 0, 1, 2
+#: Ball-ball friction modes (the ``friction_mode`` argument of the resolution kernel,
+#: :mod:`~pool_env.sim.kernels.spin_collide`): none, a constant, Alciatore's fit with
+#: Coulomb's impulse, Alciatore's fit with pooltool 0.6.0's impulse.
+FRICTIONLESS, CONSTANT_FRICTION, ALCIATORE_FRICTION, POOLTOOL_FRICTION = 0, 1, 2, 3
