@@ -188,7 +188,7 @@ def test_every_compiled_module_is_in_the_cache_key() -> None:
     graph = grimp.build_graph("pool_env", cache_dir=None)
     listed = set(jit.KERNEL_MODULES)
     compiling = set()
-    for decorators in ("pool_env.sim.jit", "pool_env.sim.kernels._jit"):
+    for decorators in ("pool_env.sim.jit",):
         if decorators in graph.modules:
             compiling |= graph.find_modules_that_directly_import(decorators)
     kernels = {

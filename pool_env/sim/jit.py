@@ -56,7 +56,6 @@ _PACKAGE = Path(__file__).resolve().parents[1]
 #: until it does.
 KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.jit",
-    "pool_env.sim.kernels._jit",
     "pool_env.sim.kernels.batch",
     "pool_env.sim.kernels.jaws",
     "pool_env.sim.kernels.limits",
@@ -67,6 +66,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.kernels.record",
     "pool_env.sim.kernels.resolve",
     "pool_env.sim.kernels.roots",
+    "pool_env.sim.kernels.spin_batch",
     "pool_env.sim.kernels.spin_collide",
     "pool_env.sim.kernels.spin_cushion",
     "pool_env.sim.kernels.spin_jaws",
@@ -76,6 +76,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.kernels.spin_state",
     "pool_env.sim.kernels.spin_strike",
     "pool_env.sim.kernels.spin_timeline",
+    "pool_env.sim.kernels.spin_zeno",
     "pool_env.sim.kernels.timeline",
     "pool_env.game.kernels.actions",
     "pool_env.game.kernels.layout",

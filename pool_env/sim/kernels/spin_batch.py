@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 from numba import prange
 
-from pool_env.sim.kernels._jit import kernel, parallel_kernel
+from pool_env.sim.jit import kernel, parallel_kernel
 from pool_env.sim.kernels.batch import BatchOutput, _allocate, _fields
 from pool_env.sim.kernels.loop import (
     BALL_CUSHIONS,

@@ -59,7 +59,7 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 #: Friction modes of :func:`ball_ball_spin`.
 FRICTIONLESS, CONSTANT, ALCIATORE, POOLTOOL = 0, 1, 2, 3

@@ -82,7 +82,7 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 
 @kernel

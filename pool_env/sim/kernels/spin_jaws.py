@@ -22,7 +22,7 @@ relies on straight paths).
 
 from __future__ import annotations
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import (
     J_FACING0,
     J_FNX,

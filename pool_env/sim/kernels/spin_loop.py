@@ -25,7 +25,7 @@ import math
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import JAW, POINT, jaw_normal
 from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.kernels.loop import (

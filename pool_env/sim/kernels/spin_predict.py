@@ -32,7 +32,7 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import JAW_COLS, opening_of
 from pool_env.sim.kernels.params import P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.predict import CUSHION, EV_ARG, EV_KIND, EV_T, POCKET, STOP

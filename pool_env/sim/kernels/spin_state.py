@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.params import P_DECEL, P_RADIUS
 from pool_env.sim.kernels.spin_params import S_SLIDE_DECEL, S_SPIN_DECEL
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 
 
 @kernel

@@ -21,7 +21,7 @@ import math
 
 import numpy as np
 
-from pool_env.sim.kernels._jit import kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import (
     J_FACING0,
     J_TIP0,
