@@ -202,7 +202,7 @@ def test_slip_presses_a_ball_into_the_rail(wx: float) -> None:
     rail for ``wx > 0``, away for ``wx < 0``. Held at the rail by the pressed-cushion rule,
     never through it (G, T, E).
     """
-    from pool_env.testing.spin_invariants import check_spin_energy
+    from pool_env.testing.invariants import check_spin_energy
 
     t = Table(model="spin", pockets="none")
     res = simulate(t, [[0.5, R]], [[1.0, 0.0]], angular_velocities=[[wx, 1.0 / R, 0.0]])

@@ -13,9 +13,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from pool_env import Table, shoot, simulate
-from pool_env.testing.invariants import check_geometry, check_termination
+from pool_env.testing.invariants import check_geometry, check_spin_energy, check_termination
 from pool_env.testing.scenes_random import random_layout
-from pool_env.testing.spin_invariants import check_spin_energy
 from tests.profiles import examples
 
 tables = st.builds(

@@ -28,7 +28,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from pool_env.sim.kernels.jaws import LOC_CIRCLE, LOC_FREE, locate_many
 from pool_env.sim.kernels.resolve import CONTACT_TOL
-from pool_env.sim.result import ShotResult
+from pool_env.sim.result import ShotResult, SpinShotResult
 from pool_env.sim.table import Table
 from pool_env.testing import spin_invariants
 
@@ -365,3 +365,11 @@ def check_shot(
     if spin_invariants.is_spin(result):
         problems += spin_invariants.check_motion(table, result)
     return problems
+
+
+def check_spin_energy(
+    table: Table, result: SpinShotResult, masses: ArrayLike | None = None
+) -> list[str]:
+    """E on the spin level alone: :func:`check_energy` with the table's ball mass by default."""
+    m = np.full(result.n_balls, table.ball_mass) if masses is None else masses
+    return check_energy(result, m, table)

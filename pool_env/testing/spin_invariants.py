@@ -25,7 +25,7 @@ and that a shot that ends under the cap ends with every ball still or potted, wi
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import NDArray
 
 from pool_env.sim.result import KIND_NAMES, SpinShotResult
 from pool_env.sim.table import Table
@@ -237,13 +237,3 @@ def lump_cloth_impulse(
     idx = np.asarray(rows)
     energy = rows_energy(table, state[idx], t - seg_t[idx], masses)
     return 2.0 / 7.0 * float(np.sqrt(10.0 * masses.sum() * energy))
-
-
-def check_spin_energy(
-    table: Table, result: SpinShotResult, masses: ArrayLike | None = None
-) -> list[str]:
-    """E on the spin level alone: :func:`pool_env.testing.invariants.check_energy`'s check."""
-    from pool_env.testing.invariants import check_energy  # that module imports this one
-
-    m = np.full(result.n_balls, table.ball_mass) if masses is None else masses
-    return check_energy(result, m, table)
