@@ -213,3 +213,19 @@ def test_slip_presses_a_ball_into_the_rail(wx: float) -> None:
         assert not any(e.kind == "cushion" and e.j == 2 for e in res.events[1:])
     else:
         assert res.events[0].kind == "slide_roll"
+
+
+def test_long_roll_a_hair_into_a_rail_on_a_big_table() -> None:
+    """Fuzz shot 9007: a long rolling piece, a normal speed of 7e-9 m/s into the rail.
+
+    The approach tolerance must scale with the piece's own speeds (here ~25 m/s), not with
+    the sliding deceleration over the piece's 9600 s: the ball hits the rail (G).
+    """
+    t = Table(length=5332.0, width=2666.0, ball_radius=60.0, mu_roll=2.6e-4, model="spin",
+              pockets="none")  # fmt: skip
+    y = t.width - t.ball_radius
+    vel = np.array([[-25.0, 7.4e-9]])
+    ang = np.array([[-vel[0, 1] / 60.0, vel[0, 0] / 60.0, 0.0]])
+    res = simulate(t, [[3000.0, y]], vel, angular_velocities=ang)
+    assert any(e.kind == "cushion" and e.j == 3 for e in res.events)
+    assert check_geometry(t, res, samples=2000) == [] and check_termination(res) == []

@@ -384,12 +384,9 @@ class Table:
     def _spin_repr(self) -> str:
         if self.model == "roll":
             return ""
-        return (
-            f", model='spin', mu_slide={self.mu_slide}, spin_decel={self.spin_decel}, "
-            f"ball_friction={self.ball_friction!r}, cushion_friction={self.cushion_friction}, "
-            f"cushion_height={self.cushion_height}, cue_tip_radius={self.cue_tip_radius}, "
-            f"cue_end_mass={self.cue_end_mass}"
-        )
+        names = ("mu_slide", "spin_decel", "ball_friction", "cushion_friction")
+        names += ("cushion_height", "cue_tip_radius", "cue_end_mass")
+        return ", model='spin', " + ", ".join(f"{n}={getattr(self, n)!r}" for n in names)
 
     def __repr__(self) -> str:
         return (

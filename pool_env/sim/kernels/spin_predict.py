@@ -140,7 +140,8 @@ def predict_own(st, ms, i, prm, pockets, own, boxes):
         radius, length, width = prm[P_RADIUS], prm[P_LENGTH], prm[P_WIDTH]
         t0 = st[i, T0]
         vx, vy, ax, ay = st[i, VX], st[i, VY], st[i, AX], st[i, AY]
-        scale = math.sqrt(vx * vx + vy * vy) + prm[S_SLIDE_DECEL] * span
+        # Speed scale of the piece: its speed now plus the most it can change over the piece.
+        scale = math.sqrt(vx * vx + vy * vy) + math.sqrt(ax * ax + ay * ay) * span
         tol = APPROACH_RTOL * scale
         curv_tol = APPROACH_RTOL * prm[S_SLIDE_DECEL]
         jaws = pockets.shape[1] == JAW_COLS
