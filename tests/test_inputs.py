@@ -17,7 +17,7 @@ from pool_env import Table, shoot, simulate
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.inputs import max_speed, reachable_speed
 from pool_env.sim.kernels import batch as kbatch
-from pool_env.sim.kernels import limits, loop
+from pool_env.sim.kernels import limits, loop, spin_loop
 from pool_env.testing.invariants import check_shot
 
 POS = [[1.0, 0.6], [1.5, 0.6]]
@@ -153,6 +153,24 @@ def test_energy_that_could_drive_a_light_ball_past_the_limits_is_refused(table: 
     assert "kinetic energy could speed ball 0" in _message(lambda: simulate(table, pos, both))
     # one ball moving: exactly its speed, whatever the masses (a shot is judged as before)
     assert reachable_speed(ok, [1e-6, 1.0, 1.0]) == 0.999 * fastest / 1e3
+
+
+def test_the_energy_limit_is_named_alike_on_the_spin_level() -> None:
+    """A spin table's energy refusal says energy, never spin.
+
+    Each validation code means one thing on both levels: the codes once overlapped, and a
+    roll batch then failed reading a spin array it never had.
+    """
+    table = Table(model="spin", pockets="none")
+    fastest = max_speed(table)
+    pos = [[1.0, 0.6], [1.5, 0.6], [2.0, 0.6]]
+    masses = [1.0, 1e-6, 1.0]
+    fast = [[1.001 * fastest / 1e3, 0.0], [0.0, 0.0], [0.0, 0.0]]
+    message = _message(lambda: simulate(table, pos, fast, masses))
+    assert message.startswith("the scene's kinetic energy could speed ball 1 (the lightest)")
+    batch = _message(lambda: simulate_batch(table, np.array([pos]), np.array([fast]), masses))
+    assert batch == f"table 0: {message}"
+    assert len({loop.TOO_ENERGETIC, spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST}) == 3
 
 
 def test_no_ball_ever_passes_the_energy_bound() -> None:

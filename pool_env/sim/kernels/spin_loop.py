@@ -33,6 +33,7 @@ from pool_env.sim.kernels.loop import (
     BALL_STOPPED,
     N_BALL_ROWS,
     OK,
+    TOO_ENERGETIC,
     _earlier,
     _tally,
     validate,
@@ -267,9 +268,10 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
     return st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
 
 
-#: Validation codes of the spin level, after the roll level's (``loop.OK`` ...): a
-#: non-finite angular velocity, a surface speed ``R |w|`` beyond ``MAX_SPEED``.
-BAD_SPIN, SPIN_TOO_FAST = 10, 11
+#: Validation codes of the spin level, after the roll level's last (``loop.TOO_ENERGETIC``),
+#: so one code never means two things: a non-finite angular velocity, a surface speed
+#: ``R |w|`` beyond ``MAX_SPEED``.
+BAD_SPIN, SPIN_TOO_FAST = TOO_ENERGETIC + 1, TOO_ENERGETIC + 2
 
 
 @kernel
