@@ -395,6 +395,95 @@ def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> N
     assert one_after.shooter == state.shooter
 
 
+def _eight_state(on: set[int], groups: tuple[int, int]) -> RackState:
+    """An 8-ball rack after the break, player 0 to shoot, with the balls ``on`` the table."""
+    return RackState(
+        game="eight", on_table=tuple(b == 0 or b in on for b in range(16)), shooter=0,
+        breaking=False, fouls=(0, 0), groups=groups, ball_in_hand=False,
+        behind_head_string=False,
+    )  # fmt: skip
+
+
+# Rare outcomes that the random property test above reaches only by luck (three mutants
+# of the rules survived a run when its draws changed): each stated with its verdict.
+# Rows: the cue ball, then the balls in ``numbers``; ``drops`` maps a row to
+# (pocket, drop order).
+RARE_OUTCOMES = [
+    # On the 8, the 8 dropped in the called pocket, but a stripe was hit first: the 8 on a
+    # foul loses (WPA 8-ball: pocketing the 8 on a foul), whichever pocket was called.
+    (
+        "eight on a foul loses",
+        {8, 9},
+        (SOLIDS, STRIPES),
+        [0, 8, 9],
+        2,
+        {1: (2, 0)},
+        2,
+        {"foul": "wrong_ball_first", "winner": 1, "loss": "eight_on_foul"},
+        None,
+    ),
+    # Open table, a solid dropped before a stripe: the shooter takes the solids.
+    (
+        "open table takes the first ball's group",
+        {3, 8, 12},
+        (OPEN, OPEN),
+        [0, 3, 8, 12],
+        1,
+        {1: (0, 0), 3: (5, 1)},
+        None,
+        {"foul": None, "winner": None, "loss": None},
+        (SOLIDS, STRIPES),
+    ),
+    # The same, the stripe first: the drop order decides, not the ball numbers.
+    (
+        "drop order, not ball number",
+        {3, 8, 12},
+        (OPEN, OPEN),
+        [0, 3, 8, 12],
+        1,
+        {1: (0, 1), 3: (5, 0)},
+        None,
+        {"foul": None, "winner": None, "loss": None},
+        (STRIPES, SOLIDS),
+    ),
+]
+
+
+@pytest.mark.parametrize(
+    ("on", "groups", "numbers", "first_row", "drops", "called", "verdict", "groups_after"),
+    [case[1:] for case in RARE_OUTCOMES],
+    ids=[case[0] for case in RARE_OUTCOMES],
+)
+def test_rare_outcomes_have_their_verdicts(
+    on: set[int],
+    groups: tuple[int, int],
+    numbers: list[int],
+    first_row: int,
+    drops: dict[int, tuple[int, int]],
+    called: int | None,
+    verdict: dict[str, Any],
+    groups_after: tuple[int, int] | None,
+) -> None:
+    state = _eight_state(on, groups)
+    m = len(numbers)
+    pocketed, order = [-1] * m, [-1] * m
+    for row, (pocket, k) in drops.items():
+        pocketed[row], order[row] = pocket, k
+    cushions = [1] * m
+    positions = [(1.5 + 0.1 * row, 0.6) for row in range(m)]  # all beyond the head string
+    got, after = compiled_judge(
+        TABLE, state, positions, numbers, (0, first_row), cushions, pocketed, order, called
+    )
+    assert {key: got[key] for key in verdict} == verdict
+    hit = np.full(m, -1)
+    hit[0] = first_row
+    shot = ShotOutcome.from_arrays(hit, cushions, pocketed, order, np.array(numbers))
+    ref, ref_after = judge(state, shot, called)
+    assert (ref.foul, ref.winner, ref.loss) == (verdict["foul"], verdict["winner"], verdict["loss"])
+    if groups_after is not None:
+        assert after.groups == ref_after.groups == groups_after
+
+
 def test_the_vector_env_plays_the_rules_alike_threaded_and_with_rule_options() -> None:
     from gymnasium.utils.env_checker import data_equivalence
 
