@@ -1370,4 +1370,79 @@ _SPIN_RESOLVE: tuple[Mutant, ...] = (
 )
 
 #: The mutants :mod:`tools.mutants` runs.
-CATALOGUE: tuple[Mutant, ...] = (*_ALL, *_SPIN_RESOLVE)
+# The spin level's motion, prediction and loop (issue 19): its closed forms, hard cases, the
+# 50-digit reference comparison and the check against the roll level's first events.
+SPIN_LOOP = (
+    "tests/test_spin_closed_forms.py",
+    "tests/test_spin_hard_cases.py",
+    "tests/test_spin_reference_compare.py",
+    "tests/test_spin_vs_roll.py",
+)
+_SST = _K + "spin_state.py"
+_SPR = _K + "spin_predict.py"
+_SJ = _K + "spin_jaws.py"
+
+_SPIN_LOOP: tuple[Mutant, ...] = (
+    Mutant(
+        "spin-slide-time-five-halves",
+        "motion",
+        _SST,
+        "st[i, TEND] = t + slip / (3.5 * a)",
+        "st[i, TEND] = t + slip / (2.5 * a)",
+        SPIN_LOOP,
+        "the slip shrinking at (5/2) mu g (the spin's rate alone) instead of (7/2) mu g",
+        "spin_state.set_anchor: the slide's end",
+    ),
+    Mutant(
+        "spin-roll-decel-sliding",
+        "motion",
+        _SST,
+        "        a = prm[P_DECEL]\n        st[i, AX] = -a * vx / spd",
+        "        a = prm[S_SLIDE_DECEL]\n        st[i, AX] = -a * vx / spd",
+        SPIN_LOOP,
+        "a rolling ball decelerated by sliding friction instead of rolling resistance",
+        "spin_state.set_anchor: the rolling state",
+    ),
+    Mutant(
+        "spin-slide-spin-torque-sign",
+        "motion",
+        _SST,
+        "return x, y, vx, vy, st[i, WX] + k * ay, st[i, WY] - k * ax, wz",
+        "return x, y, vx, vy, st[i, WX] - k * ay, st[i, WY] + k * ax, wz",
+        SPIN_LOOP,
+        "the cloth's torque on a sliding ball with the wrong sign (the slip grows)",
+        "spin_state.state_at: the sliding state's spin",
+    ),
+    Mutant(
+        "spin-z-never-decays",
+        "motion",
+        _SST,
+        "left = abs(wz0) - spin_decel * tau",
+        "left = abs(wz0)",
+        SPIN_LOOP,
+        "the vertical-axis spin never decays",
+        "spin_state.spin_z",
+    ),
+    Mutant(
+        "spin-pair-acceleration-half",
+        "roots",
+        _SPR,
+        "cx = 0.5 * ((st[j, AX] if aj else 0.0) - (st[i, AX] if ai else 0.0))",
+        "cx = (st[j, AX] if aj else 0.0) - (st[i, AX] if ai else 0.0)",
+        SPIN_LOOP,
+        "the pair gap's quadratic term without the 1/2 of a t^2 / 2 (x only)",
+        "spin_predict: the ball-ball quartic",
+    ),
+    Mutant(
+        "spin-fall-line-any-throat",
+        "jaws",
+        _SJ,
+        "if throat_of(px, py, prm, pockets) != k:",
+        "if throat_of(px, py, prm, pockets) < -1:",
+        ("tests/test_spin_vs_roll.py", "tests/test_spin_api.py"),
+        "a fall line counted outside its own pocket's throat (a ball potted in the wrong pocket)",
+        "spin_jaws: the fall line",
+    ),
+)
+
+CATALOGUE: tuple[Mutant, ...] = (*_ALL, *_SPIN_RESOLVE, *_SPIN_LOOP)
