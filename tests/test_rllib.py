@@ -17,7 +17,7 @@ pytest.importorskip("ray.rllib", reason="needs the rllib extra: pip install -e '
 
 from gymnasium.vector import AutoresetMode  # noqa: E402
 
-from agents import hyperparams  # noqa: E402
+from agents.training import hyperparams  # noqa: E402
 from agents.integrations.rllib_env import make_env, register  # noqa: E402
 from agents.integrations.rllib_train import (  # noqa: E402
     RLlibRun,
