@@ -381,9 +381,9 @@ _ALL: tuple[Mutant, ...] = (
     Mutant(
         "batch-first-contact-index",
         "loop",
-        _K + "batch.py",
-        "out.first_contact[b, 1] = index[shot.first_j]",
-        "out.first_contact[b, 1] = shot.first_j",
+        _K + "packing.py",
+        "out.first_contact[b, 1] = index[first_j]",
+        "out.first_contact[b, 1] = first_j",
         ("tests/test_batch.py", "tests/test_env_expectations.py"),
         "the batch's first contact in active-ball rows, not ball numbers",
     ),

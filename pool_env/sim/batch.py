@@ -26,9 +26,9 @@ from pool_env.sim.inputs import (
     raise_invalid,
 )
 from pool_env.sim.kernels import batch as _batch
-from pool_env.sim.kernels import loop, spin_loop
+from pool_env.sim.kernels import loop
 from pool_env.sim.kernels import spin_batch as _spin_batch
-from pool_env.sim.spin_inputs import raise_bad_spin
+from pool_env.sim.spin_inputs import raise_spin_invalid
 from pool_env.sim.table import Table
 
 #: Batches this large and larger run in parallel by default.
@@ -140,8 +140,8 @@ def simulate_batch(
         b = int(bad[0])
         code, i, j = (int(v) for v in error[b])
         try:
-            if code in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
-                raise_bad_spin(code, i, table, ang[b])
+            if table.model == "spin":
+                raise_spin_invalid(code, i, j, table, pos[b], vel[b], ang[b], mass[b])
             raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
         except ValueError as exc:
             raise ValueError(f"table {b}: {exc}") from None

@@ -149,7 +149,7 @@ def check_speed(speed: object, table: Table) -> float:
         raise ValueError(f"speed must be a non-negative finite number, got {speed!r}")
     # The compiled test run as plain Python: the same code, without a dispatcher call.
     if not _SPEED_ALLOWED(value * value, table.deceleration):
-        raise ValueError(f"speed {value!r} m/s is beyond {_speed_limits(table)}")
+        raise ValueError(f"speed {value!r} m/s is beyond {speed_limits(table)}")
     return value
 
 
@@ -190,7 +190,8 @@ def reachable_speed(velocities: ArrayLike, masses: ArrayLike | None = None) -> f
     return float(_REACHABLE_SPEED2(vel, mass)[0]) ** 0.5
 
 
-def _speed_limits(table: Table) -> str:
+def speed_limits(table: Table) -> str:
+    """The speed limits of ``table``, for error messages."""
     return (
         f"the simulator's numeric limits: speeds up to {limits.MAX_SPEED:g} m/s and a free "
         f"rolling distance v^2 / (2 mu_roll g) up to {limits.MAX_ROLL:g} m, here "
@@ -224,13 +225,13 @@ def raise_invalid(
         raise ValueError(f"ball {i} has a non-finite velocity")
     if code == loop.TOO_FAST:
         speed = float(np.hypot(*velocities[i]))
-        raise ValueError(f"ball {i} has speed {speed!r} m/s, beyond {_speed_limits(table)}")
+        raise ValueError(f"ball {i} has speed {speed!r} m/s, beyond {speed_limits(table)}")
     if code == loop.TOO_ENERGETIC:
         reach = reachable_speed(velocities, masses if masses.shape[0] else None)
         raise ValueError(
             f"the scene's kinetic energy could speed ball {i} (the lightest) up to "
             f"{reach!r} m/s through impacts (sqrt(sum m v^2 / m_{i})), beyond "
-            f"{_speed_limits(table)}; slow the balls down or bring the masses closer"
+            f"{speed_limits(table)}; slow the balls down or bring the masses closer"
         )
     if code == loop.BAD_MASS:
         raise ValueError(

@@ -3,30 +3,18 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.sim.kernels import loop, spin_loop
+from pool_env.sim.kernels import packing, spin_loop
+from pool_env.sim.kernels.kinds import CUSHION_KINDS, KIND_NAMES, EventKind
 from pool_env.sim.kernels.spin_state import POTTED, STATIONARY
 from pool_env.sim.kernels.spin_timeline import spin_positions_at, spin_positions_at_many
 from pool_env.sim.kernels.timeline import positions_at as _positions_at
 from pool_env.sim.kernels.timeline import positions_at_many as _positions_at_many
 
-EventKind = Literal[
-    "pocket", "ball", "cushion", "stop", "jaw", "point", "slide_roll", "roll_spin", "spin_stop"
-]
-
-#: Event kind codes of the compiled loops, in tie-breaking order. The last three are the
-#: spin level's transitions (``Table(model="spin")``): a sliding ball starts rolling, a
-#: rolling ball comes to rest spinning in place, a spinning ball stops; a rolling ball
-#: that comes to rest without spin is a ``"stop"`` on both levels.
-KIND_NAMES: tuple[EventKind, ...] = (
-    "pocket", "ball", "cushion", "stop", "jaw", "point", "slide_roll", "roll_spin", "spin_stop"
-)  # fmt: skip
-#: Kinds that are cushion contacts for the rules (a rail, a jaw facing, a jaw point).
-CUSHION_KINDS: tuple[EventKind, ...] = ("cushion", "jaw", "point")
+__all__ = ["CUSHION_KINDS", "KIND_NAMES", "Event", "EventKind", "ShotResult", "SpinShotResult"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -60,7 +48,7 @@ class ShotResult:
     """The outcome of :func:`pool_env.simulate`: final state, events, exact trajectories.
 
     The compiled loop hands back two flat arrays
-    (:func:`~pool_env.sim.kernels.loop.packed_shot`); the result owns them, and every array
+    (:func:`~pool_env.sim.kernels.packing.pack_shot`); the result owns them, and every array
     attribute below is a view into them made on access (a shot costs only the fields that
     are read).
 
@@ -129,48 +117,45 @@ class ShotResult:
         self.recorded = recorded
 
     def _ball_row(self, row: int) -> NDArray[np.int64]:
-        n = self.n_balls
-        return self._ints[row * n : (row + 1) * n]
+        return packing.ball_row(self._ints, self.n_balls, row)
 
     def _event_row(self, row: int) -> NDArray[np.int64]:
-        start = loop.N_BALL_ROWS * self.n_balls + row * self._n_logged
-        return self._ints[start : start + self._n_logged]
+        return packing.event_row(self._ints, self.n_balls, self._n_logged, row)
 
     @property
     def positions(self) -> NDArray[np.float64]:
         """``(N, 2)`` final positions; a potted ball keeps its capture point."""
-        return self._floats[: 2 * self.n_balls].reshape(self.n_balls, 2)
+        return packing.final_positions(self._floats, self.n_balls)
 
     @property
     def pocketed(self) -> NDArray[np.int64]:
         """``(N,)`` the pocket each ball dropped into, -1 if none."""
-        return self._ball_row(loop.BALL_POCKET)
+        return self._ball_row(packing.BALL_POCKET)
 
     @property
     def pocket_order(self) -> NDArray[np.int64]:
         """``(N,)`` the order in which the balls dropped (0 first), -1 on the table."""
-        return self._ball_row(loop.BALL_POCKET_ORDER)
+        return self._ball_row(packing.BALL_POCKET_ORDER)
 
     @property
     def first_hit(self) -> NDArray[np.int64]:
         """``(N,)`` the first ball each ball touched, -1 if none."""
-        return self._ball_row(loop.BALL_FIRST_HIT)
+        return self._ball_row(packing.BALL_FIRST_HIT)
 
     @property
     def cushions_after_contact(self) -> NDArray[np.int64]:
         """``(N,)`` each ball's cushion impacts after the shot's first ball-ball impact."""
-        return self._ball_row(loop.BALL_CUSHIONS)
+        return self._ball_row(packing.BALL_CUSHIONS)
 
     @property
     def stopped_by_cap(self) -> NDArray[np.bool_]:
         """``(N,)`` booleans: the balls still moving when the event cap stopped them."""
-        return self._ball_row(loop.BALL_STOPPED) != 0
+        return self._ball_row(packing.BALL_STOPPED) != 0
 
     @property
     def event_times(self) -> NDArray[np.float64]:
         """``(E,)`` event times (s), chronological; empty if not recorded."""
-        start = 2 * self.n_balls
-        return self._floats[start : start + self._n_logged]
+        return packing.event_times(self._floats, self.n_balls, self._n_logged)
 
     @property
     def event_kinds(self) -> NDArray[np.int64]:
@@ -248,13 +233,10 @@ class ShotResult:
 
     def _segment_views(self) -> tuple[NDArray, NDArray, NDArray, NDArray]:
         """The segment log as views: balls, times, states and potted flags (0 or 1)."""
-        n_seg = self._n_segments
-        f = 2 * self.n_balls + self._n_logged
-        k = loop.N_BALL_ROWS * self.n_balls + 4 * self._n_logged
-        floats, ints = self._floats, self._ints
-        w = self._SEG_WIDTH
-        state = floats[f + n_seg : f + (1 + w) * n_seg].reshape(n_seg, w)
-        return ints[k : k + n_seg], floats[f : f + n_seg], state, ints[k + n_seg : k + 2 * n_seg]
+        return packing.segment_views(
+            self._floats, self._ints, self.n_balls, self._n_logged, self._n_segments,
+            self._SEG_WIDTH,
+        )  # fmt: skip
 
     @property
     def angular_velocities(self) -> NDArray[np.float64]:
@@ -299,9 +281,7 @@ class SpinShotResult(ShotResult):
     _SEG_WIDTH = spin_loop.SEG_COLS
 
     def _tail(self) -> tuple[int, int]:
-        n_seg, n_log = self._n_segments, self._n_logged
-        floats = 2 * self.n_balls + n_log + (1 + self._SEG_WIDTH) * n_seg
-        return floats, loop.N_BALL_ROWS * self.n_balls + 4 * n_log + 2 * n_seg
+        return packing.tail_starts(self.n_balls, self._n_logged, self._n_segments, self._SEG_WIDTH)
 
     @property
     def angular_velocities(self) -> NDArray[np.float64]:

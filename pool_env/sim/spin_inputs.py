@@ -11,7 +11,14 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.sim.inputs import as_masses, check_max_events, kernel_array, raise_invalid
+from pool_env.sim.inputs import (
+    as_masses,
+    as_points,
+    check_max_events,
+    kernel_array,
+    raise_invalid,
+    speed_limits,
+)
 from pool_env.sim.kernels import limits, spin_loop
 from pool_env.sim.kernels.spin_strike import cue_strike
 from pool_env.sim.result import SpinShotResult
@@ -85,6 +92,63 @@ def raise_bad_spin(code: int, i: int, table: Table, ang: NDArray[np.float64]) ->
     )
 
 
+_REACHABLE_SPIN = getattr(limits.reachable_speed2_spin, "py_func", limits.reachable_speed2_spin)
+
+
+def reachable_spin_speed(
+    table: Table,
+    velocities: ArrayLike,
+    angular_velocities: ArrayLike,
+    masses: ArrayLike | None = None,
+) -> float:
+    """The fastest speed (m/s) impacts and cloth friction could give any ball of a spin scene.
+
+    ``sqrt(sum_k m_k (v_k^2 + (2/5) R^2 |w_k|^2) / min m)``: twice the kinetic energy,
+    spin included, over the lightest mass (:mod:`pool_env.sim.kernels.limits` says why no
+    ball ever moves faster). The simulator refuses a spin scene where this passes the
+    speed limits.
+
+    Args:
+        table: The (spin) table: its ball radius.
+        velocities: ``(N, 2)`` initial velocities.
+        angular_velocities: ``(N, 3)`` initial angular velocities (rad/s).
+        masses: ``(N,)`` masses, or ``None`` for equal masses.
+    """
+    vel = as_points("velocities", velocities)
+    ang = as_angular(table, angular_velocities, vel.shape[0])
+    mass = as_masses(masses, vel.shape[0])
+    return float(_REACHABLE_SPIN(vel, ang, mass, table.ball_radius)[0]) ** 0.5
+
+
+def raise_spin_invalid(
+    code: int,
+    i: int,
+    j: int,
+    table: Table,
+    pos: NDArray[np.float64],
+    vel: NDArray[np.float64],
+    ang: NDArray[np.float64],
+    mass: NDArray[np.float64],
+) -> None:
+    """Raise the ``ValueError`` for a code of ``spin_loop.validate_spin_scene``.
+
+    As :func:`~pool_env.sim.inputs.raise_invalid`, with the spin's codes and the energy
+    limit counting the spin.
+    """
+    if code in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
+        raise_bad_spin(code, i, table, ang)
+    if code == spin_loop.TOO_ENERGETIC:
+        reach = reachable_spin_speed(table, vel, ang, mass if mass.shape[0] else None)
+        raise ValueError(
+            f"the scene's kinetic energy could speed ball {i} (the lightest) up to "
+            f"{reach!r} m/s through impacts and cloth friction "
+            f"(sqrt(sum m (v^2 + (2/5) R^2 |w|^2) / m_{i}): spin counts), beyond "
+            f"{speed_limits(table)}; slow the balls or their spin down or bring the masses "
+            "closer"
+        )
+    raise_invalid(code, i, j, table, pos, vel, mass)
+
+
 def run_spin(
     table: Table,
     pos: NDArray[np.float64],
@@ -101,8 +165,6 @@ def run_spin(
     raw = spin_loop.packed_spin_shot(
         pos, vel, ang, mass, table.spin_params, table.pocket_geometry, max_events, record
     )
-    if raw[0] in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
-        raise_bad_spin(raw[0], raw[1], table, ang)
     if raw[0] != spin_loop.OK:
-        raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
+        raise_spin_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
     return SpinShotResult(raw, pos.shape[0], table.deceleration, record)

@@ -28,6 +28,7 @@ import math
 import numpy as np
 
 from pool_env.sim.jit import kernel
+from pool_env.sim.kernels.kinds import JAW, POCKET, POINT
 from pool_env.sim.kernels.motion import set_anchor, state_at
 from pool_env.sim.kernels.params import (
     P_DECEL,
@@ -39,10 +40,6 @@ from pool_env.sim.kernels.params import (
 )
 from pool_env.sim.kernels.resolve import lump_off_contacts
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF, ray_circle_entry
-
-# Event kinds of jaw contacts (after the kinds of predict.py: pocket 0, ball 1, cushion 2,
-# stop 3). A fall-line crossing is a "pocket" event.
-JAW, POINT = 4, 5
 
 # Columns of a jaw row (mirrors pool_env.sim.pockets, which builds the rows).
 J_FX, J_FY, J_FNX, J_FNY = 0, 1, 2, 3
@@ -132,13 +129,13 @@ def predict_pocket(pockets, k, x, y, ux, uy, best_s, best_kind, best_arg):
     before a point where they meet at a tip's tangent point).
 
     Returns:
-        The updated ``(s, kind, arg)``; ``kind`` 0 (pocket, ``arg = k``), :data:`JAW` or
+        The updated ``(s, kind, arg)``; ``kind`` :data:`POCKET` (``arg = k``), :data:`JAW` or
         :data:`POINT` (``arg = 2 k + side``), or the input.
     """
     row = pockets[k]
     s = _fall_entry(row, x, y, ux, uy)
     if s <= best_s:
-        best_s, best_kind, best_arg = s, 0, k
+        best_s, best_kind, best_arg = s, POCKET, k
     for side in range(2):
         s = _facing_entry(row, J_FACING0 + 7 * side, x, y, ux, uy)
         if s < best_s or (s == best_s and best_kind > JAW):

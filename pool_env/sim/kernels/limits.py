@@ -21,6 +21,19 @@ so that a change of a limit changes the compile-cache tag. Why these values:
   initial ``sum_k m_k v_k^2``. A scene whose energy could drive its lightest ball past the
   limits is refused: unbounded, such a ball reached 14 km/s on a km-scale elastic table
   and its position's rounding (speed x ulp(t)) put it 1.2e-9 m past a rail.
+* On the spin level the energy counts the spin too: ``T = sum_k m_k (v_k^2 + (2/5) R^2
+  |w_k|^2) / 2`` (a solid ball, ``I = (2/5) m R^2``). Spin turns into speed: the cloth's
+  friction on a sliding ball (draw, follow, a stun ball's backspin), the throw of a
+  ball-ball impact, a cushion's friction on english. None of them adds energy: the cloth's
+  friction works at ``-mu m g |u| <= 0`` (the slip ``u`` is the contact point's velocity),
+  impacts have restitutions at most 1 and friction capped at the no-slip result, the
+  pressed-cushion rule conserves angular momentum about the cloth contact and only takes
+  energy away. So ``m_i v_i^2 <= 2 T`` bounds every translational speed of the shot
+  (:func:`reachable_speed2_spin`). Translation alone is not enough: a still ball with
+  backspin of surface speed ``s`` rolls away at ``(2/7) s``, beyond any initial speed (0),
+  and a spinning ball can pass its spin to a light one. The bound is the energy one; the
+  cloth alone gets a single ball only to ``(5 |v| + 2 s) / 7`` (angular momentum about
+  the contact point), but impacts can do better, so no tighter bound holds for every shot.
 * The rolling deceleration ``mu_roll g`` in ``[MIN_DECELERATION, MAX_DECELERATION]``: event
   times stay within ~1e6 s, resolved far finer than the Zeno window of 1e-6 s.
 * Masses in ``[MIN_MASS, MAX_MASS]``: momenta and energies never overflow or underflow.
@@ -38,6 +51,8 @@ MIN_DECELERATION = 1e-6  # m/s^2
 MAX_DECELERATION = 1e6  # m/s^2
 MIN_MASS = 1e-12  # kg
 MAX_MASS = 1e12  # kg
+#: ``I / (m R^2)`` of a solid ball: a ball's rotational energy is ``(2/5) m R^2 |w|^2 / 2``.
+SOLID_INERTIA = 0.4
 #: The event cap is an int64 in the compiled loop.
 MAX_EVENTS_LIMIT = 2**63 - 1
 
@@ -78,4 +93,31 @@ def reachable_speed2(velocities, masses):
     for k in range(n):
         v2 = velocities[k, 0] * velocities[k, 0] + velocities[k, 1] * velocities[k, 1]
         total += (masses[k] / masses[lightest]) * v2 if weighed else v2
+    return total, lightest
+
+
+@kernel
+def reachable_speed2_spin(velocities, angular, masses, radius):
+    """:func:`reachable_speed2` counting the spin's energy too (the spin level).
+
+    ``sum_k (m_k / m_min) (v_k^2 + (2/5) R^2 |w_k|^2)``: twice the kinetic energy over the
+    lightest mass, which no translational speed of the shot can pass (the module
+    docstring). Without spin it is :func:`reachable_speed2`'s bound, to the bit.
+
+    Args:
+        velocities: ``(N, 2)`` initial velocities (finite).
+        angular: ``(N, 3)`` initial angular velocities (finite).
+        masses: ``(N,)`` masses (within the limits), or empty: every ball weighs the same.
+        radius: The ball radius ``R``.
+
+    Returns:
+        ``(speed2, i)``: the bound on any ball's squared speed and the lightest ball ``i``.
+    """
+    total, lightest = reachable_speed2(velocities, masses)
+    weighed = masses.shape[0] > 0
+    arm2 = SOLID_INERTIA * radius * radius
+    for k in range(angular.shape[0]):
+        w2 = angular[k, 0] * angular[k, 0] + angular[k, 1] * angular[k, 1]
+        w2 += angular[k, 2] * angular[k, 2]
+        total += (masses[k] / masses[lightest]) * arm2 * w2 if weighed else arm2 * w2
     return total, lightest

@@ -26,16 +26,15 @@ import numpy as np
 
 from pool_env.sim.jit import inline_kernel, kernel
 from pool_env.sim.kernels.jaws import (
-    JAW,
     JAW_COLS,
     LOC_CIRCLE,
     LOC_FALL,
     LOC_FREE,
-    POINT,
     jaw_impact,
     locate,
     unpress_lump,
 )
+from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, NO_EVENT, POCKET, POINT, STOP
 from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, reachable_speed2, speed_allowed
 from pool_env.sim.kernels.motion import (
     MOVING,
@@ -47,18 +46,18 @@ from pool_env.sim.kernels.motion import (
     set_anchor,
     state_at,
 )
-from pool_env.sim.kernels.params import P_DECEL, P_MASS, P_RADIUS
-from pool_env.sim.kernels.predict import (
-    BALL,
-    CUSHION,
-    EV_ARG,
-    EV_KIND,
-    EV_T,
-    POCKET,
-    STOP,
-    predict_own,
-    predict_pair,
+from pool_env.sim.kernels.packing import (
+    BALL_CUSHIONS,
+    BALL_FIRST_HIT,
+    BALL_POCKET,
+    BALL_POCKET_ORDER,
+    BALL_STOPPED,
+    N_BALL_ROWS,
+    invalid_shot,
+    pack_shot,
 )
+from pool_env.sim.kernels.params import P_DECEL, P_MASS, P_RADIUS
+from pool_env.sim.kernels.predict import EV_ARG, EV_KIND, EV_T, predict_own, predict_pair
 from pool_env.sim.kernels.record import (
     grown_event_log,
     grown_segment_log,
@@ -123,14 +122,6 @@ ShotOutput = namedtuple(
         "segments",
     ],
 )
-
-#: Rows of the per-ball results (``N_BALL_ROWS`` of them): the pocket each ball dropped
-#: into, its place in the pocketing order, the first ball it touched, its cushion impacts
-#: after the first contact, and 1 if the event cap stopped it (the :data:`ShotOutput`
-#: fields ``pocketed``, ``pocket_order``, ``first_hit``, ``cushions_after_contact``,
-#: ``stopped_by_cap``).
-BALL_POCKET, BALL_POCKET_ORDER, BALL_FIRST_HIT, BALL_CUSHIONS, BALL_STOPPED = range(5)
-N_BALL_ROWS = 5
 
 
 @kernel
@@ -290,7 +281,7 @@ def _shoot(positions, velocities, masses, params, pockets, max_events, record):
     capped = False
     changed = np.empty(n, dtype=np.int64)  # balls re-anchored by the current event
     while True:
-        bt, bkind, bi, bj = INF, 99, n, n
+        bt, bkind, bi, bj = INF, NO_EVENT, n, n
         for i in range(n):
             t = own[i, EV_T]
             if t < INF:
@@ -421,17 +412,10 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
 def packed_shot(positions, velocities, masses, params, pockets, max_events, record):
     """Validate and simulate one shot in a single call, for Python: the lean path.
 
-    Every array handed back to Python costs a Python object (about 0.3 us each, and a named
-    tuple about a microsecond more), so the whole result comes back in two flat arrays;
+    The whole result comes back in two flat arrays, laid out by
+    :func:`~pool_env.sim.kernels.packing.pack_shot` (the roll level has no tails);
     :class:`~pool_env.sim.result.ShotResult` takes them over and reads its fields from them
-    as views. For ``N`` balls, ``E`` logged events and ``S`` logged segments (``E = S = 0``
-    unless ``record``), block after block:
-
-    * ``floats``: final positions ``(N, 2)``; event times ``(E,)``; segment times ``(S,)``;
-      segment states ``(S, 4)`` (``x, y, vx, vy``).
-    * ``ints``: the per-ball rows ``(N_BALL_ROWS, N)``; the event rows ``(4, E)`` (kind
-      code, ``i``, ``j``, first segment row); the segment rows ``(2, S)`` (ball, 1 if
-      potted there).
+    as views.
 
     Args:
         positions, velocities, masses, params, pockets, max_events, record: As for
@@ -447,33 +431,10 @@ def packed_shot(positions, velocities, masses, params, pockets, max_events, reco
     """
     code, ci, cj = validate(positions, velocities, masses, params, pockets)
     if code != OK:
-        empty_f = np.empty(0, dtype=np.float64)
-        empty_i = np.empty(0, dtype=np.int64)
-        return code, ci, cj, empty_f, empty_i, 0, 0, -1, -1, False, 0.0
+        return invalid_shot(code, ci, cj)
     st, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = _shoot(
         positions, velocities, masses, params, pockets, max_events, record
     )
-    n = positions.shape[0]
     n_log = n_ev if record else 0
-    floats = np.empty(2 * n + n_log + 5 * n_seg, dtype=np.float64)
-    ints = np.empty(N_BALL_ROWS * n + 4 * n_log + 2 * n_seg, dtype=np.int64)
-    for i in range(n):  # positions (N, 2), then the per-ball rows (N_BALL_ROWS, N)
-        floats[2 * i] = st[i, PX]
-        floats[2 * i + 1] = st[i, PY]
-        for row in range(N_BALL_ROWS):
-            ints[row * n + i] = balls[row, i]
-    f, k = 2 * n, N_BALL_ROWS * n
-    for e in range(n_log):  # event times, then the event rows: kind, i, j, first segment
-        floats[f + e] = events.t[e]
-        ints[k + e] = events.kind[e]
-        ints[k + n_log + e] = events.i[e]
-        ints[k + 2 * n_log + e] = events.j[e]
-        ints[k + 3 * n_log + e] = events.first_segment[e]
-    f, k = f + n_log, k + 4 * n_log
-    for r in range(n_seg):  # segment times, then states (S, 4); balls, then potted flags
-        floats[f + r] = segments.t[r]
-        for c in range(4):
-            floats[f + n_seg + 4 * r + c] = segments.state[r, c]
-        ints[k + r] = segments.ball[r]
-        ints[k + n_seg + r] = segments.potted[r]
+    floats, ints, _, _ = pack_shot(st, balls, events, n_log, segments, n_seg, 0, 0)
     return OK, -1, -1, floats, ints, n_ev, n_seg, first_i, first_j, capped, now

@@ -26,6 +26,7 @@ import math
 
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import JAW_COLS, opening_of, predict_pocket, throat_of
+from pool_env.sim.kernels.kinds import CUSHION, POCKET, STOP
 from pool_env.sim.kernels.motion import (
     MOVING,
     POTTED,
@@ -48,9 +49,6 @@ from pool_env.sim.kernels.roots import (
     first_contact,
     ray_circle_entry,
 )
-
-# Event kinds, in the order that breaks ties between simultaneous events.
-POCKET, BALL, CUSHION, STOP = 0, 1, 2, 3
 
 # Columns of the (N, 4) per-ball "own event" array.
 EV_T, EV_KIND, EV_ARG, EV_END = 0, 1, 2, 3

@@ -13,22 +13,15 @@ import numpy as np
 from numba import prange
 
 from pool_env.sim.jit import kernel, parallel_kernel
-from pool_env.sim.kernels.batch import BatchOutput, _allocate, _fields
-from pool_env.sim.kernels.loop import (
-    BALL_CUSHIONS,
-    BALL_FIRST_HIT,
-    BALL_POCKET,
-    BALL_POCKET_ORDER,
-    BALL_STOPPED,
-    BEHIND_LINE,
-    IN_JAW,
-    IN_POCKET,
-    OK,
-    validate,
+from pool_env.sim.kernels.loop import BEHIND_LINE, IN_JAW, IN_POCKET, OK
+from pool_env.sim.kernels.packing import (
+    BatchOutput,
+    allocate_batch,
+    batch_fields,
+    store_error,
+    store_table,
 )
-from pool_env.sim.kernels.params import P_RADIUS
-from pool_env.sim.kernels.spin_loop import shoot_spin, validate_spins
-from pool_env.sim.kernels.spin_state import PX, PY
+from pool_env.sim.kernels.spin_loop import shoot_spin, validate_spin_scene
 
 
 @kernel
@@ -39,33 +32,15 @@ def _one_table(b, positions, velocities, angular, masses, active, prm, pockets, 
     vel = np.ascontiguousarray(velocities[b][index])
     ang = np.ascontiguousarray(angular[b][index])
     mass = np.ascontiguousarray(masses[b][index])
-    code, i, j = validate(pos, vel, mass, prm, pockets)
-    if code == OK:
-        code, i, j = validate_spins(ang, prm[P_RADIUS])
+    code, i, j = validate_spin_scene(pos, vel, ang, mass, prm, pockets)
     if code != OK:
-        out.error[b, 0] = code
-        out.error[b, 1] = index[i] if i >= 0 else -1
         pocket = (code == IN_POCKET) | (code == IN_JAW) | (code == BEHIND_LINE)
-        out.error[b, 2] = index[j] if j >= 0 and not pocket else j
+        store_error(out, b, index, code, i, j, pocket)
         return
     st, _, balls, first_i, first_j, n_ev, _, capped, _, _, _ = shoot_spin(
         pos, vel, ang, mass, prm, pockets, max_events, False
     )
-    for k in range(index.shape[0]):
-        ball = index[k]
-        out.positions[b, ball, 0] = st[k, PX]
-        out.positions[b, ball, 1] = st[k, PY]
-        out.pocketed[b, ball] = balls[BALL_POCKET, k]
-        out.pocket_order[b, ball] = balls[BALL_POCKET_ORDER, k]
-        hit = balls[BALL_FIRST_HIT, k]
-        out.first_hit[b, ball] = index[hit] if hit >= 0 else -1
-        out.cushions_after_contact[b, ball] = balls[BALL_CUSHIONS, k]
-        out.stopped_by_cap[b, ball] = balls[BALL_STOPPED, k] != 0
-    out.n_events[b] = n_ev
-    out.capped[b] = capped
-    if first_i >= 0:
-        out.first_contact[b, 0] = index[first_i]
-        out.first_contact[b, 1] = index[first_j]
+    store_table(out, b, index, st, balls, first_i, first_j, n_ev, capped)
 
 
 @kernel
@@ -82,9 +57,9 @@ def run_spin_batch(positions, velocities, angular, masses, active, prm, pockets,
         max_events: Event cap per table.
 
     Returns:
-        A :data:`~pool_env.sim.kernels.batch.BatchOutput`.
+        A :data:`~pool_env.sim.kernels.packing.BatchOutput`.
     """
-    out = _allocate(positions)
+    out = allocate_batch(positions)
     for b in range(positions.shape[0]):
         _one_table(b, positions, velocities, angular, masses, active, prm, pockets, max_events, out)
     return out
@@ -103,8 +78,8 @@ def run_spin_batch_parallel(
     positions, velocities, angular, masses, active, prm, pockets, max_events
 ):
     """:func:`run_spin_batch` with the tables spread over threads."""
-    out = _allocate(positions)
-    fields = _fields(out)
+    out = allocate_batch(positions)
+    fields = batch_fields(out)
     for b in prange(positions.shape[0]):
         _one_table_of(
             b, positions, velocities, angular, masses, active, prm, pockets, max_events, fields

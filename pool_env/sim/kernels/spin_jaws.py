@@ -30,10 +30,9 @@ from pool_env.sim.kernels.jaws import (
     J_FX,
     J_FY,
     J_TIP0,
-    JAW,
-    POINT,
     throat_of,
 )
+from pool_env.sim.kernels.kinds import JAW, POCKET, POINT
 from pool_env.sim.kernels.roots import INF, first_contact, quadratic_roots
 
 
@@ -73,7 +72,7 @@ def predict_jaws(pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale,
     point where they meet at a tip's tangent point).
 
     Returns:
-        The updated ``(t, kind, arg)``; ``kind`` 0 (pocket, ``arg = k``), ``JAW`` or
+        The updated ``(t, kind, arg)``; ``kind`` ``POCKET`` (``arg = k``), ``JAW`` or
         ``POINT`` (``arg = 2 k + side``).
     """
     best_t, best_kind, best_arg = best
@@ -99,7 +98,7 @@ def predict_jaws(pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale,
                 tau = INF
         t = t0 + tau
         if tau < INF and (t < best_t or (t == best_t and best_kind > 0)):
-            best_t, best_kind, best_arg = t, 0, k
+            best_t, best_kind, best_arg = t, POCKET, k
         for side in range(2):
             tau = _facing_time(row, J_FACING0 + 7 * side, x, y, vx, vy, ax, ay, span, tol, curv_tol)
             t = t0 + tau

@@ -26,20 +26,28 @@ import math
 import numpy as np
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.jaws import JAW, POINT, jaw_normal
-from pool_env.sim.kernels.limits import MAX_SPEED
-from pool_env.sim.kernels.loop import (
+from pool_env.sim.kernels.jaws import jaw_normal
+from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, NO_EVENT, POCKET, POINT, SLIDE_ROLL
+from pool_env.sim.kernels.limits import MAX_SPEED, reachable_speed2_spin, speed_allowed
+from pool_env.sim.kernels.loop import OK, TOO_ENERGETIC, _earlier, _tally, validate
+from pool_env.sim.kernels.packing import (
     BALL_CUSHIONS,
     BALL_STOPPED,
     N_BALL_ROWS,
-    OK,
-    TOO_ENERGETIC,
-    _earlier,
-    _tally,
-    validate,
+    SPIN_TAIL_FLOATS,
+    SPIN_TAIL_INTS,
+    invalid_shot,
+    pack_shot,
 )
-from pool_env.sim.kernels.params import P_E_BALL, P_E_CUSHION, P_E_JAW, P_MASS, P_RADIUS
-from pool_env.sim.kernels.predict import BALL, CUSHION, EV_ARG, EV_KIND, EV_T, POCKET
+from pool_env.sim.kernels.params import (
+    P_DECEL,
+    P_E_BALL,
+    P_E_CUSHION,
+    P_E_JAW,
+    P_MASS,
+    P_RADIUS,
+)
+from pool_env.sim.kernels.predict import EV_ARG, EV_KIND, EV_T
 from pool_env.sim.kernels.record import (
     SegmentLog,
     grown_event_log,
@@ -61,7 +69,7 @@ from pool_env.sim.kernels.spin_params import (
     S_FRICTION_MODE,
     S_MU_BALL,
 )
-from pool_env.sim.kernels.spin_predict import SLIDE_ROLL, predict_own, predict_pair
+from pool_env.sim.kernels.spin_predict import predict_own, predict_pair
 from pool_env.sim.kernels.spin_state import (
     AX,
     AY,
@@ -186,7 +194,7 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
     e_jaw = prm[P_E_JAW]
     radius = prm[P_RADIUS]
     while True:
-        bt, bkind, bi, bj = INF, 99, n, n
+        bt, bkind, bi, bj = INF, NO_EVENT, n, n
         for i in range(n):
             t = own[i, EV_T]
             if t < INF:
@@ -289,52 +297,45 @@ def validate_spins(angular, radius):
 
 
 @kernel
+def validate_spin_scene(positions, velocities, angular, masses, prm, pockets):
+    """Check a spin scene; return ``(code, i, j)`` naming the first problem (``OK`` if none).
+
+    :func:`~pool_env.sim.kernels.loop.validate`, then :func:`validate_spins`, then the
+    energy limit with the spin's energy counted
+    (:func:`~pool_env.sim.kernels.limits.reachable_speed2_spin`: ``TOO_ENERGETIC``).
+    """
+    code, i, j = validate(positions, velocities, masses, prm, pockets)
+    if code == OK:
+        code, i, j = validate_spins(angular, prm[P_RADIUS])
+    if code == OK:
+        reach2, lightest = reachable_speed2_spin(velocities, angular, masses, prm[P_RADIUS])
+        if not speed_allowed(reach2, prm[P_DECEL]):
+            return TOO_ENERGETIC, lightest, -1
+    return code, i, j
+
+
+@kernel
 def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_events, record):
     """Validate and simulate one spin shot in a single call, for Python.
 
-    The layout of :func:`pool_env.sim.kernels.loop.packed_shot`, with segment states of
-    ``SEG_COLS`` columns (``x, y, vx, vy, wx, wy, wz, ax, ay``) and two blocks appended:
-    the final angular velocities ``(N, 3)`` at the end of ``floats`` and the final motion
-    states ``(N,)`` at the end of ``ints``. Angular velocities are checked by the caller.
+    The layout of :func:`~pool_env.sim.kernels.packing.pack_shot` with segment states of
+    ``SEG_COLS`` columns and the spin level's tails: the final angular velocities
+    ``(N, 3)`` in ``floats`` and the final motion states ``(N,)`` in ``ints``.
 
     Returns:
-        As ``packed_shot``.
+        As :func:`~pool_env.sim.kernels.loop.packed_shot`.
     """
-    code, ci, cj = validate(positions, velocities, masses, prm, pockets)
-    if code == OK:
-        code, ci, cj = validate_spins(angular, prm[P_RADIUS])
+    code, ci, cj = validate_spin_scene(positions, velocities, angular, masses, prm, pockets)
     if code != OK:
-        empty_f = np.empty(0, dtype=np.float64)
-        empty_i = np.empty(0, dtype=np.int64)
-        return code, ci, cj, empty_f, empty_i, 0, 0, -1, -1, False, 0.0
+        return invalid_shot(code, ci, cj)
     st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg = shoot_spin(
         positions, velocities, angular, masses, prm, pockets, max_events, record
     )
-    n = positions.shape[0]
     n_log = n_ev if record else 0
-    floats = np.empty(2 * n + n_log + (1 + SEG_COLS) * n_seg + 3 * n, dtype=np.float64)
-    ints = np.empty(N_BALL_ROWS * n + 4 * n_log + 2 * n_seg + n, dtype=np.int64)
-    for i in range(n):
-        floats[2 * i] = st[i, PX]
-        floats[2 * i + 1] = st[i, PY]
-        for row in range(N_BALL_ROWS):
-            ints[row * n + i] = balls[row, i]
-    f, k = 2 * n, N_BALL_ROWS * n
-    for e in range(n_log):
-        floats[f + e] = events.t[e]
-        ints[k + e] = events.kind[e]
-        ints[k + n_log + e] = events.i[e]
-        ints[k + 2 * n_log + e] = events.j[e]
-        ints[k + 3 * n_log + e] = events.first_segment[e]
-    f, k = f + n_log, k + 4 * n_log
-    for r in range(n_seg):
-        floats[f + r] = segments.t[r]
-        for c in range(SEG_COLS):
-            floats[f + n_seg + SEG_COLS * r + c] = segments.state[r, c]
-        ints[k + r] = segments.ball[r]
-        ints[k + n_seg + r] = segments.potted[r]
-    f, k = f + (1 + SEG_COLS) * n_seg, k + 2 * n_seg
-    for i in range(n):
+    floats, ints, f, k = pack_shot(
+        st, balls, events, n_log, segments, n_seg, SPIN_TAIL_FLOATS, SPIN_TAIL_INTS
+    )
+    for i in range(positions.shape[0]):
         _, _, _, _, wx, wy, wz = state_at(st, ms, i, now, prm)
         floats[f + 3 * i] = wx
         floats[f + 3 * i + 1] = wy

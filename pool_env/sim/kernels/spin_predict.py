@@ -34,8 +34,9 @@ import math
 
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import JAW_COLS, opening_of
+from pool_env.sim.kernels.kinds import CUSHION, POCKET, ROLL_SPIN, SLIDE_ROLL, SPIN_STOP, STOP
 from pool_env.sim.kernels.params import P_LENGTH, P_RADIUS, P_WIDTH
-from pool_env.sim.kernels.predict import CUSHION, EV_ARG, EV_KIND, EV_T, POCKET, STOP
+from pool_env.sim.kernels.predict import EV_ARG, EV_KIND, EV_T
 from pool_env.sim.kernels.roots import (
     APPROACH_RTOL,
     INF,
@@ -61,11 +62,6 @@ from pool_env.sim.kernels.spin_state import (
     moving,
     state_at,
 )
-
-#: Transition event kinds, after the roll level's (pocket 0, ball 1, cushion 2, stop 3,
-#: jaw 4, point 5): sliding to rolling, rolling to spinning in place, spinning to rest. A
-#: rolling ball that comes to rest without spin is a ``STOP`` (3), as on the roll level.
-SLIDE_ROLL, ROLL_SPIN, SPIN_STOP = 6, 7, 8
 
 # Columns of the (N, 4) bounding-box array of each ball's current piece.
 B_XMIN, B_YMIN, B_XMAX, B_YMAX = 0, 1, 2, 3

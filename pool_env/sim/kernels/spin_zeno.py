@@ -25,13 +25,12 @@ from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import (
     J_FACING0,
     J_TIP0,
-    JAW,
     JAW_COLS,
-    POINT,
     jaw_normal,
     opening_of,
     throat_of,
 )
+from pool_env.sim.kernels.kinds import JAW, POINT
 from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.resolve import CONTACT_TOL, V_ZENO, lump_off_contacts
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
