@@ -91,7 +91,7 @@ from pool_env.sim.kernels.spin_state import (
     set_potted,
     state_at,
 )
-from pool_env.sim.kernels.spin_zeno import RAIL_NX, RAIL_NY, pressed_roll, stick
+from pool_env.sim.kernels.spin_zeno import RAIL_NX, RAIL_NY, pressed_roll, stick, wedged_ball
 
 #: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
 SEG_COLS = 9
@@ -172,6 +172,8 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
     for i in range(n):
         for j in range(i + 1, n):
             pair[i, j] = predict_pair(st, ms, i, j, 0.0, prm, own, boxes)
+    # Pairs (i < j) fill the upper triangle; the diagonal counts each ball's cushion impacts
+    # in a row within ZENO_WINDOW (the single ball's jam rule, spin_zeno.wedged_ball).
     pair_last = np.full((n, n), -INF, dtype=np.float64)
     pair_repeats = np.zeros((n, n), dtype=np.int64)
     balls = np.full((N_BALL_ROWS, n), -1, dtype=np.int64)
@@ -241,9 +243,19 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
                 else:
                     nx, ny = jaw_normal(pockets, bkind, bj, x, y)
                     e = e_jaw
-                cushion_han(vx, vy, wx, wy, wz, nx, ny, radius, h, e, f_c, out)
-                mode = FORCE_ROLL if pressed_roll(out, nx, ny, radius) else CLASSIFY
-                set_anchor(st, ms, bi, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
+                if now - pair_last[bi, bi] <= ZENO_WINDOW:
+                    pair_repeats[bi, bi] += 1
+                else:
+                    pair_repeats[bi, bi] = 1
+                pair_last[bi, bi] = now
+                if wedged_ball(x, y, vx, vy, pair_repeats[bi, bi], prm, pockets):
+                    set_anchor(st, ms, bi, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
+                else:
+                    cushion_han(vx, vy, wx, wy, wz, nx, ny, radius, h, e, f_c, out)
+                    mode = FORCE_ROLL if pressed_roll(out, nx, ny, radius) else CLASSIFY
+                    set_anchor(
+                        st, ms, bi, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode
+                    )
             elif bkind == SLIDE_ROLL:
                 set_anchor(st, ms, bi, now, x, y, vx, vy, wx, wy, wz, prm, FORCE_ROLL)
             else:  # STOP, ROLL_SPIN (a rolling ball rests), SPIN_STOP

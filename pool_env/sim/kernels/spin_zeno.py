@@ -10,9 +10,11 @@ Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slowe
 that closely sticks: it and every ball touching it roll on together (:func:`stick`: each
 ball's slide ends at once, and all take the mean rolling velocity; energy only lost).
 The lump then meets the cushions it touches as one body (the roll level's
-``lump_off_contacts``). Simplification: the roll level's jam rule for lumps wedged between
-jaws (``unpress_lump``'s wedge test) is not reproduced; such a lump ends at the event cap
-at worst, which is reported (``hit_event_cap``, ``stopped_by_cap``).
+``lump_off_contacts``) and, on a jaw table, with the roll level's jam rule for lumps
+wedged between contacts (``jaws.unpress_lump``). A single ball meeting a cushion slowly
+while wedged between contacts (:func:`wedged_ball`: a narrowing throat, its slip driving it
+in) is held there too: without the rule it re-hit both facings thousands of times at one
+instant and ended at the event cap.
 """
 
 from __future__ import annotations
@@ -26,13 +28,21 @@ from pool_env.sim.kernels.jaws import (
     J_FACING0,
     J_TIP0,
     JAW_COLS,
+    _slide,
+    _wedged,
     jaw_normal,
     opening_of,
     throat_of,
 )
 from pool_env.sim.kernels.kinds import JAW, POINT
 from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
-from pool_env.sim.kernels.resolve import CONTACT_TOL, V_ZENO, lump_off_contacts
+from pool_env.sim.kernels.resolve import (
+    CONTACT_TOL,
+    V_REST,
+    V_ZENO,
+    ZENO_REPEATS,
+    lump_off_contacts,
+)
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
 from pool_env.sim.kernels.spin_state import FORCE_ROLL, POTTED, set_anchor, state_at
 
@@ -42,42 +52,90 @@ RAIL_NY = (0.0, 0.0, 1.0, -1.0)
 
 
 @kernel
-def _lump_off_cushions(snap, changed, size, vx, vy, prm, pockets):
-    """A lump's common velocity after it meets the cushions its balls touch, as one body.
+def _gather_contacts(x, y, prm, pockets, normals, es, count):
+    """Append the unit normals (and restitutions) of every cushion a centre touches.
 
-    The roll level's rule (``resolve.lump_off_contacts``): each touched rail, jaw facing
-    or jaw point (centre within ``CONTACT_TOL`` of it) reflects the lump's normal velocity
-    into it with its restitution (0 below ``V_ZENO``); a rail is touched only outside the
-    pocket openings. Energy only drops; a ball wedged between a ball and a cushion would
-    otherwise re-collide endlessly at one instant.
+    A rail, jaw facing or jaw point is touched when the centre lies within
+    ``CONTACT_TOL`` of it; a rail only outside the pocket openings. Returns the new count.
     """
     radius, length, width = prm[P_RADIUS], prm[P_LENGTH], prm[P_WIDTH]
     jaws = pockets.shape[1] == JAW_COLS
+    for rail in range(4):
+        coord = y if rail < 2 else x
+        line = (radius, length - radius, radius, width - radius)[rail]
+        here = x if rail < 2 else y
+        if abs(here - line) <= CONTACT_TOL and not (jaws and opening_of(pockets, rail, coord) >= 0):
+            normals[count, 0], normals[count, 1] = RAIL_NX[rail], RAIL_NY[rail]
+            es[count] = prm[P_E_CUSHION]
+            count += 1
+    if jaws:
+        k = throat_of(x, y, prm, pockets)
+        for side in range(2 if k >= 0 else 0):
+            for kind in (JAW, POINT):
+                nx, ny = jaw_normal(pockets, kind, 2 * k + side, x, y)
+                gap = _jaw_gap(pockets, kind, 2 * k + side, x, y)
+                if gap <= CONTACT_TOL:
+                    normals[count, 0], normals[count, 1] = nx, ny
+                    es[count] = prm[P_E_JAW]
+                    count += 1
+    return count
+
+
+@kernel
+def _lump_off_cushions(snap, changed, size, vx, vy, prm, pockets):
+    """A lump's common velocity after it meets the cushions its balls touch, as one body.
+
+    The roll level's rules for a stuck lump (``resolve.lump_off_contacts`` and, on a jaw
+    table, ``jaws.unpress_lump``): a lump wedged between contacts (pressing into them so
+    that it cannot slide along any one of them without pressing into another) stops, the
+    cushions taking its momentum; otherwise each touched rail, jaw facing or jaw point
+    reflects the lump's normal velocity into it with its restitution (0 below ``V_ZENO``),
+    and on a jaw table a component slower than ``V_ZENO`` still pressing into a contact
+    is removed. Energy only drops; a ball wedged between a ball and a cushion would
+    otherwise re-collide endlessly at one instant.
+    """
     normals = np.zeros((8 * size, 2))
-    es = np.full(8 * size, prm[P_E_CUSHION])
+    es = np.zeros(8 * size)
     count = 0
     for c in range(size):
         x, y = snap[changed[c], 0], snap[changed[c], 1]
-        for rail in range(4):
-            coord = y if rail < 2 else x
-            line = (radius, length - radius, radius, width - radius)[rail]
-            here = x if rail < 2 else y
-            if abs(here - line) <= CONTACT_TOL and not (
-                jaws and opening_of(pockets, rail, coord) >= 0
-            ):
-                normals[count, 0], normals[count, 1] = RAIL_NX[rail], RAIL_NY[rail]
-                count += 1
-        if jaws:
-            k = throat_of(x, y, prm, pockets)
-            for side in range(2 if k >= 0 else 0):
-                for kind in (JAW, POINT):
-                    nx, ny = jaw_normal(pockets, kind, 2 * k + side, x, y)
-                    gap = _jaw_gap(pockets, kind, 2 * k + side, x, y)
-                    if gap <= CONTACT_TOL:
-                        normals[count, 0], normals[count, 1] = nx, ny
-                        es[count] = prm[P_E_JAW]
-                        count += 1
-    return lump_off_contacts(vx, vy, normals, es, count)
+        count = _gather_contacts(x, y, prm, pockets, normals, es, count)
+    if pockets.shape[1] != JAW_COLS:
+        return lump_off_contacts(vx, vy, normals, es, count)
+    if _wedged(normals, count, vx, vy, INF, V_REST) or _wedged(
+        normals, count, vx, vy, V_ZENO, V_REST
+    ):
+        return 0.0, 0.0
+    vx, vy = lump_off_contacts(vx, vy, normals, es, count)
+    return _slide(normals, count, vx, vy, V_ZENO, V_REST)
+
+
+@kernel
+def wedged_ball(x, y, vx, vy, repeats, prm, pockets):
+    """Whether a ball meeting a cushion is wedged there: the single ball's jam rule.
+
+    The one-ball counterpart of the lump's (:func:`_lump_off_cushions`, after
+    ``jaws.unpress_lump``), on jaw tables: a ball meeting a cushion while it presses into
+    other contacts so that it cannot slide along any one of them without pressing into
+    another (a ball in a narrowing throat, touching both facings) is held there. Without
+    the rule its slip, turned by each facing's friction, drove it back in after every
+    impact: the model's free slide re-hit the two facings in a sequence that shrank only
+    geometrically, thousands of events at one instant, and ended at the event cap
+    (``tests/test_spin_hard_cases.py``). The caller stops it (velocity and rolling spin
+    to zero; the spin about the vertical, which presses nowhere, kept): energy only drops.
+    """
+    if pockets.shape[1] != JAW_COLS:
+        return False
+    normals = np.zeros((8, 2))
+    es = np.zeros(8)
+    count = _gather_contacts(x, y, prm, pockets, normals, es, 0)
+    if count < 2:
+        return False
+    if repeats >= ZENO_REPEATS:
+        return True
+    return _wedged(normals, count, vx, vy, INF, V_REST) or _wedged(
+        normals, count, vx, vy, V_ZENO, V_REST
+    )
 
 
 @kernel
