@@ -389,9 +389,9 @@ def report(
         f"error {sum(o.status == 'error' for o in outcomes)}.",
         "",
         "Each mutant runs in a scratch copy of the tree with its own numba cache; the "
-        "catalogue is `tools/mutant_catalogue.py`. Mode `interp.`: the subset ran with the "
-        "kernels interpreted (`NUMBA_DISABLE_JIT=1`, no compile); `jit`: compiled afresh "
-        "(`--compiled` forces it for all).",
+        "catalogue is `tools/mutant_catalogue/`, one module an area. Mode `interp.`: the "
+        "subset ran with the kernels interpreted (`NUMBA_DISABLE_JIT=1`, no compile); "
+        "`jit`: compiled afresh (`--compiled` forces it for all).",
         "",
         "| mutant | area | file | models | mode | result | killed by | s |",
         "|---|---|---|---|---|---|---|---|",
