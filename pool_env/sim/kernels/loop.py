@@ -174,6 +174,31 @@ def _earlier(t, kind, i, j, bt, bkind, bi, bj):
     return j < bj
 
 
+@inline_kernel
+def next_event(own, pair):
+    """The next event ``(t, kind, i, j)`` in the total order; ``t = INF`` if none is left.
+
+    ``own`` holds each ball's own next event (columns ``EV_T``, ``EV_KIND``, ``EV_ARG``),
+    ``pair`` the impact time of each pair ``i < j`` (upper triangle). Both levels' loops
+    select with this.
+    """
+    n = own.shape[0]
+    bt, bkind, bi, bj = INF, NO_EVENT, n, n
+    for i in range(n):
+        t = own[i, EV_T]
+        if t < INF:
+            kind = int(own[i, EV_KIND])
+            arg = int(own[i, EV_ARG])
+            if _earlier(t, kind, i, arg, bt, bkind, bi, bj):
+                bt, bkind, bi, bj = t, kind, i, arg
+    for i in range(n):
+        for j in range(i + 1, n):
+            t = pair[i, j]
+            if t < INF and _earlier(t, BALL, i, j, bt, bkind, bi, bj):
+                bt, bkind, bi, bj = t, BALL, i, j
+    return bt, bkind, bi, bj
+
+
 @kernel
 def _repredict_pairs(st, status, k, now, params, own, caps, pair):
     n = st.shape[0]
@@ -209,6 +234,21 @@ def _tally(kind, i, j, balls, first_i, first_j):
         if balls[BALL_FIRST_HIT, j] < 0:
             balls[BALL_FIRST_HIT, j] = i
     return first_i, first_j
+
+
+@inline_kernel
+def take_event(events, record, n_ev, now, kind, i, j, n_seg, balls, first_i, first_j):
+    """Log event ``n_ev`` (if ``record``) and tally it for the rules; both levels' loops.
+
+    Returns the event log (grown if it was full) and the shot's first ball-ball impact so
+    far (see :func:`_tally`).
+    """
+    if record:
+        if n_ev == events.t.shape[0]:
+            events = grown_event_log(events)
+        log_event(events, n_ev, now, kind, i, j, n_seg)
+    first_i, first_j = _tally(kind, i, j, balls, first_i, first_j)
+    return events, first_i, first_j
 
 
 @kernel
@@ -281,31 +321,17 @@ def _shoot(positions, velocities, masses, params, pockets, max_events, record):
     capped = False
     changed = np.empty(n, dtype=np.int64)  # balls re-anchored by the current event
     while True:
-        bt, bkind, bi, bj = INF, NO_EVENT, n, n
-        for i in range(n):
-            t = own[i, EV_T]
-            if t < INF:
-                kind = int(own[i, EV_KIND])
-                arg = int(own[i, EV_ARG])
-                if _earlier(t, kind, i, arg, bt, bkind, bi, bj):
-                    bt, bkind, bi, bj = t, kind, i, arg
-        for i in range(n):
-            for j in range(i + 1, n):
-                t = pair[i, j]
-                if t < INF and _earlier(t, BALL, i, j, bt, bkind, bi, bj):
-                    bt, bkind, bi, bj = t, BALL, i, j
+        bt, bkind, bi, bj = next_event(own, pair)
         if bt == INF:
             break
         if n_ev >= max_events:
             capped = True
             break
         now = bt
-        if record:
-            if n_ev == events.t.shape[0]:
-                events = grown_event_log(events)
-            log_event(events, n_ev, now, bkind, bi, bj, n_seg)
+        events, first_i, first_j = take_event(
+            events, record, n_ev, now, bkind, bi, bj, n_seg, balls, first_i, first_j
+        )
         n_ev += 1
-        first_i, first_j = _tally(bkind, bi, bj, balls, first_i, first_j)
 
         n_changed = 0
         if bkind == STOP:

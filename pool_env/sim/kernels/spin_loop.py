@@ -27,9 +27,9 @@ import numpy as np
 
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import jaw_normal
-from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, NO_EVENT, POCKET, POINT, SLIDE_ROLL
+from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, POCKET, POINT, SLIDE_ROLL
 from pool_env.sim.kernels.limits import MAX_SPEED, reachable_speed2_spin, speed_allowed
-from pool_env.sim.kernels.loop import OK, TOO_ENERGETIC, _earlier, _tally, validate
+from pool_env.sim.kernels.loop import OK, TOO_ENERGETIC, next_event, take_event, validate
 from pool_env.sim.kernels.packing import (
     BALL_CUSHIONS,
     BALL_STOPPED,
@@ -47,12 +47,9 @@ from pool_env.sim.kernels.params import (
     P_MASS,
     P_RADIUS,
 )
-from pool_env.sim.kernels.predict import EV_ARG, EV_KIND, EV_T
 from pool_env.sim.kernels.record import (
     SegmentLog,
-    grown_event_log,
     grown_segment_log,
-    log_event,
     new_event_log,
 )
 from pool_env.sim.kernels.resolve import (
@@ -196,30 +193,17 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
     e_jaw = prm[P_E_JAW]
     radius = prm[P_RADIUS]
     while True:
-        bt, bkind, bi, bj = INF, NO_EVENT, n, n
-        for i in range(n):
-            t = own[i, EV_T]
-            if t < INF:
-                kind, arg = int(own[i, EV_KIND]), int(own[i, EV_ARG])
-                if _earlier(t, kind, i, arg, bt, bkind, bi, bj):
-                    bt, bkind, bi, bj = t, kind, i, arg
-        for i in range(n):
-            for j in range(i + 1, n):
-                t = pair[i, j]
-                if t < INF and _earlier(t, BALL, i, j, bt, bkind, bi, bj):
-                    bt, bkind, bi, bj = t, BALL, i, j
+        bt, bkind, bi, bj = next_event(own, pair)
         if bt == INF:
             break
         if n_ev >= max_events:
             capped = True
             break
         now = bt
-        if record:
-            if n_ev == events.t.shape[0]:
-                events = grown_event_log(events)
-            log_event(events, n_ev, now, bkind, bi, bj, n_seg)
+        events, first_i, first_j = take_event(
+            events, record, n_ev, now, bkind, bi, bj, n_seg, balls, first_i, first_j
+        )
         n_ev += 1
-        first_i, first_j = _tally(bkind, bi, bj, balls, first_i, first_j)
         changed[0] = bi
         n_changed = 1
         if bkind == BALL:

@@ -11,16 +11,13 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env.sim.jit import kernel
+from pool_env.sim.kernels.timeline import last_rows
 
 
 @kernel
 def spin_positions_at(seg_ball, seg_t, seg_state, seg_potted, n_balls, t):
     """Ball positions at time ``t`` and whether each ball is potted by then."""
-    last = np.full(n_balls, -1, dtype=np.int64)
-    for row in range(seg_t.shape[0]):
-        if seg_t[row] > t:
-            break
-        last[seg_ball[row]] = row
+    last = last_rows(seg_ball, seg_t, n_balls, t)
     out = np.empty((n_balls, 2), dtype=np.float64)
     potted = np.zeros(n_balls, dtype=np.bool_)
     for i in range(n_balls):

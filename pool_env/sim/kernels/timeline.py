@@ -10,6 +10,20 @@ from pool_env.sim.jit import kernel
 
 
 @kernel
+def last_rows(seg_ball, seg_t, n_balls, t):
+    """Each ball's last segment row starting at or before ``t`` (segments chronological).
+
+    The anchor each level's ``positions_at`` moves a ball on from.
+    """
+    last = np.full(n_balls, -1, dtype=np.int64)
+    for row in range(seg_t.shape[0]):
+        if seg_t[row] > t:
+            break
+        last[seg_ball[row]] = row
+    return last
+
+
+@kernel
 def positions_at(seg_ball, seg_t, seg_state, seg_potted, n_balls, t, a):
     """Ball positions at time ``t`` and whether each ball is potted by then.
 
@@ -17,11 +31,7 @@ def positions_at(seg_ball, seg_t, seg_state, seg_potted, n_balls, t, a):
     last one of each ball starting at or before ``t`` anchors it, and the ball rolls from
     there with deceleration ``a`` until it rests.
     """
-    last = np.full(n_balls, -1, dtype=np.int64)
-    for row in range(seg_t.shape[0]):
-        if seg_t[row] > t:
-            break
-        last[seg_ball[row]] = row
+    last = last_rows(seg_ball, seg_t, n_balls, t)
     out = np.empty((n_balls, 2), dtype=np.float64)
     potted = np.zeros(n_balls, dtype=np.bool_)
     for i in range(n_balls):
