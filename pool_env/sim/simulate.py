@@ -21,7 +21,7 @@ from pool_env.sim.inputs import (
 )
 from pool_env.sim.kernels import loop
 from pool_env.sim.result import ShotResult
-from pool_env.sim.spin_inputs import as_angular, check_tip, run_spin, strike
+from pool_env.sim.spin_inputs import as_angular, check_tip, run_spin, run_spin_strike
 from pool_env.sim.table import Table
 
 __all__ = ["DEFAULT_MAX_EVENTS", "check_layout", "shoot", "simulate"]
@@ -175,10 +175,9 @@ def shoot(
     cue = check_cue(cue, n)
     a, b, elevation = check_tip(table, tip, elevation)
     if table.model == "spin":
-        vel = np.zeros((n, 2))
-        ang = np.zeros((n, 3))
-        vel[cue], ang[cue] = strike(table, speed, angle, a, b, elevation)
-        return run_spin(table, pos, vel, ang, masses, max_events, record)
+        return run_spin_strike(
+            table, pos, cue, speed, angle, (a, b, elevation), masses, max_events, record
+        )
     vel = np.zeros((n, 2))
     vel[cue, 0] = speed * math.cos(angle)
     vel[cue, 1] = speed * math.sin(angle)

@@ -168,3 +168,42 @@ def run_spin(
     if raw[0] != spin_loop.OK:
         raise_spin_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
     return SpinShotResult(raw, pos.shape[0], table.deceleration, record)
+
+
+def run_spin_strike(
+    table: Table,
+    pos: NDArray[np.float64],
+    cue: int,
+    speed: float,
+    angle: float,
+    tip: tuple[float, float, float],
+    masses: ArrayLike | None,
+    max_events: int,
+    record: bool,
+) -> SpinShotResult:
+    """:func:`pool_env.shoot` on a spin table: the strike and the shot in one compiled call.
+
+    Args:
+        table: The spin table.
+        pos: ``(N, 2)`` kernel array of ball centres.
+        cue: The struck ball (checked).
+        speed: The cue ball's speed after the strike (checked).
+        angle: The cue's aim (checked).
+        tip: ``(a, b, elevation)`` as :func:`check_tip` returns them.
+        masses: ``(N,)`` masses or ``None``.
+        max_events: The event cap.
+        record: Whether to record events and trajectories.
+    """
+    mass = as_masses(masses, pos.shape[0])
+    max_events = check_max_events(max_events)
+    record = bool(record)
+    a, b, elevation = tip
+    raw = spin_loop.packed_spin_strike(
+        pos, cue, speed, angle, a, b, elevation, mass, table.spin_params,
+        table.pocket_geometry, max_events, record,
+    )  # fmt: skip
+    if raw[0] != spin_loop.OK:  # the arrays the message names, rebuilt (rare)
+        vel, ang = np.zeros((pos.shape[0], 2)), np.zeros((pos.shape[0], 3))
+        vel[cue], ang[cue] = strike(table, speed, angle, a, b, elevation)
+        raise_spin_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
+    return SpinShotResult(raw, pos.shape[0], table.deceleration, record)

@@ -236,21 +236,6 @@ def _tally(kind, i, j, balls, first_i, first_j):
     return first_i, first_j
 
 
-@inline_kernel
-def take_event(events, record, n_ev, now, kind, i, j, n_seg, balls, first_i, first_j):
-    """Log event ``n_ev`` (if ``record``) and tally it for the rules; both levels' loops.
-
-    Returns the event log (grown if it was full) and the shot's first ball-ball impact so
-    far (see :func:`_tally`).
-    """
-    if record:
-        if n_ev == events.t.shape[0]:
-            events = grown_event_log(events)
-        log_event(events, n_ev, now, kind, i, j, n_seg)
-    first_i, first_j = _tally(kind, i, j, balls, first_i, first_j)
-    return events, first_i, first_j
-
-
 @kernel
 def _shoot(positions, velocities, masses, params, pockets, max_events, record):
     """Simulate one shot to rest: the event loop itself.
@@ -328,10 +313,12 @@ def _shoot(positions, velocities, masses, params, pockets, max_events, record):
             capped = True
             break
         now = bt
-        events, first_i, first_j = take_event(
-            events, record, n_ev, now, bkind, bi, bj, n_seg, balls, first_i, first_j
-        )
+        if record:
+            if n_ev == events.t.shape[0]:
+                events = grown_event_log(events)
+            log_event(events, n_ev, now, bkind, bi, bj, n_seg)
         n_ev += 1
+        first_i, first_j = _tally(bkind, bi, bj, balls, first_i, first_j)
 
         n_changed = 0
         if bkind == STOP:
