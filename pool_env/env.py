@@ -466,11 +466,13 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         return self._renderer
 
     def _frame(self) -> NDArray[np.uint8]:
+        from pool_env.render import trails
+
         renderer = self._get_renderer()
-        trails = None
+        paths = None
         if self._last_shot is not None and self._last_shot.recorded:
-            trails = renderer.trails(self._last_shot, self._shot_balls)
-        return renderer.frame(self.positions, self.on_table, trails=trails)
+            paths = trails(self._last_shot, self._shot_balls)
+        return renderer.frame(self.positions, self.on_table, trails=paths)
 
     def render(self) -> NDArray[np.uint8] | list[NDArray[np.uint8]] | None:
         """The frame(s) of the render mode (see the class docstring, Rendering).
