@@ -4,6 +4,10 @@ from __future__ import annotations
 
 import itertools
 import math
+import os
+import subprocess
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -174,3 +178,34 @@ def test_roll_level_trails_keep_their_event_corners() -> None:
     samples = trail_times(roll)
     # Straight lines between events are exact on the roll level: no extra samples.
     assert samples.tolist() == np.unique([0.0, roll.duration, *roll.event_times]).tolist()
+
+
+def test_strike_frames_render_headless_without_pygame(tmp_path: Path) -> None:
+    code = (
+        "import math, sys, numpy as np, imageio.v3 as iio\n"
+        "from pool_env import Table, shoot\n"
+        "from pool_env.render import Renderer, save_animation, shot_frames\n"
+        "t = Table(model='spin')\n"
+        "pos = np.array([[0.8, 0.5], [1.5, 0.7]])\n"
+        "a = math.atan2(0.2, 0.7)\n"
+        "res = shoot(t, pos, a, 1.5, tip=(0.3, 0.4))\n"
+        "frames = shot_frames(Renderer(t, 320), res, np.arange(2), fps=10, max_seconds=1.0,\n"
+        "                     strike=(a, 1.5, 0.3, 0.4))\n"
+        f"save_animation(frames, {str(tmp_path / 'shot.gif')!r}, fps=10)\n"
+        "runs = 1 + sum(not np.array_equal(a, b) for a, b in zip(frames, frames[1:]))\n"
+        "# GIF merges a repeated frame into the one before (the held stick): same playback\n"
+        f"assert iio.imread({str(tmp_path / 'shot.gif')!r}).shape[0] == runs\n"
+        "assert 'pygame' not in sys.modules\n"
+        "print('drawn', len(frames))\n"
+    )
+    headless = {
+        k: v
+        for k, v in os.environ.items()
+        if k not in ("DISPLAY", "WAYLAND_DISPLAY", "SDL_VIDEODRIVER", "XDG_RUNTIME_DIR")
+    }
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=headless, timeout=300
+    )
+    assert done.returncode == 0, done.stderr
+    n_lead = math.ceil(LEAD_HOLD * 10) + math.ceil(LEAD_STROKE * 10)
+    assert int(done.stdout.split()[-1]) > n_lead + 2
