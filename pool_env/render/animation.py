@@ -28,9 +28,9 @@ def shot_frames(
 ) -> list[Frame]:
     """Sample a recorded shot into animation frames, from the strike until all rest.
 
-    With ``strike``, the frames start with the lead-in of :func:`~pool_env.render.cue.
-    strike_frames` (the cue stick at the aim, drawn back then stroking to the ball, and on
-    the spin level the tip marker), ``ceil(0.6 fps)`` frames. Then shot frame ``k`` of
+    With ``strike``, the frames start with the lead-in of
+    :func:`~pool_env.render.cue.strike_frames` (the cue stick at the aim, drawn back then
+    stroking to the ball, and on the spin level the tip marker). Then shot frame ``k`` of
     ``n`` shows the balls at ``positions_at(k * duration / (n - 1))``, the exact
     trajectories (a sliding ball's curve included), with the balls potted by then gone.
 
