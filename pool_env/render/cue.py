@@ -41,8 +41,7 @@ CUE_PARTS = ((0.0, 0.008, CUE_TIP), (0.008, 0.03, CUE_FERRULE), (0.03, 0.75, CUE
 #: Playback seconds of the lead-in: the stick held drawn back, then the stroke to contact.
 LEAD_HOLD = 0.4
 LEAD_STROKE = 0.2
-#: MISCUE_CONTACT: the contact offset (fraction of R) beyond which real cues miscue; the
-#: marker draws it as a ring.
+#: The contact offset (fraction of R) beyond which real cues miscue: the marker's ring.
 MISCUE_CONTACT = 0.5
 
 
