@@ -13,7 +13,7 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.env_doc import ENV_DOC
+from pool_env.env_doc import with_spec
 from pool_env.game import step as game
 from pool_env.game.checks import check_actions, check_render, check_seed
 from pool_env.game.config import (
@@ -38,12 +38,20 @@ _ONE = np.zeros(1, dtype=np.intp)  # the rows of the single table
 class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     """Pool: pot the object balls, a shot per step, on an exact event-based table simulator.
 
-    Replaced at import by its full specification, :data:`pool_env.env_doc.ENV_DOC`
-    (``help(pool_env.PoolEnv)`` shows it): the spaces, rewards, episode ends, info,
-    arguments, the rules of the game ids, rendering, attributes and the version history.
+    Examples:
+        >>> import numpy as np
+        >>> from pool_env import PoolEnv
+        >>> env = PoolEnv(scene="one_ball", end_on_miss=True)
+        >>> obs, info = env.reset(seed=0)
+        >>> obs.shape  # x, y and on-table flag of the cue ball and ball 1
+        (6,)
+        >>> obs, reward, terminated, truncated, info = env.step(np.array([0.0, 1.0]))
+        >>> reward, info["potted"], info["first_contact"], terminated  # a full hit, hard
+        (1.0, (1,), 1, True)
     """
 
-    __doc__ = ENV_DOC  # the specification is long: it lives in pool_env/env_doc.py
+    # The specification, after the summary: long, it lives in pool_env/env_doc.py.
+    __doc__ = with_spec(__doc__)
 
     metadata: ClassVar[dict[str, Any]] = {
         "render_modes": ["human", "rgb_array", "rgb_array_list"],

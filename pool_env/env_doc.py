@@ -1,17 +1,17 @@
-"""The specification of :class:`pool_env.PoolEnv`: its docstring, kept here for its length.
+"""The specification of :class:`pool_env.PoolEnv`, kept here for its length.
 
-``help(pool_env.PoolEnv)`` and the docs' "specification" page show :data:`ENV_DOC`
-(``PoolEnv.__doc__``; the docs build reads it at run time through
-``docs/griffe_runtime_docs.py``). The class itself stays a short module of code.
+``PoolEnv``'s docstring is :func:`with_spec` of its own (a summary and its examples, which
+run as doctests): ``help(pool_env.PoolEnv)`` shows the whole, and the docs build reads it
+at run time (``docs/griffe_runtime_docs.py``). The class stays a short module of code.
 """
 
 from __future__ import annotations
 
-#: ``PoolEnv``'s docstring: what an episode is, the spaces, rewards, ends, info, arguments,
-#: the rules of the game ids, rendering, attributes and the version history.
-ENV_DOC = r"""Pool: pot the object balls, a shot per step, on an exact event-based table simulator.
+import inspect
 
-## Description
+#: The specification: what an episode is, the spaces, rewards, ends, info, arguments, the
+#: rules of the game ids, rendering, attributes and the version history.
+SPEC = r"""## Description
 
 A cue ball and ``n`` object balls lie on a pool table (a 9-ft table with six pockets by
 default). Each step is one shot: the action is decoded to a direction and a speed, the
@@ -310,15 +310,10 @@ beyond ~70 degrees), so aiming and speed control are what pot balls.
   v0's. Gymnasium notes once per process that a v0 id has a newer version.
 * v0: Initial version (the roll level: balls roll without spin). Unchanged, bit for
   bit, by v1.
-
-Examples:
-    >>> import numpy as np
-    >>> from pool_env import PoolEnv
-    >>> env = PoolEnv(scene="one_ball", end_on_miss=True)
-    >>> obs, info = env.reset(seed=0)
-    >>> obs.shape  # x, y and on-table flag of the cue ball and ball 1
-    (6,)
-    >>> obs, reward, terminated, truncated, info = env.step(np.array([0.0, 1.0]))
-    >>> reward, info["potted"], info["first_contact"], terminated  # a full hit, hard
-    (1.0, (1,), 1, True)
 """
+
+
+def with_spec(docstring: str | None) -> str:
+    """``docstring`` (a summary line, then the rest) with :data:`SPEC` after its summary."""
+    summary, _, rest = inspect.cleandoc(docstring or "").partition("\n\n")
+    return f"{summary}\n\n{SPEC.strip()}\n\n{rest}".rstrip() + "\n"
