@@ -111,7 +111,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._started = False
         self._potted_lut = potted_lookup(config.n_object_balls)
         self._last_shot: ShotResult | None = None
-        self._last_strike: tuple[float, float, float, float] | None = None
+        self._last_shots: NDArray[np.float64] | None = None  # the step's executed shot row
         self._shot_balls = np.arange(n)
         self._renderer: Any = None
         self._window: Any = None
@@ -130,7 +130,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         game.reset(self.config, self._state, _ONE, options)
         self._started = True
         self._last_shot = None
-        self._last_strike = None
+        self._last_shots = None
         if self.render_mode == "human":
             self.render()
         elif self.render_mode == "rgb_array_list":
@@ -147,8 +147,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._use_generator()
         result = game.step(self.config, self._state, _ONE, actions, record=self._record)
         self._last_shot, self._shot_balls = result.shot, result.balls
-        strike = result.shots[0].tolist()
-        self._last_strike = (strike[0], strike[1], *(strike[2:] or (0.0, 0.0)))
+        self._last_shots = result.shots  # read by last_strike: a new array every step
         info = table_info(result, self._potted_lut)
         reward = result.rewards.item()
         flags = result.flags[0].tolist()
@@ -214,7 +213,10 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         axis offset (fractions of R; ``0.0, 0.0`` on a roll table). ``None`` before the
         first shot of an episode.
         """
-        return self._last_strike
+        if self._last_shots is None:
+            return None
+        strike = self._last_shots[0].tolist()
+        return (strike[0], strike[1], *(strike[2:] or (0.0, 0.0)))
 
     @property
     def last_shot_balls(self) -> NDArray[np.int64]:
