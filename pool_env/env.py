@@ -266,19 +266,30 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         return None
 
     def shot_frames(
-        self, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0, min_frames: int = 2
+        self,
+        fps: int = 30,
+        speed: float = 1.0,
+        max_seconds: float = 8.0,
+        min_frames: int = 2,
+        lead_in: bool = True,
     ) -> list[NDArray[np.uint8]]:
-        """Frames of the last shot sampled from its exact trajectories.
+        """Frames of the last shot: the cue stick at its aim, then the exact trajectories.
 
         Args:
             fps: Frames per second of playback.
             speed: Playback speed (1 is real time).
             max_seconds: Longer shots are sped up to fit in this playback time.
-            min_frames: At least this many frames (shorter shots are slowed down).
+            min_frames: At least this many frames of the balls moving (shorter shots are
+                slowed down).
+            lead_in: Start with 0.6 s of the stick behind the cue ball along the aim of
+                :attr:`last_strike` (held drawn back, then stroking to the ball; shifted
+                sideways by the side offset), and on a spin table a ball face in a corner
+                with a dot where the tip hits (:mod:`pool_env.render.cue`).
 
         Returns:
-            Frames from the strike until everything rests (the last frame shows a scratched
-            cue ball in the pocket; :meth:`render` shows it re-spotted).
+            The lead-in, then frames from the strike until everything rests, sliding curves
+            included (the last frame shows a scratched cue ball in the pocket;
+            :meth:`render` shows it re-spotted).
 
         Raises:
             ValueError: Without a render mode (no trajectories were kept) or before a shot.
@@ -289,15 +300,26 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         if shot is None or not shot.recorded:
             raise ValueError("no recorded shot: create the env with a render_mode and step() first")
         renderer = self._get_renderer()
-        return shot_frames(renderer, shot, self._shot_balls, fps, speed, max_seconds, min_frames)
+        strike = self.last_strike if lead_in else None
+        return shot_frames(
+            renderer, shot, self._shot_balls, fps, speed, max_seconds, min_frames, strike
+        )
 
     def save_shot(
-        self, path: str, fps: int = 30, speed: float = 1.0, max_seconds: float = 8.0
+        self,
+        path: str,
+        fps: int = 30,
+        speed: float = 1.0,
+        max_seconds: float = 8.0,
+        lead_in: bool = True,
     ) -> None:
-        """Write the animation of the last shot to ``path`` (``.gif`` or ``.mp4``)."""
+        """Write the animation of the last shot to ``path`` (``.gif`` or ``.mp4``).
+
+        Its frames are :meth:`shot_frames`' (``lead_in``: the cue stick first).
+        """
         from pool_env.render import save_animation
 
-        save_animation(self.shot_frames(fps, speed, max_seconds), path, fps)
+        save_animation(self.shot_frames(fps, speed, max_seconds, lead_in=lead_in), path, fps)
 
     def close(self) -> None:
         """Close the window, if any."""

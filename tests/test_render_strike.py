@@ -13,7 +13,14 @@ import numpy as np
 import pytest
 
 from pool_env import Table, shoot
-from pool_env.render import Renderer, shot_frames, strike_frames, trail_times, trails
+from pool_env.render import (
+    LIST_PLAYBACK,
+    Renderer,
+    shot_frames,
+    strike_frames,
+    trail_times,
+    trails,
+)
 from pool_env.render.cue import (
     BUTT_WIDTH,
     LEAD_HOLD,
@@ -209,3 +216,32 @@ def test_strike_frames_render_headless_without_pygame(tmp_path: Path) -> None:
     assert done.returncode == 0, done.stderr
     n_lead = math.ceil(LEAD_HOLD * 10) + math.ceil(LEAD_STROKE * 10)
     assert int(done.stdout.split()[-1]) > n_lead + 2
+
+
+def test_a_spin_env_leads_each_shot_with_its_executed_strike() -> None:
+    import gymnasium as gym
+
+    env = gym.make("pool_env/OneBall-v1", render_mode="rgb_array_list", render_width=400)
+    env.reset(seed=2)
+    raw = env.unwrapped
+    env.step(np.array([0.1, 0.3, 0.8, -0.6], np.float32))  # right english and draw
+    frames = env.render()
+    _, _, side, vertical = raw.last_strike
+    assert side > 0.0 > vertical
+    shot, balls = raw.last_shot, raw.last_shot_balls
+    renderer = raw._get_renderer()
+    at_strike = (shot.positions_at(0.0), ~shot.pocketed_at(0.0), balls)
+    lead = strike_frames(renderer, *at_strike, raw.last_strike, 30)
+    assert len(frames) > 1 + len(lead) + 2
+    for a, b in zip(frames[1 : 1 + len(lead)], lead, strict=True):
+        np.testing.assert_array_equal(a, b)
+    # The marker's dot sits right of and below the face's centre: right english, draw.
+    cue = at_strike[0][int(np.flatnonzero(balls == 0)[0])]
+    x, y, _ = marker_centre(renderer, cue)
+    rows, cols = np.nonzero(np.abs(lead[0].astype(float) - MARKER_DOT).sum(axis=2) < 30)
+    assert cols.mean() + 0.5 - x > 1.0
+    assert rows.mean() + 0.5 - y > 1.0
+    # After the lead-in the frames are the shot's, with no stick.
+    plain = raw.shot_frames(30, **LIST_PLAYBACK, lead_in=False)
+    for a, b in zip(frames[1 + len(lead) :], plain, strict=True):
+        np.testing.assert_array_equal(a, b)
