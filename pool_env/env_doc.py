@@ -273,9 +273,11 @@ Two players: :mod:`pool_env.multiagent`.
 ``"rgb_array"``: ``render()`` returns an ``(H, W, 3)`` uint8 top-down frame: the balls at
 rest, with the paths of the last shot drawn as trails, so ``RecordVideo`` shows each
 shot as one frame (``render_fps`` is 2: half a second per shot). ``"rgb_array_list"``:
-``render()`` returns every frame since the last call: the layout at reset, then each shot
-sampled from its exact trajectories at ``render_fps`` 30 (twice real time, at most 4 s,
-at least 20 frames a shot; :data:`pool_env.render.LIST_PLAYBACK`). Gymnasium's
+``render()`` returns every frame since the last call: the layout at reset, then each shot:
+0.6 s of the cue stick at ``last_strike``'s aim (on a spin table with a ball face
+showing where the tip hits), then the shot sampled from its exact trajectories, sliding
+curves included, at ``render_fps`` 30 (twice real time, at most 4 s, at least 20 frames a
+shot; :data:`pool_env.render.LIST_PLAYBACK`). Gymnasium's
 ``RecordVideo`` keeps one frame per step of a list; :class:`pool_env.record.RecordShots`
 keeps them all, and ``gymnasium.utils.save_video.save_video(env.render(), ...)`` writes
 them too. ``"human"``: a pygame window (``pip install "pool_env[render]"``) that animates
