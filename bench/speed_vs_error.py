@@ -2,10 +2,14 @@
 
 One command, one run, one machine::
 
-    python -m bench.speed_vs_error           # full run (~15-25 min on 2 cores)
-    python -m bench.speed_vs_error --quick   # ~2 min smoke run
+    python -m bench.speed_vs_error                # full run (~15-25 min on 2 cores)
+    python -m bench.speed_vs_error --quick        # smaller suites
+    python -m bench.speed_vs_error --spin-only    # the spin level's section alone (~3 min)
 
-writes ``results/speed_vs_error.md`` and ``results/speed_vs_error.png``. pooltool runs in its
+writes ``results/speed_vs_error.md``, ``results/speed_vs_error.png`` (the roll level) and
+``results/speed_vs_error_spin.png`` (the spin level beside pooltool on equal physics,
+:mod:`bench.spin_rows`). ``--spin-only`` rewrites only the spin section of an existing
+report (and its plot), saying so with its own command, date and load. pooltool runs in its
 own virtualenv (``bash bench/setup_pooltool.sh``); without it the report says why.
 """
 
@@ -28,6 +32,7 @@ from bench.errors import ReferenceCache
 from bench.report import Metrics, machine, metrics, notes, plot, shots_table, targets
 from bench.runners import Run, run_fixed, run_ours, run_pooltool_suite, run_pymunk
 from bench.scenes import break_suite, shot_suite
+from bench.spin_rows import SpinSuite, run_spin_suite, spin_plot, spin_section
 
 ROOT = Path(__file__).resolve().parents[1]
 FIXED_DTS = (1e-2, 1e-3, 1e-4, 1e-5)
@@ -43,6 +48,7 @@ class Config:
     repeats: int
     pymunk_subset: dict[float, int]  # dt -> number of shots (pymunk is slow at small dt)
     pymunk_break_subset: dict[float, int]
+    spin_shots: int  # struck shots of the spin level (bench.spin_rows)
 
 
 FULL = Config(
@@ -52,8 +58,9 @@ FULL = Config(
     7,
     {1 / 60: 500, 1e-3: 500, 1e-4: 100, 1e-5: 12},
     {1 / 60: 40, 1e-3: 40, 1e-4: 8, 1e-5: 2},
+    200,
 )
-QUICK = Config(40, 4, 2, 3, {1 / 60: 40, 1e-3: 20, 1e-4: 3}, {1 / 60: 4, 1e-3: 2, 1e-4: 1})
+QUICK = Config(40, 4, 2, 3, {1 / 60: 40, 1e-3: 20, 1e-4: 3}, {1 / 60: 4, 1e-3: 2, 1e-4: 1}, 40)
 
 
 def _log(msg: str) -> None:
@@ -126,12 +133,17 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--no-pooltool", action="store_true")
     ap.add_argument("--no-pymunk", action="store_true")
     ap.add_argument("--no-cache", action="store_true", help="no on-disk reference cache")
+    ap.add_argument(
+        "--spin-only", action="store_true", help="run the spin level only; rewrite its section"
+    )
     args = ap.parse_args(argv)
     cfg = QUICK if args.quick else FULL
     t_start = time.perf_counter()
     args.out.mkdir(parents=True, exist_ok=True)
     info = machine()
     _log(f"machine: {info}")
+    if args.spin_only:
+        return _spin_only(cfg, args, info)
     warm = _warm_up()
     use_pymunk = not args.no_pymunk
     if use_pymunk:
@@ -172,6 +184,9 @@ def main(argv: list[str] | None = None) -> int:
     )
     hard = sections.hard_section(cache, pooltool_fn, use_pymunk)
     cache.save()
+    _log("spin level")
+    spin = run_spin_suite(cfg.spin_shots, cfg.repeats, use_pooltool=not args.no_pooltool)
+    spin_plot(spin, args.out / "speed_vs_error_spin.png")
     plot(rows, brows, args.out / "speed_vs_error.png")
     text = _render(
         cfg,
@@ -188,6 +203,7 @@ def main(argv: list[str] | None = None) -> int:
         notes(runs, refs),
         time.perf_counter() - t_start,
         cache,
+        spin,
     )
     (args.out / "speed_vs_error.md").write_text(text)
     _log(f"wrote {args.out / 'speed_vs_error.md'} in {time.perf_counter() - t_start:.0f} s")
@@ -209,8 +225,9 @@ def _render(
     note_lines: list[str],
     seconds: float,
     cache: ReferenceCache,
+    spin: SpinSuite,
 ) -> str:
-    cmd = "python -m bench.speed_vs_error" + (" --quick" if args.quick else "")
+    cmd = _command(args)
     pt_ver = pt_info.get("pooltool", "not run")
     lines = [
         "# Speed against error",
@@ -259,6 +276,10 @@ def _render(
         "![time per shot against error](speed_vs_error.png)",
         "",
         *note_lines,
+        "",
+        *spin_section(
+            spin, cmd, time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), info["commit"]
+        ),
         "",
         "## Breaks (chaotic)",
         "",
@@ -311,6 +332,47 @@ def _render(
     if not pt_info.get("available"):
         lines.append(f"- pooltool did not run: {pt_info.get('reason', 'unknown reason')}.")
     return "\n".join(lines) + "\n"
+
+
+def _command(args: argparse.Namespace) -> str:
+    flags = [f for f in ("quick", "spin_only", "no_pooltool", "no_pymunk") if getattr(args, f)]
+    return " ".join(
+        ["python -m bench.speed_vs_error", *("--" + f.replace("_", "-") for f in flags)]
+    )
+
+
+def _spin_only(cfg: Config, args: argparse.Namespace, info: dict) -> int:
+    """Run the spin level alone and put its section into the existing report."""
+    spin = run_spin_suite(cfg.spin_shots, cfg.repeats, use_pooltool=not args.no_pooltool)
+    spin_plot(spin, args.out / "speed_vs_error_spin.png")
+    date = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+    lines = spin_section(spin, _command(args), date, info["commit"])
+    lines.insert(2, "This section alone was rerun with `--spin-only`; the rest of the report "
+                    "comes from the run named at the top.\n")  # fmt: skip
+    report = args.out / "speed_vs_error.md"
+    old = report.read_text() if report.exists() else "# Speed against error\n"
+    report.write_text(splice_section(old, lines))
+    _log(f"wrote the spin section of {report}")
+    return 0
+
+
+def splice_section(text: str, section: list[str]) -> str:
+    """``text`` with its ``## Spin level`` section replaced by ``section``.
+
+    The section runs from its heading to the next ``## `` heading; without one it goes in
+    before ``## Breaks``, or at the end.
+    """
+    lines = text.rstrip("\n").split("\n")
+    heads = [k for k, line in enumerate(lines) if line.startswith("## ")]
+    start = next((k for k in heads if lines[k].startswith("## Spin level")), None)
+    if start is not None:
+        end = next((k for k in heads if k > start), len(lines))
+    else:
+        start = end = next((k for k in heads if lines[k].startswith("## Breaks")), len(lines))
+    head = "\n".join(lines[:start]).rstrip("\n")
+    tail = "\n".join(lines[end:])
+    parts = [head, "\n".join(section).strip("\n"), tail]
+    return "\n\n".join(p for p in parts if p) + "\n"
 
 
 def _slice(run: Run, start: int, n: int) -> Run:

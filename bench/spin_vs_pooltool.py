@@ -56,6 +56,29 @@ def ours(table: Any, shot: SpinShot, record: bool = True) -> Any:
     )  # fmt: skip
 
 
+def time_ours(
+    table: Any, shots: list[SpinShot], repeats: int, record: bool = False
+) -> list[tuple[float, float, int]]:
+    """Time pool_env's spin level on each shot, kernels warmed up first.
+
+    Returns:
+        Per shot: the median wall and thread-CPU seconds over ``repeats`` calls of
+        :func:`ours` with ``record``, and the shot's event count.
+    """
+    for s in shots:
+        ours(table, s, record=record)  # warm up (compile or load the cached kernels)
+    out = []
+    for s in shots:
+        wall, cpu = [], []
+        for _ in range(repeats):
+            t0, c0 = time.perf_counter(), time.thread_time()
+            ours(table, s, record=record)
+            wall.append(time.perf_counter() - t0)
+            cpu.append(time.thread_time() - c0)
+        out.append((float(np.median(wall)), float(np.median(cpu)), ours(table, s).n_events))
+    return out
+
+
 def stats(diffs: list[float]) -> dict[str, float]:
     """Median, 95th percentile, max and the count within the target of per-shot differences."""
     d = np.asarray(diffs, dtype=np.float64)
@@ -76,7 +99,8 @@ def row(label: str, s: dict[str, float]) -> str:
     )
 
 
-def _diff(a: Any, b: Any) -> float:
+def final_distance(a: Any, b: Any) -> float:
+    """The largest distance (m) between the same ball's final centres in two runs."""
     return float(np.max(np.hypot(*(np.asarray(a) - np.asarray(b)).T)))
 
 
@@ -114,10 +138,10 @@ def compare(n: int) -> tuple[list[str], dict[str, Any]]:
         pt, pt0 = released["results"][k], spacer["results"][k]
         if pt.get("error") or pt0.get("error"):
             raise SystemExit(f"pooltool failed on {shot.name}: {pt.get('error')}")
-        d = _diff(pt["positions"], shot.ref_positions)
+        d = final_distance(pt["positions"], shot.ref_positions)
         pairs["pooltool vs reference"].append(d)
         pairs["pooltool (MIN_DIST 1e-12) vs reference"].append(
-            _diff(pt0["positions"], shot.ref_positions)
+            final_distance(pt0["positions"], shot.ref_positions)
         )
         own = spin_reference_simulate(
             table, shot.positions, shot.velocities, shot.angular_velocities, max_events=400,
@@ -125,16 +149,16 @@ def compare(n: int) -> tuple[list[str], dict[str, Any]]:
         )  # fmt: skip
         own_final = [[float(x), float(y)] for x, y in own.positions]
         pairs["pooltool's own throw (MIN_DIST 1e-12) vs reference (throw=pooltool)"].append(
-            _diff(native["results"][k]["positions"], own_final)
+            final_distance(native["results"][k]["positions"], own_final)
         )
         kinds = [e[1] for e in pt["events"] if "ball_ball" in e[1] or "cushion" in e[1]]
         worst.append((d, shot.name, " ".join(k.split("_")[-1] for k in kinds)))
         if have_ours:
             res = ours(table, shot)
-            pairs["pool_env vs reference"].append(_diff(res.positions, shot.ref_positions))
-            pairs["pool_env vs pooltool"].append(_diff(res.positions, pt["positions"]))
+            pairs["pool_env vs reference"].append(final_distance(res.positions, shot.ref_positions))
+            pairs["pool_env vs pooltool"].append(final_distance(res.positions, pt["positions"]))
             pairs["pool_env vs pooltool (MIN_DIST 1e-12)"].append(
-                _diff(res.positions, pt0["positions"])
+                final_distance(res.positions, pt0["positions"])
             )
             ev = [(e.kind, e.i, e.j) for e in res.events]
             same_events += ev == list(shot.ref_events)
@@ -182,19 +206,7 @@ def time_mode(shots_n: int, breaks_n: int, repeats: int) -> None:
         breaks.append(SpinShot(f"break{k}", base.copy(), angle, speed, (0.0, 0.0), 0.0, vel, ang))
     scenes = [worker_scene(table, s) for s in [*shots, *breaks]]
     have_ours = pool_env_spin()
-    mine = []
-    if have_ours:
-        for s in [*shots, *breaks]:
-            ours(table, s, record=False)  # warm up
-        for s in [*shots, *breaks]:
-            wall, cpu = [], []
-            for _ in range(2 * repeats + 1):
-                t0, c0 = time.perf_counter(), time.thread_time()
-                ours(table, s, record=False)
-                wall.append(time.perf_counter() - t0)
-                cpu.append(time.thread_time() - c0)
-            n_ev = ours(table, s).n_events
-            mine.append((float(np.median(wall)), float(np.median(cpu)), n_ev))
+    mine = time_ours(table, [*shots, *breaks], 2 * repeats + 1) if have_ours else []
     load = os.getloadavg()[0]
     out = run_pooltool(scenes, repeats=repeats, max_events=20000, timeout=300.0)
     if not out.get("available"):

@@ -3,8 +3,9 @@
 Gymnasium's ``RecordVideo`` (1.2.2, and 1.4.0 alike) captures one frame per ``step()``:
 from a list render mode it keeps the last frame only, so a pool shot (one step) shows up as
 a single picture. :class:`RecordShots` is ``RecordVideo`` with that one method changed: it
-keeps the whole list, so the video shows each shot rolling (at least 20 frames a shot with
-``PoolEnv``'s ``rgb_array_list``, sampled from the exact trajectories at 30 fps).
+keeps the whole list, so the video shows each shot: the cue stick at its aim for a moment
+(with the tip marker on the spin level), then the balls moving (at least 20 frames a shot
+with ``PoolEnv``'s ``rgb_array_list``, sampled from the exact trajectories at 30 fps).
 Triggers, file names, ``video_length`` and ``close()`` are ``RecordVideo``'s.
 """
 

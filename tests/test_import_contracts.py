@@ -49,7 +49,7 @@ PLANTED = {
         "pool_env in layers",
     ),
     "pool_env imports agents": (
-        "pool_env/render.py",
+        "pool_env/render/canvas.py",
         "import agents.baselines.geometry",
         "the repository in layers",
     ),

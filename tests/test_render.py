@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import itertools
 import sys
 
 import gymnasium as gym
@@ -10,7 +11,15 @@ import numpy as np
 import pytest
 
 from pool_env import PoolEnv, Table
-from pool_env.render import BALL_COLOURS, Renderer, Window, save_animation, shot_frames
+from pool_env.render import (
+    BALL_COLOURS,
+    Renderer,
+    Window,
+    save_animation,
+    shot_frames,
+    strike_frames,
+)
+from pool_env.render.cue import LEAD_HOLD, LEAD_STROKE
 
 TABLE = Table()
 LAYOUT = np.array([[0.6, 0.6], [0.3, 0.3], [1.9, 0.9], [1.2, 0.3]])  # ball 1 in front of a corner
@@ -81,8 +90,13 @@ def test_shot_animation_runs_from_the_strike_to_rest() -> None:
     env.reset(seed=0)
     env.step(np.array([-0.75, -0.8]))
     shot, balls = env.last_shot, env.last_shot_balls
-    frames = env.shot_frames(fps=20, max_seconds=3.0)
+    frames = env.shot_frames(fps=20, max_seconds=3.0, lead_in=False)
     assert len(frames) == max(2, int(np.ceil(min(shot.duration, 3.0) * 20)) + 1)
+    # By default the cue stick leads in (tests/test_render_strike.py), then the same frames.
+    led = env.shot_frames(fps=20, max_seconds=3.0)
+    n_lead = int(np.ceil(LEAD_HOLD * 20) + np.ceil(LEAD_STROKE * 20))
+    assert len(led) == n_lead + len(frames)
+    np.testing.assert_array_equal(led[n_lead], frames[0])
     renderer = env._get_renderer()
     np.testing.assert_array_equal(frames[0], renderer.frame(LAYOUT, np.ones(4, bool), balls))
     np.testing.assert_array_equal(
@@ -110,7 +124,10 @@ def test_save_shot_as_gif(tmp_path: object) -> None:
     path = tmp_path / "shot.gif"  # type: ignore[operator]
     env.save_shot(str(path), fps=10, max_seconds=2.0)
     gif = iio.imread(path)
-    assert gif.shape[0] == len(env.shot_frames(fps=10, max_seconds=2.0))
+    frames = env.shot_frames(fps=10, max_seconds=2.0)
+    # A GIF merges a repeated frame into the one before (the held stick): same playback.
+    runs = 1 + sum(not np.array_equal(a, b) for a, b in itertools.pairwise(frames))
+    assert gif.shape[0] == runs
     with pytest.raises(ValueError, match=r"\.gif or \.mp4"):
         save_animation([gif[0]], tmp_path / "shot.avi")  # type: ignore[operator]
 
@@ -209,7 +226,12 @@ def test_rgb_array_list_returns_the_layout_then_the_shot_from_its_trajectories()
     assert env.render() == []  # everything since the last call, once
     shot, balls = raw.last_shot, raw.last_shot_balls
     np.testing.assert_array_equal(frames[0], renderer.frame(*start))  # the reset frame
-    clip = frames[1:]
+    # The cue stick at the executed strike's aim, then the shot.
+    at_strike = (shot.positions_at(0.0), ~shot.pocketed_at(0.0), balls)
+    lead = strike_frames(renderer, *at_strike, raw.last_strike, 30)
+    for a, b in zip(frames[1 : 1 + len(lead)], lead, strict=True):
+        np.testing.assert_array_equal(a, b)
+    clip = frames[1 + len(lead) :]
     n = len(clip)
     assert n >= 20
     # Playback at 2x real time, at most 4 s, at 30 fps: n - 1 intervals over the shot.
@@ -282,10 +304,11 @@ def test_headless_check_env_prints_no_display_error() -> None:
     code = (
         "import gymnasium as gym, sys, pool_env\n"
         "from gymnasium.utils.env_checker import check_env\n"
-        "env = gym.make('pool_env/OneBall-v0', render_mode='rgb_array')\n"
-        "env.reset(seed=0); env.step(env.action_space.sample()); env.render()\n"
+        "for mode in ('rgb_array', 'rgb_array_list'):  # the v1 id: spin, the cue stick\n"
+        "    env = gym.make('pool_env/OneBall-v1', render_mode=mode)\n"
+        "    env.reset(seed=0); env.step(env.action_space.sample()); env.render()\n"
         "assert 'pygame' not in sys.modules  # no pygame unless a window is asked for\n"
-        "check_env(gym.make('pool_env/OneBall-v0').unwrapped)\n"
+        "check_env(gym.make('pool_env/OneBall-v1').unwrapped)\n"
         "print('checked')\n"
     )
     headless = {
