@@ -13,12 +13,14 @@ from typing import Any
 import gymnasium as gym
 
 import pool_env  # noqa: F401  (registers the ids)
+from agents.candidates import GhostCandidates
 from agents.features import GhostBallFeatures, PocketFeatures
 
 #: Observation wrappers by name (``wrapper:`` in ``hyperparams.yml``).
 WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {
     "pocket_features": PocketFeatures,
     "ghost_features": GhostBallFeatures,
+    "ghost_candidates": GhostCandidates,  # the features, and candidate shots as the action
 }
 
 

@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.base import batch_obs, decode_observation
+from agents.candidates import decode_candidates
 from agents.envs import make_env
 
 __all__ = ["ALGO_CLASSES", "PretrainedPolicy", "algo_class", "load", "load_model", "model_config"]
@@ -144,7 +145,7 @@ class PretrainedPolicy:
         if self.wrapper is None:
             return obs
         env = self._features_env
-        if self.wrapper == "ghost_features":
+        if self.wrapper in ("ghost_features", "ghost_candidates"):
             extra = env.ghost_features.of_observations(obs)
         else:  # pocket_features reads a layout: decode it from each observation
             table = env.unwrapped.table
@@ -167,12 +168,16 @@ class PretrainedPolicy:
             deterministic: The policy's mean action (True, the default here) or a sample.
 
         Returns:
-            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` actions.
+            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` env actions (a candidate-action
+            model's decoded, :mod:`agents.candidates`).
         """
         obs, single = batch_obs(observation)
+        inputs = self.features(obs)
         actions, state = self.model.predict(
-            self.features(obs), state, episode_start, deterministic=deterministic
+            inputs, state, episode_start, deterministic=deterministic
         )
+        if self.wrapper == "ghost_candidates":  # a candidate action: the env's action of it
+            actions = decode_candidates(inputs, actions, self._features_env.n_rows)
         return (actions[0] if single else actions), state
 
 
