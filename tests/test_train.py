@@ -13,6 +13,7 @@ import yaml
 import train
 from agents.evaluate import evaluate_agent, load_model
 from agents.training import hyperparams
+from agents.training.paired import paired_clean
 from agents.training.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
 from pool_env import ENV_IDS
 
@@ -53,6 +54,13 @@ def test_train_py_writes_a_complete_run_folder(
     assert all(v in grid for v in report["best_const_action"])
     assert len((run / "curve.csv").read_text().splitlines()) >= 3  # header, start, end
     _assert_saved_model_is_the_evaluated_one(run, "ppo (this run)")
+    # The paired comparison replays the report's layouts: the same two clean rates, and a
+    # difference that is the discordant layouts' balance.
+    paired = paired_clean(str(run / "model.zip"), 20, report["final_seed"])
+    assert paired["model"] == report["results"]["ppo (this run)"]["clean_pot_rate"][0]
+    assert paired["first_row"] == report["results"]["first-row"]["clean_pot_rate"][0]
+    balance = paired["model_only"] - paired["first_row_only"]
+    assert paired["diff"][0] * 20 == pytest.approx(balance)
 
 
 def _assert_saved_model_is_the_evaluated_one(run: Path, name: str) -> None:
