@@ -1,23 +1,25 @@
 """Pretrained agents in one line: ``agents.load("models/ppo_oneball.zip")``.
 
-A model trained by ``train.py`` saw the environment through an observation wrapper (the
-OneBall default ``ghost_features`` appends the ghost-ball shot into each pocket), so SB3's
-``PPO.load(path).predict(obs)`` on the environment's own observation fails on the shape.
+A model trained by ``train.py`` saw the environment through a wrapper (``ghost_features``
+appends the ghost-ball shot into each pocket; the OneBall PPO default ``ghost_candidates``
+also acts by picking one of those shots and refining it, :mod:`agents.candidates`), so
+SB3's ``PPO.load(path).predict(obs)`` on the environment's own observation fails on the
+shape, or returns a candidate action rather than the env's.
 :func:`load` reads the model's saved run config (``<stem>_config.yaml`` or ``config.yaml``
 beside it: env id, ``env_kwargs``, ``wrapper``) and returns a :class:`PretrainedPolicy`
-whose ``predict`` applies that wrapper's features to the raw observation first. The
-features are a function of the observation alone, so nothing but the observation is
-needed.
+whose ``predict`` applies that wrapper's features to the raw observation first and, for
+candidate actions, decodes the model's action to the env's. Both are functions of the
+observation alone, so nothing but the observation is needed.
 
 The committed models and their evaluations sit together in ``models/``:
-``ppo_oneball.zip`` (PPO, 300k steps on ``pool_env/OneBall-v0``), its settings
+``ppo_oneball.zip`` (PPO, 200k steps on ``pool_env/OneBall-v0``), its settings
 ``ppo_oneball_config.yaml`` and its re-evaluation ``ppo_oneball_eval.md``.
 
 Examples:
     >>> import agents, gymnasium as gym
     >>> policy = agents.load("models/ppo_oneball.zip")
     >>> policy.env_id, policy.wrapper
-    ('pool_env/OneBall-v0', 'ghost_features')
+    ('pool_env/OneBall-v0', 'ghost_candidates')
     >>> env = policy.make_env()  # gym.make(env_id, **env_kwargs), no wrapper
     >>> obs, _ = env.reset(seed=50000)
     >>> action, _ = policy.predict(obs, deterministic=True)
