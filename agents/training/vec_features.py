@@ -78,8 +78,9 @@ class GhostCandidatesVecEnv(VecEnvWrapper):
 
     def reset(self) -> NDArray[np.float32]:
         """Reset every table; observations with their features."""
-        self._last = self.venv.reset()
-        return self._last
+        obs = self.venv.reset()
+        self._last = obs.copy()  # the caller's array is its own
+        return obs
 
     def step_async(self, actions: NDArray[np.floating]) -> None:
         """Decode the candidate actions and step the tables with the env actions."""
@@ -90,5 +91,5 @@ class GhostCandidatesVecEnv(VecEnvWrapper):
     def step_wait(self) -> VecEnvStepReturn:
         """Step every table; observations (and terminal ones) with their features."""
         obs, rewards, dones, infos = self.venv.step_wait()
-        self._last = obs
+        self._last = obs.copy()
         return obs, rewards, dones, infos
