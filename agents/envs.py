@@ -16,7 +16,8 @@ import pool_env  # noqa: F401  (registers the ids)
 from agents.candidates import GhostCandidates
 from agents.features import GhostBallFeatures, PocketFeatures
 
-#: Observation wrappers by name (``wrapper:`` in ``hyperparams.yml``).
+#: Wrappers by name (``wrapper:`` in ``hyperparams.yml``): observation features, and
+#: ``ghost_candidates``, which also makes the action a candidate shot (:mod:`agents.candidates`).
 WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {
     "pocket_features": PocketFeatures,
     "ghost_features": GhostBallFeatures,
