@@ -13,12 +13,15 @@ from typing import Any
 import gymnasium as gym
 
 import pool_env  # noqa: F401  (registers the ids)
+from agents.candidates import GhostCandidates
 from agents.features import GhostBallFeatures, PocketFeatures
 
-#: Observation wrappers by name (``wrapper:`` in ``hyperparams.yml``).
+#: Wrappers by name (``wrapper:`` in ``hyperparams.yml``): observation features, and
+#: ``ghost_candidates``, which also makes the action a candidate shot (:mod:`agents.candidates`).
 WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {
     "pocket_features": PocketFeatures,
     "ghost_features": GhostBallFeatures,
+    "ghost_candidates": GhostCandidates,  # the features, and candidate shots as the action
 }
 
 

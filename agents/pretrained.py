@@ -1,23 +1,25 @@
 """Pretrained agents in one line: ``agents.load("models/ppo_oneball.zip")``.
 
-A model trained by ``train.py`` saw the environment through an observation wrapper (the
-OneBall default ``ghost_features`` appends the ghost-ball shot into each pocket), so SB3's
-``PPO.load(path).predict(obs)`` on the environment's own observation fails on the shape.
+A model trained by ``train.py`` saw the environment through a wrapper (``ghost_features``
+appends the ghost-ball shot into each pocket; the OneBall PPO default ``ghost_candidates``
+also acts by picking one of those shots and refining it, :mod:`agents.candidates`), so
+SB3's ``PPO.load(path).predict(obs)`` on the environment's own observation fails on the
+shape, or returns a candidate action rather than the env's.
 :func:`load` reads the model's saved run config (``<stem>_config.yaml`` or ``config.yaml``
 beside it: env id, ``env_kwargs``, ``wrapper``) and returns a :class:`PretrainedPolicy`
-whose ``predict`` applies that wrapper's features to the raw observation first. The
-features are a function of the observation alone, so nothing but the observation is
-needed.
+whose ``predict`` applies that wrapper's features to the raw observation first and, for
+candidate actions, decodes the model's action to the env's. Both are functions of the
+observation alone, so nothing but the observation is needed.
 
 The committed models and their evaluations sit together in ``models/``:
-``ppo_oneball.zip`` (PPO, 300k steps on ``pool_env/OneBall-v0``), its settings
+``ppo_oneball.zip`` (PPO, 200k steps on ``pool_env/OneBall-v0``), its settings
 ``ppo_oneball_config.yaml`` and its re-evaluation ``ppo_oneball_eval.md``.
 
 Examples:
     >>> import agents, gymnasium as gym
     >>> policy = agents.load("models/ppo_oneball.zip")
     >>> policy.env_id, policy.wrapper
-    ('pool_env/OneBall-v0', 'ghost_features')
+    ('pool_env/OneBall-v0', 'ghost_candidates')
     >>> env = policy.make_env()  # gym.make(env_id, **env_kwargs), no wrapper
     >>> obs, _ = env.reset(seed=50000)
     >>> action, _ = policy.predict(obs, deterministic=True)
@@ -35,6 +37,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.base import batch_obs, decode_observation
+from agents.candidates import decode_candidates
 from agents.envs import make_env
 
 __all__ = ["ALGO_CLASSES", "PretrainedPolicy", "algo_class", "load", "load_model", "model_config"]
@@ -144,7 +147,7 @@ class PretrainedPolicy:
         if self.wrapper is None:
             return obs
         env = self._features_env
-        if self.wrapper == "ghost_features":
+        if self.wrapper in ("ghost_features", "ghost_candidates"):
             extra = env.ghost_features.of_observations(obs)
         else:  # pocket_features reads a layout: decode it from each observation
             table = env.unwrapped.table
@@ -167,12 +170,16 @@ class PretrainedPolicy:
             deterministic: The policy's mean action (True, the default here) or a sample.
 
         Returns:
-            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` actions.
+            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` env actions (a candidate-action
+            model's decoded, :mod:`agents.candidates`).
         """
         obs, single = batch_obs(observation)
+        inputs = self.features(obs)
         actions, state = self.model.predict(
-            self.features(obs), state, episode_start, deterministic=deterministic
+            inputs, state, episode_start, deterministic=deterministic
         )
+        if self.wrapper == "ghost_candidates":  # a candidate action: the env's action of it
+            actions = decode_candidates(inputs, actions, self._features_env.n_rows)
         return (actions[0] if single else actions), state
 
 

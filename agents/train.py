@@ -3,9 +3,11 @@
 Three names for one command: ``python train.py`` in a clone, ``python -m agents.train`` or
 the console script ``pool-env-train`` wherever the package is installed (the hyperparameter
 file ships with it). With no arguments it trains PPO on ``pool_env/OneBall-v0`` with the
-hyperparameters of ``agents/training/hyperparams.yml`` (300k steps on the ghost-ball features over
-the native vector env), then prints its pot rate next to random, the best constant action,
-the ghost-ball and the search baselines on the same layouts. Each run writes
+hyperparameters of ``agents/training/hyperparams.yml`` (200k steps over the native vector
+env, acting by candidate shots: a ghost-ball feature row picked and refined,
+:mod:`agents.candidates`), then prints its pot rate next to random, the best constant
+action, the ghost-ball and the search baselines and row 0 played exactly, on the same
+layouts. Each run writes
 ``runs/<env>/<algo>_s<seed>_<steps>_<time>/``: config.yaml, command.txt, model.zip,
 evaluation.md/.json, curve.csv, learning_curve.png and tensorboard logs (tb/).
 
@@ -78,7 +80,8 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--wrapper",
-        help="observation wrapper: ghost_features (the OneBall default), pocket_features, none",
+        help="wrapper: ghost_candidates (the OneBall PPO default: features and candidate-shot "
+        "actions), ghost_features (SAC's), pocket_features, none",
     )
     p.add_argument("--hyperparams", help="YAML file (default: agents/training/hyperparams.yml)")
     p.add_argument("--runs", default="runs", help="parent folder of run folders")

@@ -13,6 +13,7 @@ import yaml
 import train
 from agents.evaluate import evaluate_agent, load_model
 from agents.training import hyperparams
+from agents.training.paired import paired_clean
 from agents.training.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
 from pool_env import ENV_IDS
 
@@ -41,12 +42,25 @@ def test_train_py_writes_a_complete_run_folder(
     assert config["algo"] == "ppo" and config["n_timesteps"] == 512
     assert config["algo_kwargs"]["n_steps"] == 128
     report = json.loads((run / "evaluation.json").read_text())
-    assert set(report["results"]) == {"ppo (this run)", "random", "best-const", "ghost", "search"}
+    # The candidate-action recipe adds its trivial policy (row 0 exactly) to the baselines.
+    assert set(report["results"]) == {
+        "ppo (this run)", "random", "best-const", "ghost", "search", "first-row"
+    }  # fmt: skip
+    assert report["results"]["first-row"]["pots_per_shot"][0] >= 0.8
+    assert report["process_seconds"] > 0.0
+    assert report["total_seconds"] <= report["process_seconds"]
     assert report["results"]["search"]["pots_per_shot"][0] >= 0.9
     grid = np.linspace(-1.0, 1.0, 9).tolist()
     assert all(v in grid for v in report["best_const_action"])
     assert len((run / "curve.csv").read_text().splitlines()) >= 3  # header, start, end
     _assert_saved_model_is_the_evaluated_one(run, "ppo (this run)")
+    # The paired comparison replays the report's layouts: the same two clean rates, and a
+    # difference that is the discordant layouts' balance.
+    paired = paired_clean(str(run / "model.zip"), 20, report["final_seed"])
+    assert paired["model"] == report["results"]["ppo (this run)"]["clean_pot_rate"][0]
+    assert paired["first_row"] == report["results"]["first-row"]["clean_pot_rate"][0]
+    balance = paired["model_only"] - paired["first_row_only"]
+    assert paired["diff"][0] * 20 == pytest.approx(balance)
 
 
 def _assert_saved_model_is_the_evaluated_one(run: Path, name: str) -> None:
@@ -111,19 +125,22 @@ def test_schedules_and_bad_values() -> None:
         train.main(["--set", "novalue"])
 
 
-@pytest.mark.parametrize("algo", ["ppo", "sac"])
-def test_default_recipe_trains_on_what_its_evaluation_sees(algo: str) -> None:
-    """The OneBall recipe: ghost-ball features on the native vector env, as the eval env has."""
+@pytest.mark.parametrize(
+    ("algo", "wrapper"), [("ppo", "ghost_candidates"), ("sac", "ghost_features")]
+)
+def test_default_recipe_trains_on_what_its_evaluation_sees(algo: str, wrapper: str) -> None:
+    """The OneBall recipes on the native vector env see and act as their eval env does."""
     from agents.envs import make_env
 
     config = resolve_config("pool_env/OneBall-v0", algo, {"n_envs": 2})
-    assert (config.vec, config.wrapper) == ("native", "ghost_features")
+    assert (config.vec, config.wrapper) == ("native", wrapper)
     venv = make_vec(config)
     env = make_env(config.env_id, config.env_kwargs, config.wrapper)
     try:
         obs = venv.reset()
         expected, _ = env.reset(seed=config.seed)
         assert venv.observation_space == env.observation_space
+        assert venv.action_space == env.action_space
         np.testing.assert_array_equal(obs[0], expected)
         assert expected[6] == 1.0  # a direct shot exists on this layout: its row is filled
     finally:

@@ -37,6 +37,7 @@ ZOO_RUN_KEYS = ("n_timesteps", "n_envs", "policy", "env_kwargs")
 ENV_WRAPPERS = {
     "pocket_features": "agents.features.PocketFeatures",
     "ghost_features": "agents.features.GhostBallFeatures",
+    "ghost_candidates": "agents.candidates.GhostCandidates",
 }
 
 HEADER = """\

@@ -45,6 +45,7 @@ def learning_curve(
         ("best-const", "best constant action", "-.", "tab:purple"),
         ("ghost", "ghost-ball (geometric)", "--", "black"),
         ("search", "search (simulator, oracle)", (0, (5, 1)), "tab:brown"),
+        ("first-row", "feature row 0 exactly", (0, (3, 1, 1, 1)), "tab:green"),
     ):
         if name in final:
             value = final[name]["pots_per_shot"].value
@@ -67,6 +68,7 @@ BASELINE_LINES = (
     ("best-const", "best constant action", "-.", "tab:purple"),
     ("ghost", "ghost-ball (geometric)", "--", "black"),
     ("search", "search (simulator, oracle)", (0, (5, 1)), "tab:brown"),
+    ("first-row", "feature row 0 exactly", (0, (3, 1, 1, 1)), "tab:green"),
 )
 
 

@@ -2,10 +2,13 @@
 
 from __future__ import annotations
 
+import os
 import shlex
 import sys
 import time
 from pathlib import Path
+
+_IMPORTED = time.perf_counter()
 
 
 def run_folder(root: str | Path, env_id: str, name: str, seed: int, n_timesteps: int) -> Path:
@@ -30,6 +33,20 @@ def run_folder(root: str | Path, env_id: str, name: str, seed: int, n_timesteps:
         path, k = Path(f"{base}_{stamp}-{k}"), k + 1
     path.mkdir(parents=True)
     return path
+
+
+def process_seconds() -> float:
+    """Wall seconds since this process started (imports included), from ``/proc``.
+
+    The figure a user sees from typing ``python train.py``; where ``/proc`` is missing
+    (not Linux), the seconds since this module was imported instead.
+    """
+    try:
+        start_ticks = int(Path("/proc/self/stat").read_text().rsplit(")", 1)[1].split()[19])
+        uptime = float(Path("/proc/uptime").read_text().split()[0])
+        return uptime - start_ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return time.perf_counter() - _IMPORTED
 
 
 def steps_label(n: int) -> str:

@@ -94,6 +94,49 @@ def table(runs: list[dict[str, Any]]) -> str:
     return "\n".join(lines)
 
 
+def time_to_skill(points: list[tuple[int, float, float]], rate: float) -> tuple[int, float] | None:
+    """``(steps, seconds)`` of the first periodic evaluation with pots/shot at least ``rate``.
+
+    Args:
+        points: ``(timesteps, seconds, pots/shot)`` of a run's ``curve.csv``, in order.
+        rate: The pot rate to reach.
+
+    Returns:
+        The first point's steps and seconds (wall seconds since the process started, periodic
+        evaluations excluded), or ``None`` when the run never reached ``rate``.
+    """
+    return next(((s, t) for s, t, p in points if p >= rate), None)
+
+
+def curve_points(run: dict[str, Any]) -> list[tuple[int, float, float]]:
+    """``(timesteps, seconds, pots/shot)`` of a run's ``curve.csv``."""
+    lines = (Path(run["folder"]) / "curve.csv").read_text().splitlines()[1:]
+    return [(int(c[0]), float(c[1]), float(c[2])) for c in (x.split(",") for x in lines)]
+
+
+def skill_table(runs: list[dict[str, Any]], rates: list[float]) -> str:
+    """Per run: steps and wall seconds to each pot rate, the best and the last evaluation."""
+    heads = " | ".join(f"to {r:.0%}: steps, s" for r in rates)
+    lines = [
+        f"| algo | steps | seed | {heads} | best periodic | last periodic | env steps/s |",
+        "|---|---|---|" + "---|" * len(rates) + "---|---|---|",
+    ]
+    for run in runs:
+        points = curve_points(run)
+        cells = []
+        for rate in rates:
+            hit = time_to_skill(points, rate)
+            cells.append(f"{hit[0]:,}, {hit[1]:.0f}" if hit else "not reached")
+        best = max(p for _, _, p in points)
+        speed = run["n_timesteps"] / run["train_seconds"] if run["train_seconds"] else 0.0
+        lines.append(
+            f"| {run['algo']} | {run['n_timesteps']:,} | {run['seed']} | "
+            + " | ".join(cells)
+            + f" | {100 * best:.1f}% | {100 * points[-1][2]:.1f}% | {speed:,.0f} |"
+        )
+    return "\n".join(lines)
+
+
 def _run_order(path: Path) -> tuple[str, int, str]:
     """Sort runs by algorithm, steps, then folder name (seed, time)."""
     report = json.loads(path.read_text())
@@ -119,12 +162,21 @@ def main(argv: list[str] | None = None) -> int:
         metavar="NAME=RATE",
         help="baseline pot rates for --plot when no run evaluated them (random=0.082 ...)",
     )
+    parser.add_argument(
+        "--skill",
+        nargs="*",
+        type=float,
+        default=[0.8, 0.9],
+        metavar="RATE",
+        help="pot rates of the time-to-skill table (default 0.8 0.9)",
+    )
     args = parser.parse_args(argv)
     runs = load_runs(args.root, args.env)
     if not runs:
         print(f"no evaluation.json under {args.root}")
         return 1
     print(table(runs))
+    print("\n" + skill_table(runs, args.skill))
     if args.plot:
         given = {}
         for item in args.baseline:

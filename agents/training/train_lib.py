@@ -34,13 +34,14 @@ from stable_baselines3.common.vec_env import (
 )
 
 from agents.baselines.constant_scan import best_constant_agent
+from agents.candidates import FirstRowAgent
 from agents.envs import EnvFactory, make_env
 from agents.episodes import run_episodes
 from agents.evaluate import evaluate_agent, format_table, one_line
 from agents.metrics import Estimate
 from agents.pretrained import ALGO_CLASSES, algo_class
 from agents.training import hyperparams, runs
-from agents.training.vec_features import GhostFeaturesVecEnv
+from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
 
 #: Algorithms by the name used in ``hyperparams.yml`` and on the command line.
 ALGOS: dict[str, type[BaseAlgorithm]] = {name: algo_class(name) for name in ALGO_CLASSES}
@@ -51,7 +52,10 @@ VEC_KINDS = ("dummy", "subproc", "native")
 #: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
 #: features as the ``gym.Env`` wrapper of that name (:data:`agents.envs.WRAPPERS`), which the
 #: evaluation envs use.
-NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {"ghost_features": GhostFeaturesVecEnv}
+NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {
+    "ghost_features": GhostFeaturesVecEnv,
+    "ghost_candidates": GhostCandidatesVecEnv,
+}
 
 #: Seeds of the periodic evaluation and of the final one: apart from each other, so that
 #: nothing is tuned on the final numbers, and from the training envs' own streams.
@@ -139,7 +143,8 @@ class PeriodicEval(BaseCallback):
 
     Args:
         config: The run's config (which env to build).
-        history: List the results are appended to: ``(timesteps, seconds, summary)``.
+        history: List the results are appended to: ``(timesteps, seconds, summary)``, the
+            seconds of wall time since the process started, periodic evaluations excluded.
     """
 
     def __init__(self, config: TrainConfig, history: list[tuple[int, float, dict]]) -> None:
@@ -148,14 +153,16 @@ class PeriodicEval(BaseCallback):
         self.history = history
         self.env = make_env(config.env_id, config.env_kwargs, config.wrapper)
         self.next_eval = 0
-        self.start = time.perf_counter()
         self.eval_seconds = 0.0  # spent evaluating, to keep out of the training time
 
     def _evaluate(self) -> None:
+        # The point's time: wall seconds since the process started (what a user waits from
+        # typing the command), less the evaluations so far, which a run without them skips.
+        seconds = runs.process_seconds() - self.eval_seconds
         t0 = time.perf_counter()
         summary = run_episodes(self.model, self.env, self.config.eval_episodes, EVAL_SEED).summary()
         self.eval_seconds += time.perf_counter() - t0
-        self.history.append((self.num_timesteps, time.perf_counter() - self.start, summary))
+        self.history.append((self.num_timesteps, seconds, summary))
         for key in ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward"):
             self.logger.record(f"eval/{key}", summary[key].value)
         self.logger.dump(self.num_timesteps)
@@ -290,6 +297,7 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
         "periodic_eval_seconds": round(eval_seconds, 1),
         "compile_seconds": round(compile_seconds, 1),
         "total_seconds": round(total, 1),
+        "process_seconds": round(runs.process_seconds(), 1),
         "best_const_action": best_const,
         "final_seed": FINAL_SEED,
         "episodes": config.final_episodes,
@@ -336,6 +344,13 @@ def _final_evaluation(
                 scan_env.close()
                 best_const = [float(v) for v in agent.action]
             rows[name] = evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, None, agent=agent)
+        if wrap == "ghost_candidates":  # the trivial candidate policy: row 0, no residual
+            probe = make_env(config.env_id, kw, wrap)
+            first_row = FirstRowAgent(probe.n_rows)
+            probe.close()
+            rows["first-row"] = evaluate_agent(
+                "first-row", config.env_id, n, FINAL_SEED, kw, wrap, agent=first_row
+            )
     return rows, best_const
 
 

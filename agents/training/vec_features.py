@@ -1,7 +1,10 @@
-"""The ghost-ball features on an SB3 ``VecEnv``: what ``--vec native`` trains on.
+"""The ghost-ball features and candidate actions on an SB3 ``VecEnv`` (``--vec native``).
 
-The ``gym.Env`` wrapper of the same features is :class:`agents.features.GhostBallFeatures`,
-which the evaluation envs use; both compute them with :class:`agents.features.GhostShotFeatures`.
+The ``gym.Env`` wrappers of the same features and actions are
+:class:`agents.features.GhostBallFeatures` and :class:`agents.candidates.GhostCandidates`,
+which the evaluation envs use; both compute the features with
+:class:`agents.features.GhostShotFeatures` and decode with
+:func:`agents.candidates.decode_candidates`.
 """
 
 from __future__ import annotations
@@ -13,9 +16,10 @@ from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvStepReturn
 
 from agents.baselines.base import env_spec
+from agents.candidates import candidate_space, decode_candidates
 from agents.features import GhostShotFeatures
 
-__all__ = ["GhostFeaturesVecEnv"]
+__all__ = ["GhostCandidatesVecEnv", "GhostFeaturesVecEnv"]
 
 
 class GhostFeaturesVecEnv(VecEnvWrapper):
@@ -52,3 +56,40 @@ class GhostFeaturesVecEnv(VecEnvWrapper):
             for i, row in zip(ended, final, strict=True):
                 infos[i]["terminal_observation"] = row
         return self._append(obs), rewards, dones, infos
+
+
+class GhostCandidatesVecEnv(VecEnvWrapper):
+    """The SB3 ``VecEnv`` counterpart of :class:`agents.candidates.GhostCandidates`.
+
+    Observations with their ghost-ball features (:class:`GhostFeaturesVecEnv`); actions are
+    candidate actions, decoded on each table's last observation. After an episode ends the
+    vector env has already reset that table, so the last observation is the new episode's.
+
+    Args:
+        venv: A ``VecEnv`` of ``PoolEnv`` tables, without the features wrapper.
+    """
+
+    def __init__(self, venv: VecEnv) -> None:
+        features = GhostFeaturesVecEnv(venv)
+        self.ghost_features = features.ghost_features
+        self.n_rows = self.ghost_features.mouths.n
+        super().__init__(features, action_space=candidate_space(self.n_rows))
+        self._last: NDArray[np.float32] | None = None
+
+    def reset(self) -> NDArray[np.float32]:
+        """Reset every table; observations with their features."""
+        obs = self.venv.reset()
+        self._last = obs.copy()  # the caller's array is its own
+        return obs
+
+    def step_async(self, actions: NDArray[np.floating]) -> None:
+        """Decode the candidate actions and step the tables with the env actions."""
+        if self._last is None:
+            raise RuntimeError("call reset() before step()")
+        self.venv.step_async(decode_candidates(self._last, actions, self.n_rows))
+
+    def step_wait(self) -> VecEnvStepReturn:
+        """Step every table; observations (and terminal ones) with their features."""
+        obs, rewards, dones, infos = self.venv.step_wait()
+        self._last = obs.copy()
+        return obs, rewards, dones, infos
