@@ -17,7 +17,6 @@ pytest.importorskip("ray.rllib", reason="needs the rllib extra: pip install -e '
 
 from gymnasium.vector import AutoresetMode  # noqa: E402
 
-from agents.training import hyperparams  # noqa: E402
 from agents.integrations.rllib_env import make_env, register  # noqa: E402
 from agents.integrations.rllib_train import (  # noqa: E402
     RLlibRun,
@@ -26,6 +25,7 @@ from agents.integrations.rllib_train import (  # noqa: E402
     resolve_run,
     rllib_training_kwargs,
 )
+from agents.training import hyperparams  # noqa: E402
 from pool_env.vector import PoolVectorEnv  # noqa: E402
 
 ONE = "pool_env/OneBall-v0"
