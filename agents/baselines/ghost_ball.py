@@ -6,7 +6,7 @@ clear of the other balls and whose pocket is open to the object ball's path, and
 easiest: the one that forgives the largest aim error (thin cuts, long distances and a mouth
 seen at an angle all shrink it; :func:`agents.baselines.geometry.ghost_shots`) among those whose cue
 ball, followed along the tangent line and off the cushions, stays out of the pockets
-(:func:`agents.baselines.geometry.cue_ball_scratches`). The speed comes from
+(:func:`agents.baselines.trace.cue_ball_scratches`). The speed comes from
 the distances, the rolling resistance and the ball-ball restitution
 (:func:`agents.baselines.geometry.cue_speed`) so that the object ball drops at a gentle
 :data:`ARRIVAL_SPEED`. When no direct shot exists (a rack, a ball in the way) it hits the
@@ -31,11 +31,11 @@ from agents.baselines.geometry import (
     GhostShot,
     LegalTargets,
     any_object_ball,
-    cue_ball_scratches,
     cue_speed,
     ghost_shots,
     pocket_mouths,
 )
+from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball
 
 #: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
