@@ -43,6 +43,7 @@ from pool_env.sim.kernels.spin_collide import (
     POOLTOOL,
     ball_ball_spin,
 )
+from pool_env.sim.kernels.spin_cushion import cushion_han
 from pool_env.sim.kernels.spin_strike import cue_strike, squirt_angle
 
 #: Points of the sliding parabola after contact where its polyline turns.
@@ -199,18 +200,49 @@ def _to_rail(
     return best, max(dist, 0.0)
 
 
+def _rail(table: Table, motion: Motion, axis: int) -> Motion:
+    """The motion after meeting the rail across ``axis`` (Han 2005, the simulator's kernel)."""
+    normal = np.zeros(2)
+    normal[axis] = -math.copysign(1.0, float(motion.vel[axis]))  # from the rail into the table
+    out = np.zeros(5)
+    v, w = motion.vel, motion.spin
+    cushion_han(
+        v[0], v[1], w[0], w[1], w[2], normal[0], normal[1], table.ball_radius,
+        table.cushion_height, table.e_cushion, table.cushion_friction, out,
+    )  # fmt: skip
+    return Motion(out[0:2].copy(), out[2:5].copy())
+
+
+def _slid(table: Table, motion: Motion, u_hat: NDArray[np.float64], t: float) -> Motion:
+    """The motion after sliding for ``t`` with the slip along ``u_hat``."""
+    mu_g, r = table.mu_slide * table.g, table.ball_radius
+    spin_v = motion.spin_velocity(r) + 2.5 * mu_g * t * u_hat
+    wz = _decay(float(motion.spin[2]), table.spin_decel, t)
+    return Motion(motion.vel - mu_g * t * u_hat, np.array([-spin_v[1] / r, spin_v[0] / r, wz]))
+
+
+def _rolled(table: Table, motion: Motion, dist: float) -> Motion:
+    """The motion of a rolling ball after ``dist`` (m) straight on."""
+    v = float(np.hypot(*motion.vel))
+    w = motion.vel / v
+    v_new = math.sqrt(max(v * v - 2.0 * table.deceleration * dist, 0.0))
+    t = (v - v_new) / table.deceleration
+    r = table.ball_radius
+    wz = _decay(float(motion.spin[2]), table.spin_decel, t)
+    return Motion(v_new * w, np.array([-v_new * w[1] / r, v_new * w[0] / r, wz]))
+
+
 def after_contact(
     table: Table, mouths: PocketMouths, start: NDArray[np.float64], motion: Motion
 ) -> Trace:
     """Where the cue ball goes from ``start`` with ``motion``, off the cushions, until it stops.
 
     Each phase in closed form: a slide (the parabola as a polyline of
-    :data:`SLIDE_POINTS` legs) until the slip is gone, then a straight roll. A cushion
-    reverses the normal part of the velocity times ``e_cushion`` and keeps the spin, so a
-    rolling ball leaves a rail sliding and bends towards it (its final velocity
-    ``(5/7) v' + (2/7) s``, as after a ball contact); the cushion's own friction and the
-    side spin are ignored. Other balls are ignored too. Up to
-    :data:`agents.baselines.trace.TRACE_CUSHIONS` cushions.
+    :data:`SLIDE_POINTS` legs) until the slip is gone, then a straight roll. A rail is
+    resolved by the simulator's cushion law (Han 2005,
+    :func:`pool_env.sim.kernels.spin_cushion.cushion_han`): a rolling ball leaves it
+    sliding and bends. Other balls and the jaws' facings are ignored (a path reaching a
+    pocket's opening drops). Up to :data:`agents.baselines.trace.TRACE_CUSHIONS` cushions.
 
     Args:
         table: The table.
@@ -225,18 +257,17 @@ def after_contact(
     mu_g, a_r = table.mu_slide * table.g, table.deceleration
     lo, hi = np.array([r, r]), np.array([table.length - r, table.width - r])
     pos = np.array(start, dtype=np.float64)
-    vel = np.array(motion.vel, dtype=np.float64)
-    spin_v = motion.spin_velocity(r)
     legs: list[tuple[NDArray[np.float64], NDArray[np.float64]]] = []
     for _ in range(TRACE_CUSHIONS + 1):
-        slip = vel - spin_v
+        slip = motion.vel - motion.spin_velocity(r)
         slip_speed = float(np.hypot(*slip))
         hit = -1
         if slip_speed > 1e-9:
             u_hat = slip / slip_speed
             tau = 2.0 * slip_speed / (7.0 * mu_g)
             times = np.linspace(0.0, tau, SLIDE_POINTS + 1)
-            points = pos + np.outer(times, vel) - 0.5 * mu_g * np.outer(times * times, u_hat)
+            v0 = motion.vel
+            points = pos + np.outer(times, v0) - 0.5 * mu_g * np.outer(times * times, u_hat)
             for i in range(SLIDE_POINTS):
                 p, seg = points[i], points[i + 1] - points[i]
                 length = float(np.hypot(*seg))
@@ -254,17 +285,16 @@ def after_contact(
                 if to_rail < length:
                     t = times[i] + (times[i + 1] - times[i]) * to_rail / length
                     pos, hit = end, axis
-                    vel = vel - mu_g * t * u_hat
-                    spin_v = spin_v + 2.5 * mu_g * t * u_hat
+                    motion = _slid(table, motion, u_hat, t)
                     break
             else:
                 pos = points[-1]
-                vel = vel - mu_g * tau * u_hat
+                motion = _slid(table, motion, u_hat, tau)
         if hit < 0:  # rolling: straight to a rail or to rest
-            v = float(np.hypot(*vel))
+            v = float(np.hypot(*motion.vel))
             if v <= 1e-12:
                 return Trace(-1, pos, tuple(legs))
-            w = vel / v
+            w = motion.vel / v
             axis, to_rail = _to_rail(pos, w, lo, hi)
             stop = v * v / (2.0 * a_r)
             reach = min(to_rail, stop)
@@ -277,7 +307,6 @@ def after_contact(
             if stop <= to_rail:
                 return Trace(-1, end, tuple(legs))
             pos, hit = end, axis
-            vel = w * math.sqrt(max(v * v - 2.0 * a_r * reach, 0.0))
-            spin_v = vel.copy()
-        vel[hit] = -table.e_cushion * vel[hit]
+            motion = _rolled(table, motion, reach)
+        motion = _rail(table, motion, hit)
     return Trace(-1, pos, tuple(legs))

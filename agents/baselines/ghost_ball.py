@@ -12,6 +12,15 @@ the distances, the rolling resistance and the ball-ball restitution
 :data:`ARRIVAL_SPEED`. When no direct shot exists (a rack, a ball in the way) it hits the
 nearest legal ball full at the top speed: the break, or a shot that opens the table.
 
+On a spin env (the v1 ids: the action ends with the cue tip's two components) it also
+plays position (:mod:`agents.baselines.spin_play`): for the most forgiving few shots it
+tries stun, follow and draw (:data:`~agents.baselines.spin_play.VERTICAL_TIPS`) at a few
+object-ball arrival speeds, works out each strike in closed form (throw, squirt, the cue
+ball's slide and roll, :mod:`agents.baselines.cue_path`), drops those whose cue ball
+scratches, and keeps the one whose cue ball stops where the next shot is easiest
+(:class:`~agents.baselines.spin_play.PositionScore`). ``spin=False`` restricts it to a
+centre-ball strike (position by speed alone): the comparison that says what spin adds.
+
 It never calls the simulator: everything it knows is the table's public geometry and
 constants and the layout. Compare :class:`agents.baselines.search.SearchAgent`, which checks
 candidate shots on the simulator (the oracle upper bound).
@@ -35,12 +44,26 @@ from agents.baselines.geometry import (
     ghost_shots,
     pocket_mouths,
 )
+from agents.baselines.spin_play import (
+    ARRIVAL_SPEEDS,
+    SIDE_TIPS,
+    VERTICAL_TIPS,
+    Contact,
+    NextTargets,
+    PositionScore,
+    plan_contact,
+)
 from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball
 
 #: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
 #: error of the deceleration model, soft enough that the cue ball stays out of the pockets.
 ARRIVAL_SPEED = 0.3
+#: On a spin env: the most forgiving shots whose tips and speeds are tried for position.
+POSITION_SHOTS = 6
+#: The least aim error (rad) the position score assumes (a noiseless env still rewards
+#: shots that forgive more).
+MIN_SIGMA = 1e-3
 
 
 class GhostBallAgent(BaselineAgent):
@@ -53,6 +76,9 @@ class GhostBallAgent(BaselineAgent):
         arrival_speed: Speed (m/s) at which the object ball should drop.
         legal_targets: Which object balls may be aimed at (default: any on the table; a
             rules game passes its own).
+        spin: On a spin env, whether to use the tip (else centre ball, position by speed).
+        next_targets: On a spin env, the legal balls once a ball drops (default:
+            ``legal_targets`` of the layout without it).
 
     Examples:
         >>> import gymnasium as gym
@@ -72,6 +98,8 @@ class GhostBallAgent(BaselineAgent):
         env: Any,
         arrival_speed: float = ARRIVAL_SPEED,
         legal_targets: LegalTargets = any_object_ball,
+        spin: bool = True,
+        next_targets: NextTargets | None = None,
     ) -> None:
         if not (math.isfinite(arrival_speed) and arrival_speed >= 0.0):
             raise ValueError(f"arrival_speed must be a finite speed >= 0, got {arrival_speed!r}")
@@ -81,6 +109,13 @@ class GhostBallAgent(BaselineAgent):
         self.arrival_speed = float(arrival_speed)
         self.legal_targets = legal_targets
         self.last_plan: dict[str, Any] = {}
+        self.last_contact: Contact | None = None
+        limit = self.spec.tip_limit or 0.0
+        fractions = [(a, b) for b in VERTICAL_TIPS for a in SIDE_TIPS] if spin else [(0.0, 0.0)]
+        self.tips = [(a * limit, b * limit) for a, b in fractions]
+        self.next_targets: NextTargets = next_targets or (
+            lambda positions, on_table, ball: legal_targets(positions, on_table)
+        )
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
         """The planned action for each observation's layout."""
@@ -108,6 +143,20 @@ class GhostBallAgent(BaselineAgent):
         ``reference``, default ``on_table``; the game ids aim at the nearest legal ball).
         ``(None, nan, None)`` when no shot is left.
         """
+        if self.spec.spin:
+            return self.position_shot(positions, on_table, reference)
+        return self.easiest_shot(positions, on_table, reference)
+
+    def easiest_shot(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        reference: NDArray[np.bool_] | None = None,
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """The roll level's choice: the most forgiving shot that does not scratch.
+
+        On a spin env its action ends with a centre-ball tip (used to rank placements).
+        """
         aim_on = on_table if reference is None else reference
         table = self.spec.table
         top = self.spec.speed_range[1]
@@ -122,13 +171,74 @@ class GhostBallAgent(BaselineAgent):
                 continue
             action = shot_to_action(shot.angle, speed, positions, aim_on, self.spec)
             if action is not None:
-                playable.append((shot, speed, action))
+                playable.append((shot, speed, self._with_tip(action, (0.0, 0.0))))
         # The easiest shot whose cue ball stays out of the pockets, else the easiest.
         for shot, speed, action in playable:
             played = max(speed, self.spec.speed_range[0])  # a softer shot is not available
             if not cue_ball_scratches(table, self.mouths, shot, played):
                 return shot, speed, action
         return playable[0] if playable else (None, math.nan, None)
+
+    def position_shot(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        reference: NDArray[np.bool_] | None = None,
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """The spin env's choice: shot, tip and speed for the best position (module doc).
+
+        Among the :data:`POSITION_SHOTS` most forgiving clear shots, every tip of
+        ``self.tips`` and arrival speed of :data:`~agents.baselines.spin_play.ARRIVAL_SPEEDS`
+        whose strike is in the speed range and whose cue ball stays out of the pockets;
+        ties go to the softer and the less spin. If every one scratches, the most
+        forgiving of them.
+        """
+        aim_on = on_table if reference is None else reference
+        table, spec = self.spec.table, self.spec
+        lo, top = spec.speed_range
+        targets = self.legal_targets(positions, on_table)
+        shots = sorted(
+            (s for s in ghost_shots(table, self.mouths, positions, on_table, targets) if s.clear),
+            key=lambda s: -s.tolerance,
+        )[:POSITION_SHOTS]
+        sigma = max(spec.noise[0] if spec.noise else 0.0, MIN_SIGMA)
+        scorer = PositionScore(table, self.mouths, sigma, self.next_targets)
+        limit = spec.tip_limit or 1.0
+        best: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
+        scratch: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
+        best_contact: Contact | None = None
+        for shot in shots:
+            for tip in self.tips:
+                for arrival in ARRIVAL_SPEEDS:
+                    contact = plan_contact(table, self.mouths, shot, positions, tip, arrival)
+                    if contact is None or not lo <= contact.speed <= top:
+                        continue
+                    action = shot_to_action(contact.aim, contact.speed, positions, aim_on, spec)
+                    if action is None:
+                        continue
+                    played = (shot, contact.speed, self._with_tip(action, tip))
+                    if contact.path.pocket >= 0:
+                        if scratch is None or shot.tolerance > scratch[0]:
+                            scratch = (shot.tolerance, *played)
+                        continue
+                    score = scorer.score(shot, contact, positions, on_table)
+                    score -= 0.002 * arrival + 0.001 * math.hypot(*tip) / limit
+                    if best is None or score > best[0]:
+                        best = (score, *played)
+                        best_contact = contact
+        self.last_contact = best_contact if best is not None else None
+        chosen = best or scratch
+        if chosen is None:
+            return None, math.nan, None
+        return chosen[1], chosen[2], chosen[3]
+
+    def _with_tip(self, action: NDArray[np.float32], tip: tuple[float, float]) -> NDArray:
+        """``action`` with the tip's two components appended on a spin env (as is on roll)."""
+        limit = self.spec.tip_limit
+        if limit is None:
+            return action
+        tip_part = np.clip(np.array(tip) / limit, -1.0, 1.0)
+        return np.concatenate([action, tip_part]).astype(np.float32)
 
     def _fallback(
         self,
@@ -149,7 +259,7 @@ class GhostBallAgent(BaselineAgent):
             d = positions[j] - cue
             action = shot_to_action(math.atan2(d[1], d[0]), speed, positions, aim_on, self.spec)
             if action is not None:
-                return action
+                return self._with_tip(action, (0.0, 0.0))
         # A legal ball that cut or relative aim cannot reach: a full hit on their reference
         # ball (the nearest), which action[0] = "aim parameter 0" is in both modes.
         aim_lo, aim_hi = self.spec.aim_range
@@ -158,7 +268,7 @@ class GhostBallAgent(BaselineAgent):
             if aim_hi == aim_lo
             else float(np.clip(-(aim_lo + aim_hi) / (aim_hi - aim_lo), -1, 1))
         )
-        return np.array([zero, 1.0], dtype=np.float32)
+        return self._with_tip(np.array([zero, 1.0], dtype=np.float32), (0.0, 0.0))
 
 
 #: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
@@ -184,20 +294,38 @@ class GameGhostBallAgent(BaselineAgent):
         arrival_speed: As :class:`GhostBallAgent`.
     """
 
-    def __init__(self, env: Any, arrival_speed: float = ARRIVAL_SPEED) -> None:
+    def __init__(self, env: Any, arrival_speed: float = ARRIVAL_SPEED, spin: bool = True) -> None:
         config = env.unwrapped.config
         if not config.rules:
             raise ValueError("GameGhostBallAgent plays the game ids (game='nine' or 'eight')")
         self.config = config
-        self.ghost = GhostBallAgent(env, arrival_speed, legal_targets=self._legal)
+        self.ghost = GhostBallAgent(
+            env, arrival_speed, self._legal, spin=spin, next_targets=self._next_legal
+        )
         self._targets: list[int] = []
         self.last_plan: dict[str, Any] = {}
 
     def _legal(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> list[int]:
         return [j for j in self._targets if on_table[j]]
 
+    def _next_legal(
+        self, positions: NDArray[np.float64], after: NDArray[np.bool_], potted: int
+    ) -> list[int]:
+        """The legal balls once ``potted`` drops (``after``: the balls left), by the rules.
+
+        9-ball: the lowest ball left. 8-ball: what is left of the potted ball's group
+        (which an open table then assigns), the 8 once that is empty, nothing after the 8.
+        """
+        left = [j for j in range(1, after.shape[0]) if after[j]]
+        if self.config.game == "nine":
+            return left[:1]
+        if potted == 8:
+            return []
+        group = [j for j in left if (j < 8) == (potted < 8) and j != 8]
+        return group or [j for j in left if j == 8]
+
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
-        """The planned ``(B, 5)`` actions."""
+        """The planned actions: ``(B, 5)``, or ``(B, 7)`` with the tip on a spin env."""
         n = self.config.n_balls
         layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, : 3 * n]))
         pairs = zip(observations, layouts, strict=True)
@@ -235,7 +363,7 @@ class GameGhostBallAgent(BaselineAgent):
         shot = self.last_plan.get("shot")
         if shot is not None:
             pocket = (shot.pocket + 0.5) / table.n_pockets * 2.0 - 1.0
-        return np.array([action[0], action[1], place[0], place[1], pocket])
+        return np.array([action[0], action[1], place[0], place[1], pocket, *action[2:]])
 
     def _place_action(self, point: NDArray[np.float64], behind: bool) -> NDArray[np.float64]:
         """The action components that place the cue ball on ``point`` (the kernels' map)."""
@@ -273,7 +401,9 @@ class GameGhostBallAgent(BaselineAgent):
                     if np.any(np.hypot(*(t.pockets[:, :2] - point).T) < t.pockets[:, 2] + r):
                         continue
                     trial[0] = point
-                    shot, _, action = self.ghost.best_shot(trial, on, reference)
+                    # The roll level's easiest shot ranks placements (cheap); the spin
+                    # planner then plays from the one chosen.
+                    shot, _, action = self.ghost.easiest_shot(trial, on, reference)
                     if action is not None and shot is not None and shot.tolerance > best_tol:
                         best, best_tol = point.copy(), shot.tolerance
         placed = positions.copy()
