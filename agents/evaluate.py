@@ -30,7 +30,8 @@ from pathlib import Path
 from typing import Any
 
 from agents.baselines.constant_scan import best_constant_agent
-from agents.baselines.ghost_ball import GameGhostBallAgent, GhostBallAgent
+from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
+from agents.baselines.ghost_ball import GhostBallAgent
 from agents.baselines.random_agent import ConstantAgent, RandomAgent
 from agents.baselines.search import SearchAgent
 from agents.envs import make_env
@@ -88,6 +89,8 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Any:
             return GameGhostBallAgent(env, spin=spin)
         return GhostBallAgent(env, spin=spin)
     if name == "search":
+        if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
+            return GameSearchAgent(env, seed=seed)
         return SearchAgent(env, seed=seed)
     if name == "best-const":
         return best_constant_agent(env)

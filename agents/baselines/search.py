@@ -43,10 +43,10 @@ from agents.baselines.geometry import (
     pocket_mouths,
 )
 from agents.baselines.spin_play import plan_contact
-from pool_env import shoot
+from pool_env import ShotResult, shoot
 
-#: A planned candidate: ``(angle, speed, tip, difficulty)``.
-Planned = tuple[float, float, tuple[float, float], float]
+#: A planned candidate: ``(angle, speed, tip, difficulty, pocket)``.
+Planned = tuple[float, float, tuple[float, float], float, int]
 
 #: Speeds (m/s) at which the object ball should reach the pocket: softer shots keep the cue
 #: ball under control, harder ones forgive more of the deceleration model.
@@ -71,6 +71,7 @@ class Shot:
         difficulty: Heuristic cost for ties (longer and thinner shots cost more).
         value: Outcome of the nominal shot: clean pots, minus scratches.
         robustness: How many perturbed replays also pot cleanly.
+        pocket: The pocket the ghost-ball candidate aims at (-1: a random action).
     """
 
     action: NDArray[np.float32]
@@ -80,6 +81,7 @@ class Shot:
     difficulty: float
     value: float = 0.0
     robustness: int = 0
+    pocket: int = -1
 
 
 class SearchAgent(BaselineAgent):
@@ -111,6 +113,10 @@ class SearchAgent(BaselineAgent):
         self.n_search = n_search
         self.n_robust = n_robust
         self.last_plan: dict[str, Any] = {}
+        #: Balls the aim mode refers to (the nearest legal ball on a rules id), or ``None``
+        #: for every ball on the table.
+        self.reference: NDArray[np.bool_] | None = None
+        self._rows: NDArray[np.intp] = np.zeros(0, dtype=np.intp)
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
         """The planned action for each observation's layout."""
@@ -121,6 +127,7 @@ class SearchAgent(BaselineAgent):
     def plan(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
         """The action for one layout (``(N, 2)`` centres, cue first; ``(N,)`` on the table)."""
         rows = on_table.nonzero()[0]
+        self._rows = rows
         sub = np.ascontiguousarray(positions[rows])
         shots = self._ghost_shots(positions, on_table, sub)
         for shot in shots:
@@ -156,8 +163,13 @@ class SearchAgent(BaselineAgent):
                     continue
                 for v_arrive in ARRIVAL_SPEEDS:
                     speed = cue_speed(table, shot, v_arrive)
-                    planned.append((shot.angle, speed, (0.0, 0.0), difficulty + 0.01 * v_arrive))
-        return self._to_shots(planned, positions, on_table)
+                    cost = difficulty + 0.01 * v_arrive
+                    planned.append((shot.angle, speed, (0.0, 0.0), cost, shot.pocket))
+        return self._to_shots(planned, positions, self._aim_on(on_table))
+
+    def _aim_on(self, on_table: NDArray[np.bool_]) -> NDArray[np.bool_]:
+        """The balls the aim mode refers to (:attr:`reference`, default ``on_table``)."""
+        return on_table if self.reference is None else self.reference
 
     def _spin_candidates(
         self, shot: GhostShot, positions: NDArray[np.float64], difficulty: float
@@ -171,7 +183,7 @@ class SearchAgent(BaselineAgent):
                 contact = plan_contact(self.spec.table, self.mouths, shot, positions, tip, v_arrive)
                 if contact is not None:
                     cost = difficulty + 0.01 * v_arrive + 0.01 * math.hypot(side, vertical)
-                    out.append((contact.aim, contact.speed, tip, cost))
+                    out.append((contact.aim, contact.speed, tip, cost, shot.pocket))
         return out
 
     def _to_shots(
@@ -183,10 +195,10 @@ class SearchAgent(BaselineAgent):
         """Representable shots, with the direction, speed and tip the env will execute."""
         kept, actions = [], []
         limit = self.spec.tip_limit
-        for angle, speed, tip, difficulty in planned:
+        for angle, speed, tip, difficulty, pocket in planned:
             action = shot_to_action(angle, speed, positions, on_table, self.spec)
             if action is not None:
-                kept.append(difficulty)
+                kept.append((difficulty, pocket))
                 if limit is not None:
                     action = np.concatenate([action, np.clip(np.array(tip) / limit, -1, 1)])
                 actions.append(action.astype(np.float32))
@@ -196,7 +208,9 @@ class SearchAgent(BaselineAgent):
         angles, speeds = decode(acts[:, :2], positions, on_table, self.spec)
         tips = self._tips(acts)
         return [
-            Shot(acts[k], float(angles[k]), float(speeds[k]), tips[k], kept[k])
+            Shot(
+                acts[k], float(angles[k]), float(speeds[k]), tips[k], kept[k][0], pocket=kept[k][1]
+            )
             for k in range(len(kept))
         ]
 
@@ -213,12 +227,25 @@ class SearchAgent(BaselineAgent):
     def _outcome(
         self, sub: NDArray, angle: float, speed: float, tip: tuple[float, float] = (0.0, 0.0)
     ) -> float:
-        """Clean pots of the shot (0 if it scratches, -1 if it scratches without a pot)."""
-        pocketed = shoot(self.spec.table, sub, angle, speed, tip=tip).pocketed
+        """The shot's value on the simulator (:meth:`value`)."""
+        return self.value(shoot(self.spec.table, sub, angle, speed, tip=tip))
+
+    def value(self, result: ShotResult) -> float:
+        """Clean pots of a shot (0 if it scratches, -1 if it scratches without a pot).
+
+        ``result`` is of the balls on the table only (``self._rows`` maps them back);
+        a rules game overrides this with its own judge.
+        """
+        pocketed = result.pocketed
         pots = int(np.count_nonzero(pocketed[1:] >= 0))
         if pocketed[0] >= 0:
             return -1.0 if pots == 0 else 0.0
         return float(pots)
+
+    def rank(self, result: ShotResult) -> float:
+        """The first key of a random action in :meth:`_search`: pots, 0 if it scratches."""
+        pocketed = result.pocketed
+        return 0.0 if pocketed[0] >= 0 else float(np.count_nonzero(pocketed[1:] >= 0))
 
     def _robustness(self, sub: NDArray, shot: Shot) -> int:
         """How many of a few perturbed replays (aim, speed) still pot cleanly."""
@@ -249,7 +276,7 @@ class SearchAgent(BaselineAgent):
         """The best of ``n_search`` random actions: pots first, then no scratch, then soft."""
         width = 4 if self.spec.spin else 2
         acts = self.rng.uniform(-1.0, 1.0, size=(self.n_search, width)).astype(np.float32)
-        angles, speeds = decode(acts[:, :2], positions, on_table, self.spec)
+        angles, speeds = decode(acts[:, :2], positions, self._aim_on(on_table), self.spec)
         tips = self._tips(acts)
         best, best_key = None, None
         for k in range(self.n_search):
@@ -258,7 +285,7 @@ class SearchAgent(BaselineAgent):
             pots = int(np.count_nonzero(pocketed[1:] >= 0))
             scratch = bool(pocketed[0] >= 0)
             contact = result.first_contact is not None
-            key = (0 if scratch else pots, pots, not scratch, contact, -float(speeds[k]))
+            key = (self.rank(result), pots, not scratch, contact, -float(speeds[k]))
             if best_key is None or key > best_key:
                 best_key = key
                 best = Shot(
