@@ -18,7 +18,7 @@ from numpy.typing import NDArray
 
 from agents.baselines.base import BaselineAgent
 from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
-from agents.baselines.search import SearchAgent
+from agents.baselines.search import SearchAgent, Shot
 from pool_env import ShotResult
 
 #: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
@@ -218,6 +218,14 @@ class RulesSearch(SearchAgent):
     def rank(self, result: ShotResult) -> float:
         """A random action's first key: its value (legal shots first)."""
         return self.value(result)
+
+    def order_key(self, shot: Shot) -> tuple[float, ...]:
+        """Replay the easiest potting candidates first: a run-out needs sure pots."""
+        return (shot.difficulty,)
+
+    def choice_key(self, shot: Shot) -> tuple[float, ...]:
+        """Robustness first (a lucky two-ball pot is worth less than a sure one), then value."""
+        return (shot.robustness, shot.value, -shot.difficulty)
 
 
 class GameSearchAgent(GameGhostBallAgent):

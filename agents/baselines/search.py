@@ -132,16 +132,24 @@ class SearchAgent(BaselineAgent):
         shots = self._ghost_shots(positions, on_table, sub)
         for shot in shots:
             shot.value = self._outcome(sub, shot.angle, shot.speed, shot.tip)
-        good = sorted((s for s in shots if s.value >= 1.0), key=lambda s: (-s.value, s.difficulty))
+        good = sorted((s for s in shots if s.value >= 1.0), key=self.order_key)
         if good:
             for shot in good[: self.n_robust]:
                 shot.robustness = self._robustness(sub, shot)
-            best = max(good[: self.n_robust], key=lambda s: (s.value, s.robustness, -s.difficulty))
+            best = max(good[: self.n_robust], key=self.choice_key)
             self.last_plan = {"kind": "ghost", "candidates": len(shots), "shot": best}
             return best.action
         best = self._search(positions, on_table, sub)
         self.last_plan = {"kind": "search", "candidates": len(shots), "shot": best}
         return best.action
+
+    def order_key(self, shot: Shot) -> tuple[float, ...]:
+        """Which potting candidates are replayed first: more pots, then easier."""
+        return (-shot.value, shot.difficulty)
+
+    def choice_key(self, shot: Shot) -> tuple[float, ...]:
+        """The replayed candidate played (the largest): pots, robustness, ease."""
+        return (shot.value, shot.robustness, -shot.difficulty)
 
     def _ghost_shots(
         self, positions: NDArray[np.float64], on_table: NDArray[np.bool_], sub: NDArray
