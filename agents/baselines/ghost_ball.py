@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.aiming import shot_to_action
+from agents.baselines.aiming import onto_tip_circle, shot_to_action
 from agents.baselines.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from agents.baselines.geometry import (
     GhostShot,
@@ -52,6 +52,7 @@ from agents.baselines.spin_play import (
     NextTargets,
     PositionScore,
     plan_contact,
+    pot_chance,
 )
 from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball
@@ -112,7 +113,9 @@ class GhostBallAgent(BaselineAgent):
         self.last_contact: Contact | None = None
         limit = self.spec.tip_limit or 0.0
         fractions = [(a, b) for b in VERTICAL_TIPS for a in SIDE_TIPS] if spin else [(0.0, 0.0)]
-        self.tips = [(a * limit, b * limit) for a, b in fractions]
+        # What the env executes: a tip beyond the miscue circle is scaled back onto it.
+        tips = [onto_tip_circle(a * limit, b * limit, limit) for a, b in fractions]
+        self.tips = list(dict.fromkeys(tips))
         self.next_targets: NextTargets = next_targets or (
             lambda positions, on_table, ball: legal_targets(positions, on_table)
         )
@@ -208,6 +211,8 @@ class GhostBallAgent(BaselineAgent):
         scratch: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
         best_contact: Contact | None = None
         for shot in shots:
+            if best is not None and pot_chance(shot.tolerance, sigma) <= best[0]:
+                break  # a score is at most the shot's own chance; the rest forgive less
             for tip in self.tips:
                 for arrival in ARRIVAL_SPEEDS:
                     contact = plan_contact(table, self.mouths, shot, positions, tip, arrival)

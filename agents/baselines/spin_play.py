@@ -42,7 +42,7 @@ from pool_env import Table
 #: Vertical tip offsets tried, as fractions of the tip limit (+ follow, - draw).
 VERTICAL_TIPS = (0.0, 0.5, 1.0, -0.5, -1.0)
 #: Side offsets tried with each vertical one, as fractions of the tip limit.
-SIDE_TIPS = (0.0,)
+SIDE_TIPS = (0.0, -0.6, 0.6)
 #: Speeds (m/s) at which the object ball should reach the pocket: the speed is the other
 #: half of position play (how far the cue ball travels).
 ARRIVAL_SPEEDS = (0.3, 0.6, 1.0, 1.6)
