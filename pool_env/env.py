@@ -332,6 +332,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         reward_win: float = 1.0,
         render_mode: str | None = None,
         render_width: int = 800,
+        model: str | None = None,
+        tip_limit: float | None = None,
     ) -> None:
         self.render_width = check_render(render_mode, self.metadata["render_modes"], render_width)
         self.render_mode = render_mode
@@ -342,7 +344,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self.config: GameConfig = make_config(
             table, scene, n_balls, aim, aim_range, speed_range, noise, end_on_miss, max_shots,
             reward_pot, reward_scratch, reward_no_contact, reward_shaping, game, 1, end_on_foul,
-            break_speed_range, reward_foul, reward_win,
+            break_speed_range, reward_foul, reward_win, model, tip_limit,
         )  # fmt: skip
         config = self.config
         self.game, self.end_on_foul = config.game, config.end_on_foul
@@ -361,6 +363,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._started = False
         self._potted_lut = potted_lookup(config.n_object_balls)
         self._last_shot: ShotResult | None = None
+        self._last_strike: tuple[float, float, float, float] | None = None
         self._shot_balls = np.arange(n)
         self._renderer: Any = None
         self._window: Any = None
@@ -379,6 +382,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         game.reset(self.config, self._state, _ONE, options)
         self._started = True
         self._last_shot = None
+        self._last_strike = None
         if self.render_mode == "human":
             self.render()
         elif self.render_mode == "rgb_array_list":
@@ -395,6 +399,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self._use_generator()
         result = game.step(self.config, self._state, _ONE, actions, record=self._record)
         self._last_shot, self._shot_balls = result.shot, result.balls
+        strike = result.shots[0].tolist()
+        self._last_strike = (strike[0], strike[1], *(strike[2:] or (0.0, 0.0)))
         info = table_info(result, self._potted_lut)
         reward = result.rewards.item()
         flags = result.flags[0].tolist()
@@ -450,6 +456,17 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         The simulator's result, not the environment's state: changing it changes nothing.
         """
         return self._last_shot
+
+    @property
+    def last_strike(self) -> tuple[float, float, float, float] | None:
+        """The last shot as executed: ``(angle, speed, tip_side, tip_vertical)``, or None.
+
+        After noise and the miscue limit: the cue's aim (radians from +x; on a spin table
+        the ball leaves at it plus the squirt), the cue ball's speed (m/s) and the tip's
+        axis offset (fractions of R; ``0.0, 0.0`` on a roll table). ``None`` before the
+        first shot of an episode.
+        """
+        return self._last_strike
 
     @property
     def last_shot_balls(self) -> NDArray[np.int64]:

@@ -13,6 +13,8 @@ truncated after ``max_shots`` shots (0 to both).
 
 Action (``Box(-1, 1, (5,))``): aim, speed, cue ball x and y (used only with the cue ball in
 hand), called pocket (used only when shooting at the 8); see :class:`pool_env.PoolEnv`.
+``model="spin"`` plays the v1 ids' table (``pool_env/NineBallGame-v1``, ...): the action is
+then ``Box(7)``, the cue tip's side and vertical offsets at its end.
 Every default is the game id's (``pool_env/NineBallGame-v0``, ``pool_env/EightBallGame-v0``):
 its registered arguments, :func:`pool_env.game.config.make_config`'s defaults for the rest
 (``"cut"`` aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as
@@ -54,8 +56,8 @@ _ONE = np.zeros(1, dtype=np.intp)
 #: game -> the registered arguments (less ``game``) and ``max_episode_steps`` of its id.
 _GAME_IDS: dict[str, tuple[dict[str, Any], int]] = {
     kwargs["game"]: ({k: v for k, v in kwargs.items() if k != "game"}, steps)
-    for kwargs, steps in ENV_IDS.values()
-    if "game" in kwargs
+    for env_id, (kwargs, steps) in ENV_IDS.items()
+    if "game" in kwargs and env_id.endswith("-v0")  # the v1 ids: model="spin" (kwargs)
 }
 _OPTIONS = ("positions", "on_table", "rules")
 

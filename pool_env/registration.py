@@ -37,6 +37,20 @@ ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {
     "pool_env/EightBallGame-v0": ({"scene": "eight_ball", "game": "eight"}, 150),
 }
 
+#: The v1 ids: each v0 task on the spin table (``model="spin"``), with the cue tip's side
+#: and vertical offsets as the action's last two components (``Box(4)``, rules
+#: ``Box(7)``). Gymnasium bumps the version when the dynamics change, and they change for
+#: every task alike: the spin table is the realistic physics of all six (sliding, draw,
+#: follow, throw, squirt), and a tip action is as meaningful on a 3-ball practice table
+#: (``Pool``) or a solitaire run (``NineBall``, ``EightBall``) as in the games. So every v0
+#: id gets its v1 (the same scene, rules and time limit), and ``-v0`` -> ``-v1`` is the one
+#: rule a user or a tool needs; the v0 ids stay as they were, bit for bit.
+SPIN_IDS: dict[str, tuple[dict[str, Any], int]] = {
+    env_id.replace("-v0", "-v1"): ({**kwargs, "model": "spin"}, steps)
+    for env_id, (kwargs, steps) in ENV_IDS.items()
+}
+ENV_IDS.update(SPIN_IDS)
+
 
 def register_envs() -> None:
     """Register every id of :data:`ENV_IDS` that is not registered yet."""
@@ -53,8 +67,8 @@ def register_envs() -> None:
             )
 
 
-#: The ids played under the 9-ball or 8-ball rules (``Box(5)`` actions); the others are
-#: solitaire (``Box(2)``).
+#: The ids played under the 9-ball or 8-ball rules (``Box(5)`` actions, ``Box(7)`` on v1);
+#: the others are solitaire (``Box(2)``, ``Box(4)`` on v1).
 GAME_IDS: tuple[str, ...] = tuple(k for k, (kw, _) in ENV_IDS.items() if "game" in kw)
 
 

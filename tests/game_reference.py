@@ -7,7 +7,9 @@ table, one ball at a time, in Python floats. What it does borrow is the physics
 rare nearest-free-point search of a re-spot when the head spot is covered
 (:func:`pool_env.free_spot`, with its own tests). ``tests/test_game_reference.py`` plays
 random episodes of every registered id on this and on ``gym.make(id)`` and compares them
-exactly.
+exactly. On a spin table (the v1 ids) the action's last two components are the cue tip,
+decoded here again (clip, scale by the tip limit, back onto the miscue circle) and struck
+through :func:`pool_env.shoot`'s ``tip``.
 """
 
 from __future__ import annotations
@@ -35,8 +37,13 @@ class ReferenceEnv:
     def __init__(self, max_episode_steps: int, scene: str = "random", n_balls: int | None = None,
                  aim: str = "cut", noise: tuple[float, float] | None = None,
                  end_on_miss: bool = False, speed_range: tuple[float, float] = (0.45, 4.5),
-                 reward_shaping: float = 0.0, reward_no_contact: float = 0.0) -> None:  # fmt: skip
-        self.table = Table()
+                 reward_shaping: float = 0.0, reward_no_contact: float = 0.0,
+                 model: str = "roll", tip_limit: float | None = None) -> None:  # fmt: skip
+        self.table = Table(model=model)
+        self.spin = model == "spin"
+        # a contact offset of half a radius, as an axis offset: 0.5 (1 + r_tip / R)
+        ratio = self.table.cue_tip_radius / self.table.ball_radius
+        self.tip_limit = tip_limit if tip_limit is not None else min(1.0, 0.5 * (1.0 + ratio))
         self.scene = scene
         counts = {"one_ball": 1, "nine_ball": 9, "eight_ball": 15}
         self.n = counts.get(scene, 3 if n_balls is None else n_balls)
@@ -120,7 +127,7 @@ class ReferenceEnv:
         return -total / math.hypot(self.table.length, self.table.width)
 
     def step(self, action: np.ndarray) -> tuple[np.ndarray, float, bool, bool, dict[str, Any]]:
-        u, v = ((min(max(float(a), -1.0), 1.0) + 1.0) * 0.5 for a in action)
+        u, v = ((min(max(float(a), -1.0), 1.0) + 1.0) * 0.5 for a in action[:2])
         lo, hi = self.aim_range
         param = lo + u * (hi - lo)
         speed = self.speed_range[0] + v * (self.speed_range[1] - self.speed_range[0])
@@ -135,9 +142,16 @@ class ReferenceEnv:
         if self.noise is not None:
             angle = angle + self.noise[0] * float(self.rng.standard_normal())
             speed = max(0.0, speed + self.noise[1] * float(self.rng.standard_normal()))
+        tip = (0.0, 0.0)
+        if self.spin:
+            tip = self._tip([min(max(float(c), -1.0), 1.0) * self.tip_limit for c in action[2:]])
+            if self.noise is not None and len(self.noise) > 2 and self.noise[2] > 0.0:
+                tip = self._tip(
+                    [t + self.noise[2] * float(self.rng.standard_normal()) for t in tip]
+                )
         phi_before = self._potential()
         rows = [j for j in range(self.n + 1) if self.on[j]]
-        result = shoot(self.table, [self.pos[j] for j in rows], angle, speed, record=False)
+        result = shoot(self.table, [self.pos[j] for j in rows], angle, speed, record=False, tip=tip)
         potted, scratch = [], False
         for row, j in enumerate(rows):
             self.pos[j] = result.positions[row].tolist()
@@ -174,7 +188,17 @@ class ReferenceEnv:
             "n_events": result.n_events, "hit_event_cap": result.hit_event_cap,
             "angle": angle, "speed": speed, "is_success": cleared,
         }  # fmt: skip
+        if self.spin:
+            info["tip"] = tip
         return self._obs(), reward, terminated, truncated, info
+
+    def _tip(self, tip: list[float]) -> tuple[float, float]:
+        """The tip offset scaled back onto the miscue circle when outside it."""
+        a, b = tip
+        h = math.sqrt(a * a + b * b)
+        if h > self.tip_limit:
+            a, b = a * (self.tip_limit / h), b * (self.tip_limit / h)
+        return a, b
 
     def _obs(self) -> np.ndarray:
         t = self.table

@@ -309,7 +309,7 @@ def test_long_random_rollouts_stay_in_the_observation_space(
     obs, _ = env.reset(seed=seed)
     rng = np.random.default_rng(seed)
     for _ in range(300):
-        action = rng.uniform(-1.5, 1.5, 2)  # out-of-range values too: they are clipped
+        action = rng.uniform(-1.5, 1.5, env.action_space.shape)  # out of range too: clipped
         obs, reward, terminated, truncated, info = env.step(action)
         assert obs.dtype == np.float32
         assert env.observation_space.contains(obs)

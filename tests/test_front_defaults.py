@@ -53,7 +53,9 @@ def test_the_two_player_fronts_default_to_the_game_ids(env_id: str) -> None:
     kwargs, steps = ENV_IDS[env_id]
     single = gym.make(env_id).unwrapped.config
     assert single.aim == "cut" and single.speed_range == DEFAULT_SPEED_RANGE
-    for duel in (PoolDuelEnv(kwargs["game"]), VersusPolicyEnv(game=kwargs["game"]).duel):
+    spin = {"model": kwargs["model"]} if "model" in kwargs else {}  # a v1 id: model="spin"
+    fronts = (PoolDuelEnv(kwargs["game"], **spin), VersusPolicyEnv(game=kwargs["game"], **spin))
+    for duel in (fronts[0], fronts[1].duel):
         config = duel.config
         # What a second player changes: the players, and the rack's limit, which counts both
         # players' shots (the id truncates through its TimeLimit of the same number).

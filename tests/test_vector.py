@@ -61,6 +61,8 @@ def _compare(sync: gym.vector.VectorEnv, native: PoolVectorEnv, steps: int, seed
 @pytest.mark.parametrize("env_id", list(ENV_IDS))
 def test_equals_a_sync_vector_env_of_pool_envs(env_id: str, mode: AutoresetMode) -> None:
     steps = 120 if env_id == "pool_env/OneBall-v0" else 60
+    if env_id == "pool_env/EightBall-v1":  # no table clears 15 balls in 60 shots: truncation
+        steps = 85
     ended = _compare(*_pair(env_id, 5, mode), steps=steps, seed=11)
     assert ended > 0  # the autoreset paths ran
 
@@ -152,6 +154,8 @@ def test_a_scratch_with_the_head_spot_taken_matches_pool_env() -> None:
 def test_make_vec_builds_it_with_the_ids_spaces_and_limit(env_id: str) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # make_vec warns about missing autoreset metadata
+        # ... but Gymnasium's notice that a v0 id has a v1 (the spin table) is expected
+        warnings.filterwarnings("ignore", ".*is out of date", DeprecationWarning)
         env = gym.make_vec(env_id, num_envs=3)
     single = gym.make(env_id)
     assert isinstance(env, PoolVectorEnv)
@@ -280,7 +284,7 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
     angles, speeds = np.zeros(20_000), np.zeros(20_000)
     for k in range(20_000):  # noise of one table, drawn 20,000 times: tails included
         # Absolute aim with a zero-width range: the shot is angle 0 at 5 m/s, plus noise.
-        shots, _ = executed_shots(params, zero_action, one, at_rest, on, table)
+        shots, _, _ = executed_shots(params, zero_action, one, at_rest, on, table)
         angles[k], speeds[k] = shots[0]
     normals = theirs.standard_normal(40_000)
     np.testing.assert_array_equal(angles, normals[0::2])

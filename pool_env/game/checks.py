@@ -13,16 +13,39 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.sim.table import Table
+from pool_env.sim.table import MODELS, Table
 
 
-def parse_table(table: Table | dict[str, Any] | None) -> Table:
-    """A :class:`Table`, the ``Table(**dict)`` of a dict (a config file), or the default."""
+def parse_table(table: Table | dict[str, Any] | None, model: str | None = None) -> Table:
+    """A :class:`Table`, the ``Table(**dict)`` of a dict (a config file), or the default.
+
+    Args:
+        table: The table, its keyword arguments, or ``None`` (the default table).
+        model: ``"roll"`` or ``"spin"`` (the env's ``model`` keyword, which the v1 ids set),
+            or ``None``: the table's own. A dict or ``None`` gets it as its ``model``; a
+            :class:`Table` (or a dict naming a model) must already have it.
+
+    Raises:
+        ValueError: On a bad table, an unknown model, or a table of another model.
+    """
+    if model is not None and model not in MODELS:
+        raise ValueError(f"model must be one of {list(MODELS)} or None, got {model!r}")
     if table is None:
-        return Table()
+        return Table() if model is None else Table(model=model)
     if isinstance(table, Table):
+        if model is not None and table.model != model:
+            raise ValueError(
+                f"model={model!r} but the table given is Table(model={table.model!r}): pass "
+                f"model={table.model!r}, or a Table(model={model!r}, ...)"
+            )
         return table
     if isinstance(table, dict):
+        if model is not None:
+            if table.get("model", model) != model:
+                raise ValueError(
+                    f"model={model!r} but table['model'] is {table['model']!r}: give one model"
+                )
+            table = {**table, "model": model}
         try:
             return Table(**table)
         except TypeError as exc:
@@ -57,17 +80,37 @@ def parse_range(name: str, value: object, minimum: float | None) -> tuple[float,
     return low, high
 
 
-def parse_noise(value: object) -> tuple[float, float] | None:
-    """Noise sigmas ``(angle, speed)``, both >= 0; ``None`` when off (or both 0)."""
+def parse_noise(value: object, spin: bool = False) -> tuple[float, ...] | None:
+    """Noise sigmas ``(angle, speed)`` or, on a spin table, ``(angle, speed, tip)``.
+
+    All must be >= 0; ``None`` when off (or all 0). A roll table has no cue tip: a
+    non-zero tip sigma there is refused (a zero one is accepted, so one noise setting
+    serves every id).
+    """
     if value is None:
         return None
     try:
-        angle, speed = (parse_float("noise", v) for v in value)  # type: ignore[union-attr]
+        sigmas = tuple(parse_float("noise", v) for v in value)  # type: ignore[union-attr]
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"noise must be a pair (sigma_angle, sigma_speed), got {value!r}") from exc
-    if angle < 0.0 or speed < 0.0:
+        raise ValueError(
+            f"noise must be (sigma_angle, sigma_speed) or (sigma_angle, sigma_speed, "
+            f"sigma_tip), got {value!r}"
+        ) from exc
+    if len(sigmas) not in (2, 3):
+        raise ValueError(
+            f"noise must be (sigma_angle, sigma_speed) or (sigma_angle, sigma_speed, "
+            f"sigma_tip), got {value!r}"
+        )
+    if min(sigmas) < 0.0:
         raise ValueError(f"noise sigmas must be >= 0, got {value!r}")
-    return None if angle == speed == 0.0 else (angle, speed)
+    if len(sigmas) == 3 and sigmas[2] != 0.0 and not spin:
+        raise ValueError(
+            f"noise {value!r} has a tip sigma, but a roll table has no cue tip: use "
+            "model='spin' (the v1 ids) or give (sigma_angle, sigma_speed)"
+        )
+    if not spin:
+        sigmas = sigmas[:2]
+    return None if not any(sigmas) else sigmas
 
 
 def parse_bool(name: str, value: object) -> bool:

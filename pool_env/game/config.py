@@ -63,6 +63,21 @@ GAME_SCENE_BALLS: dict[str, int] = {"nine": 9, "eight": 15}
 #: The cue ball's row in every layout (the rules' constant).
 CUE = RULES_CUE
 
+#: The contact offset (fraction of R) beyond which a real tip miscues: about half a radius
+#: (pooltool and Dr. Dave's miscue-limit FAQ). The default tip limit is the axis offset
+#: that gives it (:func:`default_tip_limit`).
+MISCUE_CONTACT_OFFSET = 0.5
+
+
+def default_tip_limit(table: Table) -> float:
+    """The default tip limit of a spin table: the axis offset of a half-radius contact.
+
+    The tip's contact point lies ``1 / (1 + r_tip / R)`` of the axis offset from the ball's
+    centre line (:mod:`pool_env.sim.kernels.spin_strike`), so the axis offset of a contact
+    offset ``c`` is ``c (1 + r_tip / R)``: 0.685 for the default 10.6 mm tip (capped at 1).
+    """
+    return min(1.0, MISCUE_CONTACT_OFFSET * (1.0 + table.cue_tip_radius / table.ball_radius))
+
 
 @dataclass(frozen=True)
 class GameConfig:
@@ -74,7 +89,8 @@ class GameConfig:
         aim: Aim mode.
         aim_range: What action[0] = -1 and +1 map to.
         speed_range: Speeds (m/s) of action[1] = -1 and +1.
-        noise: Execution noise sigmas ``(angle, speed)`` or ``None``.
+        noise: Execution noise sigmas ``(angle, speed)`` (spin: optionally ``(angle,
+            speed, tip)``) or ``None``.
         end_on_miss: A shot that pots nothing (or scratches) ends the episode.
         max_shots: The raw environment's own shot limit, or ``None``.
         shot_limit: Shots after which an episode is truncated (0: never): ``max_shots``,
@@ -86,6 +102,9 @@ class GameConfig:
             episode (run-out mode).
         break_speed_range: Rules only: speeds (m/s) of action[1] = -1 and +1 on a break.
         rule_rewards: Rules only: ``(foul, win)`` (a lost rack gives ``-win``).
+        tip_limit: Spin tables only (else ``None``): the largest axis offset of the cue
+            tip (fraction of ``R``), the radius of the miscue circle the two tip action
+            components map onto (:func:`default_tip_limit` by default).
         params: All of the above that the kernels read, as one read-only float64 array
             (:mod:`pool_env.game.kernels.params` names its entries).
     """
@@ -95,7 +114,7 @@ class GameConfig:
     aim: AimMode
     aim_range: tuple[float, float]
     speed_range: tuple[float, float]
-    noise: tuple[float, float] | None
+    noise: tuple[float, ...] | None
     end_on_miss: bool
     max_shots: int | None
     shot_limit: int
@@ -106,6 +125,18 @@ class GameConfig:
     end_on_foul: bool = False
     break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
     rule_rewards: tuple[float, float] = (-1.0, 1.0)
+    tip_limit: float | None = None
+
+    @property
+    def spin(self) -> bool:
+        """Whether the table is the spin level: the action then ends with the cue tip."""
+        return self.table.model == "spin"
+
+    @property
+    def tip_columns(self) -> tuple[int, int] | None:
+        """The action columns of the tip ``(side, vertical)`` (the last two), or ``None``."""
+        size = self.action_size
+        return (size - 2, size - 1) if self.spin else None
 
     @property
     def rules(self) -> bool:
@@ -124,8 +155,11 @@ class GameConfig:
 
     @property
     def action_size(self) -> int:
-        """Action components: 2 (aim, speed), or 5 under rules (and placement, pocket)."""
-        return 5 if self.rules else 2
+        """Action components: 2 (aim, speed), 5 under rules (and placement, pocket).
+
+        A spin table adds the tip's two at the end: 4, or 7 under rules.
+        """
+        return (5 if self.rules else 2) + (2 if self.spin else 0)
 
     @property
     def n_object_balls(self) -> int:
@@ -152,7 +186,7 @@ def kernel_params(
     aim: str,
     aim_range: tuple[float, float],
     speed_range: tuple[float, float],
-    noise: tuple[float, float] | None,
+    noise: tuple[float, ...] | None,
     weights: tuple[float, float, float, float],
     end_on_miss: bool,
     shot_limit: int,
@@ -163,7 +197,13 @@ def kernel_params(
     params[[kp.AIM_LOW, kp.AIM_HIGH]] = aim_range
     params[[kp.SPEED_LOW, kp.SPEED_HIGH]] = speed_range
     if noise is not None:
-        params[[kp.NOISE, kp.SIGMA_ANGLE, kp.SIGMA_SPEED]] = (1.0, *noise)
+        params[[kp.NOISE, kp.SIGMA_ANGLE, kp.SIGMA_SPEED]] = (1.0, *noise[:2])
+        params[kp.SIGMA_TIP] = noise[2] if len(noise) > 2 else 0.0
+    if table.model == "spin":
+        params[kp.SPIN] = 1.0
+        params[[kp.BALL_MASS, kp.CUE_END_MASS, kp.CUE_TIP_RADIUS]] = (
+            table.ball_mass, table.cue_end_mass, table.cue_tip_radius
+        )  # fmt: skip
     params[[kp.W_POT, kp.W_SCRATCH, kp.W_NO_CONTACT, kp.W_SHAPING]] = weights
     params[kp.END_ON_MISS] = float(end_on_miss)
     params[kp.SHOT_LIMIT] = shot_limit
@@ -191,6 +231,8 @@ def make_config(
     break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE,
     reward_foul: float = -1.0,
     reward_win: float = 1.0,
+    model: str | None = None,
+    tip_limit: float | None = None,
 ) -> GameConfig:
     """Parse and check the environment arguments (see :class:`pool_env.PoolEnv`).
 
@@ -198,12 +240,14 @@ def make_config(
         ValueError: Naming the first bad argument; a scene that cannot fit on the table is
             refused here, never at a reset.
     """
-    parsed_table = checks.parse_table(table)
+    parsed_table = checks.parse_table(table, model)
+    spin = parsed_table.model == "spin"
     if aim not in AIM_MODES:
         raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {aim!r}")
     aims = checks.parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
     speeds = checks.parse_range("speed_range", speed_range, 0.0)
-    sigmas = checks.parse_noise(noise)
+    sigmas = checks.parse_noise(noise, spin)
+    limit = parse_tip_limit(parsed_table, tip_limit)
     miss = checks.parse_bool("end_on_miss", end_on_miss)
     shots = checks.parse_count("max_shots", max_shots)
     weights = tuple(
@@ -249,6 +293,10 @@ def make_config(
         miss,
         shots or 0,  # type: ignore[arg-type]
     )
+    if limit is not None:
+        params = params.copy()
+        params[kp.TIP_LIMIT] = limit
+        params.setflags(write=False)
     if game != "solitaire":
         params = rule_params(params, parsed_table, game, players, foul_ends, breaks, rule_rewards)
     return GameConfig(
@@ -268,7 +316,26 @@ def make_config(
         end_on_foul=foul_ends,
         break_speed_range=breaks,
         rule_rewards=rule_rewards,
+        tip_limit=limit,
     )
+
+
+def parse_tip_limit(table: Table, tip_limit: object) -> float | None:
+    """The tip limit of a spin table (``None``: :func:`default_tip_limit`); ``None`` on roll.
+
+    Raises:
+        ValueError: Unless a number in ``(0, 1]``, or when given for a roll table.
+    """
+    if table.model != "spin":
+        if tip_limit is not None:
+            raise ValueError("tip_limit needs a spin table: model='spin' (the v1 ids)")
+        return None
+    if tip_limit is None:
+        return default_tip_limit(table)
+    limit = checks.parse_float("tip_limit", tip_limit)
+    if not 0.0 < limit <= 1.0:
+        raise ValueError(f"tip_limit must lie in (0, 1] (a fraction of R), got {tip_limit!r}")
+    return limit
 
 
 def rule_params(

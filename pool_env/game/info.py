@@ -47,6 +47,10 @@ COLUMNS: dict[str, tuple[str, int | None, type]] = {
 #: Every key of a step's ``info``.
 INFO_KEYS: tuple[str, ...] = ("potted", *COLUMNS)
 
+#: The key a spin table's step adds: the executed cue tip ``(a, b)`` (side, vertical;
+#: fractions of R, after noise and the miscue limit), a tuple as ``potted`` is.
+TIP_KEY = "tip"
+
 #: The rules' integer keys: the ball on before the shot (-1: not a single ball, 8-ball
 #: before the group is cleared) and the winner (-1 while undecided; integers rather than
 #: None, so that Gymnasium's vector info has one dtype per key).
@@ -109,6 +113,9 @@ def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str,
         if row is None:
             row = rows[name] = getattr(result, name)[0].tolist()
         info[key] = row[column]
+    if result.shots.shape[1] > 2:
+        shot_row = rows.get("shots") or result.shots[0].tolist()
+        info[TIP_KEY] = (shot_row[2], shot_row[3])
     if result.hits.shape[1] > FOUL:
         hits = rows.get("hits") or result.hits[0].tolist()
         info["foul"] = FOUL_NAMES[hits[FOUL]]
@@ -150,6 +157,13 @@ def batch_info(
         values[tables] = (source if column is None else source[:, column])[rows]
         info[key] = values
         info[f"_{key}"] = present.copy()
+    if result.shots.shape[1] > 2:
+        tips = np.full(n_envs, None, dtype=object)
+        for t, (side, vertical) in zip(
+            tables.tolist(), result.shots[rows, 2:].tolist(), strict=True
+        ):
+            tips[t] = (side, vertical)  # one by one: numpy would unpack the tuples
+        info[TIP_KEY], info[f"_{TIP_KEY}"] = tips, present.copy()
     if result.hits.shape[1] > FOUL:
         codes = result.hits[rows, FOUL]
         for key, values in (

@@ -69,7 +69,8 @@ class StepResult:
         rewards: ``(K,)`` float64.
         flags: ``(K, 5)`` booleans, columns named in :mod:`pool_env.game.rules`.
         hits: ``(K, 2)`` integers: potted bits and the first ball hit.
-        shots: ``(K, 2)`` the executed ``(angle, speed)``.
+        shots: ``(K, 2)`` the executed ``(angle, speed)``; ``(K, 4)`` on a spin table:
+            and the executed tip ``(a, b)``.
         pocketed: ``(K, M)`` the simulator's pocket per ball (-1: none), columns ``balls``.
         balls: ``(M,)`` ball number of each column of the simulator's results.
         shot: The :class:`~pool_env.ShotResult` of a one-table step (its rows are
@@ -185,10 +186,10 @@ def step(
     table = config.table
     if config.rules:
         return _step_rules(config, state, tables, actions, record, parallel)
-    shots, velocities = executed_shots(
+    shots, velocities, spins = executed_shots(
         config.params, actions, tables, state.positions, state.on_table, state.ptrs
     )
-    out = _simulate(table, state, tables, velocities, record, parallel)
+    out = _simulate(table, state, tables, velocities, spins, record, parallel)
     rewards, flags, hits = judge(
         config.params, table.pockets, tables, out.balls, state.positions, state.on_table,
         state.shots, out.final, out.pocketed, out.first,
@@ -233,14 +234,14 @@ def _step_rules(
             b = int(tables[k])
             target = state.positions[b, CUE].copy()
             _place(config, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))
-    shots, velocities, called = executed_rule_shots(
+    shots, velocities, spins, called = executed_rule_shots(
         params, table.pockets, actions, tables, state.positions, state.on_table, state.ptrs,
         rack,
     )  # fmt: skip
-    out = _simulate(table, state, tables, velocities, record, parallel)
+    out = _simulate(table, state, tables, velocities, spins, record, parallel)
     crossed = read_first(
         table, params, int(params[kp.GAME]), state.positions, state.on_table, rack, tables,
-        out.balls, velocities, out.first, out.shot,
+        out.balls, velocities, spins, out.first, out.shot,
     )  # fmt: skip
     rewards, flags, hits = judge_rules(
         params, table.pockets, tables, out.balls, state.positions, state.on_table,
@@ -262,22 +263,28 @@ def _simulate(
     state: GameState,
     tables: NDArray[np.intp],
     vel: NDArray[np.float64],
+    spins: NDArray[np.float64],
     record: bool,
     parallel: bool | None,
 ) -> _Outcome:
     """The shots to rest: ``simulate`` for one table (the balls on it), else the batch.
 
-    The simulator copies what it is given, so the state's arrays are passed as they are.
+    ``spins`` are the ``(K, N, 3)`` angular velocities of a spin table (``(K, 0, 3)`` on a
+    roll table, which takes none). The simulator copies what it is given, so the state's
+    arrays are passed as they are.
     """
     n_shots, n_balls = vel.shape[:2]
+    spin = spins if spins.shape[1] else None
     if n_shots == 1:
         b = tables[0]
         pos, on = state.positions[b], state.on_table[b]
         balls = on.nonzero()[0]
         if balls.shape[0] == n_balls:
-            shot = simulate(table, pos, vel[0], record=record)
+            ang = None if spin is None else spin[0]
+            shot = simulate(table, pos, vel[0], record=record, angular_velocities=ang)
         else:
-            shot = simulate(table, pos[balls], vel[0, balls], record=record)
+            ang = None if spin is None else spin[0, balls]
+            shot = simulate(table, pos[balls], vel[0, balls], record=record, angular_velocities=ang)
         contact = shot.first_contact
         first = _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64)
         final, pocketed = shot.positions, shot.pocketed
@@ -292,9 +299,9 @@ def _simulate(
         parallel = n_shots >= PARALLEL_FROM
     threads = available_cpus() if parallel else 1
     if threads > 1:
-        result = simulate_batch_threads(table, pos, vel, on, threads)
+        result = simulate_batch_threads(table, pos, vel, on, threads, angular_velocities=spin)
     else:
-        result = simulate_batch(table, pos, vel, active=on, parallel=False)
+        result = simulate_batch(table, pos, vel, active=on, parallel=False, angular_velocities=spin)
     return _Outcome(
         result.positions, result.pocketed, result.first_contact,
         result.cushions_after_contact, result.pocket_order, result.n_events,

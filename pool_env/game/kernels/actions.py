@@ -2,6 +2,12 @@
 
 Each kernel works on a batch (a leading dimension over tables), so that the single env
 (B = 1) and the vector env (B = N) run the very same code.
+
+On a spin table (``params[SPIN]``) the action's last two components are the cue tip's axis
+offset ``(a, b)`` (side, vertical), each ``c * tip_limit`` for ``c`` in ``[-1, 1]`` and
+scaled back onto the circle of radius ``tip_limit`` when outside it (the miscue limit,
+:func:`decode_tips`); the strike is :func:`pool_env.sim.kernels.spin_strike.cue_strike`
+(velocity with squirt, and spin). Tip noise draws after the angle and speed draws.
 """
 
 from __future__ import annotations
@@ -15,8 +21,11 @@ from pool_env.game.kernels.params import (
     AIM_HIGH,
     AIM_LOW,
     AIM_MODE,
+    BALL_MASS,
     BREAK_HIGH,
     BREAK_LOW,
+    CUE_END_MASS,
+    CUE_TIP_RADIUS,
     GAME,
     HEAD_X,
     NOISE,
@@ -24,8 +33,11 @@ from pool_env.game.kernels.params import (
     REACH,
     SIGMA_ANGLE,
     SIGMA_SPEED,
+    SIGMA_TIP,
     SPEED_HIGH,
     SPEED_LOW,
+    SPIN,
+    TIP_LIMIT,
     X_HIGH,
     X_LOW,
     Y_HIGH,
@@ -34,6 +46,7 @@ from pool_env.game.kernels.params import (
 from pool_env.game.kernels.rng import standard_normal
 from pool_env.game.kernels.wpa import BEHIND, BREAKING, IN_HAND, SHOOTER, legal_targets
 from pool_env.sim.jit import kernel
+from pool_env.sim.kernels.spin_strike import cue_strike
 
 
 @kernel
@@ -62,6 +75,41 @@ def decode_actions(actions, aim_low, aim_high, speed_low, speed_high):
         aims[k] = aim_low + u * (aim_high - aim_low)
         speeds[k] = speed_low + v * (speed_high - speed_low)
     return aims, speeds
+
+
+@kernel
+def onto_tip_circle(a, b, limit):
+    """``(a, b)`` scaled back onto the circle of radius ``limit`` if outside (same direction)."""
+    h = math.sqrt(a * a + b * b)  # not hypot: libm's and Python's may differ in the last bit
+    if h > limit:
+        scale = limit / h
+        return a * scale, b * scale
+    return a, b
+
+
+@kernel
+def decode_tips(actions, column, limit):
+    """The cue tip's axis offsets of actions: ``actions[:, column:column + 2]``.
+
+    Each component is clipped to ``[-1, 1]`` and mapped linearly onto ``[-limit, limit]``
+    (fractions of R); an offset outside the circle of radius ``limit`` is scaled back
+    onto it (:func:`onto_tip_circle`).
+
+    Args:
+        actions: ``(B, W)`` actions.
+        column: The side component's column (the vertical one follows it).
+        limit: The tip limit (``params[TIP_LIMIT]``).
+
+    Returns:
+        ``(B, 2)`` float64 ``(a, b)``: side (+ right english) and vertical (+ follow).
+    """
+    b = actions.shape[0]
+    tips = np.empty((b, 2))
+    for k in range(b):
+        a_raw = min(max(float(actions[k, column]), -1.0), 1.0) * limit
+        b_raw = min(max(float(actions[k, column + 1]), -1.0), 1.0) * limit
+        tips[k, 0], tips[k, 1] = onto_tip_circle(a_raw, b_raw, limit)
+    return tips
 
 
 @kernel
@@ -152,62 +200,99 @@ def decode_shots(actions, positions, on_table, cue, mode, ball_radius, aim_range
 
 
 @kernel
+def _shot_arrays(params, n_shots, n_balls):
+    """Shots, velocities, spins to fill: spin ``(K, 4)``, ``(K, N, 3)``; roll ``(K, 2)``, none."""
+    spin = params[SPIN] != 0.0
+    shots = np.empty((n_shots, 4 if spin else 2))
+    velocities = np.zeros((n_shots, n_balls, 2))
+    spins = np.zeros((n_shots, n_balls if spin else 0, 3))
+    return shots, velocities, spins
+
+
+@kernel
+def _tips(params, actions, column):
+    """The decoded tips of a spin table's actions, zeros on a roll table."""
+    if params[SPIN] != 0.0:
+        return decode_tips(actions, column, params[TIP_LIMIT])
+    return np.zeros((actions.shape[0], 2))
+
+
+@kernel
 def executed_shots(params, actions, tables, positions, on_table, ptrs):
     """The shots that are played: decoded, with execution noise, as initial velocities.
 
     Args:
         params: The config's numbers (:mod:`pool_env.game.kernels.params`).
-        actions: ``(K, 2)`` actions of the tables that shoot.
+        actions: ``(K, 2)`` actions of the tables that shoot (``(K, 4)`` on a spin table).
         tables: ``(K,)`` those tables.
         positions: ``(B, N, 2)`` ball centres of every table (ball 0 is the cue ball).
         on_table: ``(B, N)`` which balls are on each table.
         ptrs: ``(B, 3)`` generator addresses (:mod:`pool_env.game.kernels.rng`). With
-            noise, each table draws from its own generator, angle first; the noisy speed
-            is clipped at 0.
+            noise, each table draws from its own generator, angle first, then speed, then
+            (spin, a tip sigma) the tip's side and vertical; the noisy speed is clipped at
+            0 and the noisy tip onto the miscue circle.
 
     Returns:
-        ``(shots, velocities)``: ``(K, 2)`` executed ``(angle, speed)`` (radians from +x,
-        m/s) and ``(K, N, 2)`` initial velocities, only the cue ball moving.
+        ``(shots, velocities, spins)``: ``(K, 2)`` executed ``(angle, speed)`` (radians
+        from +x, m/s; on a spin table ``(K, 4)``: and the tip ``(a, b)``), ``(K, N, 2)``
+        initial velocities, only the cue ball moving, and ``(K, N, 3)`` initial angular
+        velocities on a spin table (``(K, 0, 3)`` on a roll table).
     """
     n_shots, n_balls = tables.shape[0], on_table.shape[1]
     aims, speeds = decode_actions(
         actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
     )
-    shots = np.empty((n_shots, 2))
-    velocities = np.zeros((n_shots, n_balls, 2))
+    tips = _tips(params, actions, 2)
+    shots, velocities, spins = _shot_arrays(params, n_shots, n_balls)
     for k in range(n_shots):
         b = tables[k]
-        _strike(params, aims[k], speeds[k], positions[b], on_table[b], ptrs[b], shots[k],
-                velocities[k])  # fmt: skip
-    return shots, velocities
+        _strike(params, aims[k], speeds[k], tips[k], positions[b], on_table[b], ptrs[b],
+                shots[k], velocities[k], spins[k:k + 1])  # fmt: skip
+    return shots, velocities, spins
 
 
 @kernel
-def _strike(params, aim, speed, positions, targets, ptrs, shot, velocity):
-    """One shot: aim (at the nearest of ``targets`` unless absolute), noise, velocity.
+def _strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity, spin):
+    """One shot: aim (at the nearest of ``targets`` unless absolute), noise, strike.
 
     Args:
         params: The config's numbers.
         aim: Decoded aim parameter.
         speed: Decoded speed (m/s).
+        tip: ``(2,)`` decoded tip offset (zeros on a roll table).
         positions: ``(N, 2)`` the table's balls.
         targets: ``(N,)`` the balls relative and cut aim may refer to (the nearest one).
         ptrs: The table's generator addresses.
-        shot: ``(2,)`` written: the executed ``(angle, speed)``.
+        shot: ``(2,)`` written: the executed ``(angle, speed)``; ``(4,)`` on a spin
+            table: and the executed tip ``(a, b)``.
         velocity: ``(N, 2)`` written: the cue ball's initial velocity (others stay 0).
+        spin: ``(1, N, 3)`` written on a spin table: the cue ball's angular velocity.
     """
     angle = aim  # absolute aim: the parameter is the angle
     mode = int(params[AIM_MODE])
     if mode != 0:
         j, dist, base = nearest_object_ball(positions, targets, 0)
         angle = _aim_angle(aim, mode, params[RADIUS], j, dist, base)
+    side, vertical = tip[0], tip[1]
     if params[NOISE] != 0.0:
         angle = angle + params[SIGMA_ANGLE] * standard_normal(ptrs)
         s = speed + params[SIGMA_SPEED] * standard_normal(ptrs)
         speed = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
+        if params[SIGMA_TIP] != 0.0:  # after angle and speed: v0's streams are unchanged
+            side = side + params[SIGMA_TIP] * standard_normal(ptrs)
+            vertical = vertical + params[SIGMA_TIP] * standard_normal(ptrs)
+            side, vertical = onto_tip_circle(side, vertical, params[TIP_LIMIT])
     shot[0], shot[1] = angle, speed
-    velocity[0, 0] = speed * math.cos(angle)
-    velocity[0, 1] = speed * math.sin(angle)
+    if params[SPIN] == 0.0:
+        velocity[0, 0] = speed * math.cos(angle)
+        velocity[0, 1] = speed * math.sin(angle)
+        return
+    shot[2], shot[3] = side, vertical
+    out = np.empty(5)
+    cue_strike(speed, angle, side, vertical, 0.0, params[RADIUS], params[BALL_MASS],
+               params[CUE_END_MASS], params[CUE_TIP_RADIUS], out)  # fmt: skip
+    velocity[0, 0], velocity[0, 1] = out[0], out[1]
+    spin[0, 0, 0], spin[0, 0, 1], spin[0, 0, 2] = out[2], out[3], out[4]
 
 
 @kernel
@@ -265,6 +350,8 @@ def place_in_hand(params, pockets, actions, tables, positions, on_table, rack):
 def executed_rule_shots(params, pockets, actions, tables, positions, on_table, ptrs, rack):
     """The shots of the rules' ``Box(5)`` actions, the cue ball placed: call, aim, strike.
 
+    On a spin table the actions are ``Box(7)``: the tip is ``actions[:, 5:7]``.
+
     ``actions[:, 4]`` calls pocket ``min(floor(P (a + 1) / 2), P - 1)`` (``P = 6``: six
     equal bins over ``[-1, 1]``, in ``table.pockets`` order; read by the rules only when
     the shooter is on the 8). The speed maps onto the break range on a break. Relative and
@@ -282,15 +369,16 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
         rack: ``(B, N_RACK)`` rack states.
 
     Returns:
-        ``(shots, velocities, called)``: as :func:`executed_shots`, and the called pockets.
+        ``(shots, velocities, spins, called)``: as :func:`executed_shots`, and the called
+        pockets.
     """
     n_shots, n_balls = tables.shape[0], on_table.shape[1]
     game = int(params[GAME])
     aims, speeds = decode_actions(
         actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
     )
-    shots = np.empty((n_shots, 2))
-    velocities = np.zeros((n_shots, n_balls, 2))
+    tips = _tips(params, actions, 5)
+    shots, velocities, spins = _shot_arrays(params, n_shots, n_balls)
     called = np.empty(n_shots, dtype=np.int64)
     targets = np.empty(n_balls, dtype=np.bool_)
     n_pockets = pockets.shape[0]
@@ -304,6 +392,6 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
                 params[BREAK_HIGH] - params[BREAK_LOW]
             )
         legal_targets(game, row, on_table[b], row[SHOOTER], targets)
-        _strike(params, aims[k], speed, positions[b], targets, ptrs[b], shots[k],
-                velocities[k])  # fmt: skip
-    return shots, velocities, called
+        _strike(params, aims[k], speed, tips[k], positions[b], targets, ptrs[b], shots[k],
+                velocities[k], spins[k:k + 1])  # fmt: skip
+    return shots, velocities, spins, called

@@ -44,5 +44,11 @@ from __future__ import annotations
     HEAD_X,  # x of the head string (L / 4): ball in hand behind it after an 8-ball break scratch
     FOOT_X,  # the foot spot, where the 9 (or the 8 on a break) is re-spotted
     FOOT_Y,
+    SPIN,  # 1.0 on a spin table (Table(model="spin")): the action ends with the cue tip
+    TIP_LIMIT,  # the tip's largest axis offset (fraction of R): the miscue circle's radius
+    SIGMA_TIP,  # execution noise sigma of each tip component (fraction of R)
+    BALL_MASS,  # the cue ball's mass (kg), for the strike
+    CUE_END_MASS,  # the cue's effective end mass (kg), for squirt
+    CUE_TIP_RADIUS,  # the cue tip's radius (m), for the contact offset
     N_PARAMS,
-) = range(37)
+) = range(43)
