@@ -224,10 +224,16 @@ def main(argv: list[str] | None = None) -> int:
         help="execution noise sigmas: aim (rad), speed (m/s)[, tip (fraction of R)], e.g. "
         "0.003,0.05,0.05 (the env's noise keyword)",
     )
+    parser.add_argument(
+        "--scan-episodes",
+        type=int,
+        default=1000,
+        help="episodes per action of the best-const grid scan",
+    )
     parser.add_argument("--out", default=None, help="also write the table to this file")
     args = parser.parse_args(argv)
-    if args.episodes < 1:
-        parser.error("--episodes must be >= 1")
+    if args.episodes < 1 or args.scan_episodes < 1:
+        parser.error("--episodes and --scan-episodes must be >= 1")
     kwargs = _yaml_mapping(args.env_kwargs) if args.env_kwargs else {}
     if not isinstance(kwargs, dict):
         parser.error("--env-kwargs must be a YAML mapping")
@@ -243,7 +249,7 @@ def main(argv: list[str] | None = None) -> int:
         agent, label = None, name
         if name == "best-const":  # scanned once, then labelled with the action it found
             scan_env = make_env(args.env, kwargs or None)
-            agent = make_agent(name, scan_env)
+            agent = best_constant_agent(scan_env, episodes=args.scan_episodes)
             scan_env.close()
             label = "best-const (" + ", ".join(f"{a:+.2f}" for a in agent.action) + ")"
         rows[label] = evaluate_agent(
