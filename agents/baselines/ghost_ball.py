@@ -47,6 +47,7 @@ from agents.baselines.geometry import (
 from agents.baselines.spin_play import (
     ARRIVAL_SPEEDS,
     SIDE_TIPS,
+    THROW_ROUNDS,
     VERTICAL_TIPS,
     Contact,
     NextTargets,
@@ -234,8 +235,52 @@ class GhostBallAgent(BaselineAgent):
         self.last_contact = best_contact if best is not None else None
         chosen = best or scratch
         if chosen is None:
-            return None, math.nan, None
+            return self._last_resort(shots, positions, aim_on)
         return chosen[1], chosen[2], chosen[3]
+
+    def _last_resort(
+        self, shots: list[GhostShot], positions: NDArray[np.float64], aim_on: NDArray[np.bool_]
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """A shot for when no candidate of :meth:`position_shot` is playable.
+
+        The most forgiving shot that can still reach its pocket, centre ball, as hard as
+        the speed range allows (a thin cut whose gentle arrival needs more than the top
+        speed), at its throw-corrected contact or, off the table (a ball frozen to a
+        rail), at its plain ghost point.
+        """
+        lo, top = self.spec.speed_range
+        for shot in shots:
+            for rounds in (THROW_ROUNDS, 0):
+                contact = self._at_speed(shot, positions, top, rounds)
+                if contact is None:
+                    continue
+                speed = min(max(contact.speed, lo), top)
+                action = shot_to_action(contact.aim, speed, positions, aim_on, self.spec)
+                if action is not None:
+                    return shot, speed, self._with_tip(action, (0.0, 0.0))
+        return None, math.nan, None
+
+    def _at_speed(
+        self, shot: GhostShot, positions: NDArray[np.float64], speed: float, rounds: int
+    ) -> Contact | None:
+        """The centre-ball contact of ``shot`` struck at about ``speed``.
+
+        A bisection on the arrival speed; ``None`` if even a ball that just reaches the
+        pocket needs more.
+        """
+        table, mouths, centre = self.spec.table, self.mouths, (0.0, 0.0)
+        slowest = plan_contact(table, mouths, shot, positions, centre, 0.0, rounds)
+        if slowest is None or slowest.speed > speed:
+            return None
+        low, high, best = 0.0, 4.0, slowest
+        for _ in range(12):
+            mid = 0.5 * (low + high)
+            contact = plan_contact(table, mouths, shot, positions, centre, mid, rounds)
+            if contact is not None and contact.speed <= speed:
+                low, best = mid, contact
+            else:
+                high = mid
+        return best
 
     def _with_tip(self, action: NDArray[np.float32], tip: tuple[float, float]) -> NDArray:
         """``action`` with the tip's two components appended on a spin env (as is on roll)."""

@@ -81,10 +81,12 @@ def plan_contact(
     positions: NDArray[np.float64],
     tip: tuple[float, float],
     arrival: float,
+    throw_rounds: int = THROW_ROUNDS,
 ) -> Contact | None:
     """The strike that pots ``shot`` with ``tip`` so that the ball drops at ``arrival`` m/s.
 
-    ``None`` when the throw-corrected contact is out of reach (a cut beyond
+    ``throw_rounds=0`` aims at the plain ghost point (no throw correction). ``None`` when
+    the throw-corrected contact is out of reach (a cut beyond
     :data:`~agents.baselines.geometry.MAX_CUT`, a ghost point off the table, a cue ball that
     stops short).
     """
@@ -96,7 +98,7 @@ def plan_contact(
     lo = np.array([r, r]) - 1e-12
     hi = np.array([table.length - r, table.width - r]) + 1e-12
     normal, scale = u.copy(), 1.0
-    for _ in range(THROW_ROUNDS + 1):
+    for _ in range(throw_rounds + 1):
         ghost = ball - 2.0 * r * normal
         if np.any(ghost < lo) or np.any(ghost > hi):
             return None
