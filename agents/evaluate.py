@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
@@ -178,6 +179,31 @@ def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
     return "pots per shot: " + " | ".join(parts)
 
 
+def rack_ends(agent: Any, env: Any, episodes: int, seed: int) -> Counter[tuple[str, str]]:
+    """How each rack of a rules id ends: ``(shot, outcome)`` counts.
+
+    ``shot`` is ``"break"``, ``"1st after break"``, ``"2nd after break"`` or ``"later"``;
+    the outcome is ``"won"``, the foul's name, or ``"missed"`` (a legal shot that potted
+    nothing). With a :class:`~agents.baselines.game_agents.GameGhostBallAgent`, a shot
+    it had no clear pot for is tagged ``"(fallback)"``: what limits a run-out.
+    """
+    names = ("break", "1st after break", "2nd after break")
+    ends: Counter[tuple[str, str]] = Counter()
+    for k in range(episodes):
+        obs, _ = env.reset(seed=seed + k)
+        for shot in range(10_000):
+            action, _ = agent.predict(obs)
+            obs, _, terminated, truncated, info = env.step(action)
+            if not (terminated or truncated):
+                continue
+            outcome = "won" if info.get("winner") == 0 else (info.get("foul") or "missed")
+            if getattr(agent, "last_plan", {}).get("kind") == "fallback":
+                outcome += " (fallback)"
+            ends[(names[shot] if shot < len(names) else "later", outcome)] += 1
+            break
+    return ends
+
+
 def parse_noise(text: str) -> tuple[float, ...]:
     """``"0.003,0.05[,0.05]"`` as the env's noise tuple (aim, speed[, tip]).
 
@@ -230,6 +256,11 @@ def main(argv: list[str] | None = None) -> int:
         default=1000,
         help="episodes per action of the best-const grid scan",
     )
+    parser.add_argument(
+        "--ends",
+        action="store_true",
+        help="also count how the racks of a rules id end (rack_ends)",
+    )
     parser.add_argument("--out", default=None, help="also write the table to this file")
     args = parser.parse_args(argv)
     if args.episodes < 1 or args.scan_episodes < 1:
@@ -258,6 +289,14 @@ def main(argv: list[str] | None = None) -> int:
     table = format_table(rows, args.episodes)
     print(f"{args.env} {kwargs or ''}, seeds {args.seed}..{args.seed + args.episodes - 1}")
     print(table)
+    if args.ends:
+        for name in args.agent:
+            env = make_env(args.env, kwargs or None)
+            ends = rack_ends(make_agent(name, env), env, args.episodes, args.seed)
+            env.close()
+            print(f"\nHow the racks end, {name}:")
+            for (shot, outcome), count in sorted(ends.items(), key=lambda kv: -kv[1]):
+                print(f"- {shot}: {outcome}: {count}")
     if args.out:
         Path(args.out).write_text(f"# Evaluation on {args.env}\n\n{table}\n")
     return 0

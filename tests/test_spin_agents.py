@@ -17,7 +17,7 @@ import pytest
 import pool_env  # noqa: F401  (registers the ids)
 from agents import GhostBallAgent, SearchAgent, run_episodes
 from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
-from agents.evaluate import main, make_agent, parse_noise
+from agents.evaluate import main, make_agent, parse_noise, rack_ends
 from pool_env.sim.kernels import loop
 
 ONE = "pool_env/OneBall-v1"
@@ -154,3 +154,12 @@ def test_both_agents_play_the_rules_ids_with_the_tip(name: str) -> None:
             if terminated or truncated:
                 break
     assert math.isfinite(float(action[5]))
+
+
+def test_rack_ends_count_every_rack_and_agree_with_the_run_outs() -> None:
+    env = gym.make("pool_env/NineBallGame-v1", noise=(0.003, 0.05, 0.05), end_on_foul=True)
+    ends = rack_ends(make_agent("ghost", env), env, 12, 10_000)
+    assert sum(ends.values()) == 12
+    won = sum(count for (_, outcome), count in ends.items() if outcome == "won")
+    stats = run_episodes(make_agent("ghost", env), env, 12, 10_000).summary()
+    assert won == round(stats["run_out_rate"].value * 12)
