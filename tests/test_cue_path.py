@@ -23,7 +23,7 @@ from agents.baselines.cue_path import (
     strike,
 )
 from agents.baselines.geometry import ghost_shots, pocket_mouths
-from agents.baselines.spin_play import plan_contact
+from agents.baselines.spin_play import plan_contact, traced_pots
 from pool_env import Table, shoot
 
 R = 0.028575
@@ -168,3 +168,20 @@ def test_without_the_throw_correction_thin_cuts_miss() -> None:
     corrected = shoot(SPIN, positions, contact.aim, contact.speed)
     assert corrected.pocketed[1] == 5
     assert plain.pocketed[1] != 5
+
+
+def test_traced_pots_find_the_rail_shot_of_a_ball_frozen_to_a_rail() -> None:
+    """No direct pot is playable (a ball on the right rail), but the traced fan finds one.
+
+    Its strikes' object balls drop; the simulator agrees for most, the best included.
+    """
+    positions = np.array([[1.7371776881, 0.9238090263], [2.5066147565, 0.3269272575]])
+    pots = traced_pots(SPIN, pocket_mouths(SPIN), positions, np.ones(2, bool), [1], 4.5)
+    assert len(pots) >= 10
+    agree = 0
+    for pot in pots:
+        result = shoot(SPIN, positions, pot.aim, pot.speed)
+        agree += result.pocketed[1] == pot.pocket and result.pocketed[0] < 0
+    assert agree >= len(pots) // 2
+    best = shoot(SPIN, positions, pots[0].aim, pots[0].speed)
+    assert best.pocketed[1] == pots[0].pocket and best.pocketed[0] < 0

@@ -130,6 +130,8 @@ class GameGhostBallAgent(BaselineAgent):
         """The shot to play: ``(called pocket or -1, action)``; action ``None``: no shot."""
         shot, _, action = self.ghost.best_shot(positions, on, reference)
         self._chosen = shot
+        if shot is None and action is not None and self.ghost.last_traced is not None:
+            return self.ghost.last_traced.pocket, action  # a bank or carom
         return (-1 if shot is None else shot.pocket), action
 
     def _place_action(self, point: NDArray[np.float64], behind: bool) -> NDArray[np.float64]:

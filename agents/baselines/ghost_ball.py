@@ -52,8 +52,10 @@ from agents.baselines.spin_play import (
     Contact,
     NextTargets,
     PositionScore,
+    TracedPot,
     plan_contact,
     pot_chance,
+    traced_pots,
 )
 from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball
@@ -112,6 +114,7 @@ class GhostBallAgent(BaselineAgent):
         self.legal_targets = legal_targets
         self.last_plan: dict[str, Any] = {}
         self.last_contact: Contact | None = None
+        self.last_traced: TracedPot | None = None
         limit = self.spec.tip_limit or 0.0
         fractions = [(a, b) for b in VERTICAL_TIPS for a in SIDE_TIPS] if spin else [(0.0, 0.0)]
         # What the env executes: a tip beyond the miscue circle is scaled back onto it.
@@ -129,7 +132,8 @@ class GhostBallAgent(BaselineAgent):
         """The action for one layout (``(N, 2)`` centres, cue first; ``(N,)`` on the table)."""
         shot, speed, action = self.best_shot(positions, on_table)
         if action is not None:
-            self.last_plan = {"kind": "ghost", "shot": shot, "speed": speed}
+            kind = "ghost" if shot is not None else "traced"  # a bank or carom (spin envs)
+            self.last_plan = {"kind": kind, "shot": shot, "speed": speed}
             return action
         self.last_plan = {"kind": "fallback", "shot": None, "speed": self.spec.speed_range[1]}
         return self._fallback(positions, on_table)
@@ -199,6 +203,7 @@ class GhostBallAgent(BaselineAgent):
         """
         aim_on = on_table if reference is None else reference
         table, spec = self.spec.table, self.spec
+        self.last_traced = None
         lo, top = spec.speed_range
         targets = self.legal_targets(positions, on_table)
         shots = sorted(
@@ -235,18 +240,24 @@ class GhostBallAgent(BaselineAgent):
         self.last_contact = best_contact if best is not None else None
         chosen = best or scratch
         if chosen is None:
-            return self._last_resort(shots, positions, aim_on)
+            return self._last_resort(shots, positions, on_table, aim_on)
         return chosen[1], chosen[2], chosen[3]
 
     def _last_resort(
-        self, shots: list[GhostShot], positions: NDArray[np.float64], aim_on: NDArray[np.bool_]
+        self,
+        shots: list[GhostShot],
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        aim_on: NDArray[np.bool_],
     ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
         """A shot for when no candidate of :meth:`position_shot` is playable.
 
         The most forgiving shot that can still reach its pocket, centre ball, as hard as
         the speed range allows (a thin cut whose gentle arrival needs more than the top
         speed), at its throw-corrected contact or, off the table (a ball frozen to a
-        rail), at its plain ghost point.
+        rail), at its plain ghost point. Failing that, a bank or carom found by
+        tracing a fan of strikes (:func:`~agents.baselines.spin_play.traced_pots`); its
+        shot is ``None`` (no ghost-ball shot), its action is returned.
         """
         lo, top = self.spec.speed_range
         for shot in shots:
@@ -258,6 +269,12 @@ class GhostBallAgent(BaselineAgent):
                 action = shot_to_action(contact.aim, speed, positions, aim_on, self.spec)
                 if action is not None:
                     return shot, speed, self._with_tip(action, (0.0, 0.0))
+        targets = self.legal_targets(positions, on_table)
+        for pot in traced_pots(self.spec.table, self.mouths, positions, on_table, targets, top):
+            action = shot_to_action(pot.aim, pot.speed, positions, aim_on, self.spec)
+            if action is not None and pot.speed >= lo:
+                self.last_traced = pot
+                return None, pot.speed, self._with_tip(action, (0.0, 0.0))
         return None, math.nan, None
 
     def _at_speed(

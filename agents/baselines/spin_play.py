@@ -203,3 +203,107 @@ class PositionScore:
         ):
             chance *= 0.5
         return chance
+
+
+#: Contact offsets (fractions of ``2R`` across the object ball) of :func:`traced_pots`.
+TRACE_OFFSETS = tuple(float(x) for x in np.linspace(-0.95, 0.95, 39))
+#: Strike speeds (fractions of the top speed) of :func:`traced_pots`.
+TRACE_SPEEDS = (0.35, 0.55, 0.75, 1.0)
+
+
+@dataclass(frozen=True)
+class TracedPot:
+    """A centre-ball strike whose object ball, traced off the cushions, drops.
+
+    Attributes:
+        ball: The object ball.
+        aim: The cue's aim (rad).
+        speed: The strike speed (m/s).
+        pocket: Where the object ball drops.
+        margin: How many neighbouring strikes (one offset step either side) also pot.
+    """
+
+    ball: int
+    aim: float
+    speed: float
+    pocket: int
+    margin: int
+
+
+def traced_pots(
+    table: Table,
+    mouths: PocketMouths,
+    positions: NDArray[np.float64],
+    on_table: NDArray[np.bool_],
+    targets: list[int],
+    top_speed: float,
+) -> list[TracedPot]:
+    """Strikes that pot by a bank or a carom off the rails, found forward in closed form.
+
+    For when no direct ghost-ball shot is playable: a fan of centre-ball strikes at each
+    target (:data:`TRACE_OFFSETS` x :data:`TRACE_SPEEDS`) is followed through the contact
+    (:func:`~agents.baselines.cue_path.collide`) and both balls off the cushions
+    (:func:`~agents.baselines.cue_path.after_contact`); a strike counts when the object
+    ball drops, the cue ball does not, and the cue ball's way to the contact and the object
+    ball's legs are clear of the other balls. Sorted by margin, most first.
+    """
+    cue = positions[0]
+    found: list[TracedPot] = []
+    for b in targets:
+        ball = positions[b]
+        to_ball = ball - cue
+        dist = float(np.hypot(*to_ball))
+        base = math.atan2(to_ball[1], to_ball[0])
+        others = np.array(
+            [positions[j] for j in range(1, positions.shape[0]) if on_table[j] and j != b]
+        ).reshape(-1, 2)
+        for fraction in TRACE_SPEEDS:
+            speed = fraction * top_speed
+            pots: list[tuple[float, int] | None] = []
+            for offset in TRACE_OFFSETS:
+                pots.append(_traced(table, mouths, cue, ball, dist, base, offset, speed, others))
+            for i, hit in enumerate(pots):
+                if hit is None:
+                    continue
+                margin = sum(
+                    1 for j in (i - 1, i + 1) if 0 <= j < len(pots) and pots[j] is not None
+                )
+                found.append(TracedPot(b, hit[0], speed, hit[1], margin))
+    return sorted(found, key=lambda p: -p.margin)
+
+
+def _traced(
+    table: Table,
+    mouths: PocketMouths,
+    cue: NDArray[np.float64],
+    ball: NDArray[np.float64],
+    dist: float,
+    base: float,
+    offset: float,
+    speed: float,
+    others: NDArray[np.float64],
+) -> tuple[float, int] | None:
+    """``(aim, pocket)`` of one strike of :func:`traced_pots` if it pots cleanly, else None."""
+    r = table.ball_radius
+    side = offset * 2.0 * r
+    if abs(side) >= dist:
+        return None
+    aim = base + math.asin(side / dist)
+    heading = np.array([math.cos(aim), math.sin(aim)])
+    along_path = float(heading @ (ball - cue))
+    travel = along_path - math.sqrt(max(4.0 * r * r - side * side, 0.0))
+    if travel <= 0.0:
+        return None
+    contact = cue + travel * heading
+    if others.shape[0] and not path_clear(cue, contact, others, 2.0 * r):
+        return None
+    arriving = along(table, strike(table, aim, speed, (0.0, 0.0)), travel)
+    if arriving is None:
+        return None
+    cue_after, obj = collide(table, arriving, (ball - contact) / (2.0 * r))
+    obj_path = after_contact(table, mouths, ball, obj)
+    if obj_path.pocket < 0 or after_contact(table, mouths, contact, cue_after).pocket >= 0:
+        return None
+    if others.shape[0] and not all(path_clear(p, q, others, 2.0 * r) for p, q in obj_path.legs):
+        return None
+    return aim, obj_path.pocket
