@@ -21,6 +21,7 @@ from pool_env.sim import Event, ShotResult, Table, shoot, simulate
 
 if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
     from pool_env.env import PoolEnv
+    from pool_env.game.codec import Shot, decode_action, encode_action
     from pool_env.game.config import (
         AIM_MODES,
         DEFAULT_AIM_RANGE,
@@ -41,6 +42,9 @@ _LAZY: dict[str, str] = {
     "PoolEnv": "pool_env.env",
     "PoolVectorEnv": "pool_env.vector",
     "SCENES": "pool_env.game.scenes",
+    "Shot": "pool_env.game.codec",
+    "decode_action": "pool_env.game.codec",
+    "encode_action": "pool_env.game.codec",
     "check_layout": "pool_env.game.scenes",
     "decode_shots": "pool_env.game.kernels.actions",
     "encode_observations": "pool_env.game.kernels.observe",
@@ -58,11 +62,14 @@ __all__ = [
     "GameConfig",
     "PoolEnv",
     "PoolVectorEnv",
+    "Shot",
     "ShotResult",
     "Table",
     "__version__",
     "check_layout",
+    "decode_action",
     "decode_shots",
+    "encode_action",
     "encode_observations",
     "free_spot",
     "nearest_object_ball",

@@ -314,7 +314,7 @@ class VersusPolicyEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         while self.duel.agent_selection == AGENTS[1] and not self._over():
             obs = self.duel.observe(AGENTS[1])
             if self.opponent is None:
-                action = self.np_random.uniform(-1.0, 1.0, 5).astype(np.float32)
+                action = self.np_random.uniform(-1.0, 1.0, width).astype(np.float32)
             else:
                 try:
                     raw = self.opponent(obs)

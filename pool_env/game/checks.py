@@ -150,7 +150,7 @@ def check_actions(
         single: Whether this is the single environment's one action.
         tables: The tables whose actions are played (``None``: all); only their rows are
             returned and checked for NaN (the others are ignored, as an autoreset does).
-        width: Action components (2; 5 under rules).
+        width: Action components (2; 5 under rules; spin tables: 2 more).
 
     Returns:
         ``(K, width)`` float64 for the ``K`` tables, a new array (the caller's is never kept).
@@ -176,6 +176,8 @@ def check_actions(
     if single and width == 2:  # two Python floats test faster than numpy's reductions
         x, y = out[0].tolist()
         nan = x != x or y != y
+    elif single:  # and so do the few of a spin or rules action
+        nan = any(v != v for v in out[0].tolist())
     else:
         nan = bool(np.isnan(out).any())
     if nan:

@@ -159,3 +159,23 @@ def rack_dict(config: GameConfig, row: NDArray[np.int64]) -> dict[str, Any]:
         "fouls": (int(row[wpa.FOULS_0]), int(row[wpa.FOULS_1])),
         "winner": int(row[wpa.WINNER]),
     }
+
+
+def rack_row(rack: dict[str, Any]) -> NDArray[np.int64]:
+    """The row of a dict as :func:`rack_dict` gives it (its inverse; keys left out default).
+
+    Unlike :func:`rack_option` it checks nothing against what a reset may start from: a
+    rack read from a running game (8-ball fouls beyond 2, a decided winner) comes back
+    as it was.
+    """
+    row = np.zeros(wpa.N_RACK, dtype=np.int64)
+    wpa.new_rack(row, bool(rack.get("break", False)))
+    row[wpa.BREAKING] = int(bool(rack.get("break", False)))
+    row[wpa.IN_HAND] = int(bool(rack.get("ball_in_hand", row[wpa.IN_HAND])))
+    row[wpa.BEHIND] = int(bool(rack.get("behind_head_string", row[wpa.BEHIND])))
+    row[wpa.SHOOTER] = int(rack.get("shooter", 0))
+    groups = rack.get("groups", ("open", "open"))
+    row[wpa.GROUP_0], row[wpa.GROUP_1] = (GROUP_NAMES.index(g) for g in groups)
+    row[wpa.FOULS_0], row[wpa.FOULS_1] = (int(f) for f in rack.get("fouls", (0, 0)))
+    row[wpa.WINNER] = int(rack.get("winner", row[wpa.WINNER]))
+    return row

@@ -216,6 +216,25 @@ def _place(
     )
 
 
+def place_cue_balls(
+    config: GameConfig, state: GameState, tables: NDArray[np.intp], actions: NDArray[np.float64]
+) -> None:
+    """Under rules: put each cue ball in hand where its action asks, or the nearest free point.
+
+    The first part of a rules step, and of :func:`pool_env.game.codec.decode_action`.
+    """
+    rack = state.rack
+    unplaced = place_in_hand(
+        config.params, config.table.pockets, actions, tables, state.positions, state.on_table,
+        rack,
+    )  # fmt: skip
+    if unplaced.any():  # the requested point is covered: the nearest free one
+        for k in np.flatnonzero(unplaced).tolist():
+            b = int(tables[k])
+            target = state.positions[b, CUE].copy()
+            _place(config, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))
+
+
 def _step_rules(
     config: GameConfig,
     state: GameState,
@@ -224,16 +243,9 @@ def _step_rules(
     record: bool,
     parallel: bool | None,
 ) -> StepResult:
-    """:func:`step` under the 9-ball or 8-ball rules (``Box(5)`` actions)."""
+    """:func:`step` under the 9-ball or 8-ball rules (``Box(5)`` actions, spin ``Box(7)``)."""
     table, params, rack = config.table, config.params, state.rack
-    unplaced = place_in_hand(
-        params, table.pockets, actions, tables, state.positions, state.on_table, rack
-    )
-    if unplaced.any():  # the requested point is covered: the nearest free one
-        for k in np.flatnonzero(unplaced).tolist():
-            b = int(tables[k])
-            target = state.positions[b, CUE].copy()
-            _place(config, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))
+    place_cue_balls(config, state, tables, actions)
     shots, velocities, spins, called = executed_rule_shots(
         params, table.pockets, actions, tables, state.positions, state.on_table, state.ptrs,
         rack,

@@ -1,0 +1,260 @@
+"""The action codec: the shot an action plays, and the action that plays a shot.
+
+:func:`decode_action` runs the decision process's own decoding on one table, noise off:
+the cue ball in hand placed by :func:`pool_env.game.step.place_cue_balls`, then
+:func:`pool_env.game.kernels.actions.executed_shots` (rules:
+:func:`~pool_env.game.kernels.actions.executed_rule_shots`). There is one decoder: what it
+returns is what a step executes before its noise. :func:`encode_action` inverts it: it
+maps each part of a :class:`Shot` back onto its action component (the aim through the
+same reference ball, :func:`~pool_env.game.kernels.actions.nearest_object_ball` of the
+balls the rules let the cue ball hit first), so ``decode_action(encode_action(shot))`` is
+``shot`` up to rounding (tested).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from pool_env.game.checks import check_actions
+from pool_env.game.config import GameConfig
+from pool_env.game.kernels import params as kp
+from pool_env.game.kernels import wpa
+from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, nearest_object_ball
+from pool_env.game.rack import rack_option, rack_row
+from pool_env.game.state import GameState, new_state
+from pool_env.game.step import place_cue_balls
+
+_ONE = np.zeros(1, dtype=np.intp)
+
+
+@dataclass(frozen=True)
+class Shot:
+    """A shot as the table sees it (the inverse image of an action).
+
+    Attributes:
+        angle: The cue's aim, radians counter-clockwise from +x (on a spin table the ball
+            leaves at it plus the squirt of side english).
+        speed: The cue ball's speed (m/s).
+        tip: The cue tip's axis offset ``(side, vertical)`` in fractions of R (spin
+            tables; ``(0.0, 0.0)`` on a roll table).
+        cue: Rules, cue ball in hand: where it is placed (m); ``None`` otherwise.
+        pocket: Rules: the pocket called for the 8 (index into ``table.pockets``).
+    """
+
+    angle: float
+    speed: float
+    tip: tuple[float, float] = (0.0, 0.0)
+    cue: tuple[float, float] | None = None
+    pocket: int = 0
+
+
+def _table(
+    config: GameConfig, positions: ArrayLike, on_table: ArrayLike | None, rack: Any
+) -> GameState:
+    """A one-table state of these balls (and rack), its generator unused (no noise)."""
+    n = config.n_balls
+    pos = np.array(positions, dtype=np.float64)
+    if pos.shape != (n, 2) or not np.isfinite(pos).all():
+        raise ValueError(f"positions must be ({n}, 2) finite numbers, got shape {pos.shape}")
+    on = np.ones(n, dtype=np.bool_) if on_table is None else np.array(on_table, dtype=np.bool_)
+    if on.shape != (n,):
+        raise ValueError(f"on_table must have shape ({n},), got {on.shape}")
+    state = new_state(1, n)
+    state.positions[0], state.on_table[0] = pos, on
+    if config.rules:
+        state.rack[0] = _rack_row(config, rack)
+    elif rack is not None:
+        raise ValueError("rack is for the rules ids (game='nine' or 'eight')")
+    return state
+
+
+def _rack_row(config: GameConfig, rack: Any) -> NDArray[np.int64]:
+    """The rack-state row of ``rack``: a row, a dict as ``PoolEnv.rack`` gives, or None."""
+    if rack is None:  # a reset's default for a given layout
+        return rack_option(config, None, rack_scene=False)
+    if isinstance(rack, dict):
+        return rack_row(rack)
+    row = np.array(rack, dtype=np.int64)
+    if row.shape != (wpa.N_RACK,):
+        raise ValueError(f"rack must be PoolEnv.rack's dict or a ({wpa.N_RACK},) row, got {rack!r}")
+    return row
+
+
+def _quiet(config: GameConfig) -> NDArray[np.float64]:
+    """The config's kernel parameters with the noise off."""
+    params = config.params.copy()
+    params[kp.NOISE] = 0.0
+    return params
+
+
+def decode_action(
+    config: GameConfig,
+    action: ArrayLike,
+    positions: ArrayLike,
+    on_table: ArrayLike | None = None,
+    rack: Any = None,
+) -> Shot:
+    """The shot that ``action`` plays from this layout, before execution noise.
+
+    Args:
+        config: The env's config (``env.unwrapped.config``).
+        action: One action of the env's action space (out-of-range values are clipped).
+        positions: ``(N, 2)`` ball centres (``env.unwrapped.positions``).
+        on_table: ``(N,)`` which balls are on the table (default: all).
+        rack: Rules only: the rack state, as ``env.unwrapped.rack`` gives it (default: no
+            break, the cue ball where it lies, an open table).
+
+    Returns:
+        The :class:`Shot`; under rules with the cue ball in hand, ``cue`` is where the
+        step places it (the free point nearest the requested one, if that is covered).
+
+    Raises:
+        ValueError: On a malformed action (or NaN), layout or rack.
+    """
+    actions = check_actions(action, 1, single=True, width=config.action_size)
+    state = _table(config, positions, on_table, rack)
+    params, cue = _quiet(config), None
+    if config.rules:
+        place_cue_balls(config, state, _ONE, actions)
+        if state.rack[0, wpa.IN_HAND]:
+            cue = (float(state.positions[0, 0, 0]), float(state.positions[0, 0, 1]))
+        shots, _, _, called = executed_rule_shots(
+            params, config.table.pockets, actions, _ONE, state.positions, state.on_table,
+            state.ptrs, state.rack,
+        )  # fmt: skip
+        pocket = int(called[0])
+    else:
+        shots = executed_shots(params, actions, _ONE, state.positions, state.on_table, state.ptrs)[
+            0
+        ]
+        pocket = 0
+    row = shots[0].tolist()
+    tip = (row[2], row[3]) if config.spin else (0.0, 0.0)
+    return Shot(angle=row[0], speed=row[1], tip=tip, cue=cue, pocket=pocket)
+
+
+def _component(name: str, value: float, low: float, high: float, clip: bool) -> float:
+    """``value`` in ``[low, high]`` as an action component in ``[-1, 1]``."""
+    if high == low:
+        c = 0.0
+        if value != low and not clip:
+            raise ValueError(f"{name} {value!r} is not {low!r}, the only value of its range")
+    else:
+        c = 2.0 * (value - low) / (high - low) - 1.0
+    if not -1.0 - 1e-12 <= c <= 1.0 + 1e-12 and not clip:
+        raise ValueError(f"{name} {value!r} lies outside its range [{low!r}, {high!r}]")
+    return min(max(c, -1.0), 1.0)
+
+
+def _wrap(angle: float) -> float:
+    """``angle`` in ``[-pi, pi)``."""
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> float:
+    """The aim component that plays the direction ``angle`` (radians from +x)."""
+    params = config.params
+    mode, (low, high) = int(params[kp.AIM_MODE]), config.aim_range
+    if mode == 0:  # absolute: the turn of the angle that lies in the range, if one does
+        param = low + (angle - low) % (2.0 * math.pi)
+        if param > high:
+            if not clip:
+                raise ValueError(f"angle {angle!r} lies outside aim_range {config.aim_range}")
+            param = high if param - high < low + 2.0 * math.pi - param else low
+        return _component("angle", param, low, high, clip)
+    targets = state.on_table[0].copy()
+    if config.rules:
+        row = state.rack[0]
+        wpa.legal_targets(int(params[kp.GAME]), row, state.on_table[0], row[wpa.SHOOTER], targets)
+    j, dist, base = nearest_object_ball(state.positions[0], targets, 0)
+    offset = _wrap(angle - base)
+    if mode == 1:
+        return _component("angle (relative aim)", offset, low, high, clip)
+    if j < 0:  # no reference ball: every cut aims along +x
+        return 0.0
+    if abs(offset) > 0.5 * math.pi and not clip:
+        raise ValueError(
+            f"angle {angle!r} turns more than 90 degrees from the reference ball {j}: cut "
+            "aim cannot play it (use aim='absolute', or clip=True)"
+        )
+    offset = max(-0.5 * math.pi, min(0.5 * math.pi, offset))
+    cut = math.sin(offset) * dist / (2.0 * params[kp.RADIUS])
+    return _component("cut", cut, low, high, clip)
+
+
+def encode_action(
+    config: GameConfig,
+    shot: Shot,
+    positions: ArrayLike,
+    on_table: ArrayLike | None = None,
+    rack: Any = None,
+    clip: bool = False,
+) -> NDArray[np.float64]:
+    """The action that plays ``shot`` from this layout (the inverse of :func:`decode_action`).
+
+    Args:
+        config: The env's config (``env.unwrapped.config``).
+        shot: The shot wanted: aim direction, speed, tip (spin), placement and pocket (rules).
+        positions: ``(N, 2)`` ball centres.
+        on_table: ``(N,)`` which balls are on the table (default: all).
+        rack: Rules only: the rack state (``env.unwrapped.rack``); it says whether the cue
+            ball is in hand (``shot.cue`` is then its placement; ``None`` keeps it where
+            it lies), whether the shot is a break (the break's speed range) and which balls
+            cut and relative aim may refer to.
+        clip: Map parts outside the action's reach onto its edge instead of raising.
+
+    Returns:
+        ``(action_size,)`` float64 in ``[-1, 1]`` (float64 keeps the shot exact; the env
+        takes any real dtype).
+
+    Raises:
+        ValueError: On a part the action cannot play (without ``clip``): an angle outside
+            the aim range (cut aim: more than 90 degrees off its reference ball), a speed
+            outside its range, a tip beyond the tip limit or any tip on a roll table, a
+            pocket that does not exist; or a malformed layout or rack.
+    """
+    state = _table(config, positions, on_table, rack)
+    params, out = config.params, np.zeros(config.action_size)
+    _tip(config, shot.tip, out, clip)
+    speeds = config.speed_range
+    if config.rules:
+        row = state.rack[0]
+        if row[wpa.IN_HAND] and shot.cue is not None:
+            x, y = (float(v) for v in shot.cue)
+            x_high = params[kp.HEAD_X] if row[wpa.BEHIND] else params[kp.X_HIGH]
+            out[2] = _component("cue x", x, params[kp.X_LOW], x_high, clip)
+            out[3] = _component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip)
+            state.positions[0, 0] = x, y  # the aim refers from where the cue ball will be
+        n_pockets = config.table.n_pockets
+        if not 0 <= shot.pocket < n_pockets:
+            raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {shot.pocket!r}")
+        out[4] = (2.0 * shot.pocket + 1.0) / n_pockets - 1.0  # the middle of its bin
+        if row[wpa.BREAKING]:
+            speeds = config.break_speed_range
+    out[0] = _aim(config, state, float(shot.angle), clip)
+    out[1] = _component("speed", float(shot.speed), *speeds, clip)
+    return out
+
+
+def _tip(
+    config: GameConfig, tip: tuple[float, float], out: NDArray[np.float64], clip: bool
+) -> None:
+    """Write the tip's action components (a spin table's last two) into ``out``."""
+    a, b = (float(v) for v in tip)
+    if config.tip_columns is None:
+        if a != 0.0 or b != 0.0:
+            raise ValueError(f"tip {tip!r} needs a spin table: a roll table has no tip")
+        return
+    limit = float(config.tip_limit)  # type: ignore[arg-type]
+    norm = math.sqrt(a * a + b * b)
+    if norm > limit * (1.0 + 1e-12):
+        if not clip:
+            raise ValueError(f"tip {tip!r} lies beyond the tip limit {limit!r} (miscue)")
+        a, b = a * limit / norm, b * limit / norm
+    side, vertical = config.tip_columns
+    out[side], out[vertical] = min(max(a / limit, -1.0), 1.0), min(max(b / limit, -1.0), 1.0)
