@@ -20,6 +20,7 @@ the oracle upper bound, :mod:`agents.baselines.search`).
 
 Execution noise: ``--noise 0.003,0.05`` (aim rad, speed m/s) or ``--noise 0.003,0.05,0.05``
 (and the tip's offset, fractions of R, on a spin env): the env's ``noise`` keyword.
+``--ends`` also counts how the racks of a rules id end (:func:`rack_ends`).
 """
 
 from __future__ import annotations
