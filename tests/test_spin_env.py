@@ -49,7 +49,8 @@ def _one_shot(
 @pytest.mark.parametrize("tip", [(0.0, 0.0), (0.6, 0.0), (0.0, -1.0), (-0.4, 0.7), (1.0, 1.0)])
 def test_a_tip_action_gives_the_closed_form_spin_of_the_strike(tip: tuple[float, float]) -> None:
     angle, speed = 0.7, 2.5
-    config, (shots, velocities, spins) = _one_shot(tip, angle, speed)
+    config, (shots, states) = _one_shot(tip, angle, speed)
+    velocities, spins = states[:, :, :2], states[:, :, 2:]
     table, limit = config.table, config.tip_limit
     a, b = tip[0] * limit, tip[1] * limit
     if math.hypot(a, b) > limit:
@@ -218,7 +219,7 @@ def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str) -> N
         unplaced = place_in_hand(params, pockets, actions[:, :width], rows, positions, on, rack)
         shots = executed_rule_shots(params, pockets, actions[:, :width], rows, positions, on,
                                     ptrs, rack)  # fmt: skip
-        out.append((positions, unplaced, shots[0][:, :2], shots[3]))
+        out.append((positions, unplaced, shots[0][:, :2], shots[2]))
     for got, want in zip(out[1], out[0], strict=True):
         np.testing.assert_array_equal(got, want)  # placement, aim, speed, called pocket
     assert len(set(out[1][3].tolist())) == 6  # every pocket was called

@@ -284,7 +284,7 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
     angles, speeds = np.zeros(20_000), np.zeros(20_000)
     for k in range(20_000):  # noise of one table, drawn 20,000 times: tails included
         # Absolute aim with a zero-width range: the shot is angle 0 at 5 m/s, plus noise.
-        shots, _, _ = executed_shots(params, zero_action, one, at_rest, on, table)
+        shots, _ = executed_shots(params, zero_action, one, at_rest, on, table)
         angles[k], speeds[k] = shots[0]
     normals = theirs.standard_normal(40_000)
     np.testing.assert_array_equal(angles, normals[0::2])

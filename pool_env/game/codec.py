@@ -123,7 +123,7 @@ def decode_action(
         place_cue_balls(config, state, _ONE, actions)
         if state.rack[0, wpa.IN_HAND]:
             cue = (float(state.positions[0, 0, 0]), float(state.positions[0, 0, 1]))
-        shots, _, _, called = executed_rule_shots(
+        shots, _, called = executed_rule_shots(
             params, config.table.pockets, actions, _ONE, state.positions, state.on_table,
             state.ptrs, state.rack,
         )  # fmt: skip

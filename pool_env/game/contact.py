@@ -98,7 +98,7 @@ def read_first(
     tables: NDArray[np.intp],
     balls: NDArray[np.intp],
     velocities: NDArray[np.float64],
-    spins: NDArray[np.float64],
+    spins: NDArray[np.float64] | None,
     first: NDArray[np.int64],
     shot: ShotResult | None,
 ) -> NDArray[np.bool_]:
@@ -114,7 +114,7 @@ def read_first(
         tables: ``(K,)`` the tables that shot.
         balls: ``(M,)`` ball number of each result column.
         velocities: ``(K, N, 2)`` the shots' initial velocities.
-        spins: ``(K, N, 3)`` their angular velocities on a spin table (``(K, 0, 3)``: roll).
+        spins: ``(K, N, 3)`` their angular velocities on a spin table (``None``: roll).
         first: ``(K, 2)`` result columns of the first impact; a simultaneous legal ball
             replaces the second (in place) when the simulator's first is not legal.
         shot: The one-table step's result, reused when it is recorded.
@@ -133,7 +133,7 @@ def read_first(
         rows = np.flatnonzero(on_table[b])
         recorded = shot if shot is not None and shot.recorded else None
         if recorded is None:
-            ang = spins[k, rows] if spins.shape[1] else None
+            ang = None if spins is None else spins[k, rows]
             recorded = simulate(
                 table, positions[b, rows], velocities[k, rows], record=True,
                 angular_velocities=ang,

@@ -186,9 +186,10 @@ def step(
     table = config.table
     if config.rules:
         return _step_rules(config, state, tables, actions, record, parallel)
-    shots, velocities, spins = executed_shots(
+    shots, states = executed_shots(
         config.params, actions, tables, state.positions, state.on_table, state.ptrs
     )
+    velocities, spins = split_states(states)
     out = _simulate(table, state, tables, velocities, spins, record, parallel)
     rewards, flags, hits = judge(
         config.params, table.pockets, tables, out.balls, state.positions, state.on_table,
@@ -198,6 +199,19 @@ def step(
         for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
             _place(config, state, int(tables[k]), CUE, None)
     return StepResult(tables, rewards, flags, hits, shots, out)
+
+
+def split_states(
+    states: NDArray[np.float64],
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """Initial velocities ``(K, N, 2)`` and, on a spin table, angular velocities ``(K, N, 3)``.
+
+    The kernels hand back one array (``(K, N, 5)`` on a spin table): a roll step thus
+    costs what it did.
+    """
+    if states.shape[2] == 2:
+        return states, None
+    return np.ascontiguousarray(states[:, :, :2]), np.ascontiguousarray(states[:, :, 2:])
 
 
 def _place(
@@ -246,10 +260,11 @@ def _step_rules(
     """:func:`step` under the 9-ball or 8-ball rules (``Box(5)`` actions, spin ``Box(7)``)."""
     table, params, rack = config.table, config.params, state.rack
     place_cue_balls(config, state, tables, actions)
-    shots, velocities, spins, called = executed_rule_shots(
+    shots, states, called = executed_rule_shots(
         params, table.pockets, actions, tables, state.positions, state.on_table, state.ptrs,
         rack,
     )  # fmt: skip
+    velocities, spins = split_states(states)
     out = _simulate(table, state, tables, velocities, spins, record, parallel)
     crossed = read_first(
         table, params, int(params[kp.GAME]), state.positions, state.on_table, rack, tables,
@@ -275,18 +290,18 @@ def _simulate(
     state: GameState,
     tables: NDArray[np.intp],
     vel: NDArray[np.float64],
-    spins: NDArray[np.float64],
+    spins: NDArray[np.float64] | None,
     record: bool,
     parallel: bool | None,
 ) -> _Outcome:
     """The shots to rest: ``simulate`` for one table (the balls on it), else the batch.
 
-    ``spins`` are the ``(K, N, 3)`` angular velocities of a spin table (``(K, 0, 3)`` on a
-    roll table, which takes none). The simulator copies what it is given, so the state's
+    ``spins`` are the ``(K, N, 3)`` angular velocities of a spin table (``None`` on a roll
+    table, which takes none). The simulator copies what it is given, so the state's
     arrays are passed as they are.
     """
     n_shots, n_balls = vel.shape[:2]
-    spin = spins if spins.shape[1] else None
+    spin = spins
     if n_shots == 1:
         b = tables[0]
         pos, on = state.positions[b], state.on_table[b]

@@ -201,12 +201,11 @@ def decode_shots(actions, positions, on_table, cue, mode, ball_radius, aim_range
 
 @kernel
 def _shot_arrays(params, n_shots, n_balls):
-    """Shots, velocities, spins to fill: spin ``(K, 4)``, ``(K, N, 3)``; roll ``(K, 2)``, none."""
+    """Shots, states to fill: spin ``(K, 4)``, ``(K, N, 5)``; roll ``(K, 2)``, ``(K, N, 2)``."""
     spin = params[SPIN] != 0.0
     shots = np.empty((n_shots, 4 if spin else 2))
-    velocities = np.zeros((n_shots, n_balls, 2))
-    spins = np.zeros((n_shots, n_balls if spin else 0, 3))
-    return shots, velocities, spins
+    velocities = np.zeros((n_shots, n_balls, 5 if spin else 2))
+    return shots, velocities
 
 
 @kernel
@@ -233,26 +232,26 @@ def executed_shots(params, actions, tables, positions, on_table, ptrs):
             0 and the noisy tip onto the miscue circle.
 
     Returns:
-        ``(shots, velocities, spins)``: ``(K, 2)`` executed ``(angle, speed)`` (radians
-        from +x, m/s; on a spin table ``(K, 4)``: and the tip ``(a, b)``), ``(K, N, 2)``
-        initial velocities, only the cue ball moving, and ``(K, N, 3)`` initial angular
-        velocities on a spin table (``(K, 0, 3)`` on a roll table).
+        ``(shots, velocities)``: ``(K, 2)`` executed ``(angle, speed)`` (radians from +x,
+        m/s; on a spin table ``(K, 4)``: and the tip ``(a, b)``) and ``(K, N, 2)`` initial
+        velocities, only the cue ball moving; on a spin table ``(K, N, 5)``: velocity and
+        angular velocity ``(vx, vy, wx, wy, wz)``.
     """
     n_shots, n_balls = tables.shape[0], on_table.shape[1]
     aims, speeds = decode_actions(
         actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
     )
     tips = _tips(params, actions, 2)
-    shots, velocities, spins = _shot_arrays(params, n_shots, n_balls)
+    shots, velocities = _shot_arrays(params, n_shots, n_balls)
     for k in range(n_shots):
         b = tables[k]
         _strike(params, aims[k], speeds[k], tips[k], positions[b], on_table[b], ptrs[b],
-                shots[k], velocities[k], spins[k:k + 1])  # fmt: skip
-    return shots, velocities, spins
+                shots[k], velocities[k])  # fmt: skip
+    return shots, velocities
 
 
 @kernel
-def _strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity, spin):
+def _strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity):
     """One shot: aim (at the nearest of ``targets`` unless absolute), noise, strike.
 
     Args:
@@ -265,8 +264,8 @@ def _strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity, s
         ptrs: The table's generator addresses.
         shot: ``(2,)`` written: the executed ``(angle, speed)``; ``(4,)`` on a spin
             table: and the executed tip ``(a, b)``.
-        velocity: ``(N, 2)`` written: the cue ball's initial velocity (others stay 0).
-        spin: ``(1, N, 3)`` written on a spin table: the cue ball's angular velocity.
+        velocity: ``(N, 2)`` written: the cue ball's initial velocity (others stay 0);
+            ``(N, 5)`` on a spin table: and its angular velocity.
     """
     angle = aim  # absolute aim: the parameter is the angle
     mode = int(params[AIM_MODE])
@@ -291,8 +290,7 @@ def _strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity, s
     out = np.empty(5)
     cue_strike(speed, angle, side, vertical, 0.0, params[RADIUS], params[BALL_MASS],
                params[CUE_END_MASS], params[CUE_TIP_RADIUS], out)  # fmt: skip
-    velocity[0, 0], velocity[0, 1] = out[0], out[1]
-    spin[0, 0, 0], spin[0, 0, 1], spin[0, 0, 2] = out[2], out[3], out[4]
+    velocity[0, :] = out
 
 
 @kernel
@@ -369,8 +367,7 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
         rack: ``(B, N_RACK)`` rack states.
 
     Returns:
-        ``(shots, velocities, spins, called)``: as :func:`executed_shots`, and the called
-        pockets.
+        ``(shots, velocities, called)``: as :func:`executed_shots`, and the called pockets.
     """
     n_shots, n_balls = tables.shape[0], on_table.shape[1]
     game = int(params[GAME])
@@ -378,7 +375,7 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
         actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
     )
     tips = _tips(params, actions, 5)
-    shots, velocities, spins = _shot_arrays(params, n_shots, n_balls)
+    shots, velocities = _shot_arrays(params, n_shots, n_balls)
     called = np.empty(n_shots, dtype=np.int64)
     targets = np.empty(n_balls, dtype=np.bool_)
     n_pockets = pockets.shape[0]
@@ -393,5 +390,5 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
             )
         legal_targets(game, row, on_table[b], row[SHOOTER], targets)
         _strike(params, aims[k], speed, tips[k], positions[b], targets, ptrs[b], shots[k],
-                velocities[k], spins[k:k + 1])  # fmt: skip
-    return shots, velocities, spins, called
+                velocities[k])  # fmt: skip
+    return shots, velocities, called
