@@ -10,22 +10,30 @@ Episode ``k`` is reset with seed ``seed + k``, so every agent sees the same layo
 settings (``env_kwargs``, ``wrapper``) come from a ``config.yaml`` next to it, or from a
 sidecar ``<name>_config.yaml``.
 
-Agents by name: ``random`` (uniform actions), ``const[:a0,a1]`` (one action, default the
-full hit ``0,1``), ``best-const`` (the best action of a grid scan, see
-:mod:`agents.baselines.constant_scan`), ``ghost`` (the geometric ghost-ball heuristic, no
-simulation, :mod:`agents.baselines.ghost_ball`) and ``search`` (candidate shots checked on
-the simulator: the oracle upper bound, :mod:`agents.baselines.search`).
+Agents by name: ``random`` (uniform actions), ``const[:a0,a1,...]`` (one action, default
+the full hit ``0,1``, centre ball on a spin env), ``best-const`` (the best action of a grid
+scan, see :mod:`agents.baselines.constant_scan`), ``ghost`` (the geometric ghost-ball
+heuristic, no simulation, :mod:`agents.baselines.ghost_ball`; on a spin env it plays
+position with the tip), ``ghost-centre`` (the same on a spin env with a centre-ball tip
+only: position by speed alone) and ``search`` (candidate shots checked on the simulator:
+the oracle upper bound, :mod:`agents.baselines.search`).
+
+Execution noise: ``--noise 0.003,0.05`` (aim rad, speed m/s) or ``--noise 0.003,0.05,0.05``
+(and the tip's offset, fractions of R, on a spin env): the env's ``noise`` keyword.
+``--ends`` also counts how the racks of a rules id end (:func:`rack_ends`).
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from collections import Counter
 from pathlib import Path
 from typing import Any
 
 from agents.baselines.constant_scan import best_constant_agent
-from agents.baselines.ghost_ball import GameGhostBallAgent, GhostBallAgent
+from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
+from agents.baselines.ghost_ball import GhostBallAgent
 from agents.baselines.random_agent import ConstantAgent, RandomAgent
 from agents.baselines.search import SearchAgent
 from agents.envs import make_env
@@ -46,7 +54,7 @@ __all__ = [
 ]
 
 #: The baselines by name (``const`` also takes ``const:a0,a1``).
-BASELINES = ("random", "const", "best-const", "ghost", "search")
+BASELINES = ("random", "const", "best-const", "ghost", "ghost-centre", "search")
 
 #: Statistics printed, with their labels; rates are shown as percentages.
 COLUMNS: tuple[tuple[str, str, bool], ...] = (
@@ -77,17 +85,22 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Any:
     """One of :data:`BASELINES` (``"const:a0,a1"`` too) or an SB3 ``.zip`` path, playing ``env``."""
     if name == "random":
         return RandomAgent(env, seed=seed)
-    if name == "ghost":
+    if name in ("ghost", "ghost-centre"):
+        spin = name == "ghost"
         if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
-            return GameGhostBallAgent(env)
-        return GhostBallAgent(env)
+            return GameGhostBallAgent(env, spin=spin)
+        return GhostBallAgent(env, spin=spin)
     if name == "search":
+        if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
+            return GameSearchAgent(env, seed=seed)
         return SearchAgent(env, seed=seed)
     if name == "best-const":
         return best_constant_agent(env)
-    if name.startswith("const"):  # "const" (full hit, hardest) or "const:a0,a1"
+    if name.startswith("const"):  # "const" (full hit, hardest) or "const:a0,a1[,...]"
         _, _, values = name.partition(":")
-        action = tuple(float(v) for v in values.split(",")) if values else (0.0, 1.0)
+        width = int(env.action_space.shape[0])
+        default = (0.0, 1.0) + (0.0,) * (width - 2)  # a spin env: centre ball
+        action = tuple(float(v) for v in values.split(",")) if values else default
         return ConstantAgent(env, action)
     if name.endswith(".zip"):
         return load_model(name)
@@ -167,6 +180,46 @@ def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
     return "pots per shot: " + " | ".join(parts)
 
 
+def rack_ends(agent: Any, env: Any, episodes: int, seed: int) -> Counter[tuple[str, str]]:
+    """How each rack of a rules id ends: ``(shot, outcome)`` counts.
+
+    ``shot`` is ``"break"``, ``"1st after break"``, ``"2nd after break"`` or ``"later"``;
+    the outcome is ``"won"``, the foul's name, or ``"missed"`` (a legal shot that potted
+    nothing). With a :class:`~agents.baselines.game_agents.GameGhostBallAgent`, a shot
+    it had no clear pot for is tagged ``"(fallback)"``: what limits a run-out.
+    """
+    names = ("break", "1st after break", "2nd after break")
+    ends: Counter[tuple[str, str]] = Counter()
+    for k in range(episodes):
+        obs, _ = env.reset(seed=seed + k)
+        for shot in range(10_000):
+            action, _ = agent.predict(obs)
+            obs, _, terminated, truncated, info = env.step(action)
+            if not (terminated or truncated):
+                continue
+            outcome = "won" if info.get("winner") == 0 else (info.get("foul") or "missed")
+            if getattr(agent, "last_plan", {}).get("kind") == "fallback":
+                outcome += " (fallback)"
+            ends[(names[shot] if shot < len(names) else "later", outcome)] += 1
+            break
+    return ends
+
+
+def parse_noise(text: str) -> tuple[float, ...]:
+    """``"0.003,0.05[,0.05]"`` as the env's noise tuple (aim, speed[, tip]).
+
+    Raises:
+        ValueError: Unless two or three finite sigmas >= 0.
+    """
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise ValueError(f"--noise takes 2 or 3 comma-separated numbers, got {text!r}") from None
+    if len(values) not in (2, 3) or not all(v >= 0.0 and v < float("inf") for v in values):
+        raise ValueError(f"--noise takes 2 or 3 finite sigmas >= 0, got {text!r}")
+    return values
+
+
 def _yaml_mapping(text: str) -> Any:
     """``--env-kwargs`` parsed as YAML."""
     import yaml  # pyyaml: an extra (train), not the core install; needed for --env-kwargs only
@@ -182,7 +235,7 @@ def main(argv: list[str] | None = None) -> int:
         "--agent",
         nargs="+",
         default=["random", "ghost"],
-        help="random, const[:a0,a1], best-const, ghost, search or a model .zip",
+        help="random, const[:a0,a1,...], best-const, ghost, ghost-centre, search or a .zip",
     )
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=10_000)
@@ -192,13 +245,35 @@ def main(argv: list[str] | None = None) -> int:
         default=None,
         help='gymnasium.make kwargs as YAML, e.g. "{noise: [0.003, 0.05]}"',
     )
+    parser.add_argument(
+        "--noise",
+        default=None,
+        help="execution noise sigmas: aim (rad), speed (m/s)[, tip (fraction of R)], e.g. "
+        "0.003,0.05,0.05 (the env's noise keyword)",
+    )
+    parser.add_argument(
+        "--scan-episodes",
+        type=int,
+        default=1000,
+        help="episodes per action of the best-const grid scan",
+    )
+    parser.add_argument(
+        "--ends",
+        action="store_true",
+        help="also count how the racks of a rules id end (rack_ends)",
+    )
     parser.add_argument("--out", default=None, help="also write the table to this file")
     args = parser.parse_args(argv)
-    if args.episodes < 1:
-        parser.error("--episodes must be >= 1")
+    if args.episodes < 1 or args.scan_episodes < 1:
+        parser.error("--episodes and --scan-episodes must be >= 1")
     kwargs = _yaml_mapping(args.env_kwargs) if args.env_kwargs else {}
     if not isinstance(kwargs, dict):
         parser.error("--env-kwargs must be a YAML mapping")
+    if args.noise is not None:
+        try:
+            kwargs["noise"] = parse_noise(args.noise)
+        except ValueError as err:
+            parser.error(str(err))
     if args.aim:
         kwargs["aim"] = args.aim
     rows = {}
@@ -206,15 +281,23 @@ def main(argv: list[str] | None = None) -> int:
         agent, label = None, name
         if name == "best-const":  # scanned once, then labelled with the action it found
             scan_env = make_env(args.env, kwargs or None)
-            agent = make_agent(name, scan_env)
+            agent = best_constant_agent(scan_env, episodes=args.scan_episodes)
             scan_env.close()
-            label = f"best-const ({agent.action[0]:+.2f}, {agent.action[1]:+.2f})"
+            label = "best-const (" + ", ".join(f"{a:+.2f}" for a in agent.action) + ")"
         rows[label] = evaluate_agent(
             name, args.env, args.episodes, args.seed, kwargs or None, agent=agent
         )
     table = format_table(rows, args.episodes)
     print(f"{args.env} {kwargs or ''}, seeds {args.seed}..{args.seed + args.episodes - 1}")
     print(table)
+    if args.ends:
+        for name in args.agent:
+            env = make_env(args.env, kwargs or None)
+            ends = rack_ends(make_agent(name, env), env, args.episodes, args.seed)
+            env.close()
+            print(f"\nHow the racks end, {name}:")
+            for (shot, outcome), count in sorted(ends.items(), key=lambda kv: -kv[1]):
+                print(f"- {shot}: {outcome}: {count}")
     if args.out:
         Path(args.out).write_text(f"# Evaluation on {args.env}\n\n{table}\n")
     return 0

@@ -12,6 +12,12 @@ proofs TP 3.5 and TP 3.6). Paths that meet a rail before the mouth count as they
 (near 45 degrees a corner is helped by its rail). A corner is only reachable up to 45
 degrees from its axis. Beside each figure: the real-table figure and the issue's target
 range, and the same scan on the capture-circle table.
+
+The spin table (``Table(model="spin")``, the v1 ids' table, same jaws) is scanned twice:
+balls *rolling* into the mouth (spin tied to the velocity, the same run-up as above) and
+balls *sliding* into it (no spin, a short run-up :data:`SLIDE_RUN_UP` so that they still
+slide at the mouth: stun speed from ``v^2 = v_mouth^2 + 2 mu_slide g run``); the jaws are
+resolved with the Han cushion model there, so a ball's spin changes what a facing does.
 """
 
 from __future__ import annotations
@@ -27,6 +33,9 @@ from pool_env import Table, simulate
 ANGLES = (0.0, 30.0, 45.0, 60.0, 70.0, 75.0)
 SPEED_AT_MOUTH = 0.7  # m/s
 RUN_UP = 0.4  # m of roll before the mouth where the table allows
+#: Run-up (m) of the sliding balls on the spin table: a stun ball at ~0.75 m/s slides
+#: ``12 v^2 / (49 mu_slide g)`` (about 7 cm) before it rolls, so it still slides at the mouth.
+SLIDE_RUN_UP = 0.03
 
 #: Real-table figures (Dr. Dave Alciatore, TP 3.5 side / TP 3.6 corner, slow ball), cm.
 REAL = {
@@ -55,8 +64,14 @@ def _mouth(table: Table, pocket: int) -> tuple[np.ndarray, np.ndarray]:
     return jaws.points.mean(axis=0), -jaws.fall_normal
 
 
-def acceptance(table: Table, pocket: int, angle_deg: float, step: float) -> float:
-    """Width (m) of the parallel paths at ``angle_deg`` from the axis that pot in ``pocket``."""
+def acceptance(
+    table: Table, pocket: int, angle_deg: float, step: float, sliding: bool = False
+) -> float:
+    """Width (m) of the parallel paths at ``angle_deg`` from the axis that pot in ``pocket``.
+
+    On a spin table the ball rolls (spin tied to its velocity), or with ``sliding`` it has
+    no spin and a run-up of :data:`SLIDE_RUN_UP`, so it slides at the mouth.
+    """
     middle, axis = _mouth(table, pocket)
     theta = math.radians(angle_deg)
     # Turn the axis towards +x for the side pocket and towards the +x rail for the corner.
@@ -73,12 +88,14 @@ def acceptance(table: Table, pocket: int, angle_deg: float, step: float) -> floa
     r = table.ball_radius
     lo = np.array([r, r]) + 1e-6
     hi = np.array([table.length - r, table.width - r]) - 1e-6
-    a = table.deceleration
+    spin = table.model == "spin"
+    a = table.mu_slide * table.g if sliding else table.deceleration
+    run_up = SLIDE_RUN_UP if sliding else RUN_UP
     potted = 0
     for b in np.arange(-0.15, 0.15 + step / 2, step):
         at_mouth = middle + b * across
         start = None
-        for back in np.linspace(RUN_UP, 0.0, 81):  # the longest run-up on the table
+        for back in np.linspace(run_up, 0.0, 81):  # the longest run-up on the table
             p = at_mouth - back * u
             if np.all(p >= lo) and np.all(p <= hi):
                 start, run = p, back
@@ -86,8 +103,14 @@ def acceptance(table: Table, pocket: int, angle_deg: float, step: float) -> floa
         if start is None:
             continue  # this line never crosses the playing area before the mouth
         speed = math.sqrt(SPEED_AT_MOUTH**2 + 2.0 * a * run)
+        vel = speed * u
+        # Rolling: w = z x v / R, i.e. (-vy, vx, 0) / R; sliding: no spin.
+        omega = np.zeros((1, 3)) if sliding else np.array([[-vel[1], vel[0], 0.0]]) / r
         try:
-            result = simulate(table, start[None], (speed * u)[None], record=False)
+            result = simulate(
+                table, start[None], vel[None], record=False,
+                angular_velocities=omega if spin else None,
+            )  # fmt: skip
         except ValueError:
             continue
         potted += int(result.pocketed[0] == pocket)
@@ -109,7 +132,7 @@ def main() -> None:
     parser.add_argument("--step", type=float, default=0.0005, help="spacing of the paths (m)")
     parser.add_argument("--out", type=Path, default=Path("results/pocket_acceptance.md"))
     args = parser.parse_args()
-    jaws, circles = Table(), Table(pockets="circles")
+    jaws, circles, spin = Table(), Table(pockets="circles"), Table(model="spin")
     lines = [
         "# Pocket acceptance: how wide a pocket is to a slow ball",
         "",
@@ -121,8 +144,8 @@ def main() -> None:
         f"{jaws!r}.",
         "",
         "| pocket | angle (deg) | jaws (cm) | target (cm) | real table (cm) | "
-        "capture circles (cm) |",
-        "|---|---|---|---|---|---|",
+        "capture circles (cm) | spin, rolling (cm) | spin, sliding (cm) |",
+        "|---|---|---|---|---|---|---|---|",
     ]
     for name, pocket in (("side", 1), ("corner", 0)):
         for angle in ANGLES:
@@ -130,18 +153,28 @@ def main() -> None:
                 continue  # the corner cannot be approached from behind its rails
             width = 100 * acceptance(jaws, pocket, angle, args.step)
             cheap = 100 * acceptance(circles, pocket, angle, args.step)
+            rolling = 100 * acceptance(spin, pocket, angle, args.step)
+            sliding = 100 * acceptance(spin, pocket, angle, args.step, sliding=True)
             target = TARGETS.get((name, angle))
             verdict = ""
             if target is not None:
                 ok = target[0] <= width + 1e-9 and width <= target[1] + 1e-9
                 verdict = f"{target[0]:g}-{target[1]:g} {'met' if ok else 'MISSED'}"
             real = REAL.get((name, angle), "")
-            lines.append(f"| {name} | {angle:g} | {width:.2f} | {verdict} | {real} | {cheap:.2f} |")
+            lines.append(
+                f"| {name} | {angle:g} | {width:.2f} | {verdict} | {real} | {cheap:.2f} | "
+                f"{rolling:.2f} | {sliding:.2f} |"
+            )
             print(lines[-1], flush=True)
     rail = along_the_rail(jaws)
     lines += [
         "",
         f"A slow ball rolling along the rail into the corner drops: {'yes' if rail else 'NO'}.",
+        "",
+        'Spin table (`Table(model="spin")`, the v1 ids): the same jaws with the Han cushion',
+        "model (restitution, cushion friction, contact height) on facings and points. Rolling:",
+        "the ball's spin tied to its velocity, the same run-up; sliding: no spin and a",
+        f"{SLIDE_RUN_UP * 100:g} cm run-up, so it still slides when it reaches the mouth.",
         "",
         "Real-table figures: Dr. Dave Alciatore, technical proofs TP 3.5 (side: ~3.35 in",
         "straight in, ~2 in at 35 degrees, none beyond ~68 degrees) and TP 3.6 (corner:",

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 import pool_env  # noqa: F401  (registers the ids)
-from agents.baselines.ghost_ball import GameGhostBallAgent, GhostBallAgent
+from agents.baselines.game_agents import GameGhostBallAgent
+from agents.baselines.ghost_ball import GhostBallAgent
 from agents.evaluate import format_table, make_agent, run_episodes
 from tests.test_games import KWARGS, layout, parked, straight_in
 

@@ -237,7 +237,8 @@ def test_ghost_ball_features_by_hand() -> None:
 
 def test_cue_ball_trace_predicts_the_simulators_scratches() -> None:
     """Tangent line and cushions, cue ball alone: it must agree with the full simulation."""
-    from agents.baselines.geometry import cue_ball_scratches, ghost_shots
+    from agents.baselines.geometry import ghost_shots
+    from agents.baselines.trace import cue_ball_scratches
 
     env = gym.make(ONE, table=CIRCLES)  # rails the whole length, as the trace assumes
     table = env.unwrapped.table

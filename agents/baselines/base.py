@@ -32,16 +32,25 @@ class EnvSpec:
         aim: Aim mode (``"cut"``, ``"relative"`` or ``"absolute"``).
         aim_range: What action[0] = -1 and +1 map to.
         speed_range: Speeds (m/s) that action[1] = -1 and +1 map to.
-        noise: Execution noise sigmas (rad, m/s) or ``None``.
+        noise: Execution noise sigmas (rad, m/s, and on a spin env the tip's, in fractions
+            of ``R``) or ``None``.
         n_balls: Balls in the layout, cue included.
+        tip_limit: On a spin env, the axis offset (fraction of ``R``) that the tip
+            components' +-1 map to; ``None`` on a roll env (no tip components).
     """
 
     table: Table
     aim: str
     aim_range: tuple[float, float]
     speed_range: tuple[float, float]
-    noise: tuple[float, float] | None
+    noise: tuple[float, ...] | None
     n_balls: int
+    tip_limit: float | None = None
+
+    @property
+    def spin(self) -> bool:
+        """Whether the action ends with the two tip components (a spin env)."""
+        return self.tip_limit is not None
 
 
 def is_vec_env(env: Any) -> bool:
@@ -51,20 +60,22 @@ def is_vec_env(env: Any) -> bool:
 
 def env_spec(env: Any) -> EnvSpec:
     """Read the :class:`EnvSpec` of a (wrapped) ``PoolEnv`` or of an SB3 ``VecEnv`` of them."""
-    names = ("table", "aim", "aim_range", "speed_range", "noise", "n_object_balls")
+    names = ("table", "aim", "aim_range", "speed_range", "noise", "n_object_balls", "config")
     if is_vec_env(env):
         values = [env.get_attr(name, indices=[0])[0] for name in names]
     else:
         unwrapped = env.unwrapped
-        values = [getattr(unwrapped, name) for name in names]
-    table, aim, aim_range, speed_range, noise, n_obj = values
+        values = [getattr(unwrapped, name, None) for name in names]
+    table, aim, aim_range, speed_range, noise, n_obj, config = values
+    tip_limit = getattr(config, "tip_limit", None)
     return EnvSpec(
         table=table,
         aim=str(aim),
         aim_range=(float(aim_range[0]), float(aim_range[1])),
         speed_range=(float(speed_range[0]), float(speed_range[1])),
-        noise=None if noise is None else (float(noise[0]), float(noise[1])),
+        noise=None if noise is None else tuple(float(x) for x in noise),
         n_balls=int(n_obj) + 1,
+        tip_limit=None if tip_limit is None else float(tip_limit),
     )
 
 

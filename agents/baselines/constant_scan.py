@@ -3,13 +3,15 @@
 A learner that aims must beat every policy that ignores the layout, not only the one
 constant that happens to be named (the full hit). The scan plays each action of a
 ``grid x grid`` lattice on ``[-1, 1]^2`` for the same episodes and keeps the one with the
-highest pots per shot (ties: the first in the lattice). Its seeds (:data:`SCAN_SEED`) lie
-apart from the evaluation seeds, so the figure reported for it on the evaluation seeds is
-not inflated by the choice.
+highest pots per shot (ties: the first in the lattice). On a spin env the two tip
+components join the lattice with ``tip_grid`` points each (centre and the limits by
+default). Its seeds (:data:`SCAN_SEED`) lie apart from the evaluation seeds, so the
+figure reported for it on the evaluation seeds is not inflated by the choice.
 """
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass
 from typing import Any
 
@@ -33,40 +35,46 @@ class ConstantScan:
         table: Every action tried with its pots per shot, in lattice order.
     """
 
-    action: tuple[float, float]
+    action: tuple[float, ...]
     pots_per_shot: Estimate
-    table: list[tuple[tuple[float, float], float]]
+    table: list[tuple[tuple[float, ...], float]]
 
 
 def scan_constant_actions(
-    env: Any, grid: int = 9, episodes: int = 1000, seed: int = SCAN_SEED
+    env: Any, grid: int = 9, episodes: int = 1000, seed: int = SCAN_SEED, tip_grid: int = 3
 ) -> ConstantScan:
     """Play every action of a ``grid x grid`` lattice on ``env`` and keep the best.
 
     Args:
         env: A Gymnasium ``PoolEnv`` (wrapped or not).
-        grid: Points per action component (``grid >= 2``: the lattice includes +-1).
+        grid: Points per aim and speed component (``grid >= 2``: the lattice includes +-1).
         episodes: Episodes per action (the same seeds for each).
         seed: Seed of the first episode.
+        tip_grid: Points per tip component of a spin env's ``Box(4)`` (``>= 2``).
 
     Raises:
-        ValueError: On ``grid < 2`` or ``episodes < 1``.
+        ValueError: On ``grid < 2``, ``tip_grid < 2`` or ``episodes < 1``.
     """
-    if grid < 2:
-        raise ValueError(f"grid must be at least 2 (the corners of the action box), got {grid}")
+    if grid < 2 or tip_grid < 2:
+        raise ValueError(
+            f"grid and tip_grid must be at least 2 (the corners of the action box), got "
+            f"{grid}, {tip_grid}"
+        )
     if episodes < 1:
         raise ValueError(f"episodes must be at least 1, got {episodes}")
     values = np.linspace(-1.0, 1.0, grid).tolist()
-    best: tuple[tuple[float, float], Estimate] | None = None
+    tips = np.linspace(-1.0, 1.0, tip_grid).tolist()
+    width = int(env.action_space.shape[0])
+    axes = [values, values] + [tips] * (width - 2)
+    best: tuple[tuple[float, ...], Estimate] | None = None
     table = []
-    for a0 in values:
-        for a1 in values:
-            action = (float(a0), float(a1))
-            stats = run_episodes(ConstantAgent(env, action), env, episodes, seed).summary()
-            rate = stats["pots_per_shot"]
-            table.append((action, rate.value))
-            if best is None or rate.value > best[1].value:
-                best = (action, rate)
+    for point in itertools.product(*axes):
+        action = tuple(float(a) for a in point)
+        stats = run_episodes(ConstantAgent(env, action), env, episodes, seed).summary()
+        rate = stats["pots_per_shot"]
+        table.append((action, rate.value))
+        if best is None or rate.value > best[1].value:
+            best = (action, rate)
     assert best is not None
     return ConstantScan(best[0], best[1], table)
 

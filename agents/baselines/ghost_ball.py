@@ -6,11 +6,20 @@ clear of the other balls and whose pocket is open to the object ball's path, and
 easiest: the one that forgives the largest aim error (thin cuts, long distances and a mouth
 seen at an angle all shrink it; :func:`agents.baselines.geometry.ghost_shots`) among those whose cue
 ball, followed along the tangent line and off the cushions, stays out of the pockets
-(:func:`agents.baselines.geometry.cue_ball_scratches`). The speed comes from
+(:func:`agents.baselines.trace.cue_ball_scratches`). The speed comes from
 the distances, the rolling resistance and the ball-ball restitution
 (:func:`agents.baselines.geometry.cue_speed`) so that the object ball drops at a gentle
 :data:`ARRIVAL_SPEED`. When no direct shot exists (a rack, a ball in the way) it hits the
 nearest legal ball full at the top speed: the break, or a shot that opens the table.
+
+On a spin env (the v1 ids: the action ends with the cue tip's two components) it also
+plays position (:mod:`agents.baselines.spin_play`): for the most forgiving few shots it
+tries stun, follow and draw (:data:`~agents.baselines.spin_play.VERTICAL_TIPS`) at a few
+object-ball arrival speeds, works out each strike in closed form (throw, squirt, the cue
+ball's slide and roll, :mod:`agents.baselines.cue_path`), drops those whose cue ball
+scratches, and keeps the one whose cue ball stops where the next shot is easiest
+(:class:`~agents.baselines.spin_play.PositionScore`). ``spin=False`` restricts it to a
+centre-ball strike (position by speed alone): the comparison that says what spin adds.
 
 It never calls the simulator: everything it knows is the table's public geometry and
 constants and the layout. Compare :class:`agents.baselines.search.SearchAgent`, which checks
@@ -25,22 +34,40 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.aiming import shot_to_action
+from agents.baselines.aiming import onto_tip_circle, shot_to_action
 from agents.baselines.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from agents.baselines.geometry import (
     GhostShot,
     LegalTargets,
     any_object_ball,
-    cue_ball_scratches,
     cue_speed,
     ghost_shots,
     pocket_mouths,
 )
+from agents.baselines.spin_play import (
+    ARRIVAL_SPEEDS,
+    SIDE_TIPS,
+    THROW_ROUNDS,
+    VERTICAL_TIPS,
+    Contact,
+    NextTargets,
+    PositionScore,
+    TracedPot,
+    plan_contact,
+    pot_chance,
+    traced_pots,
+)
+from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball
 
 #: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
 #: error of the deceleration model, soft enough that the cue ball stays out of the pockets.
 ARRIVAL_SPEED = 0.3
+#: On a spin env: the most forgiving shots whose tips and speeds are tried for position.
+POSITION_SHOTS = 6
+#: The least aim error (rad) the position score assumes (a noiseless env still rewards
+#: shots that forgive more).
+MIN_SIGMA = 1e-3
 
 
 class GhostBallAgent(BaselineAgent):
@@ -53,6 +80,9 @@ class GhostBallAgent(BaselineAgent):
         arrival_speed: Speed (m/s) at which the object ball should drop.
         legal_targets: Which object balls may be aimed at (default: any on the table; a
             rules game passes its own).
+        spin: On a spin env, whether to use the tip (else centre ball, position by speed).
+        next_targets: On a spin env, the legal balls once a ball drops (default:
+            ``legal_targets`` of the layout without it).
 
     Examples:
         >>> import gymnasium as gym
@@ -72,6 +102,8 @@ class GhostBallAgent(BaselineAgent):
         env: Any,
         arrival_speed: float = ARRIVAL_SPEED,
         legal_targets: LegalTargets = any_object_ball,
+        spin: bool = True,
+        next_targets: NextTargets | None = None,
     ) -> None:
         if not (math.isfinite(arrival_speed) and arrival_speed >= 0.0):
             raise ValueError(f"arrival_speed must be a finite speed >= 0, got {arrival_speed!r}")
@@ -81,6 +113,16 @@ class GhostBallAgent(BaselineAgent):
         self.arrival_speed = float(arrival_speed)
         self.legal_targets = legal_targets
         self.last_plan: dict[str, Any] = {}
+        self.last_contact: Contact | None = None
+        self.last_traced: TracedPot | None = None
+        limit = self.spec.tip_limit or 0.0
+        fractions = [(a, b) for b in VERTICAL_TIPS for a in SIDE_TIPS] if spin else [(0.0, 0.0)]
+        # What the env executes: a tip beyond the miscue circle is scaled back onto it.
+        tips = [onto_tip_circle(a * limit, b * limit, limit) for a, b in fractions]
+        self.tips = list(dict.fromkeys(tips))
+        self.next_targets: NextTargets = next_targets or (
+            lambda positions, on_table, ball: legal_targets(positions, on_table)
+        )
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
         """The planned action for each observation's layout."""
@@ -90,7 +132,8 @@ class GhostBallAgent(BaselineAgent):
         """The action for one layout (``(N, 2)`` centres, cue first; ``(N,)`` on the table)."""
         shot, speed, action = self.best_shot(positions, on_table)
         if action is not None:
-            self.last_plan = {"kind": "ghost", "shot": shot, "speed": speed}
+            kind = "ghost" if shot is not None else "traced"  # a bank or carom (spin envs)
+            self.last_plan = {"kind": kind, "shot": shot, "speed": speed}
             return action
         self.last_plan = {"kind": "fallback", "shot": None, "speed": self.spec.speed_range[1]}
         return self._fallback(positions, on_table)
@@ -108,6 +151,20 @@ class GhostBallAgent(BaselineAgent):
         ``reference``, default ``on_table``; the game ids aim at the nearest legal ball).
         ``(None, nan, None)`` when no shot is left.
         """
+        if self.spec.spin:
+            return self.position_shot(positions, on_table, reference)
+        return self.easiest_shot(positions, on_table, reference)
+
+    def easiest_shot(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        reference: NDArray[np.bool_] | None = None,
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """The roll level's choice: the most forgiving shot that does not scratch.
+
+        On a spin env its action ends with a centre-ball tip (used to rank placements).
+        """
         aim_on = on_table if reference is None else reference
         table = self.spec.table
         top = self.spec.speed_range[1]
@@ -122,13 +179,133 @@ class GhostBallAgent(BaselineAgent):
                 continue
             action = shot_to_action(shot.angle, speed, positions, aim_on, self.spec)
             if action is not None:
-                playable.append((shot, speed, action))
+                playable.append((shot, speed, self._with_tip(action, (0.0, 0.0))))
         # The easiest shot whose cue ball stays out of the pockets, else the easiest.
         for shot, speed, action in playable:
             played = max(speed, self.spec.speed_range[0])  # a softer shot is not available
             if not cue_ball_scratches(table, self.mouths, shot, played):
                 return shot, speed, action
         return playable[0] if playable else (None, math.nan, None)
+
+    def position_shot(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        reference: NDArray[np.bool_] | None = None,
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """The spin env's choice: shot, tip and speed for the best position (module doc).
+
+        Among the :data:`POSITION_SHOTS` most forgiving clear shots, every tip of
+        ``self.tips`` and arrival speed of :data:`~agents.baselines.spin_play.ARRIVAL_SPEEDS`
+        whose strike is in the speed range and whose cue ball stays out of the pockets;
+        ties go to the softer and the less spin. If every one scratches, the most
+        forgiving of them.
+        """
+        aim_on = on_table if reference is None else reference
+        table, spec = self.spec.table, self.spec
+        self.last_traced = None
+        lo, top = spec.speed_range
+        targets = self.legal_targets(positions, on_table)
+        shots = sorted(
+            (s for s in ghost_shots(table, self.mouths, positions, on_table, targets) if s.clear),
+            key=lambda s: -s.tolerance,
+        )[:POSITION_SHOTS]
+        sigma = max(spec.noise[0] if spec.noise else 0.0, MIN_SIGMA)
+        scorer = PositionScore(table, self.mouths, sigma, self.next_targets)
+        limit = spec.tip_limit or 1.0
+        best: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
+        scratch: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
+        best_contact: Contact | None = None
+        for shot in shots:
+            if best is not None and pot_chance(shot.tolerance, sigma) <= best[0]:
+                break  # a score is at most the shot's own chance; the rest forgive less
+            for tip in self.tips:
+                for arrival in ARRIVAL_SPEEDS:
+                    contact = plan_contact(table, self.mouths, shot, positions, tip, arrival)
+                    if contact is None or not lo <= contact.speed <= top:
+                        continue
+                    action = shot_to_action(contact.aim, contact.speed, positions, aim_on, spec)
+                    if action is None:
+                        continue
+                    played = (shot, contact.speed, self._with_tip(action, tip))
+                    if contact.path.pocket >= 0:
+                        if scratch is None or shot.tolerance > scratch[0]:
+                            scratch = (shot.tolerance, *played)
+                        continue
+                    score = scorer.score(shot, contact, positions, on_table)
+                    score -= 0.002 * arrival + 0.001 * math.hypot(*tip) / limit
+                    if best is None or score > best[0]:
+                        best = (score, *played)
+                        best_contact = contact
+        self.last_contact = best_contact if best is not None else None
+        chosen = best or scratch
+        if chosen is None:
+            return self._last_resort(shots, positions, on_table, aim_on)
+        return chosen[1], chosen[2], chosen[3]
+
+    def _last_resort(
+        self,
+        shots: list[GhostShot],
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        aim_on: NDArray[np.bool_],
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """A shot for when no candidate of :meth:`position_shot` is playable.
+
+        The most forgiving shot that can still reach its pocket, centre ball, as hard as
+        the speed range allows (a thin cut whose gentle arrival needs more than the top
+        speed), at its throw-corrected contact or, off the table (a ball frozen to a
+        rail), at its plain ghost point. Failing that, a bank or carom found by
+        tracing a fan of strikes (:func:`~agents.baselines.spin_play.traced_pots`); its
+        shot is ``None`` (no ghost-ball shot), its action is returned.
+        """
+        lo, top = self.spec.speed_range
+        for shot in shots:
+            for rounds in (THROW_ROUNDS, 0):
+                contact = self._at_speed(shot, positions, top, rounds)
+                if contact is None:
+                    continue
+                speed = min(max(contact.speed, lo), top)
+                action = shot_to_action(contact.aim, speed, positions, aim_on, self.spec)
+                if action is not None:
+                    return shot, speed, self._with_tip(action, (0.0, 0.0))
+        targets = self.legal_targets(positions, on_table)
+        for pot in traced_pots(self.spec.table, self.mouths, positions, on_table, targets, top):
+            action = shot_to_action(pot.aim, pot.speed, positions, aim_on, self.spec)
+            if action is not None and pot.speed >= lo:
+                self.last_traced = pot
+                return None, pot.speed, self._with_tip(action, (0.0, 0.0))
+        return None, math.nan, None
+
+    def _at_speed(
+        self, shot: GhostShot, positions: NDArray[np.float64], speed: float, rounds: int
+    ) -> Contact | None:
+        """The centre-ball contact of ``shot`` struck at about ``speed``.
+
+        A bisection on the arrival speed; ``None`` if even a ball that just reaches the
+        pocket needs more.
+        """
+        table, mouths, centre = self.spec.table, self.mouths, (0.0, 0.0)
+        slowest = plan_contact(table, mouths, shot, positions, centre, 0.0, rounds)
+        if slowest is None or slowest.speed > speed:
+            return None
+        low, high, best = 0.0, 4.0, slowest
+        for _ in range(12):
+            mid = 0.5 * (low + high)
+            contact = plan_contact(table, mouths, shot, positions, centre, mid, rounds)
+            if contact is not None and contact.speed <= speed:
+                low, best = mid, contact
+            else:
+                high = mid
+        return best
+
+    def _with_tip(self, action: NDArray[np.float32], tip: tuple[float, float]) -> NDArray:
+        """``action`` with the tip's two components appended on a spin env (as is on roll)."""
+        limit = self.spec.tip_limit
+        if limit is None:
+            return action
+        tip_part = np.clip(np.array(tip) / limit, -1.0, 1.0)
+        return np.concatenate([action, tip_part]).astype(np.float32)
 
     def _fallback(
         self,
@@ -149,7 +326,7 @@ class GhostBallAgent(BaselineAgent):
             d = positions[j] - cue
             action = shot_to_action(math.atan2(d[1], d[0]), speed, positions, aim_on, self.spec)
             if action is not None:
-                return action
+                return self._with_tip(action, (0.0, 0.0))
         # A legal ball that cut or relative aim cannot reach: a full hit on their reference
         # ball (the nearest), which action[0] = "aim parameter 0" is in both modes.
         aim_lo, aim_hi = self.spec.aim_range
@@ -158,124 +335,13 @@ class GhostBallAgent(BaselineAgent):
             if aim_hi == aim_lo
             else float(np.clip(-(aim_lo + aim_hi) / (aim_hi - aim_lo), -1, 1))
         )
-        return np.array([zero, 1.0], dtype=np.float32)
+        return self._with_tip(np.array([zero, 1.0], dtype=np.float32), (0.0, 0.0))
 
 
-#: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
-#: straight-in shot from close enough to aim well, far enough to follow through.
-PLACE_DISTANCES = (0.12, 0.25, 0.45)
+def __getattr__(name: str) -> Any:
+    """``GameGhostBallAgent`` moved to :mod:`agents.baselines.game_agents`; still found here."""
+    if name == "GameGhostBallAgent":
+        from agents.baselines.game_agents import GameGhostBallAgent
 
-
-class GameGhostBallAgent(BaselineAgent):
-    """The ghost-ball heuristic under the rules of the game ids (``game="nine"``/``"eight"``).
-
-    It reads the rules from the observation (the balls it may hit first, ball in hand,
-    behind the head string, the break) and plays :class:`GhostBallAgent`'s most forgiving
-    shot on those balls only: the ball on (9-ball), its group (8-ball; any ball but the 8
-    on an open table), the 8 once the group is cleared, with the called pocket set to the
-    shot's pocket. With the cue ball in hand it tries straight-in placements
-    (:data:`PLACE_DISTANCES` behind the ghost-ball point of each legal ball and pocket,
-    inside the allowed region and clear of the balls) and keeps the one whose best shot
-    forgives the most. The break: the cue ball on the head spot, a full hit on the nearest
-    legal ball at the top of the break speed range.
-
-    Args:
-        env: A game-id environment (``gym.make("pool_env/NineBallGame-v0")``, wrapped or not).
-        arrival_speed: As :class:`GhostBallAgent`.
-    """
-
-    def __init__(self, env: Any, arrival_speed: float = ARRIVAL_SPEED) -> None:
-        config = env.unwrapped.config
-        if not config.rules:
-            raise ValueError("GameGhostBallAgent plays the game ids (game='nine' or 'eight')")
-        self.config = config
-        self.ghost = GhostBallAgent(env, arrival_speed, legal_targets=self._legal)
-        self._targets: list[int] = []
-        self.last_plan: dict[str, Any] = {}
-
-    def _legal(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> list[int]:
-        return [j for j in self._targets if on_table[j]]
-
-    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
-        """The planned ``(B, 5)`` actions."""
-        n = self.config.n_balls
-        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, : 3 * n]))
-        pairs = zip(observations, layouts, strict=True)
-        out = [self._plan(obs, pos, on) for obs, (pos, on) in pairs]
-        return np.stack(out).astype(np.float32)
-
-    def _plan(
-        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
-    ) -> NDArray[np.float32]:
-        n = self.config.n_balls
-        legal = obs[3 * n : 4 * n - 1] > 0.5
-        in_hand, behind, breaking = (bool(v > 0.5) for v in obs[4 * n - 1 : 4 * n + 2])
-        self._targets = [j for j in range(1, n) if legal[j - 1]]
-        reference = on.copy()
-        reference[1:] &= legal
-        place = np.zeros(2)
-        table = self.config.table
-        if breaking:
-            place = self._place_action(np.array([table.length / 4.0, table.width / 2.0]), behind)
-            positions = positions.copy()
-            positions[0] = table.length / 4.0, table.width / 2.0
-            action = self.ghost._fallback(positions, on, reference)
-            action[1] = 1.0  # the top of the break speed range
-            self.last_plan = {"kind": "break"}
-        else:
-            if in_hand:
-                positions, place = self._place(positions, on, reference, behind)
-            shot, _, action = self.ghost.best_shot(positions, on, reference)
-            if action is None:
-                action = self.ghost._fallback(positions, on, reference)
-                self.last_plan = {"kind": "fallback", "in_hand": in_hand}
-            else:
-                self.last_plan = {"kind": "ghost", "shot": shot, "in_hand": in_hand}
-        pocket = 0.0
-        shot = self.last_plan.get("shot")
-        if shot is not None:
-            pocket = (shot.pocket + 0.5) / table.n_pockets * 2.0 - 1.0
-        return np.array([action[0], action[1], place[0], place[1], pocket])
-
-    def _place_action(self, point: NDArray[np.float64], behind: bool) -> NDArray[np.float64]:
-        """The action components that place the cue ball on ``point`` (the kernels' map)."""
-        t = self.config.table
-        r = t.ball_radius
-        x_high = t.length / 4.0 if behind else t.length - r
-        u = 2.0 * (point[0] - r) / (x_high - r) - 1.0
-        v = 2.0 * (point[1] - r) / (t.width - 2 * r) - 1.0
-        return np.clip([u, v], -1.0, 1.0)
-
-    def _place(
-        self,
-        positions: NDArray[np.float64],
-        on: NDArray[np.bool_],
-        reference: NDArray[np.bool_],
-        behind: bool,
-    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """The best straight-in placement: ``(positions with the cue ball there, action)``."""
-        t = self.config.table
-        r = t.ball_radius
-        x_high = t.length / 4.0 if behind else t.length - r
-        others = [j for j in range(1, on.shape[0]) if on[j]]
-        best, best_tol = positions[0].copy(), -1.0
-        trial = positions.copy()
-        for b in self._targets:
-            for p in range(t.n_pockets):
-                d = positions[b] - t.pockets[p, :2]
-                u = d / max(float(np.hypot(*d)), 1e-12)
-                for dist in PLACE_DISTANCES:
-                    point = positions[b] + (2.0 * r + dist) * u
-                    if not (r <= point[0] <= x_high and r <= point[1] <= t.width - r):
-                        continue
-                    if any(np.hypot(*(positions[j] - point)) < 2.2 * r for j in others):
-                        continue
-                    if np.any(np.hypot(*(t.pockets[:, :2] - point).T) < t.pockets[:, 2] + r):
-                        continue
-                    trial[0] = point
-                    shot, _, action = self.ghost.best_shot(trial, on, reference)
-                    if action is not None and shot is not None and shot.tolerance > best_tol:
-                        best, best_tol = point.copy(), shot.tolerance
-        placed = positions.copy()
-        placed[0] = best
-        return placed, self._place_action(best, behind)
+        return GameGhostBallAgent
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

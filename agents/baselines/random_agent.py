@@ -39,10 +39,10 @@ class ConstantAgent(BaselineAgent):
 
     Args:
         env: The environment (unused; for the common constructor).
-        action: The action, in ``[-1, 1]^2``.
+        action: The action, in ``[-1, 1]^2`` (``[-1, 1]^4`` on a spin env).
     """
 
-    def __init__(self, env: Any, action: tuple[float, float] = (0.0, 1.0)) -> None:
+    def __init__(self, env: Any, action: tuple[float, ...] = (0.0, 1.0)) -> None:
         self.action = np.asarray(action, dtype=np.float32)
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:

@@ -12,6 +12,11 @@ forgiving one wins (ties: the softer and straighter shot). When no candidate pot
 (a rack, a blocked ball), a random search over actions, also simulated, picks the best shot
 it finds.
 
+On a spin env (the action ends with the cue tip) every candidate is also tried with the tips
+of :data:`SEARCH_TIPS` (stun, follow, draw, a little side), aimed and paced by the
+closed-form contact of :func:`agents.baselines.spin_play.plan_contact` (throw and squirt
+allowed for); the replays perturb the tip too, by the env's tip noise.
+
 Simulating candidates is what a planner with a perfect model does; the environment's state
 is fully observed. With execution noise on, the agent aims at the noiseless optimum, but
 prefers shots that survive errors of the noise's size.
@@ -26,23 +31,32 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.aiming import decode, shot_to_action
+from agents.baselines.aiming import decode, onto_tip_circle, shot_to_action
 from agents.baselines.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from agents.baselines.geometry import (
     MAX_CUT,
+    GhostShot,
     LegalTargets,
     any_object_ball,
     cue_speed,
     ghost_shots,
     pocket_mouths,
 )
-from pool_env import shoot
+from agents.baselines.spin_play import plan_contact
+from pool_env import ShotResult, shoot
+
+#: A planned candidate: ``(angle, speed, tip, difficulty, pocket)``.
+Planned = tuple[float, float, tuple[float, float], float, int]
 
 #: Speeds (m/s) at which the object ball should reach the pocket: softer shots keep the cue
 #: ball under control, harder ones forgive more of the deceleration model.
 ARRIVAL_SPEEDS = (0.3, 0.7, 1.2, 2.0)
 #: Aim points across the mouth, as fractions of its half-width sideways from its middle.
 AIM_OFFSETS = (0.0, -0.4, 0.4)
+#: Tips tried on a spin env, as fractions of the tip limit ``(side, vertical)``.
+SEARCH_TIPS = ((0.0, 0.0), (0.0, 0.6), (0.0, -0.6), (0.5, 0.0), (-0.5, 0.0))
+#: Tip error (fraction of R) of the replays on a noiseless spin env.
+ROBUST_TIP = 0.03
 
 
 @dataclass
@@ -53,17 +67,21 @@ class Shot:
         action: The float32 action that plays it.
         angle: Executed direction (radians from +x).
         speed: Executed cue speed (m/s).
+        tip: Executed tip ``(side, vertical)`` (fractions of R; zeros on a roll env).
         difficulty: Heuristic cost for ties (longer and thinner shots cost more).
         value: Outcome of the nominal shot: clean pots, minus scratches.
         robustness: How many perturbed replays also pot cleanly.
+        pocket: The pocket the ghost-ball candidate aims at (-1: a random action).
     """
 
     action: NDArray[np.float32]
     angle: float
     speed: float
+    tip: tuple[float, float]
     difficulty: float
     value: float = 0.0
     robustness: int = 0
+    pocket: int = -1
 
 
 class SearchAgent(BaselineAgent):
@@ -95,6 +113,10 @@ class SearchAgent(BaselineAgent):
         self.n_search = n_search
         self.n_robust = n_robust
         self.last_plan: dict[str, Any] = {}
+        #: Balls the aim mode refers to (the nearest legal ball on a rules id), or ``None``
+        #: for every ball on the table.
+        self.reference: NDArray[np.bool_] | None = None
+        self._rows: NDArray[np.intp] = np.zeros(0, dtype=np.intp)
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
         """The planned action for each observation's layout."""
@@ -105,20 +127,29 @@ class SearchAgent(BaselineAgent):
     def plan(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
         """The action for one layout (``(N, 2)`` centres, cue first; ``(N,)`` on the table)."""
         rows = on_table.nonzero()[0]
+        self._rows = rows
         sub = np.ascontiguousarray(positions[rows])
         shots = self._ghost_shots(positions, on_table, sub)
         for shot in shots:
-            shot.value = self._outcome(sub, shot.angle, shot.speed)
-        good = sorted((s for s in shots if s.value >= 1.0), key=lambda s: (-s.value, s.difficulty))
+            shot.value = self._outcome(sub, shot.angle, shot.speed, shot.tip)
+        good = sorted((s for s in shots if s.value >= 1.0), key=self.order_key)
         if good:
             for shot in good[: self.n_robust]:
                 shot.robustness = self._robustness(sub, shot)
-            best = max(good[: self.n_robust], key=lambda s: (s.value, s.robustness, -s.difficulty))
+            best = max(good[: self.n_robust], key=self.choice_key)
             self.last_plan = {"kind": "ghost", "candidates": len(shots), "shot": best}
             return best.action
         best = self._search(positions, on_table, sub)
         self.last_plan = {"kind": "search", "candidates": len(shots), "shot": best}
         return best.action
+
+    def order_key(self, shot: Shot) -> tuple[float, ...]:
+        """Which potting candidates are replayed first: more pots, then easier."""
+        return (-shot.value, shot.difficulty)
+
+    def choice_key(self, shot: Shot) -> tuple[float, ...]:
+        """The replayed candidate played (the largest): pots, robustness, ease."""
+        return (shot.value, shot.robustness, -shot.difficulty)
 
     def _ghost_shots(
         self, positions: NDArray[np.float64], on_table: NDArray[np.bool_], sub: NDArray
@@ -126,7 +157,7 @@ class SearchAgent(BaselineAgent):
         """Every clear ghost-ball shot (ball, pocket, aim point, arrival speed)."""
         table = self.spec.table
         targets = self.legal_targets(positions, on_table)
-        planned: list[tuple[float, float, float]] = []  # (angle, speed, difficulty)
+        planned: list[Planned] = []
         for offset in AIM_OFFSETS:
             for shot in ghost_shots(
                 table, self.mouths, positions, on_table, targets, offset, MAX_CUT
@@ -135,39 +166,94 @@ class SearchAgent(BaselineAgent):
                     continue
                 cos_cut = math.cos(shot.cut)
                 difficulty = (shot.cue_distance + shot.ball_distance) / cos_cut
+                if self.spec.spin:
+                    planned += self._spin_candidates(shot, positions, difficulty)
+                    continue
                 for v_arrive in ARRIVAL_SPEEDS:
                     speed = cue_speed(table, shot, v_arrive)
-                    planned.append((shot.angle, speed, difficulty + 0.01 * v_arrive))
-        return self._to_shots(planned, positions, on_table)
+                    cost = difficulty + 0.01 * v_arrive
+                    planned.append((shot.angle, speed, (0.0, 0.0), cost, shot.pocket))
+        return self._to_shots(planned, positions, self._aim_on(on_table))
+
+    def _aim_on(self, on_table: NDArray[np.bool_]) -> NDArray[np.bool_]:
+        """The balls the aim mode refers to (:attr:`reference`, default ``on_table``)."""
+        return on_table if self.reference is None else self.reference
+
+    def _spin_candidates(
+        self, shot: GhostShot, positions: NDArray[np.float64], difficulty: float
+    ) -> list[Planned]:
+        """The strikes that pot ``shot`` with each tip of :data:`SEARCH_TIPS` (closed form)."""
+        limit = self.spec.tip_limit or 0.0
+        out: list[Planned] = []
+        for side, vertical in SEARCH_TIPS:
+            tip = (side * limit, vertical * limit)
+            for v_arrive in ARRIVAL_SPEEDS:
+                contact = plan_contact(self.spec.table, self.mouths, shot, positions, tip, v_arrive)
+                if contact is not None:
+                    cost = difficulty + 0.01 * v_arrive + 0.01 * math.hypot(side, vertical)
+                    out.append((contact.aim, contact.speed, tip, cost, shot.pocket))
+        return out
 
     def _to_shots(
         self,
-        planned: list[tuple[float, float, float]],
+        planned: list[Planned],
         positions: NDArray[np.float64],
         on_table: NDArray[np.bool_],
     ) -> list[Shot]:
-        """Representable shots, with the direction and speed the env will really execute."""
+        """Representable shots, with the direction, speed and tip the env will execute."""
         kept, actions = [], []
-        for angle, speed, difficulty in planned:
+        limit = self.spec.tip_limit
+        for angle, speed, tip, difficulty, pocket in planned:
             action = shot_to_action(angle, speed, positions, on_table, self.spec)
             if action is not None:
-                kept.append(difficulty)
-                actions.append(action)
+                kept.append((difficulty, pocket))
+                if limit is not None:
+                    action = np.concatenate([action, np.clip(np.array(tip) / limit, -1, 1)])
+                actions.append(action.astype(np.float32))
         if not actions:
             return []
         acts = np.stack(actions)
-        angles, speeds = decode(acts, positions, on_table, self.spec)
+        angles, speeds = decode(acts[:, :2], positions, on_table, self.spec)
+        tips = self._tips(acts)
         return [
-            Shot(acts[k], float(angles[k]), float(speeds[k]), kept[k]) for k in range(len(kept))
+            Shot(
+                acts[k], float(angles[k]), float(speeds[k]), tips[k], kept[k][0], pocket=kept[k][1]
+            )
+            for k in range(len(kept))
         ]
 
-    def _outcome(self, sub: NDArray, angle: float, speed: float) -> float:
-        """Clean pots of the shot (0 if it scratches, -1 if it scratches without a pot)."""
-        pocketed = shoot(self.spec.table, sub, angle, speed).pocketed
+    def _tips(self, acts: NDArray[np.float32]) -> list[tuple[float, float]]:
+        """The executed tips of ``(B, 4)`` actions (zeros on a roll env).
+
+        Each component times the tip limit, scaled back onto the miscue circle.
+        """
+        limit = self.spec.tip_limit
+        if limit is None:
+            return [(0.0, 0.0)] * acts.shape[0]
+        return [onto_tip_circle(a, b, limit) for a, b in (acts[:, 2:4] * limit).tolist()]
+
+    def _outcome(
+        self, sub: NDArray, angle: float, speed: float, tip: tuple[float, float] = (0.0, 0.0)
+    ) -> float:
+        """The shot's value on the simulator (:meth:`value`)."""
+        return self.value(shoot(self.spec.table, sub, angle, speed, tip=tip))
+
+    def value(self, result: ShotResult) -> float:
+        """Clean pots of a shot (0 if it scratches, -1 if it scratches without a pot).
+
+        ``result`` is of the balls on the table only (``self._rows`` maps them back);
+        a rules game overrides this with its own judge.
+        """
+        pocketed = result.pocketed
         pots = int(np.count_nonzero(pocketed[1:] >= 0))
         if pocketed[0] >= 0:
             return -1.0 if pots == 0 else 0.0
         return float(pots)
+
+    def rank(self, result: ShotResult) -> float:
+        """The first key of a random action in :meth:`_search`: pots, 0 if it scratches."""
+        pocketed = result.pocketed
+        return 0.0 if pocketed[0] >= 0 else float(np.count_nonzero(pocketed[1:] >= 0))
 
     def _robustness(self, sub: NDArray, shot: Shot) -> int:
         """How many of a few perturbed replays (aim, speed) still pot cleanly."""
@@ -178,26 +264,40 @@ class SearchAgent(BaselineAgent):
             if noise and noise[1] > 0.0
             else (0.9 * shot.speed, 1.1 * shot.speed)
         )
-        trials = [(shot.angle + k * d_angle, shot.speed) for k in (-2, -1, 1, 2)]
-        trials += [(shot.angle, max(s, 0.0)) for s in speeds]
-        return sum(self._outcome(sub, a, s) >= 1.0 for a, s in trials)
+        tip = shot.tip
+        trials = [(shot.angle + k * d_angle, shot.speed, tip) for k in (-2, -1, 1, 2)]
+        trials += [(shot.angle, max(s, 0.0), tip) for s in speeds]
+        if self.spec.spin:
+            d_tip = noise[2] if noise and len(noise) > 2 and noise[2] > 0.0 else ROBUST_TIP
+            trials += [(shot.angle, shot.speed, t) for t in self._near_tips(tip, d_tip)]
+        return sum(self._outcome(sub, a, s, t) >= 1.0 for a, s, t in trials)
+
+    def _near_tips(self, tip: tuple[float, float], d: float) -> list[tuple[float, float]]:
+        """``tip`` moved by ``d`` each way along both axes, kept within the miscue circle."""
+        limit = self.spec.tip_limit or 0.0
+        moves = ((d, 0.0), (-d, 0.0), (0.0, d), (0.0, -d))
+        return [onto_tip_circle(tip[0] + da, tip[1] + db, limit) for da, db in moves]
 
     def _search(
         self, positions: NDArray[np.float64], on_table: NDArray[np.bool_], sub: NDArray
     ) -> Shot:
         """The best of ``n_search`` random actions: pots first, then no scratch, then soft."""
-        acts = self.rng.uniform(-1.0, 1.0, size=(self.n_search, 2)).astype(np.float32)
-        angles, speeds = decode(acts, positions, on_table, self.spec)
+        width = 4 if self.spec.spin else 2
+        acts = self.rng.uniform(-1.0, 1.0, size=(self.n_search, width)).astype(np.float32)
+        angles, speeds = decode(acts[:, :2], positions, self._aim_on(on_table), self.spec)
+        tips = self._tips(acts)
         best, best_key = None, None
         for k in range(self.n_search):
-            result = shoot(self.spec.table, sub, float(angles[k]), float(speeds[k]))
+            result = shoot(self.spec.table, sub, float(angles[k]), float(speeds[k]), tip=tips[k])
             pocketed = result.pocketed
             pots = int(np.count_nonzero(pocketed[1:] >= 0))
             scratch = bool(pocketed[0] >= 0)
             contact = result.first_contact is not None
-            key = (0 if scratch else pots, pots, not scratch, contact, -float(speeds[k]))
+            key = (self.rank(result), pots, not scratch, contact, -float(speeds[k]))
             if best_key is None or key > best_key:
                 best_key = key
-                best = Shot(acts[k], float(angles[k]), float(speeds[k]), 0.0, float(key[0]))
+                best = Shot(
+                    acts[k], float(angles[k]), float(speeds[k]), tips[k], 0.0, float(key[0])
+                )
         assert best is not None
         return best

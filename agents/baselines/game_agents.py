@@ -1,0 +1,255 @@
+"""The baselines under the rules of the game ids: ghost-ball and search, 9-ball and 8-ball.
+
+Both read the rules from the observation (the balls they may hit first, ball in hand,
+behind the head string, the break), place the cue ball in hand the same way and break the
+same way; they differ in how they choose the shot: :class:`GameGhostBallAgent` in closed
+form (:class:`agents.baselines.ghost_ball.GhostBallAgent`, position play with the tip on a
+spin env), :class:`GameSearchAgent` by checking candidates on the simulator
+(:class:`agents.baselines.search.SearchAgent`, judged by the rules: a legal first contact,
+the ball on or the group, the 8 only when it is on).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from agents.baselines.base import BaselineAgent
+from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
+from agents.baselines.search import SearchAgent, Shot
+from pool_env import ShotResult
+
+#: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
+#: straight-in shot from close enough to aim well, far enough to follow through.
+PLACE_DISTANCES = (0.12, 0.25, 0.45)
+
+
+class GameGhostBallAgent(BaselineAgent):
+    """The ghost-ball heuristic under the rules of the game ids (``game="nine"``/``"eight"``).
+
+    It reads the rules from the observation (the balls it may hit first, ball in hand,
+    behind the head string, the break) and plays :class:`GhostBallAgent`'s most forgiving
+    shot on those balls only: the ball on (9-ball), its group (8-ball; any ball but the 8
+    on an open table), the 8 once the group is cleared, with the called pocket set to the
+    shot's pocket. With the cue ball in hand it tries straight-in placements
+    (:data:`PLACE_DISTANCES` behind the ghost-ball point of each legal ball and pocket,
+    inside the allowed region and clear of the balls) and keeps the one whose best shot
+    forgives the most. The break: the cue ball on the head spot, a full hit on the nearest
+    legal ball at the top of the break speed range.
+
+    Args:
+        env: A game-id environment (``gym.make("pool_env/NineBallGame-v0")``, wrapped or not).
+        arrival_speed: As :class:`GhostBallAgent`.
+    """
+
+    #: ``last_plan["kind"]`` of a planned shot.
+    KIND = "ghost"
+
+    def __init__(self, env: Any, arrival_speed: float = ARRIVAL_SPEED, spin: bool = True) -> None:
+        config = env.unwrapped.config
+        if not config.rules:
+            raise ValueError("GameGhostBallAgent plays the game ids (game='nine' or 'eight')")
+        self.config = config
+        self.ghost = GhostBallAgent(
+            env, arrival_speed, self._legal, spin=spin, next_targets=self._next_legal
+        )
+        self._targets: list[int] = []
+        self._chosen: Any = None
+        self.last_plan: dict[str, Any] = {}
+
+    def _legal(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> list[int]:
+        return [j for j in self._targets if on_table[j]]
+
+    def _next_legal(
+        self, positions: NDArray[np.float64], after: NDArray[np.bool_], potted: int
+    ) -> list[int]:
+        """The legal balls once ``potted`` drops (``after``: the balls left), by the rules.
+
+        9-ball: the lowest ball left. 8-ball: what is left of the potted ball's group
+        (which an open table then assigns), the 8 once that is empty, nothing after the 8.
+        """
+        left = [j for j in range(1, after.shape[0]) if after[j]]
+        if self.config.game == "nine":
+            return left[:1]
+        if potted == 8:
+            return []
+        group = [j for j in left if (j < 8) == (potted < 8) and j != 8]
+        return group or [j for j in left if j == 8]
+
+    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
+        """The planned actions: ``(B, 5)``, or ``(B, 7)`` with the tip on a spin env."""
+        n = self.config.n_balls
+        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, : 3 * n]))
+        pairs = zip(observations, layouts, strict=True)
+        out = [self._plan(obs, pos, on) for obs, (pos, on) in pairs]
+        return np.stack(out).astype(np.float32)
+
+    def _plan(
+        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> NDArray[np.float32]:
+        n = self.config.n_balls
+        legal = obs[3 * n : 4 * n - 1] > 0.5
+        in_hand, behind, breaking = (bool(v > 0.5) for v in obs[4 * n - 1 : 4 * n + 2])
+        self._targets = [j for j in range(1, n) if legal[j - 1]]
+        reference = on.copy()
+        reference[1:] &= legal
+        place = np.zeros(2)
+        table = self.config.table
+        if breaking:
+            place = self._place_action(np.array([table.length / 4.0, table.width / 2.0]), behind)
+            positions = positions.copy()
+            positions[0] = table.length / 4.0, table.width / 2.0
+            action = self.ghost._fallback(positions, on, reference)
+            action[1] = 1.0  # the top of the break speed range
+            self.last_plan = {"kind": "break"}
+        else:
+            if in_hand:
+                positions, place = self._place(positions, on, reference, behind)
+            called, action = self._choose(positions, on, reference)
+            if action is None:
+                action = self.ghost._fallback(positions, on, reference)
+                self.last_plan = {"kind": "fallback", "in_hand": in_hand}
+            else:
+                self.last_plan = {
+                    "kind": self.KIND,
+                    "shot": self._chosen,
+                    "pocket": called,
+                    "in_hand": in_hand,
+                }
+        pocket = 0.0
+        called = self.last_plan.get("pocket", -1)
+        if called is not None and called >= 0:
+            pocket = (called + 0.5) / table.n_pockets * 2.0 - 1.0
+        return np.array([action[0], action[1], place[0], place[1], pocket, *action[2:]])
+
+    def _choose(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> tuple[int, NDArray[np.float32] | None]:
+        """The shot to play: ``(called pocket or -1, action)``; action ``None``: no shot."""
+        shot, _, action = self.ghost.best_shot(positions, on, reference)
+        self._chosen = shot
+        if shot is None and action is not None and self.ghost.last_traced is not None:
+            return self.ghost.last_traced.pocket, action  # a bank or carom
+        return (-1 if shot is None else shot.pocket), action
+
+    def _place_action(self, point: NDArray[np.float64], behind: bool) -> NDArray[np.float64]:
+        """The action components that place the cue ball on ``point`` (the kernels' map)."""
+        t = self.config.table
+        r = t.ball_radius
+        x_high = t.length / 4.0 if behind else t.length - r
+        u = 2.0 * (point[0] - r) / (x_high - r) - 1.0
+        v = 2.0 * (point[1] - r) / (t.width - 2 * r) - 1.0
+        return np.clip([u, v], -1.0, 1.0)
+
+    def _place(
+        self,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        reference: NDArray[np.bool_],
+        behind: bool,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The best straight-in placement: ``(positions with the cue ball there, action)``."""
+        t = self.config.table
+        r = t.ball_radius
+        x_high = t.length / 4.0 if behind else t.length - r
+        others = [j for j in range(1, on.shape[0]) if on[j]]
+        best, best_tol = positions[0].copy(), -1.0
+        trial = positions.copy()
+        for b in self._targets:
+            for p in range(t.n_pockets):
+                d = positions[b] - t.pockets[p, :2]
+                u = d / max(float(np.hypot(*d)), 1e-12)
+                for dist in PLACE_DISTANCES:
+                    point = positions[b] + (2.0 * r + dist) * u
+                    if not (r <= point[0] <= x_high and r <= point[1] <= t.width - r):
+                        continue
+                    if any(np.hypot(*(positions[j] - point)) < 2.2 * r for j in others):
+                        continue
+                    if np.any(np.hypot(*(t.pockets[:, :2] - point).T) < t.pockets[:, 2] + r):
+                        continue
+                    trial[0] = point
+                    # The roll level's easiest shot ranks placements (cheap); the spin
+                    # planner then plays from the one chosen.
+                    shot, _, action = self.ghost.easiest_shot(trial, on, reference)
+                    if action is not None and shot is not None and shot.tolerance > best_tol:
+                        best, best_tol = point.copy(), shot.tolerance
+        placed = positions.copy()
+        placed[0] = best
+        return placed, self._place_action(best, behind)
+
+
+#: What a shot that wins the rack (the 9, or the 8 when it is on) is worth to the search.
+WIN_VALUE = 10.0
+
+
+class RulesSearch(SearchAgent):
+    """:class:`~agents.baselines.search.SearchAgent` whose shots are judged by the rules.
+
+    Args:
+        env: The game-id environment.
+        game: The agent whose legal balls (``_targets``) and game it follows.
+        seed: Seed of the random fallback search.
+    """
+
+    def __init__(self, env: Any, game: GameGhostBallAgent, seed: int | None = 0) -> None:
+        super().__init__(env, seed=seed, legal_targets=game._legal)
+        self.game = game
+
+    def value(self, result: ShotResult) -> float:
+        """The shot by the rules: -1 for a foul, else the pots that keep the table.
+
+        A foul: no legal first contact, a scratch, the 8 too early. Pots: any ball in
+        9-ball, the group's in 8-ball; :data:`WIN_VALUE` for the rack's winning ball.
+        """
+        rows = self._rows
+        legal = set(self.game._targets)
+        first = int(result.first_hit[0])
+        pocketed = result.pocketed
+        if first < 0 or int(rows[first]) not in legal or pocketed[0] >= 0:
+            return -1.0
+        potted = [int(rows[k]) for k in range(1, len(rows)) if pocketed[k] >= 0]
+        final = 9 if self.game.config.game == "nine" else 8
+        if final in potted:
+            return WIN_VALUE if final in legal or self.game.config.game == "nine" else -1.0
+        if self.game.config.game == "nine":
+            return float(len(potted))
+        return float(sum(b in legal for b in potted))
+
+    def rank(self, result: ShotResult) -> float:
+        """A random action's first key: its value (legal shots first)."""
+        return self.value(result)
+
+    def order_key(self, shot: Shot) -> tuple[float, ...]:
+        """Replay the easiest potting candidates first: a run-out needs sure pots."""
+        return (shot.difficulty,)
+
+    def choice_key(self, shot: Shot) -> tuple[float, ...]:
+        """Robustness first (a lucky two-ball pot is worth less than a sure one), then value."""
+        return (shot.robustness, shot.value, -shot.difficulty)
+
+
+class GameSearchAgent(GameGhostBallAgent):
+    """The search agent under the rules of the game ids (placement and break as ghost-ball).
+
+    Args:
+        env: A game-id environment.
+        seed: Seed of the random fallback search.
+    """
+
+    KIND = "search"
+
+    def __init__(self, env: Any, seed: int | None = 0) -> None:
+        super().__init__(env)
+        self.search = RulesSearch(env, self, seed)
+
+    def _choose(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> tuple[int, NDArray[np.float32] | None]:
+        self.search.reference = reference
+        action = self.search.plan(positions, on)
+        shot = self._chosen = self.search.last_plan.get("shot")
+        if self.search.last_plan.get("kind") == "search" and shot is not None and shot.value < 0:
+            return -1, None  # nothing legal found: the ghost agent's safe full hit instead
+        return (-1 if shot is None else shot.pocket), action
