@@ -336,12 +336,3 @@ class GhostBallAgent(BaselineAgent):
             else float(np.clip(-(aim_lo + aim_hi) / (aim_hi - aim_lo), -1, 1))
         )
         return self._with_tip(np.array([zero, 1.0], dtype=np.float32), (0.0, 0.0))
-
-
-def __getattr__(name: str) -> Any:
-    """``GameGhostBallAgent`` moved to :mod:`agents.baselines.game_agents`; still found here."""
-    if name == "GameGhostBallAgent":
-        from agents.baselines.game_agents import GameGhostBallAgent
-
-        return GameGhostBallAgent
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
