@@ -28,7 +28,7 @@ if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
         DEFAULT_SPEED_RANGE,
         GameConfig,
     )
-    from pool_env.game.kernels.actions import decode_shots, nearest_object_ball
+    from pool_env.game.kernels.actions import decode_shots, nearest_object_ball, onto_tip_circle
     from pool_env.game.kernels.observe import encode_observations
     from pool_env.game.scenes import SCENES, check_layout, free_spot
     from pool_env.vector import PoolVectorEnv
@@ -50,6 +50,7 @@ _LAZY: dict[str, str] = {
     "encode_observations": "pool_env.game.kernels.observe",
     "free_spot": "pool_env.game.scenes",
     "nearest_object_ball": "pool_env.game.kernels.actions",
+    "onto_tip_circle": "pool_env.game.kernels.actions",
 }
 
 __all__ = [
@@ -73,6 +74,7 @@ __all__ = [
     "encode_observations",
     "free_spot",
     "nearest_object_ball",
+    "onto_tip_circle",
     "register_envs",
     "shoot",
     "simulate",

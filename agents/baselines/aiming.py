@@ -62,17 +62,6 @@ def aim_parameter(
     return param
 
 
-def onto_tip_circle(a: float, b: float, limit: float) -> tuple[float, float]:
-    """The tip ``(a, b)`` (fractions of R) the env executes: scaled back onto the miscue circle.
-
-    The spin env's rule (``pool_env.game.kernels.actions.onto_tip_circle``): a tip farther
-    than ``limit`` from the centre keeps its direction at the distance ``limit``.
-    """
-    norm = math.hypot(a, b)
-    k = limit / norm if norm > limit else 1.0
-    return a * k, b * k
-
-
 def shot_to_action(
     angle: float,
     speed: float,

@@ -34,7 +34,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.aiming import onto_tip_circle, shot_to_action
+from agents.baselines.aiming import shot_to_action
 from agents.baselines.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from agents.baselines.geometry import (
     GhostShot,
@@ -58,7 +58,7 @@ from agents.baselines.spin_play import (
     traced_pots,
 )
 from agents.baselines.trace import cue_ball_scratches
-from pool_env import nearest_object_ball
+from pool_env import nearest_object_ball, onto_tip_circle
 
 #: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
 #: error of the deceleration model, soft enough that the cue ball stays out of the pockets.

@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.aiming import decode, onto_tip_circle, shot_to_action
+from agents.baselines.aiming import decode, shot_to_action
 from agents.baselines.base import BaselineAgent, EnvSpec, LayoutSource, env_spec
 from agents.baselines.geometry import (
     MAX_CUT,
@@ -43,7 +43,7 @@ from agents.baselines.geometry import (
     pocket_mouths,
 )
 from agents.baselines.spin_play import plan_contact
-from pool_env import ShotResult, shoot
+from pool_env import ShotResult, onto_tip_circle, shoot
 
 #: A planned candidate: ``(angle, speed, tip, difficulty, pocket)``.
 Planned = tuple[float, float, tuple[float, float], float, int]

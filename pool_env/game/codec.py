@@ -24,7 +24,12 @@ from pool_env.game.checks import check_actions
 from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
-from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, nearest_object_ball
+from pool_env.game.kernels.actions import (
+    executed_rule_shots,
+    executed_shots,
+    nearest_object_ball,
+    onto_tip_circle,
+)
 from pool_env.game.rack import rack_option, rack_row
 from pool_env.game.state import GameState, new_state
 from pool_env.game.step import place_cue_balls
@@ -255,6 +260,6 @@ def _tip(
     if norm > limit * (1.0 + 1e-12):
         if not clip:
             raise ValueError(f"tip {tip!r} lies beyond the tip limit {limit!r} (miscue)")
-        a, b = a * limit / norm, b * limit / norm
+        a, b = onto_tip_circle(a, b, limit)  # the decoder's own rule
     side, vertical = config.tip_columns
     out[side], out[vertical] = min(max(a / limit, -1.0), 1.0), min(max(b / limit, -1.0), 1.0)

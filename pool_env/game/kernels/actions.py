@@ -79,7 +79,19 @@ def decode_actions(actions, aim_low, aim_high, speed_low, speed_high):
 
 @kernel
 def onto_tip_circle(a, b, limit):
-    """``(a, b)`` scaled back onto the circle of radius ``limit`` if outside (same direction)."""
+    """The tip the spin env executes: ``(a, b)`` scaled back onto the miscue circle.
+
+    The one copy of the rule, used by the decoder, :func:`pool_env.encode_action` and the
+    baselines (``pool_env.onto_tip_circle``).
+
+    Args:
+        a: Side offset of the cue's axis, fraction of R.
+        b: Vertical offset, fraction of R.
+        limit: The tip limit (radius of the circle, fraction of R).
+
+    Returns:
+        ``(a, b)`` unchanged inside the circle, else the same direction at distance ``limit``.
+    """
     h = math.sqrt(a * a + b * b)  # not hypot: libm's and Python's may differ in the last bit
     if h > limit:
         scale = limit / h
