@@ -260,7 +260,7 @@ def _render(
         f"{cfg.shots} seeded shots (`bench/scenes.py`: straight and cut pot attempts, banks, "
         "two-ball combinations, cue-ball cushion shots; cue speed 0.3-2.5 m/s; kept when the "
         "shot has 1-3 ball-ball and cushion impacts). Errors are against the 50-digit mpmath "
-        "reference (`pool_env/testing/reference.py`): final-position error is the largest "
+        "reference (`pool_env/testing/reference/`): final-position error is the largest "
         "distance between a ball's final centre and the reference's (a potted ball keeps its "
         "capture point); direction error is the angle of the object ball's velocity right "
         "after its first impact; `same pots` is the share of shots with the same balls in the "

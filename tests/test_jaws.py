@@ -3,7 +3,7 @@
 Expected values are derived here from the table's documented geometry (``Table.jaws``:
 points, rail ends, tip centres, facings, fall lines), offset by ``R`` in this file, never
 from the kernels' own rows. Scenes with several impacts are also compared with the
-independent 50-digit reference (``pool_env/testing/reference.py``).
+independent 50-digit reference (``pool_env/testing/reference/``).
 """
 
 from __future__ import annotations

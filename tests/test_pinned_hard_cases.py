@@ -2,7 +2,7 @@
 
 Invariants (no overlap, momentum, energy) cannot see a wrong restitution: balls that pass
 through, re-collide at once and stick conserve momentum, lose energy and never overlap.
-So each case here also has its exact outcome: the 50-digit reference (pool_env/testing/reference.py)
+So each case here also has its exact outcome: the 50-digit reference (pool_env/testing/reference/)
 where it resolves the scene, else a closed form of the documented rules.
 """
 

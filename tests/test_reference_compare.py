@@ -1,6 +1,6 @@
 """The compiled simulator against the independent 50-digit reference.
 
-The reference is ``pool_env/testing/reference.py``.
+The reference is ``pool_env/testing/reference/``.
 
 Random scenes of 2-4 balls with 1-3 ball-ball impacts (plus cushions, pockets and stops) on
 jaw, capture-circle and pocketless tables, and random jaw-table scenes with 1-3 impacts that

@@ -1,6 +1,6 @@
 """Self-checks of the 50-digit reference simulator against closed forms and invariants.
 
-The reference (``pool_env/testing/reference.py``) is the oracle for the float64 kernels, so it
+The reference (``pool_env/testing/reference/``) is the oracle for the float64 kernels, so it
 must be checked on its own: every expected value here is derived in the test from the model's
 formulas, not taken from the reference.
 """
@@ -17,14 +17,8 @@ from mpmath import mp, mpf
 
 from pool_env.sim.table import Table
 from pool_env.testing import reference
-from pool_env.testing.reference import (
-    ReferenceSimulationError,
-    _first_contact,
-    _gap_poly,
-    _horner,
-    _sign_changes,
-    reference_simulate,
-)
+from pool_env.testing.reference import ReferenceSimulationError, reference_simulate
+from pool_env.testing.reference.roots import first_contact, gap_poly, horner, sign_changes
 
 TIGHT = mpf("1e-40")  # agreement expected between two 50-digit computations
 L, W, R = 2.54, 1.27, 0.028575
@@ -433,15 +427,15 @@ def test_quartic_first_contact_agrees_with_polyroots() -> None:
                 vel.append((sp * u[0], sp * u[1]))
                 acc.append((-a * u[0], -a * u[1]))
                 speeds.append(sp)
-            g = _gap_poly(pi, vel[0], acc[0], pj, vel[1], acc[1], mpf(R))
+            g = gap_poly(pi, vel[0], acc[0], pj, vel[1], acc[1], mpf(R))
             hi = min(speeds) / a  # the quartic holds until the first stop
-            got = _first_contact(g, mpf(0), hi)
+            got = first_contact(g, mpf(0), hi)
             want = _first_contact_by_polyroots(g, hi)
             assert (got is None) == (want is None)
             if got is not None:
                 hits += 1
                 assert_close(got, want, mpf("1e-35"))
-                assert abs(_horner(g, got)) < mpf("1e-45")
+                assert abs(horner(g, got)) < mpf("1e-45")
     assert hits >= 15
 
 
@@ -449,11 +443,11 @@ def test_sign_changes_handles_degree_drops_and_multiple_pieces() -> None:
     with mp.workdps(50):
         # (x - 1)(x - 2)(x - 3) with an exactly-zero quartic term.
         c = [mpf(-6), mpf(11), mpf(-6), mpf(1), mpf(0)]
-        roots = _sign_changes(c, mpf(0), mpf(4))
+        roots = sign_changes(c, mpf(0), mpf(4))
         assert len(roots) == 3
         for got, want in zip(roots, (1, 2, 3), strict=True):
             assert_close(got, mpf(want))
-        assert _sign_changes([mpf(3)], mpf(0), mpf(1)) == []
+        assert sign_changes([mpf(3)], mpf(0), mpf(1)) == []
 
 
 def test_resting_pair_quadratic_agrees_with_quartic_path() -> None:
@@ -468,10 +462,10 @@ def test_resting_pair_quadratic_agrees_with_quartic_path() -> None:
         s = mp.sqrt(vx * vx + vy * vy)
         acc = (-a * vx / s, -a * vy / s)
         zero = (mpf(0), mpf(0))
-        g = _gap_poly(
+        g = gap_poly(
             (mpf(pa[0]), mpf(pa[1])), (vx, vy), acc, (mpf(pb[0]), mpf(pb[1])), zero, zero, mpf(R)
         )
-        assert_close(res.events[0][0], _first_contact(g, mpf(0), s / a))
+        assert_close(res.events[0][0], first_contact(g, mpf(0), s / a))
 
 
 def test_same_line_same_direction_degree_drop() -> None:
@@ -564,21 +558,31 @@ def test_three_ball_three_collision_scene() -> None:
     _assert_no_overlap_between_events(res)
 
 
-def test_reference_imports_nothing_from_the_simulator() -> None:
-    """Independence: only pool_env.sim.table.Table, and only for type checking."""
-    src = Path(reference.__file__).read_text()
+@pytest.mark.parametrize(
+    "module", sorted(p.name for p in Path(reference.__file__).parent.glob("*.py"))
+)
+def test_reference_imports_nothing_from_the_simulator(module: str) -> None:
+    """Independence: a module imports its siblings and, for type checking only, Table."""
+    src = (Path(reference.__file__).parent / module).read_text()
     tree = ast.parse(src)
     type_checking_nodes = set()
     for node in ast.walk(tree):
         if isinstance(node, ast.If) and getattr(node.test, "id", None) == "TYPE_CHECKING":
             type_checking_nodes.update(id(n) for n in ast.walk(node))
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("pool_env"):
-            assert node.module == "pool_env.sim.table"
+        name = (node.module or "") if isinstance(node, ast.ImportFrom) else ""
+        if name.startswith("pool_env") and not name.startswith("pool_env.testing.reference."):
+            assert name == "pool_env.sim.table"
             assert [a.name for a in node.names] == ["Table"]
             assert id(node) in type_checking_nodes
         if isinstance(node, ast.Import):
             assert not any(a.name.startswith("pool_env") for a in node.names)
+
+
+def test_reference_package_is_all_checked() -> None:
+    """The independence check above reads every module of the package (a split stays checked)."""
+    names = {p.name for p in Path(reference.__file__).parent.glob("*.py")}
+    assert {"__init__.py", "simulator.py", "roots.py", "jaws.py"} <= names
 
 
 def test_rerun_is_identical() -> None:
