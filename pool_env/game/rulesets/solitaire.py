@@ -59,7 +59,7 @@ class Solitaire(Ruleset):
         extra: Any,
     ) -> Judged:
         """:func:`pool_env.game.rules.judge`."""
-        return judge(  # type: ignore[no-any-return]
+        return judge(
             params, table.pockets, tables, out.balls, state.positions, state.on_table,
             state.shots, out.final, out.pocketed, out.first,
         )  # fmt: skip

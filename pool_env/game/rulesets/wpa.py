@@ -146,7 +146,7 @@ class WpaGame(Ruleset):
         actions: NDArray[np.float64],
     ) -> Executed:
         """:func:`~pool_env.game.kernels.actions.executed_rule_shots`; extra: the called pockets."""
-        return executed_rule_shots(  # type: ignore[no-any-return]
+        return executed_rule_shots(
             params, pockets, actions, tables, state.positions, state.on_table, state.ptrs,
             state.rack,
         )  # fmt: skip
@@ -168,7 +168,7 @@ class WpaGame(Ruleset):
             table, params, self.code, state.positions, state.on_table, rack, tables,
             out.balls, velocities, spins, out.first, out.shot,
         )  # fmt: skip
-        return judge_rules(  # type: ignore[no-any-return]
+        return judge_rules(
             params, table.pockets, tables, out.balls, state.positions, state.on_table,
             state.shots, rack, out.final, out.pocketed, out.first, out.cushions, out.order,
             extra, crossed,
@@ -200,7 +200,7 @@ class WpaGame(Ruleset):
         """The rule observation from ``viewers``' seats (``None``: each table's shooter)."""
         if viewers is None:
             viewers = state.rack[:, wpa.SHOOTER]
-        return encode_rule_observations(  # type: ignore[no-any-return]
+        return encode_rule_observations(
             params, state.positions, state.on_table, state.rack, viewers, table.length,
             table.width,
         )  # fmt: skip
