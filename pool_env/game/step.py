@@ -154,7 +154,8 @@ def step(
         config: The fixed model.
         state: The tables, updated in place.
         tables: ``(K,)`` distinct tables that shoot.
-        actions: ``(K, 2)`` checked actions (:func:`pool_env.game.checks.check_actions`).
+        actions: ``(K, config.action_size)`` checked actions
+            (:func:`pool_env.game.checks.check_actions`).
         record: Keep the trajectories of a one-table step (for rendering).
         parallel: Split a batch over the CPUs (``None``: from ``PARALLEL_FROM`` shots).
 
