@@ -1,9 +1,9 @@
 """The action codec: the shot an action plays, and the action that plays a shot.
 
 :func:`decode_action` runs the decision process's own decoding on one table, noise off:
-the cue ball in hand placed by :func:`pool_env.game.step.place_cue_balls`, then
-:func:`pool_env.game.kernels.actions.executed_shots` (rules:
-:func:`~pool_env.game.kernels.actions.executed_rule_shots`). There is one decoder: what it
+the game's ruleset places the cue ball in hand and executes the shot
+(:meth:`~pool_env.game.rulesets.base.Ruleset.place`,
+:meth:`~pool_env.game.rulesets.base.Ruleset.execute`), as a step does. There is one decoder: what it
 returns is what a step executes before its noise. :func:`encode_action` inverts it: it
 maps each part of a :class:`Shot` back onto its action component (the aim through the
 same reference ball, :func:`~pool_env.game.kernels.actions.nearest_object_ball` of the
@@ -24,15 +24,9 @@ from pool_env.game.checks import check_actions
 from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
-from pool_env.game.kernels.actions import (
-    executed_rule_shots,
-    executed_shots,
-    nearest_object_ball,
-    onto_tip_circle,
-)
+from pool_env.game.kernels.actions import nearest_object_ball, onto_tip_circle
 from pool_env.game.rack import rack_option, rack_row
 from pool_env.game.state import GameState, new_state
-from pool_env.game.step import place_cue_balls
 
 _ONE = np.zeros(1, dtype=np.intp)
 
@@ -123,21 +117,12 @@ def decode_action(
     """
     actions = check_actions(action, 1, single=True, width=config.action_size)
     state = _table(config, positions, on_table, rack)
-    params, cue = _quiet(config), None
-    if config.rules:
-        place_cue_balls(config, state, _ONE, actions)
-        if state.rack[0, wpa.IN_HAND]:
-            cue = (float(state.positions[0, 0, 0]), float(state.positions[0, 0, 1]))
-        shots, _, called = executed_rule_shots(
-            params, config.table.pockets, actions, _ONE, state.positions, state.on_table,
-            state.ptrs, state.rack,
-        )  # fmt: skip
-        pocket = int(called[0])
-    else:
-        shots = executed_shots(params, actions, _ONE, state.positions, state.on_table, state.ptrs)[
-            0
-        ]
-        pocket = 0
+    params, cue, ruleset = _quiet(config), None, config.ruleset
+    ruleset.place(config.table, params, state, _ONE, actions)
+    if config.rules and state.rack[0, wpa.IN_HAND]:
+        cue = (float(state.positions[0, 0, 0]), float(state.positions[0, 0, 1]))
+    shots, _, called = ruleset.execute(params, config.table.pockets, state, _ONE, actions)
+    pocket = 0 if called is None else int(called[0])
     row = shots[0].tolist()
     tip = (row[2], row[3]) if config.spin else (0.0, 0.0)
     return Shot(angle=row[0], speed=row[1], tip=tip, cue=cue, pocket=pocket)

@@ -8,7 +8,7 @@ Both fronts build their config here, so defaults, checks and messages exist once
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
 import numpy as np
@@ -16,10 +16,9 @@ from numpy.typing import NDArray
 
 from pool_env.game import checks
 from pool_env.game.kernels import params as kp
-from pool_env.game.kernels.observe import N_RULE_FEATURES
 from pool_env.game.rules import CUE as RULES_CUE
+from pool_env.game.rulesets import RULESETS, Ruleset, ruleset_for
 from pool_env.game.scenes import ScenePlan, SceneSpec, placement, plan_scene
-from pool_env.sim.layouts import foot_spot
 from pool_env.sim.table import Table
 
 AimMode = Literal["absolute", "relative", "cut"]
@@ -54,11 +53,9 @@ DEFAULT_SPEED_RANGE = (0.45, 4.5)
 #: amateurs lower (Dr. Dave's "typical speeds" FAQ; research/REALISM.md).
 DEFAULT_BREAK_SPEED_RANGE = (8.0, 12.0)
 
-#: The rules, in the order of their codes in the kernels (:mod:`.kernels.wpa`).
-GAMES: tuple[str, ...] = ("solitaire", "nine", "eight")
-
-#: The named scene each game needs (its balls are numbered as the game's).
-GAME_SCENE_BALLS: dict[str, int] = {"nine": 9, "eight": 15}
+#: The games (:data:`pool_env.game.rulesets.RULESETS`), in the order of their codes in the
+#: kernels (:mod:`.kernels.wpa`).
+GAMES: tuple[str, ...] = tuple(RULESETS)
 
 #: The cue ball's row in every layout (the rules' constant).
 CUE = RULES_CUE
@@ -107,6 +104,8 @@ class GameConfig:
             components map onto (:func:`default_tip_limit` by default).
         params: All of the above that the kernels read, as one read-only float64 array
             (:mod:`pool_env.game.kernels.params` names its entries).
+        ruleset: The game's :class:`~pool_env.game.rulesets.base.Ruleset` (from ``game``):
+            what the step, the observation and the ``info`` ask wherever games differ.
     """
 
     table: Table
@@ -126,6 +125,10 @@ class GameConfig:
     break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
     rule_rewards: tuple[float, float] = (-1.0, 1.0)
     tip_limit: float | None = None
+    ruleset: Ruleset = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "ruleset", ruleset_for(self.game))
 
     @property
     def spin(self) -> bool:
@@ -140,18 +143,16 @@ class GameConfig:
 
     @property
     def rules(self) -> bool:
-        """Whether a game's rules (9-ball or 8-ball) apply, not solitaire."""
-        return self.game != "solitaire"
+        """Whether a game with a rack state (9-ball or 8-ball) applies, not solitaire."""
+        return self.ruleset.has_rack
 
     @property
     def observation_size(self) -> int:
         """Observation entries: ``3 N``; under rules also the legal-ball flags and more.
 
-        ``N - 1`` legal-ball flags and the rule features
-        (:func:`pool_env.game.kernels.observe.encode_rule_observations`).
+        The ruleset's :meth:`~pool_env.game.rulesets.base.Ruleset.observation_width`.
         """
-        n = self.n_balls
-        return 3 * n + (n - 1 + N_RULE_FEATURES if self.rules else 0)
+        return self.ruleset.observation_width(self.n_balls)
 
     @property
     def action_size(self) -> int:
@@ -159,7 +160,7 @@ class GameConfig:
 
         A spin table adds the tip's two at the end: 4, or 7 under rules.
         """
-        return (5 if self.rules else 2) + (2 if self.spin else 0)
+        return self.ruleset.action_width + (2 if self.spin else 0)
 
     @property
     def n_object_balls(self) -> int:
@@ -259,8 +260,7 @@ def make_config(
             ("reward_shaping", reward_shaping),
         )
     )
-    if game not in GAMES:
-        raise ValueError(f"game must be one of {list(GAMES)}, got {game!r}")
+    ruleset = ruleset_for(game)
     if players not in (1, 2) or isinstance(players, bool):
         raise ValueError(f"players must be 1 or 2, got {players!r}")
     foul_ends = checks.parse_bool("end_on_foul", end_on_foul)
@@ -270,19 +270,7 @@ def make_config(
         checks.parse_float("reward_win", reward_win),
     )
     plan = plan_scene(scene, parsed_table, n_balls)
-    if game == "solitaire":
-        if foul_ends or players != 1:
-            raise ValueError("end_on_foul and players need game='nine' or game='eight'")
-    else:
-        if plan.n_objects != GAME_SCENE_BALLS[game]:
-            raise ValueError(
-                f"game={game!r} needs {GAME_SCENE_BALLS[game]} object balls numbered as the "
-                f"game's, got a scene with {plan.n_objects}"
-            )
-        if miss:
-            raise ValueError("end_on_miss is solitaire's: under rules use end_on_foul")
-        if parsed_table.n_pockets == 0:
-            raise ValueError(f"game={game!r} needs a table with pockets")
+    ruleset.check(plan, parsed_table, miss, foul_ends, players)
     params = kernel_params(
         parsed_table,
         aim,
@@ -297,8 +285,7 @@ def make_config(
         params = params.copy()
         params[kp.TIP_LIMIT] = limit
         params.setflags(write=False)
-    if game != "solitaire":
-        params = rule_params(params, parsed_table, game, players, foul_ends, breaks, rule_rewards)
+    params = ruleset.rule_params(params, parsed_table, players, foul_ends, breaks, rule_rewards)
     return GameConfig(
         table=parsed_table,
         scene=plan,
@@ -336,25 +323,3 @@ def parse_tip_limit(table: Table, tip_limit: object) -> float | None:
     if not 0.0 < limit <= 1.0:
         raise ValueError(f"tip_limit must lie in (0, 1] (a fraction of R), got {tip_limit!r}")
     return limit
-
-
-def rule_params(
-    params: NDArray[np.float64],
-    table: Table,
-    game: str,
-    players: int,
-    end_on_foul: bool,
-    break_speed_range: tuple[float, float],
-    rule_rewards: tuple[float, float],
-) -> NDArray[np.float64]:
-    """A read-only copy of ``params`` with the rules' entries set."""
-    out = params.copy()
-    out[kp.GAME] = GAMES.index(game)
-    out[kp.PLAYERS] = players
-    out[kp.END_ON_FOUL] = float(end_on_foul)
-    out[[kp.BREAK_LOW, kp.BREAK_HIGH]] = break_speed_range
-    out[[kp.W_FOUL, kp.W_WIN]] = rule_rewards
-    out[kp.HEAD_X] = table.length / 4.0
-    out[[kp.FOOT_X, kp.FOOT_Y]] = foot_spot(table)
-    out.setflags(write=False)
-    return out

@@ -5,7 +5,9 @@ over the tables per key, with a boolean mask ``"_key"`` of the tables that gave 
 and the array type set by the value (``bool``, ``int64``, ``float64``, or ``object`` for
 the tuple of potted balls). :func:`batch_info` builds that from a
 :class:`pool_env.game.step.StepResult` without a loop over tables, :func:`table_info` the
-single environment's dict; both read the same columns.
+single environment's dict; both read the same columns. The keys a game adds are its
+ruleset's (:meth:`~pool_env.game.rulesets.base.Ruleset.table_info`,
+:meth:`~pool_env.game.rulesets.base.Ruleset.batch_info`).
 """
 
 from __future__ import annotations
@@ -15,18 +17,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.kernels.wpa import FOUL_NAMES, LOSS_NAMES
-from pool_env.game.rules import (
-    BALL_ON,
-    CLEARED,
-    FIRST_BALL,
-    FOUL,
-    KEEPS,
-    LOSS,
-    POTTED_BITS,
-    SCRATCH,
-    WINNER,
-)
+from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
+from pool_env.game.rulesets.wpa import RULE_KEYS as RULE_KEYS  # the WPA games' keys
 
 if TYPE_CHECKING:
     from pool_env.game.step import StepResult
@@ -50,23 +42,6 @@ INFO_KEYS: tuple[str, ...] = ("potted", *COLUMNS)
 #: The key a spin table's step adds: the executed cue tip ``(a, b)`` (side, vertical;
 #: fractions of R, after noise and the miscue limit), a tuple as ``potted`` is.
 TIP_KEY = "tip"
-
-#: The rules' integer keys: the ball on before the shot (-1: not a single ball, 8-ball
-#: before the group is cleared) and the winner (-1 while undecided; integers rather than
-#: None, so that Gymnasium's vector info has one dtype per key).
-RULE_COLUMNS: dict[str, tuple[str, int, type]] = {
-    "ball_on": ("hits", BALL_ON, np.int64),
-    "winner": ("hits", WINNER, np.int64),
-}
-
-#: Every key a step adds under rules: ``foul`` (None or its name), ``legal``, ``loss``
-#: (None or why the shooter lost the rack), ``turn_over`` (a foul, or a legal shot that
-#: does not keep the table: with two players the opponent would come to the table) and
-#: :data:`RULE_COLUMNS`.
-RULE_KEYS: tuple[str, ...] = ("foul", "legal", "loss", "turn_over", *RULE_COLUMNS)
-
-_FOULS = np.array(FOUL_NAMES, dtype=object)
-_LOSSES = np.array(LOSS_NAMES, dtype=object)
 
 #: Object balls up to which the potted tuples come from a lookup table (``2^n`` entries).
 LOOKUP_MAX_BALLS = 16
@@ -116,14 +91,7 @@ def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str,
     if result.shots.shape[1] > 2:
         shot_row = rows.get("shots") or result.shots[0].tolist()
         info[TIP_KEY] = (shot_row[2], shot_row[3])
-    if result.hits.shape[1] > FOUL:
-        hits = rows.get("hits") or result.hits[0].tolist()
-        info["foul"] = FOUL_NAMES[hits[FOUL]]
-        info["legal"] = hits[FOUL] == 0
-        info["loss"] = LOSS_NAMES[hits[LOSS]]
-        info["turn_over"] = hits[FOUL] != 0 or hits[KEEPS] == 0
-        for key, (_, column, _) in RULE_COLUMNS.items():
-            info[key] = hits[column]
+    result.ruleset.table_info(rows.get("hits") or result.hits[0].tolist(), info)
     return info
 
 
@@ -164,25 +132,5 @@ def batch_info(
         ):
             tips[t] = (side, vertical)  # one by one: numpy would unpack the tuples
         info[TIP_KEY], info[f"_{TIP_KEY}"] = tips, present.copy()
-    if result.hits.shape[1] > FOUL:
-        codes = result.hits[rows, FOUL]
-        for key, values in (
-            ("foul", np.full(n_envs, None, dtype=object)),
-            ("legal", np.zeros(n_envs, dtype=np.bool_)),
-            ("loss", np.full(n_envs, None, dtype=object)),
-            ("turn_over", np.zeros(n_envs, dtype=np.bool_)),
-        ):
-            if key == "foul":
-                values[tables] = _FOULS[codes]
-            elif key == "legal":
-                values[tables] = codes == 0
-            elif key == "turn_over":
-                values[tables] = (codes != 0) | (result.hits[rows, KEEPS] == 0)
-            else:
-                values[tables] = _LOSSES[result.hits[rows, LOSS]]
-            info[key], info[f"_{key}"] = values, present.copy()
-        for key, (_, column, dtype) in RULE_COLUMNS.items():
-            values = np.zeros(n_envs, dtype=dtype)
-            values[tables] = result.hits[rows, column]
-            info[key], info[f"_{key}"] = values, present.copy()
+    result.ruleset.batch_info(result.hits, rows, tables, n_envs, present, info)
     return info

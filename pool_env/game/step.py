@@ -2,11 +2,16 @@
 
 ``step(config, state, tables, actions)`` plays one shot on each of ``tables``:
 
-1. decode each action into a shot and add execution noise (:mod:`.kernels.actions`);
+1. place each cue ball in hand and decode each action into a shot with execution noise
+   (the game's ruleset: :meth:`~pool_env.game.rulesets.base.Ruleset.place`,
+   :meth:`~pool_env.game.rulesets.base.Ruleset.execute`);
 2. simulate the shots to rest (:mod:`pool_env.sim`: one table through its single-shot
    entry, whose fixed cost is a third of the batch call's; several through the batch);
-3. apply the outcomes by the rules (:func:`pool_env.game.rules.judge`): balls that
-   dropped, re-spotting, rewards, episode ends.
+3. apply the outcomes by the rules (:meth:`~pool_env.game.rulesets.base.Ruleset.judge`,
+   then :meth:`~pool_env.game.rulesets.base.Ruleset.fix_spots`): balls that dropped,
+   re-spotting, rewards, episode ends.
+
+One path for every game: where games differ, ``config.ruleset`` (:mod:`.rulesets`) decides.
 
 ``reset(config, state, tables, options)`` (from :mod:`.reset`) lays out new episodes and
 ``observe`` encodes observations. :class:`pool_env.PoolEnv` is these with B = 1,
@@ -15,32 +20,13 @@
 
 from __future__ import annotations
 
-from typing import NamedTuple
-
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.config import CUE, GameConfig
-from pool_env.game.contact import read_first
-from pool_env.game.kernels import params as kp
-from pool_env.game.kernels import wpa
-from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, place_in_hand
-from pool_env.game.kernels.observe import encode_observations, encode_rule_observations
+from pool_env.game.config import GameConfig
 from pool_env.game.reset import option_layouts, reset
-from pool_env.game.rules import (
-    CLEARED,
-    FIRST_BALL,
-    POTTED_BITS,
-    RESPOT,
-    RESPOT_TAKEN,
-    SCRATCH,
-    SPOT_TAKEN,
-    TERMINATED,
-    TRUNCATED,
-    judge,
-    judge_rules,
-)
-from pool_env.game.scenes import free_spot
+from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH, TERMINATED, TRUNCATED
+from pool_env.game.rulesets.base import Outcome, Ruleset
 from pool_env.game.state import GameState
 from pool_env.sim.batch import (
     PARALLEL_FROM,
@@ -48,11 +34,10 @@ from pool_env.sim.batch import (
     simulate_batch,
     simulate_batch_threads,
 )
-from pool_env.sim.result import ShotResult
 from pool_env.sim.simulate import simulate
 from pool_env.sim.table import Table
 
-__all__ = ["StepResult", "observe", "option_layouts", "place_cue_balls", "reset", "step"]
+__all__ = ["StepResult", "observe", "option_layouts", "reset", "step"]
 
 _NO_CONTACT = np.full((1, 2), -1, dtype=np.int64)
 _NO_CONTACT.setflags(write=False)
@@ -67,18 +52,21 @@ class StepResult:
     Attributes:
         tables: ``(K,)`` the tables that shot.
         rewards: ``(K,)`` float64.
-        flags: ``(K, 5)`` booleans, columns named in :mod:`pool_env.game.rules`.
-        hits: ``(K, 2)`` integers: potted bits and the first ball hit.
+        flags: ``(K, 5)`` booleans, columns named in :mod:`pool_env.game.rules` (the WPA
+            games: ``(K, 6)``).
+        hits: ``(K, 2)`` integers: potted bits and the first ball hit (the WPA games:
+            ``(K, 8)``, and the foul, the ball on, ...).
         shots: ``(K, 2)`` the executed ``(angle, speed)``; ``(K, 4)`` on a spin table:
             and the executed tip ``(a, b)``.
         pocketed: ``(K, M)`` the simulator's pocket per ball (-1: none), columns ``balls``.
         balls: ``(M,)`` ball number of each column of the simulator's results.
         shot: The :class:`~pool_env.ShotResult` of a one-table step (its rows are
             ``balls``), else ``None``.
+        ruleset: The game's ruleset (it reads its own ``info`` columns).
     """
 
-    __slots__ = ("_capped", "_n_events", "balls", "flags", "hits", "pocketed", "rewards", "shot",
-                 "shots", "tables")  # fmt: skip
+    __slots__ = ("_capped", "_n_events", "balls", "flags", "hits", "pocketed", "rewards",
+                 "ruleset", "shot", "shots", "tables")  # fmt: skip
 
     def __init__(
         self,
@@ -87,11 +75,13 @@ class StepResult:
         flags: NDArray[np.bool_],
         hits: NDArray[np.int64],
         shots: NDArray[np.float64],
-        outcome: _Outcome,
+        outcome: Outcome,
+        ruleset: Ruleset,
     ) -> None:
         self.tables, self.rewards, self.flags, self.hits, self.shots = (
             tables, rewards, flags, hits, shots
         )  # fmt: skip
+        self.ruleset = ruleset
         self.pocketed, self.balls, self.shot = outcome.pocketed, outcome.balls, outcome.shot
         self._n_events, self._capped = outcome.n_events, outcome.capped
 
@@ -150,18 +140,6 @@ class StepResult:
         return self._capped
 
 
-class _Outcome(NamedTuple):
-    final: NDArray[np.float64]
-    pocketed: NDArray[np.int64]
-    first: NDArray[np.int64]
-    cushions: NDArray[np.int64]
-    order: NDArray[np.int64]
-    n_events: NDArray[np.int64] | None  # None: read from shot
-    capped: NDArray[np.bool_] | None
-    balls: NDArray[np.intp]
-    shot: ShotResult | None
-
-
 def step(
     config: GameConfig,
     state: GameState,
@@ -176,29 +154,24 @@ def step(
         config: The fixed model.
         state: The tables, updated in place.
         tables: ``(K,)`` distinct tables that shoot.
-        actions: ``(K, 2)`` checked actions (:func:`pool_env.game.checks.check_actions`).
+        actions: ``(K, config.action_size)`` checked actions
+            (:func:`pool_env.game.checks.check_actions`).
         record: Keep the trajectories of a one-table step (for rendering).
         parallel: Split a batch over the CPUs (``None``: from ``PARALLEL_FROM`` shots).
 
     Returns:
         The :class:`StepResult`.
     """
-    table = config.table
-    if config.rules:
-        return _step_rules(config, state, tables, actions, record, parallel)
-    shots, states = executed_shots(
-        config.params, actions, tables, state.positions, state.on_table, state.ptrs
-    )
+    table, params, ruleset = config.table, config.params, config.ruleset
+    ruleset.place(table, params, state, tables, actions)
+    shots, states, extra = ruleset.execute(params, table.pockets, state, tables, actions)
     velocities, spins = split_states(states)
     out = _simulate(table, state, tables, velocities, spins, record, parallel)
-    rewards, flags, hits = judge(
-        config.params, table.pockets, tables, out.balls, state.positions, state.on_table,
-        state.shots, out.final, out.pocketed, out.first,
-    )  # fmt: skip
-    if flags[:, SPOT_TAKEN].any():  # rare: something covers the head spot
-        for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
-            _place(config, state, int(tables[k]), CUE, None)
-    return StepResult(tables, rewards, flags, hits, shots, out)
+    rewards, flags, hits = ruleset.judge(
+        table, params, state, tables, out, velocities, spins, extra
+    )
+    ruleset.fix_spots(table, params, state, tables, flags, hits)
+    return StepResult(tables, rewards, flags, hits, shots, out, ruleset)
 
 
 def split_states(
@@ -214,77 +187,6 @@ def split_states(
     return np.ascontiguousarray(states[:, :, :2]), np.ascontiguousarray(states[:, :, 2:])
 
 
-def _place(
-    config: GameConfig,
-    state: GameState,
-    b: int,
-    ball: int,
-    target: NDArray[np.float64] | None,
-    behind: bool = False,
-) -> None:
-    """Move ``ball`` of table ``b`` to the free point nearest ``target`` (head spot: None)."""
-    occupied = state.on_table[b].copy()
-    occupied[ball] = False
-    state.positions[b, ball] = free_spot(
-        config.table, state.positions[b], occupied, target, behind_head_string=behind
-    )
-
-
-def place_cue_balls(
-    config: GameConfig, state: GameState, tables: NDArray[np.intp], actions: NDArray[np.float64]
-) -> None:
-    """Under rules: put each cue ball in hand where its action asks, or the nearest free point.
-
-    The first part of a rules step, and of :func:`pool_env.game.codec.decode_action`.
-    """
-    rack = state.rack
-    unplaced = place_in_hand(
-        config.params, config.table.pockets, actions, tables, state.positions, state.on_table,
-        rack,
-    )  # fmt: skip
-    if unplaced.any():  # the requested point is covered: the nearest free one
-        for k in np.flatnonzero(unplaced).tolist():
-            b = int(tables[k])
-            target = state.positions[b, CUE].copy()
-            _place(config, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))
-
-
-def _step_rules(
-    config: GameConfig,
-    state: GameState,
-    tables: NDArray[np.intp],
-    actions: NDArray[np.float64],
-    record: bool,
-    parallel: bool | None,
-) -> StepResult:
-    """:func:`step` under the 9-ball or 8-ball rules (``Box(5)`` actions, spin ``Box(7)``)."""
-    table, params, rack = config.table, config.params, state.rack
-    place_cue_balls(config, state, tables, actions)
-    shots, states, called = executed_rule_shots(
-        params, table.pockets, actions, tables, state.positions, state.on_table, state.ptrs,
-        rack,
-    )  # fmt: skip
-    velocities, spins = split_states(states)
-    out = _simulate(table, state, tables, velocities, spins, record, parallel)
-    crossed = read_first(
-        table, params, int(params[kp.GAME]), state.positions, state.on_table, rack, tables,
-        out.balls, velocities, spins, out.first, out.shot,
-    )  # fmt: skip
-    rewards, flags, hits = judge_rules(
-        params, table.pockets, tables, out.balls, state.positions, state.on_table,
-        state.shots, rack, out.final, out.pocketed, out.first, out.cushions, out.order, called,
-        crossed,
-    )  # fmt: skip
-    if flags[:, RESPOT_TAKEN].any():  # something covers the foot spot
-        foot = params[[kp.FOOT_X, kp.FOOT_Y]].copy()
-        for k in np.flatnonzero(flags[:, RESPOT_TAKEN]).tolist():
-            _place(config, state, int(tables[k]), int(hits[k, RESPOT]), foot)
-    if flags[:, SPOT_TAKEN].any():
-        for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
-            _place(config, state, int(tables[k]), CUE, None)
-    return StepResult(tables, rewards, flags, hits, shots, out)
-
-
 def _simulate(
     table: Table,
     state: GameState,
@@ -293,7 +195,7 @@ def _simulate(
     spins: NDArray[np.float64] | None,
     record: bool,
     parallel: bool | None,
-) -> _Outcome:
+) -> Outcome:
     """The shots to rest: ``simulate`` for one table (the balls on it), else the batch.
 
     ``spins`` are the ``(K, N, 3)`` angular velocities of a spin table (``None`` on a roll
@@ -315,7 +217,7 @@ def _simulate(
         contact = shot.first_contact
         first = _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64)
         final, pocketed = shot.positions, shot.pocketed
-        return _Outcome(
+        return Outcome(
             final[None], pocketed[None], first, shot.cushions_after_contact[None],
             shot.pocket_order[None], None, None, balls, shot,
         )  # fmt: skip
@@ -329,7 +231,7 @@ def _simulate(
         result = simulate_batch_threads(table, pos, vel, on, threads, angular_velocities=spin)
     else:
         result = simulate_batch(table, pos, vel, active=on, parallel=False, angular_velocities=spin)
-    return _Outcome(
+    return Outcome(
         result.positions, result.pocketed, result.first_contact,
         result.cushions_after_contact, result.pocket_order, result.n_events,
         result.hit_event_cap, np.arange(n_balls), None,
@@ -341,16 +243,8 @@ def observe(
 ) -> NDArray[np.float32]:
     """``(B, obs)`` observations of every table (see :class:`pool_env.PoolEnv`).
 
-    Under rules, ``viewers`` (``(B,)``, default: each table's shooter) says whose
-    perspective the rule features take (the two-player front observes for each agent).
+    The ruleset's :meth:`~pool_env.game.rulesets.base.Ruleset.observe`. Under the WPA
+    rules, ``viewers`` (``(B,)``, default: each table's shooter) says whose perspective
+    the rule features take (the two-player front observes for each agent).
     """
-    if config.rules:
-        if viewers is None:
-            viewers = state.rack[:, wpa.SHOOTER]
-        return encode_rule_observations(
-            config.params, state.positions, state.on_table, state.rack, viewers,
-            config.table.length, config.table.width,
-        )  # fmt: skip
-    return encode_observations(
-        state.positions, state.on_table, config.table.length, config.table.width
-    )
+    return config.ruleset.observe(config.table, config.params, state, viewers)

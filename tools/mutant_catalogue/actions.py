@@ -5,16 +5,16 @@ from __future__ import annotations
 from tools.mutant_catalogue.base import CONTACT, DUEL, GAMES, G, Mutant, W
 
 MUTANTS: tuple[Mutant, ...] = (
-    # -- ball in hand, the called pocket, re-spotting (actions.py, scenes.free_spot, step) --
+    # -- ball in hand, the called pocket, re-spotting (actions.py, scenes.free_spot, rulesets) --
     Mutant(
         "placement-kitchen-half-table",
         "ball in hand",
-        G + "config.py",
+        G + "rulesets/wpa.py",
         "out[kp.HEAD_X] = table.length / 4.0",
         "out[kp.HEAD_X] = table.length / 2.0",
         GAMES,
         "ball in hand behind the head string allowed up to the centre line, not L/4",
-        "config params HEAD_X: the head string at L/4 (place_in_hand's box)",
+        "WpaGame.rule_params HEAD_X: the head string at L/4 (place_in_hand's box)",
     ),
     Mutant(
         "placement-free-spot-kitchen-half-table",
@@ -59,12 +59,12 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "placement-nearest-free-leaves-kitchen",
         "ball in hand",
-        G + "step.py",
-        "_place(config, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))",
-        "_place(config, state, b, CUE, target)",
+        G + "rulesets/wpa.py",
+        "place_free(table, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))",
+        "place_free(table, state, b, CUE, target)",
         GAMES,
         "a cue ball in hand on a covered point moved to a free point past the head string",
-        "step._step_rules: the nearest free point behind the head string",
+        "WpaGame.place: the nearest free point behind the head string",
     ),
     Mutant(
         "rack-in-hand-column",
