@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -24,36 +25,43 @@ from pool_env.sim.pockets import PocketJaws
 from pool_env.sim.table import Table
 
 
-def blend_disc(img: Frame, cx: float, cy: float, rp: float, colour: NDArray[Any]) -> None:
-    """Blend an anti-aliased disc of radius ``rp`` px centred at pixel ``(cx, cy)``."""
-    r0, r1 = max(int(cy - rp - 1), 0), min(int(cy + rp + 2), img.shape[0])
-    c0, c1 = max(int(cx - rp - 1), 0), min(int(cx + rp + 2), img.shape[1])
+def _blend(
+    img: Frame,
+    cx: float,
+    cy: float,
+    margin: float,
+    colour: NDArray[Any],
+    coverage: Callable[[NDArray[np.float64]], NDArray[np.float64]],
+) -> None:
+    """Blend ``colour`` into the pixels within ``margin`` px of ``(cx, cy)``.
+
+    ``coverage`` maps each pixel centre's distance from ``(cx, cy)`` to its opacity.
+    """
+    r0, r1 = max(int(cy - margin), 0), min(int(cy + margin + 1), img.shape[0])
+    c0, c1 = max(int(cx - margin), 0), min(int(cx + margin + 1), img.shape[1])
     if r0 >= r1 or c0 >= c1:
         return
     yy, xx = np.mgrid[r0:r1, c0:c1]
-    d = np.hypot(xx + 0.5 - cx, yy + 0.5 - cy)
-    alpha = np.clip(rp + 0.5 - d, 0.0, 1.0)[..., None]
+    alpha = coverage(np.hypot(xx + 0.5 - cx, yy + 0.5 - cy))[..., None]
     patch = img[r0:r1, c0:c1]
     patch[:] = (patch * (1.0 - alpha) + np.asarray(colour, dtype=np.float64) * alpha).astype(
         np.uint8
     )
+
+
+def blend_disc(img: Frame, cx: float, cy: float, rp: float, colour: NDArray[Any]) -> None:
+    """Blend an anti-aliased disc of radius ``rp`` px centred at pixel ``(cx, cy)``."""
+    _blend(img, cx, cy, rp + 1, colour, lambda d: np.clip(rp + 0.5 - d, 0.0, 1.0))
 
 
 def blend_ring(
     img: Frame, cx: float, cy: float, rp: float, colour: NDArray[Any], opacity: float
 ) -> None:
     """Blend a 1 px circle outline of radius ``rp`` px at pixel ``(cx, cy)``."""
-    r0, r1 = max(int(cy - rp - 2), 0), min(int(cy + rp + 3), img.shape[0])
-    c0, c1 = max(int(cx - rp - 2), 0), min(int(cx + rp + 3), img.shape[1])
-    if r0 >= r1 or c0 >= c1:
-        return
-    yy, xx = np.mgrid[r0:r1, c0:c1]
-    d = np.hypot(xx + 0.5 - cx, yy + 0.5 - cy)
-    alpha = (opacity * np.clip(1.0 - np.abs(d - rp + 0.5), 0.0, 1.0))[..., None]
-    patch = img[r0:r1, c0:c1]
-    patch[:] = (patch * (1.0 - alpha) + np.asarray(colour, dtype=np.float64) * alpha).astype(
-        np.uint8
-    )
+    _blend(
+        img, cx, cy, rp + 2, colour,
+        lambda d: opacity * np.clip(1.0 - np.abs(d - rp + 0.5), 0.0, 1.0),
+    )  # fmt: skip
 
 
 class Renderer:
