@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env import Table, encode_observations
+from pool_env import GameConfig, Table, encode_observations
 
 Layout = tuple[NDArray[np.float64], NDArray[np.bool_]]
 
@@ -37,6 +37,8 @@ class EnvSpec:
         n_balls: Balls in the layout, cue included.
         tip_limit: On a spin env, the axis offset (fraction of ``R``) that the tip
             components' +-1 map to; ``None`` on a roll env (no tip components).
+        config: The env's decision-process config: its codec encodes the planners' shots
+            (:func:`pool_env.game.codec.encode_shots`).
     """
 
     table: Table
@@ -46,6 +48,7 @@ class EnvSpec:
     noise: tuple[float, ...] | None
     n_balls: int
     tip_limit: float | None = None
+    config: GameConfig | None = None
 
     @property
     def spin(self) -> bool:
@@ -76,6 +79,7 @@ def env_spec(env: Any) -> EnvSpec:
         noise=None if noise is None else tuple(float(x) for x in noise),
         n_balls=int(n_obj) + 1,
         tip_limit=None if tip_limit is None else float(tip_limit),
+        config=config,
     )
 
 

@@ -30,6 +30,15 @@ from pool_env.game.kernels.actions import (
     nearest_object_ball,
     onto_tip_circle,
 )
+from pool_env.game.kernels.encode import (
+    AIM_AWAY,
+    AIM_NO_REFERENCE,
+    AIM_OUT_OF_RANGE,
+    aim_parameter,
+    to_unit,
+)
+from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
+from pool_env.game.kernels.encode import reference_balls as kernel_reference_balls
 from pool_env.game.rack import rack_option, rack_row
 from pool_env.game.state import GameState, new_state
 from pool_env.game.step import place_cue_balls
@@ -145,51 +154,97 @@ def decode_action(
 
 def _component(name: str, value: float, low: float, high: float, clip: bool) -> float:
     """``value`` in ``[low, high]`` as an action component in ``[-1, 1]``."""
-    if high == low:
-        c = 0.0
-        if value != low and not clip:
-            raise ValueError(f"{name} {value!r} is not {low!r}, the only value of its range")
-    else:
-        c = 2.0 * (value - low) / (high - low) - 1.0
+    if high == low and value != low and not clip:
+        raise ValueError(f"{name} {value!r} is not {low!r}, the only value of its range")
+    c = to_unit(value, low, high)
     if not -1.0 - 1e-12 <= c <= 1.0 + 1e-12 and not clip:
         raise ValueError(f"{name} {value!r} lies outside its range [{low!r}, {high!r}]")
     return min(max(c, -1.0), 1.0)
-
-
-def _wrap(angle: float) -> float:
-    """``angle`` in ``[-pi, pi)``."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
 def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> float:
     """The aim component that plays the direction ``angle`` (radians from +x)."""
     params = config.params
     mode, (low, high) = int(params[kp.AIM_MODE]), config.aim_range
-    if mode == 0:  # absolute: the turn of the angle that lies in the range, if one does
-        param = low + (angle - low) % (2.0 * math.pi)
-        if param > high:
-            if not clip:
-                raise ValueError(f"angle {angle!r} lies outside aim_range {config.aim_range}")
-            param = high if param - high < low + 2.0 * math.pi - param else low
-        return _component("angle", param, low, high, clip)
     targets = state.on_table[0].copy()
     if config.rules:
         row = state.rack[0]
         wpa.legal_targets(int(params[kp.GAME]), row, state.on_table[0], row[wpa.SHOOTER], targets)
     j, dist, base = nearest_object_ball(state.positions[0], targets, 0)
-    offset = _wrap(angle - base)
-    if mode == 1:
-        return _component("angle (relative aim)", offset, low, high, clip)
-    if j < 0:  # no reference ball: every cut aims along +x
-        return 0.0
-    if abs(offset) > 0.5 * math.pi and not clip:
+    param, status = aim_parameter(mode, low, high, params[kp.RADIUS], angle, j, dist, base, 0.0)
+    if mode == 0 and status == AIM_OUT_OF_RANGE:
+        if not clip:
+            raise ValueError(f"angle {angle!r} lies outside aim_range {config.aim_range}")
+        param = high if param - high < low + 2.0 * math.pi - param else low
+    if status == AIM_NO_REFERENCE:
+        return 0.0  # no reference ball: every cut aims along +x
+    if status == AIM_AWAY and not clip:
         raise ValueError(
             f"angle {angle!r} turns more than 90 degrees from the reference ball {j}: cut "
             "aim cannot play it (use aim='absolute', or clip=True)"
         )
-    offset = max(-0.5 * math.pi, min(0.5 * math.pi, offset))
-    cut = math.sin(offset) * dist / (2.0 * params[kp.RADIUS])
-    return _component("cut", cut, low, high, clip)
+    name = ("angle", "angle (relative aim)", "cut")[mode]
+    return _component(name, param, low, high, clip)
+
+
+def encode_shots(
+    config: GameConfig,
+    positions: ArrayLike,
+    refer: ArrayLike,
+    angles: ArrayLike,
+    speeds: ArrayLike,
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """The aim and speed components of many shots on many layouts: one compiled call.
+
+    What :func:`encode_action` writes into ``action[:2]``, for every candidate shot of a
+    planner or an observation feature, marking rather than refusing what it cannot play.
+
+    Args:
+        config: The env's config (its aim mode, aim and speed ranges, ball radius).
+        positions: ``(B, N, 2)`` ball centres, cue first.
+        refer: ``(B, N)`` the balls the aim may refer to: those on the table (under rules,
+            the legal first contacts).
+        angles: ``(B, M)`` shot directions (radians from +x).
+        speeds: ``(B, M)`` cue speeds (m/s); clipped to the speed range.
+
+    Returns:
+        ``(actions, playable)``: ``(B, M, 2)`` float64 components in ``[-1, 1]`` and
+        ``(B, M)`` whether the aim mode can play each direction (1e-9 rad of slack at the
+        ends of the range).
+
+    Raises:
+        ValueError: On shapes that do not fit together.
+    """
+    pos = np.ascontiguousarray(positions, dtype=np.float64)
+    ref = np.ascontiguousarray(refer, dtype=np.bool_)
+    ang = np.ascontiguousarray(angles, dtype=np.float64)
+    spd = np.ascontiguousarray(speeds, dtype=np.float64)
+    if pos.ndim != 3 or pos.shape[2] != 2 or ref.shape != pos.shape[:2]:
+        raise ValueError(f"positions (B, N, 2) and refer (B, N), got {pos.shape}, {ref.shape}")
+    if ang.ndim != 2 or ang.shape[0] != pos.shape[0] or spd.shape != ang.shape:
+        raise ValueError(f"angles and speeds must be ({pos.shape[0]}, M), got {ang.shape}")
+    params = config.params
+    return kernel_encode_shots(
+        int(params[kp.AIM_MODE]), *config.aim_range, *config.speed_range,
+        float(params[kp.RADIUS]), pos, ref, ang, spd,
+    )  # fmt: skip
+
+
+def reference_balls(positions: ArrayLike, refer: ArrayLike) -> NDArray[np.int64]:
+    """The ball that relative and cut aim refer to in each of ``B`` layouts (-1: none).
+
+    The nearest ball to the cue ball (ball 0) among ``refer`` (``(B, N)``; the balls on
+    the table, or under rules the legal first contacts), ties to the lower index: what
+    :func:`decode_action` and :func:`encode_action` aim from.
+
+    Raises:
+        ValueError: On shapes that do not fit together.
+    """
+    pos = np.ascontiguousarray(positions, dtype=np.float64)
+    ref = np.ascontiguousarray(refer, dtype=np.bool_)
+    if pos.ndim != 3 or pos.shape[2] != 2 or ref.shape != pos.shape[:2]:
+        raise ValueError(f"positions (B, N, 2) and refer (B, N), got {pos.shape}, {ref.shape}")
+    return kernel_reference_balls(pos, ref)
 
 
 def encode_action(
