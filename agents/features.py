@@ -36,7 +36,7 @@ from agents.baselines.base import EnvSpec, env_spec
 from agents.baselines.ghost_ball import ARRIVAL_SPEED
 from pool_env import nearest_object_ball
 from pool_env.game import geometry as geo
-from pool_env.game.codec import encode_shots, reference_balls
+from pool_env.game.codec import decode_observations, encode_shots, reference_balls
 from pool_env.game.geometry import PocketMouths, pocket_mouths
 
 
@@ -132,17 +132,8 @@ class GhostShotFeatures:
         apart as :func:`agents.baselines.base.decode_observation` does for the simulator: the
         geometry here does not need a valid layout.
         """
-        table = self.spec.table
-        per_ball = np.asarray(observations, dtype=np.float64).reshape(len(observations), -1, 3)
-        r = table.ball_radius
-        positions = np.empty(per_ball.shape[:2] + (2,))
-        positions[..., 0] = np.clip(
-            (per_ball[..., 0] + 1.0) * table.length / 2.0, r, table.length - r
-        )
-        positions[..., 1] = np.clip(
-            (per_ball[..., 1] + 1.0) * table.width / 2.0, r, table.width - r
-        )
-        return ghost_feature_batch(self.spec, self.mouths, positions, per_ball[..., 2] > 0.5)
+        positions, on_table = decode_observations(self.spec.table, observations)
+        return ghost_feature_batch(self.spec, self.mouths, positions, on_table)
 
 
 class GhostBallFeatures(gym.ObservationWrapper):

@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env import GameConfig, Table, encode_observations
+from pool_env.game.codec import decode_observations
 
 Layout = tuple[NDArray[np.float64], NDArray[np.bool_]]
 
@@ -86,17 +87,13 @@ def env_spec(env: Any) -> EnvSpec:
 def decode_observation(obs: NDArray[np.floating], table: Table) -> Layout:
     """Invert :func:`pool_env.encode_observations` for one observation (float32 precision).
 
-    Balls that decode closer than ``2R`` (touching in the real layout) are pushed apart along
-    their line of centres, so that the simulator accepts the layout.
+    The env's inverse (:func:`pool_env.game.codec.decode_observations`); balls that decode
+    closer than ``2R`` (touching in the real layout) are then pushed apart along their line
+    of centres, so that the simulator accepts the layout.
     """
-    per_ball = np.asarray(obs, dtype=np.float64).reshape(-1, 3)
-    on_table = per_ball[:, 2] > 0.5
-    positions = np.empty((per_ball.shape[0], 2))
-    positions[:, 0] = (per_ball[:, 0] + 1.0) * table.length / 2.0
-    positions[:, 1] = (per_ball[:, 1] + 1.0) * table.width / 2.0
+    decoded, on = decode_observations(table, np.asarray(obs, dtype=np.float64)[None])
+    positions, on_table = decoded[0], on[0]
     r = table.ball_radius
-    positions[:, 0] = np.clip(positions[:, 0], r, table.length - r)
-    positions[:, 1] = np.clip(positions[:, 1], r, table.width - r)
     _separate(positions, on_table, 2.0 * r * (1.0 + 1e-9))
     return positions, on_table
 

@@ -42,6 +42,7 @@ from pool_env.game.kernels.encode import reference_balls as kernel_reference_bal
 from pool_env.game.rack import rack_option, rack_row
 from pool_env.game.state import GameState, new_state
 from pool_env.game.step import place_cue_balls
+from pool_env.sim import Table
 
 _ONE = np.zeros(1, dtype=np.intp)
 
@@ -228,6 +229,34 @@ def encode_shots(
         int(params[kp.AIM_MODE]), *config.aim_range, *config.speed_range,
         float(params[kp.RADIUS]), pos, ref, ang, spd,
     )  # fmt: skip
+
+
+def decode_observations(
+    table: Table, observations: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """The layouts that ``(B, 3 N)`` observations show: the inverse of the env's encoding.
+
+    :func:`pool_env.encode_observations` scales each centre onto ``[-1, 1]`` in float32
+    (~0.1 um); this scales it back and keeps it where a centre can be (``R`` from the
+    rails), so that a decoded layout is a function of the observation alone. Balls that
+    decode touching are left touching.
+
+    Args:
+        table: The env's table (its size and ball radius).
+        observations: ``(B, 3 N)`` observations (or their first ``3 N`` columns).
+
+    Returns:
+        ``(positions, on_table)``: ``(B, N, 2)`` float64 centres and ``(B, N)`` flags.
+    """
+    obs = np.asarray(observations, dtype=np.float64)
+    if obs.ndim != 2 or obs.shape[1] % 3:
+        raise ValueError(f"observations must be (B, 3 N), got shape {obs.shape}")
+    per_ball = obs.reshape(obs.shape[0], -1, 3)
+    r = table.ball_radius
+    positions = np.empty(per_ball.shape[:2] + (2,))
+    for axis, size in enumerate((table.length, table.width)):
+        positions[..., axis] = np.clip((per_ball[..., axis] + 1.0) * size / 2.0, r, size - r)
+    return positions, per_ball[..., 2] > 0.5
 
 
 def reference_balls(positions: ArrayLike, refer: ArrayLike) -> NDArray[np.int64]:
