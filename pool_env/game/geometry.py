@@ -64,6 +64,7 @@ __all__ = [
     "VALID",
     "PocketMouths",
     "cue_speeds",
+    "ghost_contact",
     "ghost_shots",
     "path_clear",
     "pocket_mouths",
@@ -130,11 +131,35 @@ def ghost_shots(
     if tgt.size and (tgt.max() >= pos.shape[1] or tgt.min() < -1):
         raise ValueError(f"targets must be ball indices in 0..{pos.shape[1] - 1} (or -1)")
     r = table.ball_radius
-    box = np.array([r - 1e-12, r - 1e-12, table.length - r + 1e-12, table.width - r + 1e-12])
     return kg.ghost_shots(
-        mouths.rows, mouths.jaws, pos, on, tgt, int(cue), r, box, float(offset),
+        mouths.rows, mouths.jaws, pos, on, tgt, int(cue), r, _centre_box(table), float(offset),
         math.cos(max_cut), MIN_APPROACH_COS,
     )  # fmt: skip
+
+
+def ghost_contact(
+    table: Table, ball: ArrayLike, u: ArrayLike, cue: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.float64], float, float] | None:
+    """Where the cue ball must touch ``ball`` to send it along the unit vector ``u``.
+
+    Args:
+        table: The table (ball radius and size).
+        ball: ``(2,)`` the object ball's centre.
+        u: ``(2,)`` unit direction the object ball should leave along.
+        cue: ``(2,)`` the cue ball's centre.
+
+    Returns:
+        ``(ghost, heading, distance, cos_cut)``: the ghost-ball point ``ball - 2 R u``, the
+        cue ball's unit heading to it and the distance, and the cosine of the cut; ``None``
+        when the point lies off the cloth (a cushion is in the way).
+    """
+    box = _centre_box(table)
+    args = (np.asarray(v, dtype=np.float64).tolist() for v in (ball, u, cue))
+    flat = [x for a in args for x in a]
+    on, gx, gy, dx, dy, dist, cos_cut = kg.ghost_contact(*flat, table.ball_radius, box)
+    if not on:
+        return None
+    return np.array([gx, gy]), np.array([dx, dy]), dist, cos_cut
 
 
 def cue_speeds(table: Table, shots: NDArray[np.float64], arrival: float) -> NDArray[np.float64]:
@@ -200,3 +225,9 @@ def points_free(
     occupied = np.ascontiguousarray(balls, dtype=np.float64).reshape(-1, 2)
     reach = float(params[kp.REACH])
     return free_points(params, table.pockets, pts, occupied, reach * reach)
+
+
+def _centre_box(table: Table) -> NDArray[np.float64]:
+    """Where a ball centre can be, ``(x0, y0, x1, y1)``, with 1e-12 of slack for rounding."""
+    r = table.ball_radius
+    return np.array([r - 1e-12, r - 1e-12, table.length - r + 1e-12, table.width - r + 1e-12])

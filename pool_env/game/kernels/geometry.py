@@ -140,6 +140,27 @@ def path_clear(sx, sy, ex, ey, balls, on, skip_a, skip_b, reach):
 
 
 @kernel
+def ghost_contact(px, py, ux, uy, cx, cy, radius, box):
+    """The ghost-ball point that sends the ball at ``p`` along ``u``, seen from the cue at ``c``.
+
+    Returns:
+        ``(on_cloth, gx, gy, dx, dy, d_cue, cos_cut)``: whether the point ``G = p - 2 R u``
+        lies in the centre rectangle ``box`` ``(x0, y0, x1, y1)`` (a cushion keeps the cue
+        ball from it otherwise), the point, the cue ball's unit heading to it (``u`` when
+        the cue ball already sits there), the distance, and the cut's cosine.
+    """
+    gx, gy = px - 2.0 * radius * ux, py - 2.0 * radius * uy
+    on_cloth = box[0] <= gx <= box[2] and box[1] <= gy <= box[3]
+    vx, vy = gx - cx, gy - cy
+    d_cue = math.hypot(vx, vy)
+    dx, dy = ux, uy
+    if d_cue >= 1e-12:
+        dx, dy = vx / d_cue, vy / d_cue
+    cos_cut = min(max(dx * ux + dy * uy, -1.0), 1.0)
+    return on_cloth, gx, gy, dx, dy, d_cue, cos_cut
+
+
+@kernel
 def ghost_shot(out, mouths, jaws, k, balls, on, cue, b, radius, box, offset, cos_max_cut, mac):
     """Fill ``out`` (``NG``) with the ghost-ball shot of ball ``b`` into pocket ``k``.
 
@@ -163,17 +184,9 @@ def ghost_shot(out, mouths, jaws, k, balls, on, cue, b, radius, box, offset, cos
     ux, uy = aimx - px, aimy - py
     d_ball = math.hypot(ux, uy)
     ux, uy = ux / d_ball, uy / d_ball
-    gx, gy = px - 2.0 * radius * ux, py - 2.0 * radius * uy
-    if gx < box[0] or gy < box[1] or gx > box[2] or gy > box[3]:
-        return  # the cue ball cannot get there: a cushion is in the way
-    vx, vy = gx - cx, gy - cy
-    d_cue = math.hypot(vx, vy)
-    dx, dy = ux, uy
-    if d_cue >= 1e-12:
-        dx, dy = vx / d_cue, vy / d_cue
-    cos_cut = min(max(dx * ux + dy * uy, -1.0), 1.0)
-    if cos_cut < cos_max_cut:
-        return
+    on_cloth, gx, gy, dx, dy, d_cue, cos_cut = ghost_contact(px, py, ux, uy, cx, cy, radius, box)
+    if not on_cloth or cos_cut < cos_max_cut:
+        return  # a cushion keeps the cue ball from the ghost point, or the cut is too thin
     rolled = travel(mouths, jaws, k, px, py, ux, uy)
     if not math.isfinite(rolled):
         return
