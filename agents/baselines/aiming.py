@@ -15,16 +15,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.base import EnvSpec
-from pool_env import GameConfig, decode_shots
+from pool_env import decode_shots
 from pool_env.game.codec import encode_shots
 from pool_env.game.kernels import params as kp
-
-
-def _config(spec: EnvSpec) -> GameConfig:
-    """The env's config, whose codec this module calls."""
-    if spec.config is None:
-        raise ValueError("the env has no decision-process config to encode actions with")
-    return spec.config
 
 
 def shot_to_action(
@@ -47,7 +40,7 @@ def shot_to_action(
         A ``(2,)`` float32 action in ``[-1, 1]``, or ``None``.
     """
     actions, playable = encode_shots(
-        _config(spec), positions[None], on_table[None], [[angle]], [[speed]]
+        spec.config, positions[None], on_table[None], [[angle]], [[speed]]
     )
     if not playable[0, 0]:
         return None
@@ -65,7 +58,7 @@ def decode(
     The environment's own decoding (:func:`pool_env.decode_shots`), so that a planner
     simulates exactly the shot its action will play (before execution noise).
     """
-    config = _config(spec)
+    config = spec.config
     acts = np.ascontiguousarray(actions, dtype=np.float32)
     b = acts.shape[0]
     pos = np.ascontiguousarray(np.broadcast_to(positions, (b, *positions.shape)))

@@ -195,20 +195,16 @@ def _circle_on_centre_box(
 ) -> list[tuple[float, float]]:
     """Where a circle crosses the boundary of the ball-centre rectangle (distinct points)."""
     rad = table.ball_radius
-    x0, x1, y0, y1 = rad, table.length - rad, rad, table.width - rad
+    lo, hi, centre = (rad, rad), (table.length - rad, table.width - rad), (cx, cy)
     points: list[tuple[float, float]] = []
-    for x in (x0, x1):  # vertical sides
-        h = r * r - (x - cx) ** 2
-        if h > 0.0:
-            for y in (cy - math.sqrt(h), cy + math.sqrt(h)):
-                if y0 <= y <= y1:
-                    points.append((x, y))
-    for y in (y0, y1):  # horizontal sides
-        h = r * r - (y - cy) ** 2
-        if h > 0.0:
-            for x in (cx - math.sqrt(h), cx + math.sqrt(h)):
-                if x0 <= x <= x1:
-                    points.append((x, y))
+    for axis in (0, 1):  # the sides x = const, then y = const
+        other = 1 - axis
+        for side in (lo[axis], hi[axis]):
+            h = r * r - (side - centre[axis]) ** 2
+            if h > 0.0:
+                for t in (centre[other] - math.sqrt(h), centre[other] + math.sqrt(h)):
+                    if lo[other] <= t <= hi[other]:
+                        points.append((side, t) if axis == 0 else (t, side))
     unique: list[tuple[float, float]] = []
     for p in points:  # a corner of the rectangle lies on two sides
         if all(math.hypot(p[0] - q[0], p[1] - q[1]) > 1e-12 for q in unique):
