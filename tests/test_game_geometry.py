@@ -170,21 +170,29 @@ def test_encode_shots_is_encode_action_for_many_shots(env_id: str, aim: str) -> 
     env = gym.make(env_id, aim=aim).unwrapped
     config = env.config
     rng = np.random.default_rng(5)
-    layouts, angles, speeds = [], rng.uniform(-4.0, 4.0, (6, 20)), rng.uniform(0.0, 9.0, (6, 20))
+    angles, speeds = rng.uniform(-4.0, 4.0, (6, 20)), rng.uniform(0.0, 9.0, (6, 20))
+    tips = None
+    if config.spin:  # inside the miscue circle
+        radius = config.tip_limit * np.sqrt(rng.uniform(0.0, 1.0, (6, 20)))
+        phi = rng.uniform(-math.pi, math.pi, (6, 20))
+        tips = np.stack([radius * np.cos(phi), radius * np.sin(phi)], -1)
+    layouts = []
     for k in range(6):
         env.reset(seed=k)
         layouts.append((env.positions, env.on_table))
     pos = np.stack([p for p, _ in layouts])
     on = np.stack([o for _, o in layouts])
-    actions, playable = encode_shots(config, pos, on, angles, speeds)
+    actions, playable = encode_shots(config, pos, on, angles, speeds, tips)
+    assert actions.shape == (6, 20, 4 if config.spin else 2)
     assert playable.any() and (aim == "absolute" or not playable.all())
     lo, hi = config.speed_range
     for i in range(6):
         for m in range(20):
-            shot = Shot(angles[i, m], min(max(speeds[i, m], lo), hi))
+            tip = (0.0, 0.0) if tips is None else tuple(tips[i, m])
+            shot = Shot(angles[i, m], min(max(speeds[i, m], lo), hi), tip)
             if playable[i, m]:
                 one = encode_action(config, shot, pos[i], on[i])
-                np.testing.assert_allclose(actions[i, m], one[:2], rtol=0, atol=1e-12)
+                np.testing.assert_allclose(actions[i, m], one, rtol=0, atol=1e-12)
                 back = decode_action(config, one, pos[i], on[i])
                 assert math.remainder(back.angle - angles[i, m], 2 * math.pi) == pytest.approx(
                     0.0, abs=1e-9
@@ -192,6 +200,16 @@ def test_encode_shots_is_encode_action_for_many_shots(env_id: str, aim: str) -> 
             else:
                 with pytest.raises(ValueError, match=r"angle|cut"):
                     encode_action(config, shot, pos[i], on[i])
+
+
+def test_encode_shots_refuses_tips_it_cannot_play() -> None:
+    pos, on = np.array([[[0.5, 0.5], [1.0, 0.5]]]), np.ones((1, 2), bool)
+    roll = gym.make("pool_env/OneBall-v0").unwrapped.config
+    with pytest.raises(ValueError, match="spin table"):
+        encode_shots(roll, pos, on, [[0.0]], [[1.0]], [[(0.1, 0.0)]])
+    spin = gym.make("pool_env/OneBall-v1").unwrapped.config
+    with pytest.raises(ValueError, match="tip limit"):
+        encode_shots(spin, pos, on, [[0.0]], [[1.0]], [[(spin.tip_limit, 0.1)]])
 
 
 def test_reference_balls_are_the_nearest_on_the_table() -> None:

@@ -26,6 +26,7 @@ def shot_to_action(
     positions: NDArray[np.float64],
     on_table: NDArray[np.bool_],
     spec: EnvSpec,
+    tip: tuple[float, float] = (0.0, 0.0),
 ) -> NDArray[np.float32] | None:
     """The float32 action for a shot, or ``None`` when the aim mode cannot express its direction.
 
@@ -35,12 +36,16 @@ def shot_to_action(
         positions: ``(N, 2)`` ball centres, cue first.
         on_table: ``(N,)`` the balls the aim may refer to (on the table; rules: legal).
         spec: The environment (its config's codec).
+        tip: The cue tip's offset ``(side, vertical)`` in fractions of R, within the tip
+            limit (a spin env; centre ball by default).
 
     Returns:
-        A ``(2,)`` float32 action in ``[-1, 1]``, or ``None``.
+        A float32 action in ``[-1, 1]``: ``(aim, speed)``, and ``(side, vertical)`` on a
+        spin env; or ``None``.
     """
+    tips = [[tip]] if spec.spin else None
     actions, playable = encode_shots(
-        spec.config, positions[None], on_table[None], [[angle]], [[speed]]
+        spec.config, positions[None], on_table[None], [[angle]], [[speed]], tips
     )
     if not playable[0, 0]:
         return None

@@ -35,6 +35,7 @@ from pool_env.game.kernels.encode import (
     AIM_NO_REFERENCE,
     AIM_OUT_OF_RANGE,
     aim_parameter,
+    tip_components,
     to_unit,
 )
 from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
@@ -194,27 +195,33 @@ def encode_shots(
     refer: ArrayLike,
     angles: ArrayLike,
     speeds: ArrayLike,
+    tips: ArrayLike | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """The aim and speed components of many shots on many layouts: one compiled call.
+    """The aim, speed (and tip) components of many shots on many layouts: one compiled call.
 
-    What :func:`encode_action` writes into ``action[:2]``, for every candidate shot of a
-    planner or an observation feature, marking rather than refusing what it cannot play.
+    What :func:`encode_action` writes for the shot's own parts, for every candidate shot of
+    a planner or an observation feature, marking rather than refusing what it cannot play.
+    (Under rules the cue ball's placement and the called pocket are not parts of the shot:
+    :func:`encode_action` writes them.)
 
     Args:
-        config: The env's config (its aim mode, aim and speed ranges, ball radius).
+        config: The env's config (its aim mode, aim and speed ranges, ball radius, tip limit).
         positions: ``(B, N, 2)`` ball centres, cue first.
         refer: ``(B, N)`` the balls the aim may refer to: those on the table (under rules,
             the legal first contacts).
         angles: ``(B, M)`` shot directions (radians from +x).
         speeds: ``(B, M)`` cue speeds (m/s); clipped to the speed range.
+        tips: ``(B, M, 2)`` cue tip offsets ``(side, vertical)`` in fractions of R, within
+            the tip limit (spin tables; default centre ball).
 
     Returns:
-        ``(actions, playable)``: ``(B, M, 2)`` float64 components in ``[-1, 1]`` and
-        ``(B, M)`` whether the aim mode can play each direction (1e-9 rad of slack at the
-        ends of the range).
+        ``(actions, playable)``: ``(B, M, 2)`` float64 components ``(aim, speed)`` in
+        ``[-1, 1]``, ``(B, M, 4)`` with ``(side, vertical)`` on a spin table, and ``(B, M)``
+        whether the aim mode can play each direction (1e-9 rad of slack at the ends).
 
     Raises:
-        ValueError: On shapes that do not fit together.
+        ValueError: On shapes that do not fit together, a tip on a roll table, or a tip
+            beyond the tip limit.
     """
     pos = np.ascontiguousarray(positions, dtype=np.float64)
     ref = np.ascontiguousarray(refer, dtype=np.bool_)
@@ -224,10 +231,18 @@ def encode_shots(
         raise ValueError(f"positions (B, N, 2) and refer (B, N), got {pos.shape}, {ref.shape}")
     if ang.ndim != 2 or ang.shape[0] != pos.shape[0] or spd.shape != ang.shape:
         raise ValueError(f"angles and speeds must be ({pos.shape[0]}, M), got {ang.shape}")
+    tip = np.zeros((*ang.shape, 2)) if tips is None else np.array(tips, dtype=np.float64)
+    if tip.shape != (*ang.shape, 2):
+        raise ValueError(f"tips must be {(*ang.shape, 2)}, got {tip.shape}")
+    limit = 0.0 if config.tip_limit is None else float(config.tip_limit)
+    if limit == 0.0 and tip.any():
+        raise ValueError("tips need a spin table: a roll table has no tip")
+    if limit and (np.hypot(tip[..., 0], tip[..., 1]) > limit * (1.0 + 1e-12)).any():
+        raise ValueError(f"tips must lie within the tip limit {limit!r} (miscue)")
     params = config.params
     return kernel_encode_shots(
         int(params[kp.AIM_MODE]), *config.aim_range, *config.speed_range,
-        float(params[kp.RADIUS]), pos, ref, ang, spd,
+        float(params[kp.RADIUS]), limit, pos, ref, ang, spd, tip,
     )  # fmt: skip
 
 
@@ -346,4 +361,4 @@ def _tip(
             raise ValueError(f"tip {tip!r} lies beyond the tip limit {limit!r} (miscue)")
         a, b = onto_tip_circle(a, b, limit)  # the decoder's own rule
     side, vertical = config.tip_columns
-    out[side], out[vertical] = min(max(a / limit, -1.0), 1.0), min(max(b / limit, -1.0), 1.0)
+    out[side], out[vertical] = tip_components(a, b, limit)

@@ -79,28 +79,42 @@ def aim_parameter(mode, low, high, radius, angle, ref, dist, base, tol):
 
 
 @kernel
+def tip_components(side, vertical, limit):
+    """The action components of a tip inside the miscue circle: each offset over ``limit``.
+
+    The inverse of :func:`~pool_env.game.kernels.actions.decode_tips` there (clipped to
+    ``[-1, 1]``; a tip beyond the circle is the caller's to refuse or move onto it).
+    """
+    return min(max(side / limit, -1.0), 1.0), min(max(vertical / limit, -1.0), 1.0)
+
+
+@kernel
 def encode_shots(
-    mode, aim_low, aim_high, speed_low, speed_high, radius, positions, refer, angles, speeds
-):
-    """The ``(aim, speed)`` action components of ``M`` shots on each of ``B`` layouts.
+    mode, aim_low, aim_high, speed_low, speed_high, radius, limit, positions, refer, angles,
+    speeds, tips,
+):  # fmt: skip
+    """The ``(aim, speed[, side, vertical])`` action components of ``M`` shots on ``B`` layouts.
 
     Args:
         mode: Aim mode (0 absolute, 1 relative, 2 cut).
         aim_low: The aim range; ``aim_high`` its other end.
         speed_low: The speed range (m/s); ``speed_high`` its other end.
         radius: Ball radius (m).
+        limit: The tip limit (fraction of R) on a spin table; 0 on a roll table (no tip).
         positions: ``(B, N, 2)`` ball centres, cue first.
         refer: ``(B, N)`` the balls the aim may refer to (on the table; under rules, legal
             first contacts).
         angles: ``(B, M)`` shot directions (radians from +x).
         speeds: ``(B, M)`` cue speeds (m/s), clipped to the speed range.
+        tips: ``(B, M, 2)`` tips inside the miscue circle (read on a spin table only).
 
     Returns:
-        ``(actions, playable)``: ``(B, M, 2)`` components clipped to ``[-1, 1]`` and
-        ``(B, M)`` whether the aim mode can play each direction (1e-9 of slack).
+        ``(actions, playable)``: ``(B, M, 2)`` components (``(B, M, 4)`` with the tip on a
+        spin table) clipped to ``[-1, 1]``, and ``(B, M)`` whether the aim mode can play
+        each direction (1e-9 of slack).
     """
     nb, nm = angles.shape
-    actions = np.zeros((nb, nm, 2))
+    actions = np.zeros((nb, nm, 4 if limit > 0.0 else 2))
     playable = np.zeros((nb, nm), dtype=np.bool_)
     for i in range(nb):
         ref, dist, base = nearest_object_ball(positions[i], refer[i], 0)
@@ -112,6 +126,10 @@ def encode_shots(
             speed = min(max(speeds[i, m], speed_low), speed_high)
             actions[i, m, 0] = min(max(to_unit(param, aim_low, aim_high), -1.0), 1.0)
             actions[i, m, 1] = min(max(to_unit(speed, speed_low, speed_high), -1.0), 1.0)
+            if limit > 0.0:
+                actions[i, m, 2], actions[i, m, 3] = tip_components(
+                    tips[i, m, 0], tips[i, m, 1], limit
+                )
     return actions, playable
 
 
