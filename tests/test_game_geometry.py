@@ -16,7 +16,13 @@ import pytest
 import pool_env
 from pool_env import Shot, Table, decode_action, encode_action, encode_observations, free_spot
 from pool_env.game import geometry as geo
-from pool_env.game.codec import decode_observations, encode_shots, reference_balls
+from pool_env.game.codec import (
+    decode_observations,
+    encode_placement,
+    encode_pocket,
+    encode_shots,
+    reference_balls,
+)
 from pool_env.sim.table import standard_pockets
 
 TABLE = Table()
@@ -236,3 +242,26 @@ def test_decode_observations_inverts_the_env_encoding() -> None:
 def test_the_geometry_module_is_public() -> None:
     assert pool_env.encode_shots is encode_shots
     assert pool_env.decode_observations is decode_observations
+
+
+def test_placement_and_pocket_components_decode_to_what_was_asked() -> None:
+    env = gym.make("pool_env/NineBallGame-v1").unwrapped
+    env.reset(seed=2)
+    rack = {**env.rack, "break": False, "ball_in_hand": True, "behind_head_string": False}
+    config = env.config
+    want = (1.7, 0.4)
+    action = np.zeros(config.action_size)
+    action[2:4] = encode_placement(config, want)
+    action[4] = encode_pocket(config, 4)
+    action[1] = -1.0
+    shot = decode_action(config, action, env.positions, env.on_table, rack)
+    np.testing.assert_allclose(shot.cue, want, rtol=0, atol=1e-12)
+    assert shot.pocket == 4
+    kitchen = encode_placement(config, (TABLE.length / 4.0, 0.4), behind=True)
+    assert kitchen[0] == pytest.approx(1.0, abs=1e-12)  # the head string is the box's edge
+    with pytest.raises(ValueError, match="outside"):
+        encode_placement(config, (TABLE.length / 2.0, 0.4), behind=True)
+    with pytest.raises(ValueError, match="pocket"):
+        encode_pocket(config, 6)
+    with pytest.raises(ValueError, match="rules"):
+        encode_placement(gym.make("pool_env/OneBall-v1").unwrapped.config, want)

@@ -20,6 +20,7 @@ from agents.baselines.base import BaselineAgent
 from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
 from agents.baselines.search import SearchAgent, Shot
 from pool_env import ShotResult
+from pool_env.game.codec import encode_placement, encode_pocket
 
 #: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
 #: straight-in shot from close enough to aim well, far enough to follow through.
@@ -121,7 +122,7 @@ class GameGhostBallAgent(BaselineAgent):
         pocket = 0.0
         called = self.last_plan.get("pocket", -1)
         if called is not None and called >= 0:
-            pocket = (called + 0.5) / table.n_pockets * 2.0 - 1.0
+            pocket = encode_pocket(self.config, called)
         return np.array([action[0], action[1], place[0], place[1], pocket, *action[2:]])
 
     def _choose(
@@ -135,13 +136,8 @@ class GameGhostBallAgent(BaselineAgent):
         return (-1 if shot is None else shot.pocket), action
 
     def _place_action(self, point: NDArray[np.float64], behind: bool) -> NDArray[np.float64]:
-        """The action components that place the cue ball on ``point`` (the kernels' map)."""
-        t = self.config.table
-        r = t.ball_radius
-        x_high = t.length / 4.0 if behind else t.length - r
-        u = 2.0 * (point[0] - r) / (x_high - r) - 1.0
-        v = 2.0 * (point[1] - r) / (t.width - 2 * r) - 1.0
-        return np.clip([u, v], -1.0, 1.0)
+        """The action components that place the cue ball on ``point`` (the env's codec)."""
+        return np.array(encode_placement(self.config, point, behind, clip=True))
 
     def _place(
         self,

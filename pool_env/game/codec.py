@@ -323,26 +323,57 @@ def encode_action(
             pocket that does not exist; or a malformed layout or rack.
     """
     state = _table(config, positions, on_table, rack)
-    params, out = config.params, np.zeros(config.action_size)
+    out = np.zeros(config.action_size)
     _tip(config, shot.tip, out, clip)
     speeds = config.speed_range
     if config.rules:
         row = state.rack[0]
         if row[wpa.IN_HAND] and shot.cue is not None:
-            x, y = (float(v) for v in shot.cue)
-            x_high = params[kp.HEAD_X] if row[wpa.BEHIND] else params[kp.X_HIGH]
-            out[2] = _component("cue x", x, params[kp.X_LOW], x_high, clip)
-            out[3] = _component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip)
-            state.positions[0, 0] = x, y  # the aim refers from where the cue ball will be
-        n_pockets = config.table.n_pockets
-        if not 0 <= shot.pocket < n_pockets:
-            raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {shot.pocket!r}")
-        out[4] = (2.0 * shot.pocket + 1.0) / n_pockets - 1.0  # the middle of its bin
+            out[2], out[3] = encode_placement(config, shot.cue, bool(row[wpa.BEHIND]), clip)
+            state.positions[0, 0] = shot.cue  # the aim refers from where the cue ball will be
+        out[4] = encode_pocket(config, shot.pocket)
         if row[wpa.BREAKING]:
             speeds = config.break_speed_range
     out[0] = _aim(config, state, float(shot.angle), clip)
     out[1] = _component("speed", float(shot.speed), *speeds, clip)
     return out
+
+
+def encode_placement(
+    config: GameConfig, cue: ArrayLike, behind: bool = False, clip: bool = False
+) -> tuple[float, float]:
+    """The action components (``action[2]``, ``action[3]``) that place the cue ball in hand.
+
+    Args:
+        config: A rules env's config.
+        cue: ``(x, y)`` where the cue ball should go (m).
+        behind: Ball in hand behind the head string (the kitchen, ``x <= L / 4``).
+        clip: Map a point outside the placement box onto its edge instead of raising.
+
+    Raises:
+        ValueError: On a solitaire config, or a point outside the box (without ``clip``).
+    """
+    if not config.rules:
+        raise ValueError("the cue ball is placed in hand under rules (game='nine' or 'eight')")
+    params = config.params
+    x, y = (float(v) for v in np.asarray(cue, dtype=np.float64).reshape(2))
+    x_high = params[kp.HEAD_X] if behind else params[kp.X_HIGH]
+    return (
+        _component("cue x", x, params[kp.X_LOW], x_high, clip),
+        _component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip),
+    )
+
+
+def encode_pocket(config: GameConfig, pocket: int) -> float:
+    """The action component (``action[4]``) that calls ``pocket``: the middle of its bin.
+
+    Raises:
+        ValueError: If the table has no pocket ``pocket``.
+    """
+    n_pockets = config.table.n_pockets
+    if not 0 <= pocket < n_pockets:
+        raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {pocket!r}")
+    return (2.0 * pocket + 1.0) / n_pockets - 1.0
 
 
 def _tip(
