@@ -21,6 +21,7 @@ from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
 from agents.baselines.search import SearchAgent, Shot
 from pool_env import ShotResult
 from pool_env.game.codec import encode_placement, encode_pocket
+from pool_env.game.geometry import points_free
 
 #: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
 #: straight-in shot from close enough to aim well, far enough to follow through.
@@ -149,8 +150,8 @@ class GameGhostBallAgent(BaselineAgent):
         """The best straight-in placement: ``(positions with the cue ball there, action)``."""
         t = self.config.table
         r = t.ball_radius
-        x_high = t.length / 4.0 if behind else t.length - r
         others = [j for j in range(1, on.shape[0]) if on[j]]
+        balls = positions[others]
         best, best_tol = positions[0].copy(), -1.0
         trial = positions.copy()
         for b in self._targets:
@@ -159,8 +160,9 @@ class GameGhostBallAgent(BaselineAgent):
                 u = d / max(float(np.hypot(*d)), 1e-12)
                 for dist in PLACE_DISTANCES:
                     point = positions[b] + (2.0 * r + dist) * u
-                    if not (r <= point[0] <= x_high and r <= point[1] <= t.width - r):
-                        continue
+                    if not points_free(t, point[None], balls, behind)[0]:
+                        continue  # the game's placement rule
+                    # The agent's own margins, wider than the rule's: no touching cue ball.
                     if any(np.hypot(*(positions[j] - point)) < 2.2 * r for j in others):
                         continue
                     if np.any(np.hypot(*(t.pockets[:, :2] - point).T) < t.pockets[:, 2] + r):
