@@ -33,9 +33,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.base import EnvSpec, env_spec
-from agents.baselines.geometry import MAX_CUT, MIN_APPROACH_COS, PocketMouths, pocket_mouths
 from agents.baselines.ghost_ball import ARRIVAL_SPEED
 from pool_env import nearest_object_ball
+from pool_env.game import geometry as geo
+from pool_env.game.codec import decode_observations, encode_shots, reference_balls
+from pool_env.game.geometry import PocketMouths, pocket_mouths
 
 
 class PocketFeatures(gym.ObservationWrapper):
@@ -87,7 +89,7 @@ class GhostShotFeatures:
 
     The reference ball is the one the action aims relative to (the nearest object ball;
     :func:`pool_env.nearest_object_ball`). For each direct shot of
-    :func:`agents.baselines.geometry.ghost_shots` on it (a cut under 85 degrees, the mouth open to
+    :func:`pool_env.game.geometry.ghost_shots` on it (a cut under 85 degrees, the mouth open to
     the ball's path, the ghost-ball point on the table) that the aim mode can play, easiest
     first (largest aim tolerance), :data:`PER_SHOT` features:
 
@@ -96,7 +98,7 @@ class GhostShotFeatures:
     ``-sin(cut)``, the cut offset in ball diameters), ``cos(cut)``, the cue-to-ghost-point
     distance and the ghost-point-to-pocket distance over the table diagonal, the cosine of
     the approach to the mouth, and the speed action (action[1]) of the speed the geometric
-    model asks for (:func:`agents.baselines.geometry.cue_speed` at the ghost-ball agent's arrival
+    model asks for (:func:`pool_env.game.geometry.cue_speeds` at the ghost-ball agent's arrival
     speed; clipped to ``[-1, 1]``). Pockets without a playable shot give zero rows at the
     end. Everything comes from the layout and the table's public geometry; no simulation.
 
@@ -130,17 +132,8 @@ class GhostShotFeatures:
         apart as :func:`agents.baselines.base.decode_observation` does for the simulator: the
         geometry here does not need a valid layout.
         """
-        table = self.spec.table
-        per_ball = np.asarray(observations, dtype=np.float64).reshape(len(observations), -1, 3)
-        r = table.ball_radius
-        positions = np.empty(per_ball.shape[:2] + (2,))
-        positions[..., 0] = np.clip(
-            (per_ball[..., 0] + 1.0) * table.length / 2.0, r, table.length - r
-        )
-        positions[..., 1] = np.clip(
-            (per_ball[..., 1] + 1.0) * table.width / 2.0, r, table.width - r
-        )
-        return ghost_feature_batch(self.spec, self.mouths, positions, per_ball[..., 2] > 0.5)
+        positions, on_table = decode_observations(self.spec.table, observations)
+        return ghost_feature_batch(self.spec, self.mouths, positions, on_table)
 
 
 class GhostBallFeatures(gym.ObservationWrapper):
@@ -173,160 +166,43 @@ def ghost_feature_batch(
 ) -> NDArray[np.float32]:
     """:class:`GhostShotFeatures` of ``B`` layouts at once, ``(B, K * PER_SHOT)`` float32.
 
-    The same shots as :func:`agents.baselines.geometry.ghost_shots` on each layout's nearest object
-    ball (offset 0), the same tolerance order, speed (:func:`agents.baselines.geometry.cue_speed`)
-    and action (:func:`agents.baselines.aiming.shot_to_action`), computed for every layout and
-    pocket in array operations: about 40 times faster than a loop over the layouts, which
-    is what lets the native vector env train on them. ``tests/test_features.py`` checks it
-    against those functions on random layouts of both pocket models.
+    The game's compiled geometry and codec, each called once for the batch: the ghost-ball
+    shots on each layout's reference ball (:func:`pool_env.game.geometry.ghost_shots`,
+    offset 0), their speeds (:func:`pool_env.game.geometry.cue_speeds`) and their actions
+    (:func:`pool_env.game.codec.encode_shots`), rows ordered by tolerance. That is what lets
+    the native vector env train on them.
 
     Args:
-        spec: The environment's table, aim mode and ranges.
-        mouths: The table's pockets (:func:`agents.baselines.geometry.pocket_mouths`).
+        spec: The environment's table and config (aim mode and ranges).
+        mouths: The table's pockets (:func:`pool_env.game.geometry.pocket_mouths`).
         positions: ``(B, N, 2)`` ball centres, cue (ball 0) first.
         on_table: ``(B, N)`` which balls are on the table.
     """
     table = spec.table
-    r = table.ball_radius
-    pos = np.asarray(positions, dtype=np.float64)
-    on = np.asarray(on_table, dtype=bool)
+    pos = np.ascontiguousarray(positions, dtype=np.float64)
+    on = np.ascontiguousarray(on_table, dtype=np.bool_)
     nb = on.shape[0]
-    rows = np.arange(nb)
-    cue = pos[:, 0]
-    # The reference ball: the nearest object ball on the table, ties to the lower index.
-    rel = pos - cue[:, None]
-    d2 = np.where(on, rel[..., 0] ** 2 + rel[..., 1] ** 2, np.inf)
-    d2[:, 0] = np.inf
-    j = np.argmin(d2, axis=1)
-    has_ball = np.isfinite(d2[rows, j])
-    ball = pos[rows, j]  # (B, 2)
-    ref = ball - cue
-    ref_dist = np.hypot(ref[:, 0], ref[:, 1])
-    base = np.arctan2(ref[:, 1], ref[:, 0])
-
-    to_target = mouths.targets[None] - ball[:, None]  # (B, K, 2)
-    d_ball = np.hypot(to_target[..., 0], to_target[..., 1])
-    u = to_target / d_ball[..., None]
-    has_normal = np.any(mouths.inward != 0.0, axis=1)  # (K,)
-    cos_a = np.where(has_normal, np.einsum("bkc,kc->bk", u, mouths.inward), 1.0)
-    half = np.where(
-        cos_a < MIN_APPROACH_COS,
-        0.0,
-        np.maximum(mouths.widths / 2.0 * cos_a - mouths.clearance, 0.0),
-    )
-    ghost = ball[:, None] - 2.0 * r * u
-    lo, hi = r - 1e-12, np.array([table.length - r, table.width - r]) + 1e-12
-    on_cloth = np.all((ghost >= lo) & (ghost <= hi), axis=-1)
-    v = ghost - cue[:, None]
-    d_cue = np.hypot(v[..., 0], v[..., 1])
-    tiny = d_cue < 1e-12
-    d = np.where(tiny[..., None], u, v / np.where(tiny, 1.0, d_cue)[..., None])
-    cos_cut = np.clip(np.sum(d * u, axis=-1), -1.0, 1.0)
-    cut = np.arctan2(d[..., 0] * u[..., 1] - d[..., 1] * u[..., 0], cos_cut)
-    travel = _travel(mouths, ball, u)
-    valid = (
-        has_ball[:, None]
-        & (half > 0.0)
-        & on_cloth
-        & (cos_cut >= math.cos(MAX_CUT))
-        & np.isfinite(travel)
-    )
-    # Clear paths: cue to ghost point and ball to target, 2R from every other ball.
-    others = on.copy()
-    others[:, 0] = False
-    others[rows, j] = False
-    reach = 2.0 * r
-    clear = _path_clear(cue[:, None], ghost, pos, others, reach) & _path_clear(
-        ball[:, None], mouths.targets[None], pos, others, reach
-    )
-    tolerance = 2.0 * r * cos_cut * half / (np.maximum(d_cue, 2.0 * r) * d_ball)
-    # The speed of cue_speed and the action of shot_to_action.
-    a, e = table.deceleration, table.e_ball
-    v_ball = np.sqrt(ARRIVAL_SPEED**2 + 2.0 * a * np.where(valid, travel, 0.0))
-    v_contact = v_ball / ((1.0 + e) / 2.0 * np.cos(cut))
-    speed = np.sqrt(v_contact**2 + 2.0 * a * d_cue)
-    angle = np.arctan2(d[..., 1], d[..., 0])
-    param, representable = _aim_parameter(spec, angle, base[:, None], ref_dist[:, None])
-    valid &= representable
-    aim_lo, aim_hi = spec.aim_range
-    speed_lo, speed_hi = spec.speed_range
-    a0 = 2.0 * (param - aim_lo) / (aim_hi - aim_lo) - 1.0
-    a1 = 2.0 * (np.clip(speed, speed_lo, speed_hi) - speed_lo) / (speed_hi - speed_lo) - 1.0
-    if speed_hi <= speed_lo:
-        a1 = np.zeros_like(a1)
-    action = np.clip(np.stack([a0, a1], axis=-1).astype(np.float32), -1.0, 1.0)
+    ref = reference_balls(pos, on)  # the aim's reference: the features' target ball
+    shots = geo.ghost_shots(table, mouths, pos, on, ref[:, None])[:, 0]  # (B, K, NG)
+    speed = geo.cue_speeds(table, shots, ARRIVAL_SPEED)
+    actions, playable = encode_shots(spec.config, pos, on, shots[..., geo.ANGLE], speed)
+    valid = (shots[..., geo.VALID] > 0.0) & playable
+    action = actions.astype(np.float32).astype(np.float64)  # the env's action dtype
     diagonal = math.hypot(table.length, table.width)
     per_shot = np.stack(
         [
-            np.ones_like(cos_cut),
-            clear.astype(np.float64),
-            action[..., 0].astype(np.float64),
-            cos_cut,
-            d_cue / diagonal,
-            (d_ball + 2.0 * r) / diagonal,
-            np.where(has_normal, cos_a, 1.0),
-            action[..., 1].astype(np.float64),
+            np.ones(valid.shape),
+            shots[..., geo.CLEAR_PATH],
+            action[..., 0],
+            shots[..., geo.COS_CUT],
+            shots[..., geo.CUE_DIST] / diagonal,
+            (shots[..., geo.BALL_DIST] + 2.0 * table.ball_radius) / diagonal,
+            shots[..., geo.APPROACH],
+            action[..., 1],
         ],
         axis=-1,
     )  # (B, K, PER_SHOT)
-    order = np.argsort(np.where(valid, -tolerance, np.inf), axis=1, kind="stable")
+    order = np.argsort(np.where(valid, -shots[..., geo.TOLERANCE], np.inf), axis=1, kind="stable")
     per_shot = np.where(valid[..., None], per_shot, 0.0)
     out = np.take_along_axis(per_shot, order[..., None], axis=1)
     return np.clip(out, -1.0, 1.0).reshape(nb, -1).astype(np.float32)
-
-
-def _travel(mouths: PocketMouths, start: NDArray, u: NDArray) -> NDArray[np.float64]:
-    """:meth:`PocketMouths.travel` for ``(B, 2)`` starts and ``(B, K, 2)`` directions."""
-    if mouths.model == "jaws":
-        normal = mouths.drop_normals[None]  # (1, K, 2)
-        closing = -np.sum(u * normal, axis=-1)
-        height = np.sum((start[:, None] - mouths.drop_points[None]) * normal, axis=-1)
-        ok = (closing > 0.0) & (height >= 0.0)
-        return np.where(ok, height / np.where(ok, closing, 1.0), np.inf)
-    w = start[:, None] - mouths.capture[None, :, :2]
-    b = np.sum(w * u, axis=-1)
-    c = np.sum(w * w, axis=-1) - mouths.capture[None, :, 2] ** 2
-    disc = b * b - c
-    root = np.sqrt(np.maximum(disc, 0.0))
-    miss = (disc < 0.0) | (-b + root < 0.0)
-    return np.where(miss, np.inf, np.maximum(-b - root, 0.0))
-
-
-def _path_clear(
-    start: NDArray, end: NDArray, pos: NDArray, others: NDArray[np.bool_], reach: float
-) -> NDArray[np.bool_]:
-    """``agents.baselines.geometry.path_clear`` for ``(B, K, 2)`` segments, ``(B, N)`` balls."""
-    start, end = np.broadcast_arrays(start, end)
-    seg = end - start  # (B, K, 2)
-    length2 = np.sum(seg * seg, axis=-1)
-    rel = pos[:, None] - start[:, :, None]  # (B, K, N, 2)
-    proj = np.einsum("bknc,bkc->bkn", rel, seg)
-    safe = np.where(length2 > 0.0, length2, 1.0)[..., None]
-    t = np.where(length2[..., None] > 0.0, np.clip(proj / safe, 0.0, 1.0), 0.0)
-    closest = start[:, :, None] + t[..., None] * seg[:, :, None]
-    gap = np.hypot(*np.moveaxis(pos[:, None] - closest, -1, 0))
-    return np.all((gap > reach) | ~others[:, None], axis=-1)
-
-
-def _aim_parameter(
-    spec: EnvSpec, angle: NDArray, base: NDArray, dist: NDArray
-) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
-    """``agents.baselines.aiming.aim_parameter`` for arrays of directions: ``(param, ok)``."""
-    lo, hi = spec.aim_range
-    tol = 1e-9
-    if spec.aim == "absolute":
-        wrapped = np.remainder(angle + np.pi, 2.0 * np.pi) - np.pi
-        param = np.full(angle.shape, np.nan)
-        for k in (2.0, -2.0, 1.0, -1.0, 0.0):  # the first representative in range wins
-            p = wrapped + 2.0 * np.pi * k
-            param = np.where((p >= lo - tol) & (p <= hi + tol), p, param)
-        return param, np.isfinite(param)
-    delta = np.remainder(angle - base + np.pi, 2.0 * np.pi) - np.pi
-    if spec.aim == "relative":
-        param = delta
-        ok = np.ones(delta.shape, bool)
-    else:
-        ok = np.abs(delta) <= np.pi / 2.0
-        param = np.sin(delta) * dist / (2.0 * spec.table.ball_radius)
-    ok &= (param >= lo - tol) & (param <= hi + tol)
-    return param, ok

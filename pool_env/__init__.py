@@ -21,7 +21,13 @@ from pool_env.sim import Event, ShotResult, Table, shoot, simulate
 
 if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
     from pool_env.env import PoolEnv
-    from pool_env.game.codec import Shot, decode_action, encode_action
+    from pool_env.game.codec import (
+        Shot,
+        decode_action,
+        decode_observations,
+        encode_action,
+        encode_shots,
+    )
     from pool_env.game.config import (
         AIM_MODES,
         DEFAULT_AIM_RANGE,
@@ -44,7 +50,9 @@ _LAZY: dict[str, str] = {
     "SCENES": "pool_env.game.scenes",
     "Shot": "pool_env.game.codec",
     "decode_action": "pool_env.game.codec",
+    "decode_observations": "pool_env.game.codec",
     "encode_action": "pool_env.game.codec",
+    "encode_shots": "pool_env.game.codec",
     "check_layout": "pool_env.game.scenes",
     "decode_shots": "pool_env.game.kernels.actions",
     "encode_observations": "pool_env.game.kernels.observe",
@@ -69,9 +77,11 @@ __all__ = [
     "__version__",
     "check_layout",
     "decode_action",
+    "decode_observations",
     "decode_shots",
     "encode_action",
     "encode_observations",
+    "encode_shots",
     "free_spot",
     "nearest_object_ball",
     "onto_tip_circle",

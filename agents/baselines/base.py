@@ -18,34 +18,60 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env import Table, encode_observations
+from pool_env import GameConfig, Table, encode_observations
+from pool_env.game.codec import decode_observations
 
 Layout = tuple[NDArray[np.float64], NDArray[np.bool_]]
 
 
 @dataclass(frozen=True)
 class EnvSpec:
-    """The static facts of an environment that a planner needs.
+    """The static facts of an environment that a planner needs, read from its config.
+
+    The config is the decision process's own (:class:`pool_env.GameConfig`): its codec
+    encodes the planners' shots (:func:`pool_env.encode_shots`), and the properties below
+    read it.
 
     Attributes:
-        table: The table.
-        aim: Aim mode (``"cut"``, ``"relative"`` or ``"absolute"``).
-        aim_range: What action[0] = -1 and +1 map to.
-        speed_range: Speeds (m/s) that action[1] = -1 and +1 map to.
-        noise: Execution noise sigmas (rad, m/s, and on a spin env the tip's, in fractions
-            of ``R``) or ``None``.
-        n_balls: Balls in the layout, cue included.
-        tip_limit: On a spin env, the axis offset (fraction of ``R``) that the tip
-            components' +-1 map to; ``None`` on a roll env (no tip components).
+        config: The env's config.
     """
 
-    table: Table
-    aim: str
-    aim_range: tuple[float, float]
-    speed_range: tuple[float, float]
-    noise: tuple[float, ...] | None
-    n_balls: int
-    tip_limit: float | None = None
+    config: GameConfig
+
+    @property
+    def n_balls(self) -> int:
+        """Balls in the layout, cue included."""
+        return int(self.config.n_balls)
+
+    @property
+    def table(self) -> Table:
+        """The table."""
+        return self.config.table
+
+    @property
+    def aim(self) -> str:
+        """Aim mode (``"cut"``, ``"relative"`` or ``"absolute"``)."""
+        return str(self.config.aim)
+
+    @property
+    def aim_range(self) -> tuple[float, float]:
+        """What action[0] = -1 and +1 map to."""
+        return self.config.aim_range
+
+    @property
+    def speed_range(self) -> tuple[float, float]:
+        """Speeds (m/s) that action[1] = -1 and +1 map to."""
+        return self.config.speed_range
+
+    @property
+    def noise(self) -> tuple[float, ...] | None:
+        """Execution noise sigmas (rad, m/s, and on a spin env the tip's) or ``None``."""
+        return self.config.noise
+
+    @property
+    def tip_limit(self) -> float | None:
+        """The tip components' reach (fraction of ``R``); ``None`` on a roll env."""
+        return self.config.tip_limit
 
     @property
     def spin(self) -> bool:
@@ -59,40 +85,30 @@ def is_vec_env(env: Any) -> bool:
 
 
 def env_spec(env: Any) -> EnvSpec:
-    """Read the :class:`EnvSpec` of a (wrapped) ``PoolEnv`` or of an SB3 ``VecEnv`` of them."""
-    names = ("table", "aim", "aim_range", "speed_range", "noise", "n_object_balls", "config")
+    """Read the :class:`EnvSpec` of a (wrapped) ``PoolEnv`` or of an SB3 ``VecEnv`` of them.
+
+    Raises:
+        ValueError: If the env has no decision-process config (not a ``PoolEnv``).
+    """
     if is_vec_env(env):
-        values = [env.get_attr(name, indices=[0])[0] for name in names]
+        config = env.get_attr("config", indices=[0])[0]
     else:
-        unwrapped = env.unwrapped
-        values = [getattr(unwrapped, name, None) for name in names]
-    table, aim, aim_range, speed_range, noise, n_obj, config = values
-    tip_limit = getattr(config, "tip_limit", None)
-    return EnvSpec(
-        table=table,
-        aim=str(aim),
-        aim_range=(float(aim_range[0]), float(aim_range[1])),
-        speed_range=(float(speed_range[0]), float(speed_range[1])),
-        noise=None if noise is None else tuple(float(x) for x in noise),
-        n_balls=int(n_obj) + 1,
-        tip_limit=None if tip_limit is None else float(tip_limit),
-    )
+        config = getattr(env.unwrapped, "config", None)
+    if not isinstance(config, GameConfig):
+        raise ValueError(f"{env!r} is no PoolEnv: it has no GameConfig to plan with")
+    return EnvSpec(config=config)
 
 
 def decode_observation(obs: NDArray[np.floating], table: Table) -> Layout:
     """Invert :func:`pool_env.encode_observations` for one observation (float32 precision).
 
-    Balls that decode closer than ``2R`` (touching in the real layout) are pushed apart along
-    their line of centres, so that the simulator accepts the layout.
+    The env's inverse (:func:`pool_env.game.codec.decode_observations`); balls that decode
+    closer than ``2R`` (touching in the real layout) are then pushed apart along their line
+    of centres, so that the simulator accepts the layout.
     """
-    per_ball = np.asarray(obs, dtype=np.float64).reshape(-1, 3)
-    on_table = per_ball[:, 2] > 0.5
-    positions = np.empty((per_ball.shape[0], 2))
-    positions[:, 0] = (per_ball[:, 0] + 1.0) * table.length / 2.0
-    positions[:, 1] = (per_ball[:, 1] + 1.0) * table.width / 2.0
+    decoded, on = decode_observations(table, np.asarray(obs, dtype=np.float64)[None])
+    positions, on_table = decoded[0], on[0]
     r = table.ball_radius
-    positions[:, 0] = np.clip(positions[:, 0], r, table.length - r)
-    positions[:, 1] = np.clip(positions[:, 1], r, table.width - r)
     _separate(positions, on_table, 2.0 * r * (1.0 + 1e-9))
     return positions, on_table
 

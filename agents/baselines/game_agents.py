@@ -20,6 +20,8 @@ from agents.baselines.base import BaselineAgent
 from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
 from agents.baselines.search import SearchAgent, Shot
 from pool_env import ShotResult
+from pool_env.game.codec import encode_placement, encode_pocket
+from pool_env.game.geometry import points_free
 
 #: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
 #: straight-in shot from close enough to aim well, far enough to follow through.
@@ -121,7 +123,7 @@ class GameGhostBallAgent(BaselineAgent):
         pocket = 0.0
         called = self.last_plan.get("pocket", -1)
         if called is not None and called >= 0:
-            pocket = (called + 0.5) / table.n_pockets * 2.0 - 1.0
+            pocket = encode_pocket(self.config, called)
         return np.array([action[0], action[1], place[0], place[1], pocket, *action[2:]])
 
     def _choose(
@@ -135,13 +137,8 @@ class GameGhostBallAgent(BaselineAgent):
         return (-1 if shot is None else shot.pocket), action
 
     def _place_action(self, point: NDArray[np.float64], behind: bool) -> NDArray[np.float64]:
-        """The action components that place the cue ball on ``point`` (the kernels' map)."""
-        t = self.config.table
-        r = t.ball_radius
-        x_high = t.length / 4.0 if behind else t.length - r
-        u = 2.0 * (point[0] - r) / (x_high - r) - 1.0
-        v = 2.0 * (point[1] - r) / (t.width - 2 * r) - 1.0
-        return np.clip([u, v], -1.0, 1.0)
+        """The action components that place the cue ball on ``point`` (the env's codec)."""
+        return np.array(encode_placement(self.config, point, behind, clip=True))
 
     def _place(
         self,
@@ -153,8 +150,8 @@ class GameGhostBallAgent(BaselineAgent):
         """The best straight-in placement: ``(positions with the cue ball there, action)``."""
         t = self.config.table
         r = t.ball_radius
-        x_high = t.length / 4.0 if behind else t.length - r
         others = [j for j in range(1, on.shape[0]) if on[j]]
+        balls = positions[others]
         best, best_tol = positions[0].copy(), -1.0
         trial = positions.copy()
         for b in self._targets:
@@ -163,8 +160,9 @@ class GameGhostBallAgent(BaselineAgent):
                 u = d / max(float(np.hypot(*d)), 1e-12)
                 for dist in PLACE_DISTANCES:
                     point = positions[b] + (2.0 * r + dist) * u
-                    if not (r <= point[0] <= x_high and r <= point[1] <= t.width - r):
-                        continue
+                    if not points_free(t, point[None], balls, behind)[0]:
+                        continue  # the game's placement rule
+                    # The agent's own margins, wider than the rule's: no touching cue ball.
                     if any(np.hypot(*(positions[j] - point)) < 2.2 * r for j in others):
                         continue
                     if np.any(np.hypot(*(t.pockets[:, :2] - point).T) < t.pockets[:, 2] + r):

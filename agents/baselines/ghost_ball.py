@@ -59,6 +59,7 @@ from agents.baselines.spin_play import (
 )
 from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball, onto_tip_circle
+from pool_env.game.kernels.encode import to_unit
 
 #: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
 #: error of the deceleration model, soft enough that the cue ball stays out of the pockets.
@@ -179,7 +180,7 @@ class GhostBallAgent(BaselineAgent):
                 continue
             action = shot_to_action(shot.angle, speed, positions, aim_on, self.spec)
             if action is not None:
-                playable.append((shot, speed, self._with_tip(action, (0.0, 0.0))))
+                playable.append((shot, speed, action))
         # The easiest shot whose cue ball stays out of the pockets, else the easiest.
         for shot, speed, action in playable:
             played = max(speed, self.spec.speed_range[0])  # a softer shot is not available
@@ -224,10 +225,12 @@ class GhostBallAgent(BaselineAgent):
                     contact = plan_contact(table, self.mouths, shot, positions, tip, arrival)
                     if contact is None or not lo <= contact.speed <= top:
                         continue
-                    action = shot_to_action(contact.aim, contact.speed, positions, aim_on, spec)
+                    action = shot_to_action(
+                        contact.aim, contact.speed, positions, aim_on, spec, tip
+                    )
                     if action is None:
                         continue
-                    played = (shot, contact.speed, self._with_tip(action, tip))
+                    played = (shot, contact.speed, action)
                     if contact.path.pocket >= 0:
                         if scratch is None or shot.tolerance > scratch[0]:
                             scratch = (shot.tolerance, *played)
@@ -268,13 +271,13 @@ class GhostBallAgent(BaselineAgent):
                 speed = min(max(contact.speed, lo), top)
                 action = shot_to_action(contact.aim, speed, positions, aim_on, self.spec)
                 if action is not None:
-                    return shot, speed, self._with_tip(action, (0.0, 0.0))
+                    return shot, speed, action
         targets = self.legal_targets(positions, on_table)
         for pot in traced_pots(self.spec.table, self.mouths, positions, on_table, targets, top):
             action = shot_to_action(pot.aim, pot.speed, positions, aim_on, self.spec)
             if action is not None and pot.speed >= lo:
                 self.last_traced = pot
-                return None, pot.speed, self._with_tip(action, (0.0, 0.0))
+                return None, pot.speed, action
         return None, math.nan, None
 
     def _at_speed(
@@ -299,14 +302,6 @@ class GhostBallAgent(BaselineAgent):
                 high = mid
         return best
 
-    def _with_tip(self, action: NDArray[np.float32], tip: tuple[float, float]) -> NDArray:
-        """``action`` with the tip's two components appended on a spin env (as is on roll)."""
-        limit = self.spec.tip_limit
-        if limit is None:
-            return action
-        tip_part = np.clip(np.array(tip) / limit, -1.0, 1.0)
-        return np.concatenate([action, tip_part]).astype(np.float32)
-
     def _fallback(
         self,
         positions: NDArray[np.float64],
@@ -326,13 +321,10 @@ class GhostBallAgent(BaselineAgent):
             d = positions[j] - cue
             action = shot_to_action(math.atan2(d[1], d[0]), speed, positions, aim_on, self.spec)
             if action is not None:
-                return self._with_tip(action, (0.0, 0.0))
+                return action
         # A legal ball that cut or relative aim cannot reach: a full hit on their reference
         # ball (the nearest), which action[0] = "aim parameter 0" is in both modes.
-        aim_lo, aim_hi = self.spec.aim_range
-        zero = (
-            0.0
-            if aim_hi == aim_lo
-            else float(np.clip(-(aim_lo + aim_hi) / (aim_hi - aim_lo), -1, 1))
-        )
-        return self._with_tip(np.array([zero, 1.0], dtype=np.float32), (0.0, 0.0))
+        action = np.zeros(4 if self.spec.spin else 2, dtype=np.float32)  # centre ball
+        action[0] = min(max(to_unit(0.0, *self.spec.aim_range), -1.0), 1.0)
+        action[1] = 1.0
+        return action

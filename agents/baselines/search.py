@@ -44,6 +44,7 @@ from agents.baselines.geometry import (
 )
 from agents.baselines.spin_play import plan_contact
 from pool_env import ShotResult, onto_tip_circle, shoot
+from pool_env.game.kernels.actions import decode_tips
 
 #: A planned candidate: ``(angle, speed, tip, difficulty, pocket)``.
 Planned = tuple[float, float, tuple[float, float], float, int]
@@ -202,14 +203,11 @@ class SearchAgent(BaselineAgent):
     ) -> list[Shot]:
         """Representable shots, with the direction, speed and tip the env will execute."""
         kept, actions = [], []
-        limit = self.spec.tip_limit
         for angle, speed, tip, difficulty, pocket in planned:
-            action = shot_to_action(angle, speed, positions, on_table, self.spec)
+            action = shot_to_action(angle, speed, positions, on_table, self.spec, tip)
             if action is not None:
                 kept.append((difficulty, pocket))
-                if limit is not None:
-                    action = np.concatenate([action, np.clip(np.array(tip) / limit, -1, 1)])
-                actions.append(action.astype(np.float32))
+                actions.append(action)
         if not actions:
             return []
         acts = np.stack(actions)
@@ -230,7 +228,7 @@ class SearchAgent(BaselineAgent):
         limit = self.spec.tip_limit
         if limit is None:
             return [(0.0, 0.0)] * acts.shape[0]
-        return [onto_tip_circle(a, b, limit) for a, b in (acts[:, 2:4] * limit).tolist()]
+        return [(a, b) for a, b in decode_tips(acts, 2, limit).tolist()]  # the env's decoder
 
     def _outcome(
         self, sub: NDArray, angle: float, speed: float, tip: tuple[float, float] = (0.0, 0.0)

@@ -38,6 +38,7 @@ from agents.baselines.cue_path import (
 from agents.baselines.geometry import MAX_CUT, GhostShot, PocketMouths, ghost_shots, path_clear
 from agents.baselines.trace import Trace
 from pool_env import Table
+from pool_env.game.geometry import ghost_contact
 
 #: Vertical tip offsets tried, as fractions of the tip limit (+ follow, - draw).
 VERTICAL_TIPS = (0.0, 0.5, 1.0, -0.5, -1.0)
@@ -95,17 +96,12 @@ def plan_contact(
     u = (ball - np.array(shot.ghost)) / (2.0 * r)  # the object ball's path to the pocket
     v_object = launch_speed(table, 1.0, shot.travel, arrival)
     slip_ratio = 1.0 - 2.5 * tip[1] * contact_fraction(table)
-    lo = np.array([r, r]) - 1e-12
-    hi = np.array([table.length - r, table.width - r]) + 1e-12
     normal, scale = u.copy(), 1.0
     for _ in range(throw_rounds + 1):
-        ghost = ball - 2.0 * r * normal
-        if np.any(ghost < lo) or np.any(ghost > hi):
+        contact = ghost_contact(table, ball, normal, cue)
+        if contact is None:
             return None
-        to_ghost = ghost - cue
-        dist = float(np.hypot(*to_ghost))
-        heading = to_ghost / dist if dist > 1e-12 else normal
-        cos_cut = float(heading @ normal)
+        ghost, heading, dist, cos_cut = contact
         if cos_cut < math.cos(MAX_CUT):
             return None
         v_contact = scale * v_object / ((1.0 + table.e_ball) / 2.0 * cos_cut)

@@ -25,8 +25,19 @@ from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
 from pool_env.game.kernels.actions import nearest_object_ball, onto_tip_circle
+from pool_env.game.kernels.encode import (
+    AIM_AWAY,
+    AIM_NO_REFERENCE,
+    AIM_OUT_OF_RANGE,
+    aim_parameter,
+    tip_components,
+    to_unit,
+)
+from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
+from pool_env.game.kernels.encode import reference_balls as kernel_reference_balls
 from pool_env.game.rack import rack_option, rack_row
 from pool_env.game.state import GameState, new_state
+from pool_env.sim import Table
 
 _ONE = np.zeros(1, dtype=np.intp)
 
@@ -130,51 +141,139 @@ def decode_action(
 
 def _component(name: str, value: float, low: float, high: float, clip: bool) -> float:
     """``value`` in ``[low, high]`` as an action component in ``[-1, 1]``."""
-    if high == low:
-        c = 0.0
-        if value != low and not clip:
-            raise ValueError(f"{name} {value!r} is not {low!r}, the only value of its range")
-    else:
-        c = 2.0 * (value - low) / (high - low) - 1.0
+    if high == low and value != low and not clip:
+        raise ValueError(f"{name} {value!r} is not {low!r}, the only value of its range")
+    c = to_unit(value, low, high)
     if not -1.0 - 1e-12 <= c <= 1.0 + 1e-12 and not clip:
         raise ValueError(f"{name} {value!r} lies outside its range [{low!r}, {high!r}]")
     return min(max(c, -1.0), 1.0)
-
-
-def _wrap(angle: float) -> float:
-    """``angle`` in ``[-pi, pi)``."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
 def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> float:
     """The aim component that plays the direction ``angle`` (radians from +x)."""
     params = config.params
     mode, (low, high) = int(params[kp.AIM_MODE]), config.aim_range
-    if mode == 0:  # absolute: the turn of the angle that lies in the range, if one does
-        param = low + (angle - low) % (2.0 * math.pi)
-        if param > high:
-            if not clip:
-                raise ValueError(f"angle {angle!r} lies outside aim_range {config.aim_range}")
-            param = high if param - high < low + 2.0 * math.pi - param else low
-        return _component("angle", param, low, high, clip)
     targets = state.on_table[0].copy()
     if config.rules:
         row = state.rack[0]
         wpa.legal_targets(int(params[kp.GAME]), row, state.on_table[0], row[wpa.SHOOTER], targets)
     j, dist, base = nearest_object_ball(state.positions[0], targets, 0)
-    offset = _wrap(angle - base)
-    if mode == 1:
-        return _component("angle (relative aim)", offset, low, high, clip)
-    if j < 0:  # no reference ball: every cut aims along +x
-        return 0.0
-    if abs(offset) > 0.5 * math.pi and not clip:
+    param, status = aim_parameter(mode, low, high, params[kp.RADIUS], angle, j, dist, base, 0.0)
+    if mode == 0 and status == AIM_OUT_OF_RANGE:
+        if not clip:
+            raise ValueError(f"angle {angle!r} lies outside aim_range {config.aim_range}")
+        param = high if param - high < low + 2.0 * math.pi - param else low
+    if status == AIM_NO_REFERENCE:
+        return 0.0  # no reference ball: every cut aims along +x
+    if status == AIM_AWAY and not clip:
         raise ValueError(
             f"angle {angle!r} turns more than 90 degrees from the reference ball {j}: cut "
             "aim cannot play it (use aim='absolute', or clip=True)"
         )
-    offset = max(-0.5 * math.pi, min(0.5 * math.pi, offset))
-    cut = math.sin(offset) * dist / (2.0 * params[kp.RADIUS])
-    return _component("cut", cut, low, high, clip)
+    name = ("angle", "angle (relative aim)", "cut")[mode]
+    return _component(name, param, low, high, clip)
+
+
+def encode_shots(
+    config: GameConfig,
+    positions: ArrayLike,
+    refer: ArrayLike,
+    angles: ArrayLike,
+    speeds: ArrayLike,
+    tips: ArrayLike | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """The aim, speed (and tip) components of many shots on many layouts: one compiled call.
+
+    What :func:`encode_action` writes for the shot's own parts, for every candidate shot of
+    a planner or an observation feature, marking rather than refusing what it cannot play.
+    (Under rules the cue ball's placement and the called pocket are not parts of the shot:
+    :func:`encode_action` writes them.)
+
+    Args:
+        config: The env's config (its aim mode, aim and speed ranges, ball radius, tip limit).
+        positions: ``(B, N, 2)`` ball centres, cue first.
+        refer: ``(B, N)`` the balls the aim may refer to: those on the table (under rules,
+            the legal first contacts).
+        angles: ``(B, M)`` shot directions (radians from +x).
+        speeds: ``(B, M)`` cue speeds (m/s); clipped to the speed range.
+        tips: ``(B, M, 2)`` cue tip offsets ``(side, vertical)`` in fractions of R, within
+            the tip limit (spin tables; default centre ball).
+
+    Returns:
+        ``(actions, playable)``: ``(B, M, 2)`` float64 components ``(aim, speed)`` in
+        ``[-1, 1]``, ``(B, M, 4)`` with ``(side, vertical)`` on a spin table, and ``(B, M)``
+        whether the aim mode can play each direction (1e-9 rad of slack at the ends).
+
+    Raises:
+        ValueError: On shapes that do not fit together, a tip on a roll table, or a tip
+            beyond the tip limit.
+    """
+    pos = np.ascontiguousarray(positions, dtype=np.float64)
+    ref = np.ascontiguousarray(refer, dtype=np.bool_)
+    ang = np.ascontiguousarray(angles, dtype=np.float64)
+    spd = np.ascontiguousarray(speeds, dtype=np.float64)
+    if pos.ndim != 3 or pos.shape[2] != 2 or ref.shape != pos.shape[:2]:
+        raise ValueError(f"positions (B, N, 2) and refer (B, N), got {pos.shape}, {ref.shape}")
+    if ang.ndim != 2 or ang.shape[0] != pos.shape[0] or spd.shape != ang.shape:
+        raise ValueError(f"angles and speeds must be ({pos.shape[0]}, M), got {ang.shape}")
+    tip = np.zeros((*ang.shape, 2)) if tips is None else np.array(tips, dtype=np.float64)
+    if tip.shape != (*ang.shape, 2):
+        raise ValueError(f"tips must be {(*ang.shape, 2)}, got {tip.shape}")
+    limit = 0.0 if config.tip_limit is None else float(config.tip_limit)
+    if limit == 0.0 and tip.any():
+        raise ValueError("tips need a spin table: a roll table has no tip")
+    if limit and (np.hypot(tip[..., 0], tip[..., 1]) > limit * (1.0 + 1e-12)).any():
+        raise ValueError(f"tips must lie within the tip limit {limit!r} (miscue)")
+    params = config.params
+    return kernel_encode_shots(
+        int(params[kp.AIM_MODE]), *config.aim_range, *config.speed_range,
+        float(params[kp.RADIUS]), limit, pos, ref, ang, spd, tip,
+    )  # fmt: skip
+
+
+def decode_observations(
+    table: Table, observations: ArrayLike
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """The layouts that ``(B, 3 N)`` observations show: the inverse of the env's encoding.
+
+    :func:`pool_env.encode_observations` scales each centre onto ``[-1, 1]`` in float32
+    (~0.1 um); this scales it back and keeps it where a centre can be (``R`` from the
+    rails), so that a decoded layout is a function of the observation alone. Balls that
+    decode touching are left touching.
+
+    Args:
+        table: The env's table (its size and ball radius).
+        observations: ``(B, 3 N)`` observations (or their first ``3 N`` columns).
+
+    Returns:
+        ``(positions, on_table)``: ``(B, N, 2)`` float64 centres and ``(B, N)`` flags.
+    """
+    obs = np.asarray(observations, dtype=np.float64)
+    if obs.ndim != 2 or obs.shape[1] % 3:
+        raise ValueError(f"observations must be (B, 3 N), got shape {obs.shape}")
+    per_ball = obs.reshape(obs.shape[0], -1, 3)
+    r = table.ball_radius
+    positions = np.empty(per_ball.shape[:2] + (2,))
+    for axis, size in enumerate((table.length, table.width)):
+        positions[..., axis] = np.clip((per_ball[..., axis] + 1.0) * size / 2.0, r, size - r)
+    return positions, per_ball[..., 2] > 0.5
+
+
+def reference_balls(positions: ArrayLike, refer: ArrayLike) -> NDArray[np.int64]:
+    """The ball that relative and cut aim refer to in each of ``B`` layouts (-1: none).
+
+    The nearest ball to the cue ball (ball 0) among ``refer`` (``(B, N)``; the balls on
+    the table, or under rules the legal first contacts), ties to the lower index: what
+    :func:`decode_action` and :func:`encode_action` aim from.
+
+    Raises:
+        ValueError: On shapes that do not fit together.
+    """
+    pos = np.ascontiguousarray(positions, dtype=np.float64)
+    ref = np.ascontiguousarray(refer, dtype=np.bool_)
+    if pos.ndim != 3 or pos.shape[2] != 2 or ref.shape != pos.shape[:2]:
+        raise ValueError(f"positions (B, N, 2) and refer (B, N), got {pos.shape}, {ref.shape}")
+    return kernel_reference_balls(pos, ref)
 
 
 def encode_action(
@@ -209,26 +308,57 @@ def encode_action(
             pocket that does not exist; or a malformed layout or rack.
     """
     state = _table(config, positions, on_table, rack)
-    params, out = config.params, np.zeros(config.action_size)
+    out = np.zeros(config.action_size)
     _tip(config, shot.tip, out, clip)
     speeds = config.speed_range
     if config.rules:
         row = state.rack[0]
         if row[wpa.IN_HAND] and shot.cue is not None:
-            x, y = (float(v) for v in shot.cue)
-            x_high = params[kp.HEAD_X] if row[wpa.BEHIND] else params[kp.X_HIGH]
-            out[2] = _component("cue x", x, params[kp.X_LOW], x_high, clip)
-            out[3] = _component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip)
-            state.positions[0, 0] = x, y  # the aim refers from where the cue ball will be
-        n_pockets = config.table.n_pockets
-        if not 0 <= shot.pocket < n_pockets:
-            raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {shot.pocket!r}")
-        out[4] = (2.0 * shot.pocket + 1.0) / n_pockets - 1.0  # the middle of its bin
+            out[2], out[3] = encode_placement(config, shot.cue, bool(row[wpa.BEHIND]), clip)
+            state.positions[0, 0] = shot.cue  # the aim refers from where the cue ball will be
+        out[4] = encode_pocket(config, shot.pocket)
         if row[wpa.BREAKING]:
             speeds = config.break_speed_range
     out[0] = _aim(config, state, float(shot.angle), clip)
     out[1] = _component("speed", float(shot.speed), *speeds, clip)
     return out
+
+
+def encode_placement(
+    config: GameConfig, cue: ArrayLike, behind: bool = False, clip: bool = False
+) -> tuple[float, float]:
+    """The action components (``action[2]``, ``action[3]``) that place the cue ball in hand.
+
+    Args:
+        config: A rules env's config.
+        cue: ``(x, y)`` where the cue ball should go (m).
+        behind: Ball in hand behind the head string (the kitchen, ``x <= L / 4``).
+        clip: Map a point outside the placement box onto its edge instead of raising.
+
+    Raises:
+        ValueError: On a solitaire config, or a point outside the box (without ``clip``).
+    """
+    if not config.rules:
+        raise ValueError("the cue ball is placed in hand under rules (game='nine' or 'eight')")
+    params = config.params
+    x, y = (float(v) for v in np.asarray(cue, dtype=np.float64).reshape(2))
+    x_high = params[kp.HEAD_X] if behind else params[kp.X_HIGH]
+    return (
+        _component("cue x", x, params[kp.X_LOW], x_high, clip),
+        _component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip),
+    )
+
+
+def encode_pocket(config: GameConfig, pocket: int) -> float:
+    """The action component (``action[4]``) that calls ``pocket``: the middle of its bin.
+
+    Raises:
+        ValueError: If the table has no pocket ``pocket``.
+    """
+    n_pockets = config.table.n_pockets
+    if not 0 <= pocket < n_pockets:
+        raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {pocket!r}")
+    return (2.0 * pocket + 1.0) / n_pockets - 1.0
 
 
 def _tip(
@@ -247,4 +377,4 @@ def _tip(
             raise ValueError(f"tip {tip!r} lies beyond the tip limit {limit!r} (miscue)")
         a, b = onto_tip_circle(a, b, limit)  # the decoder's own rule
     side, vertical = config.tip_columns
-    out[side], out[vertical] = min(max(a / limit, -1.0), 1.0), min(max(b / limit, -1.0), 1.0)
+    out[side], out[vertical] = tip_components(a, b, limit)

@@ -81,6 +81,8 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.kernels.spin_zeno",
     "pool_env.sim.kernels.timeline",
     "pool_env.game.kernels.actions",
+    "pool_env.game.kernels.encode",
+    "pool_env.game.kernels.geometry",
     "pool_env.game.kernels.layout",
     "pool_env.game.kernels.observe",
     "pool_env.game.kernels.params",
