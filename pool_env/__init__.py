@@ -34,8 +34,9 @@ if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
         DEFAULT_SPEED_RANGE,
         GameConfig,
     )
-    from pool_env.game.kernels.actions import decode_shots, nearest_object_ball, onto_tip_circle
+    from pool_env.game.kernels.actions import decode_shots, nearest_object_ball
     from pool_env.game.kernels.observe import encode_observations
+    from pool_env.game.kernels.tips import onto_tip_circle
     from pool_env.game.scenes import SCENES, check_layout, free_spot
     from pool_env.vector import PoolVectorEnv
 
@@ -58,7 +59,7 @@ _LAZY: dict[str, str] = {
     "encode_observations": "pool_env.game.kernels.observe",
     "free_spot": "pool_env.game.scenes",
     "nearest_object_ball": "pool_env.game.kernels.actions",
-    "onto_tip_circle": "pool_env.game.kernels.actions",
+    "onto_tip_circle": "pool_env.game.kernels.tips",
 }
 
 __all__ = [

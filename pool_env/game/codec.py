@@ -24,7 +24,7 @@ from pool_env.game.checks import check_actions
 from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
-from pool_env.game.kernels.actions import nearest_object_ball, onto_tip_circle
+from pool_env.game.kernels.actions import nearest_object_ball
 from pool_env.game.kernels.encode import (
     AIM_AWAY,
     AIM_NO_REFERENCE,
@@ -35,6 +35,7 @@ from pool_env.game.kernels.encode import (
 )
 from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
 from pool_env.game.kernels.encode import reference_balls as kernel_reference_balls
+from pool_env.game.kernels.tips import onto_tip_circle
 from pool_env.game.rack import rack_option, rack_row
 from pool_env.game.state import GameState, new_state
 from pool_env.sim import Table

@@ -87,6 +87,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.game.kernels.observe",
     "pool_env.game.kernels.params",
     "pool_env.game.kernels.rng",
+    "pool_env.game.kernels.tips",
     "pool_env.game.kernels.wpa",
     "pool_env.game.rules",
 )

@@ -6,8 +6,9 @@ Each kernel works on a batch (a leading dimension over tables), so that the sing
 On a spin table (``params[SPIN]``) the action's last two components are the cue tip's axis
 offset ``(a, b)`` (side, vertical), each ``c * tip_limit`` for ``c`` in ``[-1, 1]`` and
 scaled back onto the circle of radius ``tip_limit`` when outside it (the miscue limit,
-:func:`decode_tips`); the strike is :func:`pool_env.sim.kernels.spin_strike.cue_strike`
-(velocity with squirt, and spin). Tip noise draws after the angle and speed draws.
+:mod:`pool_env.game.kernels.tips`); the strike is
+:func:`pool_env.sim.kernels.spin_strike.cue_strike` (velocity with squirt, and spin). Tip
+noise draws after the angle and speed draws.
 """
 
 from __future__ import annotations
@@ -44,6 +45,7 @@ from pool_env.game.kernels.params import (
     Y_LOW,
 )
 from pool_env.game.kernels.rng import standard_normal
+from pool_env.game.kernels.tips import decode_tips, onto_tip_circle
 from pool_env.game.kernels.wpa import BEHIND, BREAKING, IN_HAND, SHOOTER, legal_targets
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.spin_strike import cue_strike
@@ -75,53 +77,6 @@ def decode_actions(actions, aim_low, aim_high, speed_low, speed_high):
         aims[k] = aim_low + u * (aim_high - aim_low)
         speeds[k] = speed_low + v * (speed_high - speed_low)
     return aims, speeds
-
-
-@kernel
-def onto_tip_circle(a, b, limit):
-    """The tip the spin env executes: ``(a, b)`` scaled back onto the miscue circle.
-
-    The one copy of the rule, used by the decoder, :func:`pool_env.encode_action` and the
-    baselines (``pool_env.onto_tip_circle``).
-
-    Args:
-        a: Side offset of the cue's axis, fraction of R.
-        b: Vertical offset, fraction of R.
-        limit: The tip limit (radius of the circle, fraction of R).
-
-    Returns:
-        ``(a, b)`` unchanged inside the circle, else the same direction at distance ``limit``.
-    """
-    h = math.sqrt(a * a + b * b)  # not hypot: libm's and Python's may differ in the last bit
-    if h > limit:
-        scale = limit / h
-        return a * scale, b * scale
-    return a, b
-
-
-@kernel
-def decode_tips(actions, column, limit):
-    """The cue tip's axis offsets of actions: ``actions[:, column:column + 2]``.
-
-    Each component is clipped to ``[-1, 1]`` and mapped linearly onto ``[-limit, limit]``
-    (fractions of R); an offset outside the circle of radius ``limit`` is scaled back
-    onto it (:func:`onto_tip_circle`).
-
-    Args:
-        actions: ``(B, W)`` actions.
-        column: The side component's column (the vertical one follows it).
-        limit: The tip limit (``params[TIP_LIMIT]``).
-
-    Returns:
-        ``(B, 2)`` float64 ``(a, b)``: side (+ right english) and vertical (+ follow).
-    """
-    b = actions.shape[0]
-    tips = np.empty((b, 2))
-    for k in range(b):
-        a_raw = min(max(float(actions[k, column]), -1.0), 1.0) * limit
-        b_raw = min(max(float(actions[k, column + 1]), -1.0), 1.0) * limit
-        tips[k, 0], tips[k, 1] = onto_tip_circle(a_raw, b_raw, limit)
-    return tips
 
 
 @kernel

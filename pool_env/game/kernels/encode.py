@@ -82,7 +82,7 @@ def aim_parameter(mode, low, high, radius, angle, ref, dist, base, tol):
 def tip_components(side, vertical, limit):
     """The action components of a tip inside the miscue circle: each offset over ``limit``.
 
-    The inverse of :func:`~pool_env.game.kernels.actions.decode_tips` there (clipped to
+    The inverse of :func:`~pool_env.game.kernels.tips.decode_tips` there (clipped to
     ``[-1, 1]``; a tip beyond the circle is the caller's to refuse or move onto it).
     """
     return min(max(side / limit, -1.0), 1.0), min(max(vertical / limit, -1.0), 1.0)
