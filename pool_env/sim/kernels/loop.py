@@ -425,9 +425,9 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
 def packed_shot(positions, velocities, masses, params, pockets, max_events, record):
     """Validate and simulate one shot in a single call, for Python: the lean path.
 
-    The whole result comes back in two flat arrays, laid out by
+    The whole result comes back in one flat buffer, laid out by
     :func:`~pool_env.sim.kernels.packing.pack_shot` (the roll level has no tails);
-    :class:`~pool_env.sim.result.ShotResult` takes them over and reads its fields from them
+    :class:`~pool_env.sim.result.ShotResult` takes it over and reads its fields from it
     as views.
 
     Args:
@@ -435,9 +435,10 @@ def packed_shot(positions, velocities, masses, params, pockets, max_events, reco
             :func:`_shoot` (``record`` a bool).
 
     Returns:
-        ``(code, i, j, floats, ints, n_events, n_segments, first_i, first_j, capped,
+        ``(code, i, j, buffer, n_floats, n_events, n_segments, first_i, first_j, capped,
         duration)``: the validation code (``OK``, or the problem with balls ``i``, ``j``
-        and then nothing is simulated and the arrays are empty), the packed arrays, the
+        and then nothing is simulated and the buffer is empty), the packed buffer and the
+        length of its float part, the
         event count (the log holds them all if ``record``, none otherwise), the logged
         segments, the shot's first ball-ball impact (-1 if none), whether the event cap
         was reached and the duration (s).
@@ -449,5 +450,5 @@ def packed_shot(positions, velocities, masses, params, pockets, max_events, reco
         positions, velocities, masses, params, pockets, max_events, record
     )
     n_log = n_ev if record else 0
-    floats, ints, _, _ = pack_shot(st, balls, events, n_log, segments, n_seg, 0, 0)
-    return OK, -1, -1, floats, ints, n_ev, n_seg, first_i, first_j, capped, now
+    buffer, _, n_floats, _, _ = pack_shot(st, balls, events, n_log, segments, n_seg, 0, 0)
+    return OK, -1, -1, buffer, n_floats, n_ev, n_seg, first_i, first_j, capped, now

@@ -335,7 +335,7 @@ def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_e
         positions, velocities, angular, masses, prm, pockets, max_events, record
     )
     n_log = n_ev if record else 0
-    floats, ints, f, k = pack_shot(
+    floats, ints, n_floats, f, k = pack_shot(
         st, balls, events, n_log, segments, n_seg, SPIN_TAIL_FLOATS, SPIN_TAIL_INTS
     )
     for i in range(positions.shape[0]):
@@ -344,7 +344,7 @@ def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_e
         floats[f + 3 * i + 1] = wy
         floats[f + 3 * i + 2] = wz
         ints[k + i] = ms[i]
-    return OK, -1, -1, floats, ints, n_ev, n_seg, first_i, first_j, capped, now
+    return OK, -1, -1, floats, n_floats, n_ev, n_seg, first_i, first_j, capped, now
 
 
 @kernel
