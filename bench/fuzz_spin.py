@@ -23,6 +23,13 @@ Spin draws (each documented range of :class:`pool_env.Table`, its edges included
 * several balls moving: random angular velocities for each (zero, natural roll, pure side
   spin about ``z``, or random with a surface speed up to twice the ball's speed, rarely up
   to the speed limit).
+
+Every draw is a shot the simulator accepts: where a draw's energy, spin included, could
+speed a ball past the limits (:func:`~pool_env.sim.spin_inputs.reachable_spin_speed`
+against :func:`~pool_env.sim.inputs.max_speed`), or a ball's surface speed ``R |w|`` passes
+``MAX_SPEED`` (a near-vertical cue), one factor scales its speeds and spins down to 0.999
+of the bound (:func:`admitted`), keeping their directions and ratios; the random stream
+is the same, so the scenes are the ones drawn before the scaling.
 """
 
 from __future__ import annotations
@@ -34,7 +41,9 @@ import numpy as np
 
 from pool_env import Table, shoot, simulate
 from pool_env.sim.inputs import max_speed
+from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.result import ShotResult
+from pool_env.sim.spin_inputs import reachable_spin_speed, strike
 
 DEFAULT = Table()
 
@@ -118,6 +127,26 @@ def random_angular(rng: np.random.Generator, table: Table, velocities: np.ndarra
     return w
 
 
+def admitted(
+    table: Table, velocities: np.ndarray, angular: np.ndarray, masses: np.ndarray | None
+) -> float:
+    """The factor (at most 1) that brings a spin scene's speeds and spins within the limits.
+
+    Both bounds are linear in one common factor: the energy bound
+    (:func:`~pool_env.sim.spin_inputs.reachable_spin_speed`) below 0.999 of
+    :func:`~pool_env.sim.inputs.max_speed`, and every surface speed ``R |w|`` below 0.999 of
+    ``MAX_SPEED``.
+    """
+    reach = reachable_spin_speed(table, velocities, angular, masses)
+    surface = table.ball_radius * float(np.max(np.linalg.norm(angular, axis=1), initial=0.0))
+    factor = 1.0
+    if reach > 0.999 * max_speed(table):
+        factor = 0.999 * max_speed(table) / reach
+    if surface > 0.999 * MAX_SPEED:
+        factor = min(factor, 0.999 * MAX_SPEED / surface)
+    return factor
+
+
 def spin_shot(
     rng: np.random.Generator,
     table: Table,
@@ -133,12 +162,18 @@ def spin_shot(
         angle = float(np.arctan2(v[1], v[0]))
         tip = _random_tip(rng, table)
         elevation = _random_elevation(rng)
+        struck_v, struck_w = np.zeros_like(velocities), np.zeros((velocities.shape[0], 3))
+        # The strike's velocity and spin are linear in the speed: scale the speed.
+        struck_v[0], struck_w[0] = strike(table, speed, angle, tip[0], tip[1], elevation)
+        speed *= admitted(table, struck_v, struck_w, masses)
 
         def struck() -> ShotResult:
             return shoot(table, positions, angle, speed, 0, masses, tip=tip, elevation=elevation)
 
         return struck
     angular = random_angular(rng, table, velocities)
+    factor = admitted(table, velocities, angular, masses)
+    velocities, angular = velocities * factor, angular * factor
 
     def rolled() -> ShotResult:
         return simulate(table, positions, velocities, masses, angular_velocities=angular)

@@ -79,6 +79,31 @@ def time_ours(
     return out
 
 
+def time_roll(shots: list[SpinShot], repeats: int) -> list[tuple[float, float, int]]:
+    """:func:`time_ours` for the roll level on the same shots (no tip, no elevation).
+
+    ``Table(pockets="none")`` with the spin table's dimensions (the defaults): the cue
+    ball leaves at the shot's speed and aim, rolling; the roll level has no spin, so the
+    shot differs from the spin level's after the strike (its own events are counted).
+    """
+    from pool_env import Table, shoot
+
+    table = Table(pockets="none")
+    for s in shots:
+        shoot(table, s.positions, s.angle, s.speed, record=False)  # warm up
+    out = []
+    for s in shots:
+        wall, cpu = [], []
+        for _ in range(repeats):
+            t0, c0 = time.perf_counter(), time.thread_time()
+            shoot(table, s.positions, s.angle, s.speed, record=False)
+            wall.append(time.perf_counter() - t0)
+            cpu.append(time.thread_time() - c0)
+        n_events = shoot(table, s.positions, s.angle, s.speed).n_events
+        out.append((float(np.median(wall)), float(np.median(cpu)), n_events))
+    return out
+
+
 def stats(diffs: list[float]) -> dict[str, float]:
     """Median, 95th percentile, max and the count within the target of per-shot differences."""
     d = np.asarray(diffs, dtype=np.float64)
@@ -207,6 +232,7 @@ def time_mode(shots_n: int, breaks_n: int, repeats: int) -> None:
     scenes = [worker_scene(table, s) for s in [*shots, *breaks]]
     have_ours = pool_env_spin()
     mine = time_ours(table, [*shots, *breaks], 2 * repeats + 1) if have_ours else []
+    roll = time_roll([*shots, *breaks], 2 * repeats + 1)
     load = os.getloadavg()[0]
     out = run_pooltool(scenes, repeats=repeats, max_events=20000, timeout=300.0)
     if not out.get("available"):
@@ -233,6 +259,18 @@ def time_mode(shots_n: int, breaks_n: int, repeats: int) -> None:
             tail = "n/a | n/a | n/a | n/a | n/a |"
         print(f"| {name} | {len(p)} | {pw * 1e3:.2f} ms | {pc * 1e3:.2f} ms | "
               f"{pe * 1e6:.1f} us | {tail}")  # fmt: skip
+    print("\nThe roll level on the same scenes (same positions, aim and speed; no spin):")
+    print("| suite | roll wall | roll CPU | roll events | roll per event | spin per event |")
+    print("|---|---:|---:|---:|---:|---:|")
+    for name, part in (("two-ball shots", slice(0, n)), ("9-ball breaks", slice(n, None))):
+        r = np.array(roll[part], dtype=float)
+        spin_event = "n/a"
+        if have_ours:
+            o = np.array(mine[part], dtype=float)
+            spin_event = f"{np.median(o[:, 0] / np.maximum(o[:, 2], 1)) * 1e6:.2f} us"
+        roll_event = np.median(r[:, 0] / np.maximum(r[:, 2], 1)) * 1e6
+        print(f"| {name} | {np.median(r[:, 0]) * 1e6:.1f} us | {np.median(r[:, 1]) * 1e6:.1f} us "
+              f"| {np.median(r[:, 2]):.1f} | {roll_event:.2f} us | {spin_event} |")  # fmt: skip
     if not have_ours:
         print("pool_env has no spin level in this tree: only pooltool was timed.")
 

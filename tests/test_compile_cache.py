@@ -114,14 +114,14 @@ HEAL = """
 import hashlib, warnings
 warnings.simplefilter("always")
 from pool_env import Table, shoot
-from pool_env.sim.kernels import loop, timeline
+from pool_env.sim.kernels import loop, timeline, validation
 from pool_env.sim.layouts import break_scene
 from pool_env.sim.simulate import check_layout
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
-check_layout(t, break_scene(t, "nine"))  # loop.validate, from Python (shoot: packed_shot)
+check_layout(t, break_scene(t, "nine"))  # validation.validate, from Python (shoot: packed_shot)
 print(hashlib.sha256(r.positions.tobytes() + r.positions_at(0.1).tobytes()).hexdigest())
-for k in (loop.packed_shot, loop.validate, timeline.positions_at):
+for k in (loop.packed_shot, validation.validate, timeline.positions_at):
     print(k.__name__, sum(k.stats.cache_hits.values()), sum(k.stats.cache_misses.values()))
 """
 
@@ -163,7 +163,7 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
         return path
 
     only("loop.packed_shot-*.nbi").write_bytes(b"")  # a process killed mid-write
-    index = only("loop.validate-*.nbi")
+    index = only("validation.validate-*.nbi")
     index.write_bytes(index.read_bytes()[: index.stat().st_size // 2])  # a full disk
     only("timeline.positions_at-*.nbc").write_bytes(b"\x80\x05garbage" * 64)
     digest, stats, err = _heal_run(env)

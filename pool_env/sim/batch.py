@@ -26,8 +26,8 @@ from pool_env.sim.inputs import (
     raise_invalid,
 )
 from pool_env.sim.kernels import batch as _batch
-from pool_env.sim.kernels import loop
 from pool_env.sim.kernels import spin_batch as _spin_batch
+from pool_env.sim.kernels import validation
 from pool_env.sim.spin_inputs import raise_spin_invalid
 from pool_env.sim.table import Table
 
@@ -135,7 +135,7 @@ def simulate_batch(
         run = _batch.run_batch_parallel if parallel else _batch.run_batch
         out = run(pos, vel, mass, on, table.params, table.pocket_geometry, max_events)
     error = out.error
-    bad = np.flatnonzero(error[:, 0] != loop.OK)
+    bad = np.flatnonzero(error[:, 0] != validation.OK)
     if bad.size:
         b = int(bad[0])
         code, i, j = (int(v) for v in error[b])

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.sim.kernels import limits, loop
+from pool_env.sim.kernels import limits, validation
 from pool_env.sim.scalars import real_number
 from pool_env.sim.table import Table
 
@@ -208,10 +208,10 @@ def raise_invalid(
     velocities: NDArray[np.float64],
     masses: NDArray[np.float64],
 ) -> None:
-    """Raise the ``ValueError`` for validation code ``code`` of ``loop.validate``.
+    """Raise the ``ValueError`` for validation code ``code`` of ``validation.validate``.
 
     Args:
-        code: The code (``loop.OK`` raises nothing).
+        code: The code (``validation.OK`` raises nothing).
         i: The ball the code names.
         j: The other ball (overlaps) or the pocket (``IN_POCKET``, ``IN_JAW``, ``BEHIND_LINE``).
         table: The table.
@@ -219,45 +219,45 @@ def raise_invalid(
         velocities: The validated velocities.
         masses: The validated masses (empty for the table's ball mass).
     """
-    if code == loop.BAD_POSITION:
+    if code == validation.BAD_POSITION:
         raise ValueError(f"ball {i} has a non-finite position {positions[i].tolist()}")
-    if code == loop.BAD_VELOCITY:
+    if code == validation.BAD_VELOCITY:
         raise ValueError(f"ball {i} has a non-finite velocity")
-    if code == loop.TOO_FAST:
+    if code == validation.TOO_FAST:
         speed = float(np.hypot(*velocities[i]))
         raise ValueError(f"ball {i} has speed {speed!r} m/s, beyond {speed_limits(table)}")
-    if code == loop.TOO_ENERGETIC:
+    if code == validation.TOO_ENERGETIC:
         reach = reachable_speed(velocities, masses if masses.shape[0] else None)
         raise ValueError(
             f"the scene's kinetic energy could speed ball {i} (the lightest) up to "
             f"{reach!r} m/s through impacts (sqrt(sum m v^2 / m_{i})), beyond "
             f"{speed_limits(table)}; slow the balls down or bring the masses closer"
         )
-    if code == loop.BAD_MASS:
+    if code == validation.BAD_MASS:
         raise ValueError(
             f"ball {i} has mass {float(masses[i])!r}: masses must be finite and lie in "
             f"[{limits.MIN_MASS:g}, {limits.MAX_MASS:g}] kg (the simulator's numeric limits)"
         )
-    if code == loop.OFF_TABLE:
+    if code == validation.OFF_TABLE:
         r = table.ball_radius
         throats = " or in a pocket's throat" if table.pocket_model == "jaws" else ""
         raise ValueError(
             f"ball {i} at {positions[i].tolist()} is off the table: centres must lie in "
             f"[{r}, {table.length - r}] x [{r}, {table.width - r}]{throats}"
         )
-    if code == loop.IN_JAW:
+    if code == validation.IN_JAW:
         raise ValueError(
             f"ball {i} at {positions[i].tolist()} is inside a jaw (facing or point) of pocket {j}"
         )
-    if code == loop.BEHIND_LINE:
+    if code == validation.BEHIND_LINE:
         raise ValueError(
             f"ball {i} at {positions[i].tolist()} is on or behind pocket {j}'s fall line"
         )
-    if code == loop.IN_POCKET:
+    if code == validation.IN_POCKET:
         raise ValueError(
             f"ball {i} at {positions[i].tolist()} is inside pocket {j}'s capture circle"
         )
-    if code == loop.OVERLAP:
+    if code == validation.OVERLAP:
         d = float(np.hypot(*(positions[j] - positions[i])))
         raise ValueError(
             f"balls {i} and {j} overlap: centres {d:.12g} m apart, less than 2R = "

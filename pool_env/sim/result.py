@@ -47,9 +47,9 @@ class Event:
 class ShotResult:
     """The outcome of :func:`pool_env.simulate`: final state, events, exact trajectories.
 
-    The compiled loop hands back two flat arrays
-    (:func:`~pool_env.sim.kernels.packing.pack_shot`); the result owns them, and every array
-    attribute below is a view into them made on access (a shot costs only the fields that
+    The compiled loop hands back one flat buffer
+    (:func:`~pool_env.sim.kernels.packing.pack_shot`); the result owns it, and every array
+    attribute below is a view into it made on access (a shot costs only the fields that
     are read).
 
     Attributes:
@@ -81,7 +81,8 @@ class ShotResult:
     __slots__ = (
         "_deceleration",
         "_floats",
-        "_ints",
+        "_int_part",
+        "_n_floats",
         "_n_logged",
         "_n_segments",
         "duration",
@@ -104,8 +105,10 @@ class ShotResult:
             deceleration: The table's rolling deceleration (for :meth:`positions_at`).
             recorded: Whether the events and segments were logged.
         """
-        _, _, _, floats, ints, n_events, n_segments, first_i, first_j, capped, duration = raw
-        self._floats, self._ints = floats, ints
+        _, _, _, buffer, n_floats, n_events, n_segments, first_i, first_j, capped, duration = raw
+        self._floats = buffer  # the float readers index the buffer from its start
+        self._n_floats = n_floats
+        self._int_part: NDArray[np.int64] | None = None  # made on the first int read
         self.n_balls = n_balls
         self.n_events = n_events
         self._n_logged = n_events if recorded else 0
@@ -115,6 +118,14 @@ class ShotResult:
         self.duration = duration
         self._deceleration = deceleration
         self.recorded = recorded
+
+    @property
+    def _ints(self) -> NDArray[np.int64]:
+        """The buffer's int64 part (a view, made once)."""
+        ints = self._int_part
+        if ints is None:
+            ints = self._int_part = packing.int_view(self._floats, self._n_floats)
+        return ints
 
     def _ball_row(self, row: int) -> NDArray[np.int64]:
         return packing.ball_row(self._ints, self.n_balls, row)

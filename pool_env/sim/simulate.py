@@ -19,7 +19,7 @@ from pool_env.sim.inputs import (
     check_table,
     raise_invalid,
 )
-from pool_env.sim.kernels import loop
+from pool_env.sim.kernels import loop, validation
 from pool_env.sim.result import ShotResult
 from pool_env.sim.spin_inputs import as_angular, check_tip, run_spin, run_spin_strike
 from pool_env.sim.table import Table
@@ -111,7 +111,7 @@ def _run(
     raw = loop.packed_shot(
         pos, vel, mass, table.params, table.pocket_geometry, max_events, record
     )  # one compiled call: validation, the loop and the result, in two arrays
-    if raw[0] != loop.OK:
+    if raw[0] != validation.OK:
         raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
     return ShotResult(raw, pos.shape[0], table.deceleration, record)
 
@@ -201,7 +201,7 @@ def check_layout(table: Table, positions: ArrayLike) -> NDArray[np.float64]:
     table = check_table(table)
     pos = np.array(as_points("positions", positions))
     vel, mass = np.zeros_like(pos), as_masses(None, pos.shape[0])
-    code, i, j = loop.validate(pos, vel, mass, table.params, table.pocket_geometry)
-    if code != loop.OK:
+    code, i, j = validation.validate(pos, vel, mass, table.params, table.pocket_geometry)
+    if code != validation.OK:
         raise_invalid(code, i, j, table, pos, vel, mass)
     return pos

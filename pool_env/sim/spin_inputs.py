@@ -37,6 +37,12 @@ def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, floa
     """
     if tip is _NO_TIP and type(elevation) is float and elevation == 0.0:
         return 0.0, 0.0, 0.0  # the default, fast
+    if type(tip) is tuple and len(tip) == 2 and table.model == "spin":  # floats in range, fast
+        a, b = tip
+        if isinstance(a, float) and isinstance(b, float) and isinstance(elevation, float):
+            a, b, elev = float(a), float(b), float(elevation)  # NaN fails every test below
+            if -1.0 <= a <= 1.0 and -1.0 <= b <= 1.0 and 0.0 <= elev < 0.5 * math.pi:
+                return a, b, elev
     try:
         a_raw, b_raw = tip  # type: ignore[misc]
     except (TypeError, ValueError):

@@ -6,10 +6,7 @@ length, y along the width. A ball centre lives in ``[R, L - R] x [R, W - R]``.
 
 from __future__ import annotations
 
-import math
-from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -41,6 +38,7 @@ from pool_env.sim.kernels.spin_params import (
     S_SPIN_DECEL,
     S_TIP_RADIUS,
 )
+from pool_env.sim.pocket_spec import parse_pockets, standard_pockets
 from pool_env.sim.pockets import (
     CORNER_MOUTH,
     SIDE_MOUTH,
@@ -48,7 +46,6 @@ from pool_env.sim.pockets import (
     PocketJaws,
     kernel_rows,
     rail_segments,
-    regulation_jaws,
 )
 from pool_env.sim.scalars import positive, real_number, within
 
@@ -61,53 +58,6 @@ SPIN_FRICTION_RATIO = 0.444
 #: Cushion nose height as a fraction of the ball diameter (WPA equipment specifications:
 #: 63.5% of the ball's height, 62.5-64.5%); pooltool 0.6.0 uses 0.64 x 2R.
 NOSE_HEIGHT_FRACTION = 0.635
-
-PocketSpec = (
-    Literal["jaws", "standard", "circles", "none"]
-    | JawSpec
-    | Sequence[Sequence[float]]
-    | NDArray[np.float64]
-)
-
-
-def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray[np.float64]:
-    """Capture circles of a regulation 6-pocket table (the cheap pocket model).
-
-    The rails run the full length, so a pocket is a capture circle that catches a ball whose
-    centre reaches the rail line (``R`` from the cushion nose) inside the pocket mouth:
-
-    * Corner pockets: the cushion noses are cut at 45 degrees, so a mouth of width ``w``
-      ends ``w / sqrt(2)`` from the corner along each rail. The circle is centred on the
-      corner of the nose rectangle with radius ``sqrt(R^2 + (w / sqrt(2))^2)``: a ball
-      rolling along a rail (centre at ``R`` from the nose) is captured exactly when it
-      reaches the mouth.
-    * Side pockets: centred at the middle of each long rail, ``R`` behind the nose line
-      (where a dropping ball sits), with radius ``sqrt((2R)^2 + (w / 2)^2)`` so that again a
-      ball along the rail is captured exactly inside the mouth of width ``w``.
-
-    Args:
-        length: Table length ``L`` (m).
-        width: Table width ``W`` (m).
-        ball_radius: Ball radius ``R`` (m).
-
-    Returns:
-        A ``(6, 3)`` array of ``(x, y, radius)``, ordered: bottom-left, bottom-middle,
-        bottom-right, top-left, top-middle, top-right.
-    """
-    r = ball_radius
-    corner_r = math.hypot(r, CORNER_MOUTH / math.sqrt(2.0))
-    side_r = math.hypot(2.0 * r, SIDE_MOUTH / 2.0)
-    return np.array(
-        [
-            (0.0, 0.0, corner_r),
-            (length / 2.0, -r, side_r),
-            (length, 0.0, corner_r),
-            (0.0, width, corner_r),
-            (length / 2.0, width + r, side_r),
-            (length, width, corner_r),
-        ],
-        dtype=np.float64,
-    )
 
 
 def _non_negative(name: str, value: object) -> float:
@@ -262,7 +212,9 @@ class Table:
                 f"a {self.length} x {self.width} m table cannot hold a ball of radius "
                 f"{self.ball_radius} m"
             )
-        model, pockets, jaws = self._parse_pockets(self.pockets)
+        model, pockets, jaws = parse_pockets(
+            self.pockets, self.length, self.width, self.ball_radius
+        )
         pockets.setflags(write=False)
         setter(self, "pockets", pockets)
         setter(self, "pocket_model", model)
@@ -337,43 +289,6 @@ class Table:
         spin[S_END_MASS] = self.cue_end_mass
         spin.setflags(write=False)
         setter(self, "spin_params", spin)
-
-    def _parse_pockets(
-        self, spec: object
-    ) -> tuple[str, NDArray[np.float64], tuple[PocketJaws, ...]]:
-        circles = standard_pockets(self.length, self.width, self.ball_radius)
-        if isinstance(spec, JawSpec):
-            return "jaws", circles, regulation_jaws(self.length, self.width, self.ball_radius, spec)
-        if isinstance(spec, str):
-            if spec in ("jaws", "standard"):
-                jaws = regulation_jaws(self.length, self.width, self.ball_radius, JawSpec())
-                return "jaws", circles, jaws
-            if spec == "circles":
-                return "circles", circles, ()
-            if spec == "none":
-                return "none", np.zeros((0, 3), dtype=np.float64), ()
-            raise ValueError(
-                f"unknown pocket specification {spec!r}: use 'jaws', 'circles', 'none', a "
-                "JawSpec or a sequence of (x, y, radius)"
-            )
-        try:
-            arr = np.array(spec, dtype=np.float64)
-        except (TypeError, ValueError) as exc:
-            raise ValueError(f"pockets must be a sequence of (x, y, radius): {exc}") from None
-        if arr.size == 0:
-            return "none", np.zeros((0, 3), dtype=np.float64), ()
-        if arr.ndim != 2 or arr.shape[1] != 3:
-            raise ValueError(f"pockets must have shape (K, 3) of (x, y, radius), got {arr.shape}")
-        if not np.all(np.isfinite(arr)):
-            raise ValueError("pocket coordinates and radii must be finite")
-        if np.abs(arr).max() > limits.MAX_LENGTH:
-            raise ValueError(
-                f"pocket coordinates and radii must lie within {limits.MAX_LENGTH:g} m (the "
-                "simulator's numeric limits, see README 'Numeric limits')"
-            )
-        if np.any(arr[:, 2] <= 0.0):
-            raise ValueError("every pocket radius must be positive")
-        return "circles", np.ascontiguousarray(arr), ()
 
     @property
     def deceleration(self) -> float:

@@ -165,7 +165,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "tie-kind-order",
         "ties",
-        K + "loop.py",
+        K + "sequence.py",
         "        return kind < bkind",
         # Ball (1) and cushion (2) swap ranks in the total order; the codes stay.
         "        return (kind ^ 3 if 0 < kind < 3 else kind) < "
@@ -176,7 +176,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "tie-jaw-before-ball",
         "ties",
-        K + "loop.py",
+        K + "sequence.py",
         "        return kind < bkind",
         # Jaw (4) and point (5) contacts rank before pocket (0) and ball (1) at a tie.
         "        return (kind - 6 if kind > 3 else kind) < (bkind - 6 if bkind > 3 else bkind)",
@@ -186,7 +186,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "tie-id-order",
         "ties",
-        K + "loop.py",
+        K + "sequence.py",
         "        return i < bi",
         "        return i > bi",
         SIM,
@@ -242,7 +242,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "tally-rail-before-contact",
         "rules",
-        K + "loop.py",
+        K + "sequence.py",
         "        if first_i >= 0:  # a jaw facing or point is a cushion for the rules\n",
         "        if True:\n",
         OUTCOME,
@@ -251,7 +251,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "tally-first-hit-overwritten",
         "rules",
-        K + "loop.py",
+        K + "sequence.py",
         "        if balls[BALL_FIRST_HIT, j] < 0:\n            balls[BALL_FIRST_HIT, j] = i",
         "        if True:\n            balls[BALL_FIRST_HIT, j] = i",
         OUTCOME,
@@ -260,7 +260,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "tally-pocket-order",
         "rules",
-        K + "loop.py",
+        K + "sequence.py",
         "            if balls[BALL_POCKET, k] >= 0:",
         "            if balls[BALL_POCKET, k] > 0:",
         OUTCOME,

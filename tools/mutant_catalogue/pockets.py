@@ -9,7 +9,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "pocket-corner-mouth",
         "pockets",
-        "pool_env/sim/table.py",
+        "pool_env/sim/pocket_spec.py",
         "corner_r = math.hypot(r, CORNER_MOUTH / math.sqrt(2.0))",
         "corner_r = math.hypot(r, CORNER_MOUTH / 2.0)",
         POCKETS,
@@ -18,7 +18,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "pocket-side-centre",
         "pockets",
-        "pool_env/sim/table.py",
+        "pool_env/sim/pocket_spec.py",
         "(length / 2.0, -r, side_r)",
         "(length / 2.0, 0.0, side_r)",
         POCKETS,

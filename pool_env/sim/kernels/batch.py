@@ -11,7 +11,7 @@ import numpy as np
 from numba import prange
 
 from pool_env.sim.jit import kernel, parallel_kernel
-from pool_env.sim.kernels.loop import BEHIND_LINE, IN_JAW, IN_POCKET, OK, _shoot, validate
+from pool_env.sim.kernels.loop import _shoot
 from pool_env.sim.kernels.packing import (
     BatchOutput,
     allocate_batch,
@@ -19,6 +19,7 @@ from pool_env.sim.kernels.packing import (
     store_error,
     store_table,
 )
+from pool_env.sim.kernels.validation import BEHIND_LINE, IN_JAW, IN_POCKET, OK, validate
 
 
 @kernel

@@ -7,7 +7,8 @@ every prediction valid (the pair predictions already include each ball's rest ph
 
 Simultaneous events are taken in the fixed total order (time, kind, first id, second id)
 with kinds ordered pocket < ball < cushion < stop < jaw < point, which makes reruns
-bit-for-bit identical.
+bit-for-bit identical (:mod:`~pool_env.sim.kernels.sequence`, shared with the spin loop, as
+is the scene validation of :mod:`~pool_env.sim.kernels.validation`).
 A touching rack hit by the cue ball is therefore resolved as a deterministic sequence of
 pairwise impacts at the same instant, each re-predicting the balls it changed: the
 sequential-impulse rule. With three or more balls in contact, momentum and restitution do
@@ -24,18 +25,13 @@ from collections import namedtuple
 
 import numpy as np
 
-from pool_env.sim.jit import inline_kernel, kernel
+from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import (
     JAW_COLS,
-    LOC_CIRCLE,
-    LOC_FALL,
-    LOC_FREE,
     jaw_impact,
-    locate,
     unpress_lump,
 )
-from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, NO_EVENT, POCKET, POINT, STOP
-from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, reachable_speed2, speed_allowed
+from pool_env.sim.kernels.kinds import CUSHION, JAW, POCKET, POINT, STOP
 from pool_env.sim.kernels.motion import (
     MOVING,
     NCOL,
@@ -56,8 +52,8 @@ from pool_env.sim.kernels.packing import (
     invalid_shot,
     pack_shot,
 )
-from pool_env.sim.kernels.params import P_DECEL, P_MASS, P_RADIUS
-from pool_env.sim.kernels.predict import EV_ARG, EV_KIND, EV_T, predict_own, predict_pair
+from pool_env.sim.kernels.params import P_DECEL, P_MASS
+from pool_env.sim.kernels.predict import predict_own, predict_pair
 from pool_env.sim.kernels.record import (
     grown_event_log,
     grown_segment_log,
@@ -78,14 +74,8 @@ from pool_env.sim.kernels.resolve import (
     stick_cluster,
 )
 from pool_env.sim.kernels.roots import INF
-
-# Tolerance of input validation: rounding in a rack or a position read back from a result
-# may leave a ball a hair over a rail or another ball.
-POS_TOL = 1e-9
-
-# Validation codes.
-OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAST = range(8)
-IN_JAW, BEHIND_LINE, TOO_ENERGETIC = 8, 9, 10
+from pool_env.sim.kernels.sequence import next_event, tally
+from pool_env.sim.kernels.validation import OK, validate
 
 #: What :func:`run_shot` returns, by name.
 #:
@@ -125,81 +115,6 @@ ShotOutput = namedtuple(
 
 
 @kernel
-def validate(positions, velocities, masses, params, pockets):
-    """Check a scene; return ``(code, i, j)`` naming the first problem (``OK`` if none)."""
-    radius = params[P_RADIUS]
-    n = positions.shape[0]
-    for i in range(n):
-        if not (np.isfinite(positions[i, 0]) and np.isfinite(positions[i, 1])):
-            return BAD_POSITION, i, -1
-        if not (np.isfinite(velocities[i, 0]) and np.isfinite(velocities[i, 1])):
-            return BAD_VELOCITY, i, -1
-        speed2 = velocities[i, 0] * velocities[i, 0] + velocities[i, 1] * velocities[i, 1]
-        if not speed_allowed(speed2, params[P_DECEL]):
-            return TOO_FAST, i, -1
-        if masses.shape[0] and not (MIN_MASS <= masses[i] <= MAX_MASS):  # also NaN
-            return BAD_MASS, i, -1
-    reach2, lightest = reachable_speed2(velocities, masses)  # speeds impacts can produce
-    if not speed_allowed(reach2, params[P_DECEL]):
-        return TOO_ENERGETIC, lightest, -1
-    for i in range(n):
-        where, k = locate(positions[i, 0], positions[i, 1], params, pockets, POS_TOL)
-        if where != LOC_FREE:
-            if where == LOC_CIRCLE:
-                return IN_POCKET, i, k
-            if where == LOC_FALL:
-                return BEHIND_LINE, i, k
-            if k >= 0:
-                return IN_JAW, i, k
-            return OFF_TABLE, i, -1
-    min_d2 = (2.0 * radius - POS_TOL) ** 2
-    for i in range(n):
-        for j in range(i + 1, n):
-            dx = positions[j, 0] - positions[i, 0]
-            dy = positions[j, 1] - positions[i, 1]
-            if dx * dx + dy * dy < min_d2:
-                return OVERLAP, i, j
-    return OK, -1, -1
-
-
-@kernel
-def _earlier(t, kind, i, j, bt, bkind, bi, bj):
-    """The total order of events: (time, kind, first id, second id)."""
-    if t != bt:
-        return t < bt
-    if kind != bkind:
-        return kind < bkind
-    if i != bi:
-        return i < bi
-    return j < bj
-
-
-@inline_kernel
-def next_event(own, pair):
-    """The next event ``(t, kind, i, j)`` in the total order; ``t = INF`` if none is left.
-
-    ``own`` holds each ball's own next event (columns ``EV_T``, ``EV_KIND``, ``EV_ARG``),
-    ``pair`` the impact time of each pair ``i < j`` (upper triangle). Both levels' loops
-    select with this.
-    """
-    n = own.shape[0]
-    bt, bkind, bi, bj = INF, NO_EVENT, n, n
-    for i in range(n):
-        t = own[i, EV_T]
-        if t < INF:
-            kind = int(own[i, EV_KIND])
-            arg = int(own[i, EV_ARG])
-            if _earlier(t, kind, i, arg, bt, bkind, bi, bj):
-                bt, bkind, bi, bj = t, kind, i, arg
-    for i in range(n):
-        for j in range(i + 1, n):
-            t = pair[i, j]
-            if t < INF and _earlier(t, BALL, i, j, bt, bkind, bi, bj):
-                bt, bkind, bi, bj = t, BALL, i, j
-    return bt, bkind, bi, bj
-
-
-@kernel
 def _repredict_pairs(st, status, k, now, params, own, caps, pair):
     n = st.shape[0]
     for j in range(n):
@@ -207,33 +122,6 @@ def _repredict_pairs(st, status, k, now, params, own, caps, pair):
             continue
         lo, hi = (k, j) if k < j else (j, k)
         pair[lo, hi] = predict_pair(st, status, lo, hi, now, params, own, caps)
-
-
-@inline_kernel
-def _tally(kind, i, j, balls, first_i, first_j):
-    """Update what the rules read from a shot with event ``(kind, i, j)``.
-
-    ``balls`` holds the per-ball rows (``BALL_POCKET``, ...); ``(first_i, first_j)`` is the
-    shot's first ball-ball impact so far (-1 before it), returned updated.
-    """
-    if kind == POCKET:
-        order = 0
-        for k in range(balls.shape[1]):
-            if balls[BALL_POCKET, k] >= 0:
-                order += 1
-        balls[BALL_POCKET, i] = j
-        balls[BALL_POCKET_ORDER, i] = order
-    elif kind == CUSHION or kind == JAW or kind == POINT:  # noqa: SIM109 (numba)
-        if first_i >= 0:  # a jaw facing or point is a cushion for the rules
-            balls[BALL_CUSHIONS, i] += 1
-    elif kind == BALL:
-        if first_i < 0:
-            first_i, first_j = i, j
-        if balls[BALL_FIRST_HIT, i] < 0:
-            balls[BALL_FIRST_HIT, i] = j
-        if balls[BALL_FIRST_HIT, j] < 0:
-            balls[BALL_FIRST_HIT, j] = i
-    return first_i, first_j
 
 
 @kernel
@@ -318,7 +206,7 @@ def _shoot(positions, velocities, masses, params, pockets, max_events, record):
                 events = grown_event_log(events)
             log_event(events, n_ev, now, bkind, bi, bj, n_seg)
         n_ev += 1
-        first_i, first_j = _tally(bkind, bi, bj, balls, first_i, first_j)
+        first_i, first_j = tally(bkind, bi, bj, balls, first_i, first_j)
 
         n_changed = 0
         if bkind == STOP:
@@ -425,9 +313,9 @@ def run_shot(positions, velocities, masses, params, pockets, max_events, record)
 def packed_shot(positions, velocities, masses, params, pockets, max_events, record):
     """Validate and simulate one shot in a single call, for Python: the lean path.
 
-    The whole result comes back in two flat arrays, laid out by
+    The whole result comes back in one flat buffer, laid out by
     :func:`~pool_env.sim.kernels.packing.pack_shot` (the roll level has no tails);
-    :class:`~pool_env.sim.result.ShotResult` takes them over and reads its fields from them
+    :class:`~pool_env.sim.result.ShotResult` takes it over and reads its fields from it
     as views.
 
     Args:
@@ -435,9 +323,10 @@ def packed_shot(positions, velocities, masses, params, pockets, max_events, reco
             :func:`_shoot` (``record`` a bool).
 
     Returns:
-        ``(code, i, j, floats, ints, n_events, n_segments, first_i, first_j, capped,
+        ``(code, i, j, buffer, n_floats, n_events, n_segments, first_i, first_j, capped,
         duration)``: the validation code (``OK``, or the problem with balls ``i``, ``j``
-        and then nothing is simulated and the arrays are empty), the packed arrays, the
+        and then nothing is simulated and the buffer is empty), the packed buffer and the
+        length of its float part, the
         event count (the log holds them all if ``record``, none otherwise), the logged
         segments, the shot's first ball-ball impact (-1 if none), whether the event cap
         was reached and the duration (s).
@@ -449,5 +338,5 @@ def packed_shot(positions, velocities, masses, params, pockets, max_events, reco
         positions, velocities, masses, params, pockets, max_events, record
     )
     n_log = n_ev if record else 0
-    floats, ints, _, _ = pack_shot(st, balls, events, n_log, segments, n_seg, 0, 0)
-    return OK, -1, -1, floats, ints, n_ev, n_seg, first_i, first_j, capped, now
+    buffer, _, n_floats, _, _ = pack_shot(st, balls, events, n_log, segments, n_seg, 0, 0)
+    return OK, -1, -1, buffer, n_floats, n_ev, n_seg, first_i, first_j, capped, now

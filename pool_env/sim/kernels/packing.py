@@ -1,20 +1,22 @@
 """The packed result layout of both levels: one place packs a shot, one reads it back.
 
-Every array handed back to Python costs a Python object (about 0.3 us each, and a named
-tuple about a microsecond more), so a single shot comes back in two flat arrays, block
-after block, for ``N`` balls, ``E`` logged events, ``S`` logged segments of ``W`` columns
-(``E = S = 0`` unless recorded; ``W`` is 4 on the roll level, ``x, y, vx, vy``, and 9 on
-the spin level, ``x, y, vx, vy, wx, wy, wz, ax, ay``):
+Every array handed back to Python costs a Python object (about 0.4 us each, and a named
+tuple about a microsecond more), so a single shot comes back in one flat float64 buffer:
+its first ``n_floats`` values are the float blocks, and the rest, read as int64 (the same
+bytes, :func:`int_view`), the int blocks. For ``N`` balls, ``E`` logged events, ``S``
+logged segments of ``W`` columns (``E = S = 0`` unless recorded; ``W`` is 4 on the roll
+level, ``x, y, vx, vy``, and 9 on the spin level, ``x, y, vx, vy, wx, wy, wz, ax, ay``):
 
-* ``floats``: final positions ``(N, 2)``; event times ``(E,)``; segment times ``(S,)``;
-  segment states ``(S, W)``; then the level's tail (the spin level: final angular
-  velocities ``(N, 3)``).
-* ``ints``: the per-ball rows ``(N_BALL_ROWS, N)``; the event rows ``(4, E)`` (kind code
-  of :mod:`~pool_env.sim.kernels.kinds`, ``i``, ``j``, first segment row); the segment
-  rows ``(2, S)`` (ball, 1 if potted there); then the level's tail (the spin level: final
-  motion states ``(N,)``).
+* ``floats`` (the buffer's start): final positions ``(N, 2)``; event times ``(E,)``;
+  segment times ``(S,)``; segment states ``(S, W)``; then the level's tail (the spin
+  level: final angular velocities ``(N, 3)``).
+* ``ints`` (the rest): the per-ball rows ``(N_BALL_ROWS, N)``; the event rows ``(4, E)``
+  (kind code of :mod:`~pool_env.sim.kernels.kinds`, ``i``, ``j``, first segment row); the
+  segment rows ``(2, S)`` (ball, 1 if potted there); then the level's tail (the spin level:
+  final motion states ``(N,)``).
 
-A batch of ``B`` tables keeps the same per-ball rows, one array per row
+The float readers index the buffer from its start, so the buffer itself serves as
+``floats``. A batch of ``B`` tables keeps the same per-ball rows, one array per row
 (:data:`BatchOutput`), written by :func:`store_table` from the same loop outputs that
 :func:`pack_shot` packs. The readers of the flat arrays (:func:`ball_row`, ...,
 :func:`tail_starts`) follow the packer here, so the layout lives in this module alone.
@@ -43,14 +45,12 @@ SPIN_TAIL_FLOATS, SPIN_TAIL_INTS = 3, 1
 @kernel
 def invalid_shot(code, i, j):
     """The packed result of a scene that failed validation: nothing simulated."""
-    empty_f = np.empty(0, dtype=np.float64)
-    empty_i = np.empty(0, dtype=np.int64)
-    return code, i, j, empty_f, empty_i, 0, 0, -1, -1, False, 0.0
+    return code, i, j, np.empty(0, dtype=np.float64), 0, 0, 0, -1, -1, False, 0.0
 
 
 @kernel
 def pack_shot(st, balls, events, n_log, segments, n_seg, tail_floats, tail_ints):
-    """Pack a shot's outputs into the two flat arrays of the module docstring.
+    """Pack a shot's outputs into the one flat buffer of the module docstring.
 
     Args:
         st: ``(N, C)`` final ball anchors (columns 0 and 1 are ``x, y`` on both levels).
@@ -63,14 +63,16 @@ def pack_shot(st, balls, events, n_log, segments, n_seg, tail_floats, tail_ints)
             ``floats`` and ``ints`` (0 on the roll level).
 
     Returns:
-        ``(floats, ints, f_tail, k_tail)``: the arrays and where their tails start.
+        ``(buffer, ints, n_floats, f_tail, k_tail)``: the buffer (its start is ``floats``),
+        its int64 part as a view, the length of its float part, and where the tails start
+        in ``floats`` and ``ints``.
     """
     n = st.shape[0]
     w = segments.state.shape[1]
-    floats = np.empty(2 * n + n_log + (1 + w) * n_seg + tail_floats * n, dtype=np.float64)
-    ints = np.empty(
-        N_BALL_ROWS * n + N_EVENT_ROWS * n_log + 2 * n_seg + tail_ints * n, dtype=np.int64
-    )
+    n_floats = 2 * n + n_log + (1 + w) * n_seg + tail_floats * n
+    n_ints = N_BALL_ROWS * n + N_EVENT_ROWS * n_log + 2 * n_seg + tail_ints * n
+    floats = np.empty(n_floats + n_ints, dtype=np.float64)
+    ints = floats[n_floats:].view(np.int64)  # the same bytes: one array for Python
     for i in range(n):  # positions (N, 2), then the per-ball rows (N_BALL_ROWS, N)
         floats[2 * i] = st[i, 0]
         floats[2 * i + 1] = st[i, 1]
@@ -90,11 +92,16 @@ def pack_shot(st, balls, events, n_log, segments, n_seg, tail_floats, tail_ints)
             floats[f + n_seg + w * r + c] = segments.state[r, c]
         ints[k + r] = segments.ball[r]
         ints[k + n_seg + r] = segments.potted[r]
-    return floats, ints, f + (1 + w) * n_seg, k + 2 * n_seg
+    return floats, ints, n_floats, f + (1 + w) * n_seg, k + 2 * n_seg
 
 
 # The readers of pack_shot's arrays: plain Python (a result reads its fields from Python,
 # where a compiled call or a fresh object per read would cost more than the slicing).
+
+
+def int_view(buffer: np.ndarray, n_floats: int) -> np.ndarray:
+    """The int64 part of a packed buffer whose float part holds ``n_floats`` values, a view."""
+    return buffer[n_floats:].view(np.int64)
 
 
 def ball_row(ints: np.ndarray, n: int, row: int) -> np.ndarray:

@@ -13,7 +13,6 @@ import numpy as np
 from numba import prange
 
 from pool_env.sim.jit import kernel, parallel_kernel
-from pool_env.sim.kernels.loop import BEHIND_LINE, IN_JAW, IN_POCKET, OK
 from pool_env.sim.kernels.packing import (
     BatchOutput,
     allocate_batch,
@@ -22,6 +21,7 @@ from pool_env.sim.kernels.packing import (
     store_table,
 )
 from pool_env.sim.kernels.spin_loop import shoot_spin, validate_spin_scene
+from pool_env.sim.kernels.validation import BEHIND_LINE, IN_JAW, IN_POCKET, OK
 
 
 @kernel

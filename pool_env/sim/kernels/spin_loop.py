@@ -29,7 +29,6 @@ from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import jaw_normal
 from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, POCKET, POINT, SLIDE_ROLL
 from pool_env.sim.kernels.limits import MAX_SPEED, reachable_speed2_spin, speed_allowed
-from pool_env.sim.kernels.loop import OK, TOO_ENERGETIC, _tally, next_event, validate
 from pool_env.sim.kernels.packing import (
     BALL_CUSHIONS,
     BALL_STOPPED,
@@ -60,6 +59,7 @@ from pool_env.sim.kernels.resolve import (
     ZENO_WINDOW,
 )
 from pool_env.sim.kernels.roots import INF
+from pool_env.sim.kernels.sequence import next_event, tally
 from pool_env.sim.kernels.spin_collide import ball_ball_spin
 from pool_env.sim.kernels.spin_cushion import cushion_han
 from pool_env.sim.kernels.spin_params import (
@@ -94,6 +94,7 @@ from pool_env.sim.kernels.spin_state import (
 )
 from pool_env.sim.kernels.spin_strike import cue_strike
 from pool_env.sim.kernels.spin_zeno import RAIL_NX, RAIL_NY, pressed_roll, stick, wedged_ball
+from pool_env.sim.kernels.validation import OK, TOO_ENERGETIC, validate
 
 #: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
 SEG_COLS = 9
@@ -210,7 +211,7 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
                 events = grown_event_log(events)
             log_event(events, n_ev, now, bkind, bi, bj, n_seg)
         n_ev += 1
-        first_i, first_j = _tally(bkind, bi, bj, balls, first_i, first_j)
+        first_i, first_j = tally(bkind, bi, bj, balls, first_i, first_j)
         changed[0] = bi
         n_changed = 1
         if bkind == BALL:
@@ -279,7 +280,7 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
     return st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
 
 
-#: Validation codes of the spin level, after the roll level's last (``loop.TOO_ENERGETIC``),
+#: Validation codes of the spin level, after the roll level's last (``validation.TOO_ENERGETIC``),
 #: so one code never means two things: a non-finite angular velocity, a surface speed
 #: ``R |w|`` beyond ``MAX_SPEED``.
 BAD_SPIN, SPIN_TOO_FAST = TOO_ENERGETIC + 1, TOO_ENERGETIC + 2
@@ -303,7 +304,7 @@ def validate_spins(angular, radius):
 def validate_spin_scene(positions, velocities, angular, masses, prm, pockets):
     """Check a spin scene; return ``(code, i, j)`` naming the first problem (``OK`` if none).
 
-    :func:`~pool_env.sim.kernels.loop.validate`, then :func:`validate_spins`, then the
+    :func:`~pool_env.sim.kernels.validation.validate`, then :func:`validate_spins`, then the
     energy limit with the spin's energy counted
     (:func:`~pool_env.sim.kernels.limits.reachable_speed2_spin`: ``TOO_ENERGETIC``).
     """
@@ -335,7 +336,7 @@ def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_e
         positions, velocities, angular, masses, prm, pockets, max_events, record
     )
     n_log = n_ev if record else 0
-    floats, ints, f, k = pack_shot(
+    floats, ints, n_floats, f, k = pack_shot(
         st, balls, events, n_log, segments, n_seg, SPIN_TAIL_FLOATS, SPIN_TAIL_INTS
     )
     for i in range(positions.shape[0]):
@@ -344,7 +345,7 @@ def packed_spin_shot(positions, velocities, angular, masses, prm, pockets, max_e
         floats[f + 3 * i + 1] = wy
         floats[f + 3 * i + 2] = wz
         ints[k + i] = ms[i]
-    return OK, -1, -1, floats, ints, n_ev, n_seg, first_i, first_j, capped, now
+    return OK, -1, -1, floats, n_floats, n_ev, n_seg, first_i, first_j, capped, now
 
 
 @kernel
