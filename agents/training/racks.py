@@ -12,10 +12,16 @@ candidate with chance ``--explore``, else the best by ``--model`` (or the planne
 without one). It saves every shot's candidate features, the one played, the legal pots,
 whether the rack went on, and the break arms with their pots.
 
-``fit`` is fitted Q iteration: ``Q(candidate) = r + gamma max Q(next candidates)``, with
-``r`` the shot's legal pots plus :data:`WIN_BONUS` for the 9, ``0`` for a foul (which ends a
-run-out); a state where nothing was planned (the planner's fallback) is worth the mean
-return seen from such states. Then each break arm is valued by its racks' mean
+``fit`` is fitted Q evaluation: ``Q(candidate) = r + gamma V(next shot)``, with ``r`` the
+shot's legal pots plus :data:`WIN_BONUS` for the 9, ``0`` for a foul (which ends a
+run-out), iterated to its fixed point. ``V(next shot)`` is by default (``--target
+played``) the value of the candidate the collecting policy played there (SARSA: the value
+of the collecting policy, whose greedy policy is the agent: one step of policy
+iteration); ``--target max`` takes the best candidate's (Q-learning), which diverged here:
+the net's error on the many candidates never played is maximised at every shot (a target
+mean of 55 legal pots after 12 rounds, where at most 9 balls and the bonus are left). A
+state where nothing was planned (the planner's fallback) is worth the mean return seen
+from such states. Then each break arm is valued by its racks' mean
 ``r_break + gamma V(after the break)`` and the best is saved as the model's break.
 """
 
@@ -114,21 +120,38 @@ def _next_index(data: dict[str, NDArray]) -> NDArray[np.int64]:
     return np.where(last, -1, nxt)
 
 
-def state_values(net: Any, data: dict[str, NDArray], fallback: float) -> NDArray[np.float64]:
-    """``max Q`` over each shot's candidates (``fallback`` where nothing was planned)."""
-    feats, off = data["features"], data["offsets"]
+def state_values(
+    net: Any, data: dict[str, NDArray], fallback: float, target: str = "played"
+) -> NDArray[np.float64]:
+    """Each shot's value: ``Q`` of the candidate played (``"played"``) or the best (``"max"``).
+
+    ``fallback`` where nothing was planned.
+    """
+    feats, off, picks = data["features"], data["offsets"], data["picks"]
     q = net(feats) if feats.shape[0] else np.zeros(0)
     values = np.full(off.shape[0] - 1, fallback)
     for i in range(off.shape[0] - 1):
         if off[i + 1] > off[i]:
-            values[i] = float(np.max(q[off[i] : off[i + 1]]))
+            best = np.max(q[off[i] : off[i + 1]]) if target == "max" else q[off[i] + picks[i]]
+            values[i] = float(best)
     return values
 
 
 def fit(
-    data: dict[str, NDArray], gamma: float, rounds: int, hidden: int, seed: int
+    data: dict[str, NDArray],
+    gamma: float,
+    rounds: int,
+    hidden: int,
+    seed: int,
+    target: str = "played",
 ) -> tuple[ValueNet, float, dict[str, Any]]:
-    """Fitted Q iteration on the chosen candidates; ``(net, fallback value, report)``."""
+    """Fitted Q on the candidates played (module doc); ``(net, fallback value, report)``.
+
+    Raises:
+        ValueError: On an unknown ``target``.
+    """
+    if target not in ("played", "max"):
+        raise ValueError(f"target must be 'played' or 'max', got {target!r}")
     import torch
 
     torch.set_num_threads(1)  # the shared machine: one thread, as train.py's runs
@@ -157,12 +180,12 @@ def fit(
     report: dict[str, Any] = {"rounds": []}
     for r in range(rounds):
         net = as_net()
-        v = state_values(net, data, fallback)
+        v = state_values(net, data, fallback, target)
         v_next = np.where(nxt >= 0, v[np.maximum(nxt, 0)], 0.0)
-        target = rewards + gamma * np.where(dones, 0.0, v_next)
+        goal = rewards + gamma * np.where(dones, 0.0, v_next)
         if (~planned).any():
-            fallback = float(target[~planned].mean())
-        y = torch.tensor(target[planned], dtype=torch.float32)[:, None]
+            fallback = float(goal[~planned].mean())
+        y = torch.tensor(goal[planned], dtype=torch.float32)[:, None]
         for _ in range(300):
             optim.zero_grad()
             loss = torch.nn.functional.mse_loss(model(xt), y)
@@ -175,10 +198,10 @@ def fit(
 
 
 def break_values(
-    net: ValueNet, data: dict[str, NDArray], gamma: float, fallback: float
+    net: ValueNet, data: dict[str, NDArray], gamma: float, fallback: float, target: str
 ) -> list[dict[str, float]]:
     """Each break arm's racks' mean ``r + gamma V(after)``, with its standard error."""
-    v = state_values(net, data, fallback)
+    v = state_values(net, data, fallback, target)
     first = {}
     for i, k in enumerate(data["rack"]):
         first.setdefault(int(k), i)
@@ -216,6 +239,7 @@ def main(argv: list[str] | None = None) -> int:
     f.add_argument("--rounds", type=int, default=12)
     f.add_argument("--hidden", type=int, default=32)
     f.add_argument("--seed", type=int, default=0)
+    f.add_argument("--target", choices=("played", "max"), default="played")
     f.add_argument("--out", required=True)
     args = parser.parse_args(argv)
     if args.cmd == "collect":
@@ -229,8 +253,8 @@ def main(argv: list[str] | None = None) -> int:
               f"{time.perf_counter() - start:.0f} s -> {args.out}")  # fmt: skip
         return 0
     data = merge(args.data)
-    net, fallback, report = fit(data, args.gamma, args.rounds, args.hidden, args.seed)
-    arms = break_values(net, data, args.gamma, fallback)
+    net, fallback, report = fit(data, args.gamma, args.rounds, args.hidden, args.seed, args.target)
+    arms = break_values(net, data, args.gamma, fallback, args.target)
     best = max(arms, key=lambda a: a["value"])
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
@@ -244,6 +268,7 @@ def main(argv: list[str] | None = None) -> int:
         "rounds": args.rounds,
         "hidden": args.hidden,
         "seed": args.seed,
+        "target": args.target,
         "data": [str(p) for p in args.data],
         "racks": int(data["arms"].shape[0]),
         "shots": int(data["picks"].shape[0]),
