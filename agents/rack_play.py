@@ -132,6 +132,8 @@ class RackAgent(GameGhostBallAgent):
             top of the range, centre ball).
         explore: Chance of a uniformly random candidate instead of the best (data collection).
         seed: Seed of the exploration.
+        top_k: Choose among the planner's ``top_k`` best candidates only (``None``: all):
+            the value is surest where the data has it (the planner's picks).
 
     Raises:
         ValueError: On an env that is not a spin 9-ball game id, or a bad ``break_arm``.
@@ -146,14 +148,18 @@ class RackAgent(GameGhostBallAgent):
         break_arm: int | None = None,
         explore: float = 0.0,
         seed: int | None = 0,
+        top_k: int | None = None,
     ) -> None:
         super().__init__(env, spin=True)
         if self.config.game != "nine" or self.ghost.spec.tip_limit is None:
             raise ValueError("RackAgent plays the spin 9-ball ids (pool_env/NineBallGame-v1)")
         if break_arm is not None and not 0 <= break_arm < len(BREAK_ARMS):
             raise ValueError(f"break_arm must index BREAK_ARMS (0..{len(BREAK_ARMS) - 1})")
+        if top_k is not None and top_k < 1:
+            raise ValueError(f"top_k must be >= 1 or None, got {top_k}")
         self.value = value
         self.break_arm = break_arm
+        self.top_k = top_k
         self.explore = float(explore)
         self.rng = np.random.default_rng(seed)
         #: The last shot's candidates' features and the index played (``None``: no candidate).
@@ -240,7 +246,11 @@ class RackAgent(GameGhostBallAgent):
         elif self.value is None:
             pick = int(np.argmax(features[:, FEATURES.index("planner_score")]))
         else:
-            pick = int(np.argmax(self.value(features)))
+            values = self.value(features)
+            if self.top_k is not None and len(found) > self.top_k:
+                score = features[:, FEATURES.index("planner_score")]
+                values[np.argsort(-score, kind="stable")[self.top_k :]] = -np.inf
+            pick = int(np.argmax(values))
         self.last_candidates = (features, pick)
         self._chosen = None
         return found[pick].pocket, found[pick].action
@@ -261,7 +271,7 @@ def load_rack_agent(path: str | Path, env: Any) -> RackAgent:
     config = yaml.safe_load(config_path.read_text()) or {}
     with np.load(path) as data:
         net = ValueNet({k: data[k] for k in data.files})
-    return RackAgent(env, net, config.get("break_arm"))
+    return RackAgent(env, net, config.get("break_arm"), top_k=config.get("top_k"))
 
 
 def rack_model_config(path: str | Path) -> dict[str, Any]:

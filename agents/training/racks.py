@@ -15,11 +15,13 @@ whether the rack went on, and the break arms with their pots.
 ``fit`` is fitted Q evaluation: ``Q(candidate) = r + gamma V(next shot)``, with ``r`` the
 shot's legal pots plus :data:`WIN_BONUS` for the 9, ``0`` for a foul (which ends a
 run-out), iterated to its fixed point. ``V(next shot)`` is by default (``--target
-played``) the value of the candidate the collecting policy played there (SARSA: the value
-of the collecting policy, whose greedy policy is the agent: one step of policy
-iteration); ``--target max`` takes the best candidate's (Q-learning), which diverged here:
-the net's error on the many candidates never played is maximised at every shot (a target
-mean of 55 legal pots after 12 rounds, where at most 9 balls and the bonus are left). A
+planner``) the value of the candidate the planner's own score ranks first there: ``Q`` is
+then the planner policy's action value and the agent, greedy on it, is one step of
+policy iteration from the planner. ``--target played`` takes the candidate the collecting
+policy played (SARSA: the collecting policy's value, exploration included); ``--target
+max`` the best candidate's (Q-learning), which diverged here: the net's error on the many
+candidates never played is maximised at every shot (a target mean of 55 legal pots after
+12 rounds, where at most 9 balls and the bonus are left). A
 state where nothing was planned (the planner's fallback) is worth the mean return seen
 from such states. Then each break arm is valued by its racks' mean
 ``r_break + gamma V(after the break)`` and the best is saved as the model's break.
@@ -45,6 +47,9 @@ ENV_KWARGS: dict[str, Any] = {"end_on_foul": True, "noise": [0.003, 0.05, 0.05]}
 #: What potting the 9 is worth beyond its own pot: a won rack, not just one more ball.
 WIN_BONUS = 2.0
 GAMMA = 0.95
+#: What ``V(next shot)`` is taken from (module doc).
+TARGETS = ("planner", "played", "max")
+_PLANNER = FEATURES.index("planner_score")
 
 
 def shot_reward(info: dict[str, Any]) -> float:
@@ -123,7 +128,7 @@ def _next_index(data: dict[str, NDArray]) -> NDArray[np.int64]:
 def state_values(
     net: Any, data: dict[str, NDArray], fallback: float, target: str = "played"
 ) -> NDArray[np.float64]:
-    """Each shot's value: ``Q`` of the candidate played (``"played"``) or the best (``"max"``).
+    """Each shot's value: ``Q`` of the candidate played, the planner's first or the best.
 
     ``fallback`` where nothing was planned.
     """
@@ -132,8 +137,13 @@ def state_values(
     values = np.full(off.shape[0] - 1, fallback)
     for i in range(off.shape[0] - 1):
         if off[i + 1] > off[i]:
-            best = np.max(q[off[i] : off[i + 1]]) if target == "max" else q[off[i] + picks[i]]
-            values[i] = float(best)
+            rows = slice(off[i], off[i + 1])
+            if target == "max":
+                values[i] = float(np.max(q[rows]))
+            elif target == "planner":
+                values[i] = float(q[rows][np.argmax(feats[rows, _PLANNER])])
+            else:
+                values[i] = float(q[off[i] + picks[i]])
     return values
 
 
@@ -143,15 +153,15 @@ def fit(
     rounds: int,
     hidden: int,
     seed: int,
-    target: str = "played",
+    target: str = "planner",
 ) -> tuple[ValueNet, float, dict[str, Any]]:
     """Fitted Q on the candidates played (module doc); ``(net, fallback value, report)``.
 
     Raises:
         ValueError: On an unknown ``target``.
     """
-    if target not in ("played", "max"):
-        raise ValueError(f"target must be 'played' or 'max', got {target!r}")
+    if target not in TARGETS:
+        raise ValueError(f"target must be one of {TARGETS}, got {target!r}")
     import torch
 
     torch.set_num_threads(1)  # the shared machine: one thread, as train.py's runs
@@ -239,7 +249,9 @@ def main(argv: list[str] | None = None) -> int:
     f.add_argument("--rounds", type=int, default=12)
     f.add_argument("--hidden", type=int, default=32)
     f.add_argument("--seed", type=int, default=0)
-    f.add_argument("--target", choices=("played", "max"), default="played")
+    f.add_argument("--target", choices=TARGETS, default="planner")
+    f.add_argument("--top-k", type=int, default=None, help="the agent chooses among the "
+                   "planner's K best candidates (default: all)")  # fmt: skip
     f.add_argument("--out", required=True)
     args = parser.parse_args(argv)
     if args.cmd == "collect":
@@ -269,6 +281,7 @@ def main(argv: list[str] | None = None) -> int:
         "hidden": args.hidden,
         "seed": args.seed,
         "target": args.target,
+        "top_k": args.top_k,
         "data": [str(p) for p in args.data],
         "racks": int(data["arms"].shape[0]),
         "shots": int(data["picks"].shape[0]),
