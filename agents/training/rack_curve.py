@@ -1,24 +1,23 @@
 """The rack agent's learning curve: run-outs and pots per shot against the racks it learned from.
 
-Usage (run from the repository root)::
+Usage (run from the repository root; one line)::
 
-    python -m agents.training.rack_curve --models rack-planner:0 runs/racks/m1.npz:1500
-        models/rack_value.npz:3000 --baselines ghost random --episodes 300
-        --out results/nineball_rack_learning.png
+    python -m agents.training.rack_curve results/racks_eval.md
+        --points rack-planner=0 runs/racks/m1k.npz=1500 models/rack_value.npz=3000
+        --baselines ghost random --out results/nineball_rack_learning.png
 
-(one line).
-
-Each ``model:racks`` (a rack model ``.npz``, or ``rack-planner`` for the untrained
-candidates ranked by the planner's score) and each baseline is evaluated by
-:func:`agents.evaluate.evaluate_agent` on the same racks (seeds ``--seed``..) of
-``pool_env/NineBallGame-v1`` in run-out mode with the evaluation's noise; the models are
-drawn against the racks of training data they were fitted on, the baselines as lines.
+It reads the tables :mod:`agents.evaluate` printed (``--out`` files or their logs, every
+row with its 95% interval) for the same racks of ``pool_env/NineBallGame-v1`` in run-out
+mode, and draws each ``agent=racks`` point (a rack model, or ``rack-planner`` for the
+untrained candidates ranked by the planner's score) against the racks of training data
+it was fitted on, the baselines as horizontal lines. The evaluations are not re-run: the
+figure is the tables' numbers.
 """
 
 from __future__ import annotations
 
 import argparse
-import time
+import re
 from pathlib import Path
 
 import matplotlib
@@ -26,13 +25,33 @@ import matplotlib
 matplotlib.use("Agg")  # files only
 import matplotlib.pyplot as plt
 
-from agents.evaluate import evaluate_agent, format_table
 from agents.metrics import Estimate
 
-ENV_ID = "pool_env/NineBallGame-v1"
-ENV_KWARGS = {"end_on_foul": True, "noise": (0.003, 0.05, 0.05)}
-#: The statistics drawn: (summary key, label).
-PANELS = (("run_out_rate", "run-outs per rack"), ("pots_per_shot", "pots per shot"))
+#: The statistics drawn: (column of the evaluate table, label).
+PANELS = (("run-outs", "run-outs per rack"), ("pots/shot", "pots per shot"))
+_CELL = re.compile(r"^(-?[\d.]+)(%?) \[(-?[\d.]+), (-?[\d.]+)\]$")
+
+
+def read_tables(paths: list[str]) -> dict[str, dict[str, Estimate]]:
+    """The rows of the markdown tables in ``paths``: agent -> column -> estimate."""
+    rows: dict[str, dict[str, Estimate]] = {}
+    for path in paths:
+        header: list[str] = []
+        for line in Path(path).read_text().splitlines():
+            cells = [c.strip() for c in line.strip().strip("|").split("|")]
+            if not line.startswith("|") or set(cells[0]) <= {"-"}:
+                continue
+            if cells[0] == "agent":
+                header = cells
+                continue
+            stats = {}
+            for name, cell in zip(header[1:], cells[1:], strict=False):
+                m = _CELL.match(cell)
+                if m:
+                    k = 0.01 if m.group(2) else 1.0
+                    stats[name] = Estimate(*(k * float(m.group(i)) for i in (1, 3, 4)))
+            rows[cells[0]] = stats
+    return rows
 
 
 def plot(
@@ -54,7 +73,7 @@ def plot(
         )  # fmt: skip
         for (name, summary), color in zip(baselines.items(), colors, strict=False):
             ax.axhline(summary[key].value, color=color, ls="--", label=name)
-        ax.set_xlabel("training racks")
+        ax.set_xlabel("training racks (0: untrained)")
         ax.set_title(label)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8)
@@ -67,29 +86,23 @@ def plot(
 def main(argv: list[str] | None = None) -> int:
     """The command line (module doc)."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
-    parser.add_argument("--models", nargs="+", required=True, help="model:racks pairs")
+    parser.add_argument("tables", nargs="+", help="files holding agents.evaluate tables")
+    parser.add_argument("--points", nargs="+", required=True, help="agent=racks pairs")
     parser.add_argument("--baselines", nargs="*", default=["ghost", "random"])
-    parser.add_argument("--episodes", type=int, default=300)
-    parser.add_argument("--seed", type=int, default=10_000)
+    parser.add_argument("--episodes", type=int, default=300, help="racks per evaluation")
     parser.add_argument("--out", required=True)
     args = parser.parse_args(argv)
-    rows: dict[str, dict[str, Estimate]] = {}
+    rows = read_tables(args.tables)
     points = []
-    for spec in args.models:
-        name, _, racks = spec.rpartition(":")
-        if not name or not racks.isdigit():
-            parser.error(f"--models takes model:racks pairs, got {spec!r}")
-        start = time.perf_counter()
-        summary = evaluate_agent(name, ENV_ID, args.episodes, args.seed, dict(ENV_KWARGS))
-        print(f"{name}: {time.perf_counter() - start:.0f} s", flush=True)
-        rows[f"{name} ({racks} racks)"] = summary
-        points.append((int(racks), summary))
-    baselines = {}
-    for name in args.baselines:
-        baselines[name] = evaluate_agent(name, ENV_ID, args.episodes, args.seed, dict(ENV_KWARGS))
-        rows[name] = baselines[name]
-    print(format_table(rows, args.episodes))
-    plot(args.out, points, baselines, args.episodes)
+    for spec in args.points:
+        name, _, racks = spec.rpartition("=")
+        if not name or not racks.isdigit() or name not in rows:
+            parser.error(f"--points takes agent=racks pairs of the tables' agents, got {spec!r}")
+        points.append((int(racks), rows[name]))
+    missing = [b for b in args.baselines if b not in rows]
+    if missing:
+        parser.error(f"no rows for the baselines {missing}")
+    plot(args.out, points, {b: rows[b] for b in args.baselines}, args.episodes)
     return 0
 
 
