@@ -180,3 +180,23 @@ def test_duels_alternate_the_break_and_count_every_rack() -> None:
     assert 0.0 <= out["win_rate"].value <= 1.0
     with pytest.raises(ValueError, match="racks"):
         play_duels("ghost", "random", racks=0, seed=0)
+
+
+def test_the_curve_reads_back_the_evaluation_table(tmp_path) -> None:
+    from agents.evaluate import format_table
+    from agents.metrics import Estimate
+    from agents.training.rack_curve import read_tables
+
+    stats = {
+        "fouls_per_shot": Estimate(0.141, 0.116, 0.166),
+        "pots_per_shot": Estimate(0.873, 0.843, 0.904),
+        "scratch_rate": Estimate(0.085, 0.064, 0.105),
+        "clear_rate": Estimate(0.023, 0.011, 0.047),
+        "run_out_rate": Estimate(0.023, 0.011, 0.047),
+        "shots_per_episode": Estimate(2.79, 2.592, 2.988),
+        "episode_reward": Estimate(1.767, 1.516, 2.018),
+    }
+    (tmp_path / "t.md").write_text(format_table({"ghost": stats}, 300))
+    row = read_tables([str(tmp_path / "t.md")])["ghost"]
+    assert row["run-outs"].value == pytest.approx(0.023) and row["run-outs"].high == 0.047
+    assert row["pots/shot"].low == pytest.approx(0.843)
