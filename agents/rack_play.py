@@ -5,12 +5,12 @@ env) already works out, for the ball on, every pocket x cue tip x arrival speed 
 strike (throw, squirt, slide; :func:`agents.baselines.spin_play.plan_contact`), and ranks
 them by a hand-made score (this pot's chance times the next one's). :class:`RackAgent`
 keeps the planner's candidates and its rules (which ball is on, ball in hand, the break,
-the fallback when nothing is planned) but lets a learned action value choose among them:
-``Q(candidate) = r + gamma * max Q(next candidates)``, fitted on played racks
-(:mod:`agents.training.racks`). Its break is a learned choice too: one of
-:data:`BREAK_ARMS` (speed in the 8 .. 12 m/s break range, follow/stun/draw), the arm whose
-fitted value (legal pots of the break plus ``gamma`` times the best candidate after it) is
-highest.
+the fallback when nothing is planned) but lets a learned action value choose among them
+(optionally among the planner's ``top_k`` best only): ``Q(candidate) = r + gamma V(next
+shot)``, fitted on played racks (:mod:`agents.training.racks`). Its break is a learned
+choice too: one of :data:`BREAK_ARMS` (speed in the 8 .. 12 m/s break range,
+follow/stun/draw), the arm whose racks scored best (legal pots of the break plus ``gamma``
+times the fitted value after it).
 
 A candidate's features (:data:`FEATURES`) follow the rules' ball on: the planner only
 plans shots on the legal ball, and the next-shot chance is taken for the ball on after it.
