@@ -15,8 +15,11 @@ the full hit ``0,1``, centre ball on a spin env), ``best-const`` (the best actio
 scan, see :mod:`agents.baselines.constant_scan`), ``ghost`` (the geometric ghost-ball
 heuristic, no simulation, :mod:`agents.baselines.ghost_ball`; on a spin env it plays
 position with the tip), ``ghost-centre`` (the same on a spin env with a centre-ball tip
-only: position by speed alone) and ``search`` (candidate shots checked on the simulator:
-the oracle upper bound, :mod:`agents.baselines.search`).
+only: position by speed alone), ``search`` (candidate shots checked on the simulator:
+the oracle upper bound, :mod:`agents.baselines.search`) and, on the spin 9-ball id,
+``rack-planner`` (:class:`agents.rack_play.RackAgent`'s candidates ranked by the planner's
+own score: the trivial policy of the learned rack agent's action space). A rack model
+``.npz`` (:mod:`agents.rack_play`, with its ``<name>_config.yaml``) plays its learned value.
 
 Execution noise: ``--noise 0.003,0.05`` (aim rad, speed m/s) or ``--noise 0.003,0.05,0.05``
 (and the tip's offset, fractions of R, on a spin env): the env's ``noise`` keyword.
@@ -40,6 +43,7 @@ from agents.envs import make_env
 from agents.episodes import run_episodes
 from agents.metrics import Estimate
 from agents.pretrained import load_model, model_config
+from agents.rack_play import RackAgent, load_rack_agent
 
 __all__ = [
     "BASELINES",
@@ -54,7 +58,7 @@ __all__ = [
 ]
 
 #: The baselines by name (``const`` also takes ``const:a0,a1``).
-BASELINES = ("random", "const", "best-const", "ghost", "ghost-centre", "search")
+BASELINES = ("random", "const", "best-const", "ghost", "ghost-centre", "search", "rack-planner")
 
 #: Statistics printed, with their labels; rates are shown as percentages.
 COLUMNS: tuple[tuple[str, str, bool], ...] = (
@@ -102,10 +106,15 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Any:
         default = (0.0, 1.0) + (0.0,) * (width - 2)  # a spin env: centre ball
         action = tuple(float(v) for v in values.split(",")) if values else default
         return ConstantAgent(env, action)
+    if name == "rack-planner":  # the rack agent's candidates ranked by the planner's score
+        return RackAgent(env)
     if name.endswith(".zip"):
         return load_model(name)
+    if name.endswith(".npz"):  # a learned rack value (agents.rack_play)
+        return load_rack_agent(name, env)
     raise ValueError(
-        f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1' or a model .zip"
+        f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1', a model .zip "
+        "or a rack model .npz"
     )
 
 
@@ -235,7 +244,8 @@ def main(argv: list[str] | None = None) -> int:
         "--agent",
         nargs="+",
         default=["random", "ghost"],
-        help="random, const[:a0,a1,...], best-const, ghost, ghost-centre, search or a .zip",
+        help="random, const[:a0,a1,...], best-const, ghost, ghost-centre, search, "
+        "rack-planner, a model .zip or a rack model .npz",
     )
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=10_000)
