@@ -212,18 +212,19 @@ class RackAgent(GameGhostBallAgent):
                         continue
                     if contact.path.pocket >= 0:
                         continue  # the cue ball follows the object ball in
-                    aim = shot_to_action(contact.aim, contact.speed, positions, reference, spec)
-                    if aim is None:
+                    action = shot_to_action(
+                        contact.aim, contact.speed, positions, reference, spec, tip=tip
+                    )  # the env's codec: (aim, speed, tip side, tip vertical)
+                    if action is None:
                         continue
                     p_next = scorer.next_chance(contact, positions, after, nexts) if nexts else 1.0
                     score = p_now * (0.1 + 0.9 * p_next) if nexts else p_now
-                    tip_part = np.clip(np.array(tip) / limit, -1.0, 1.0)
+                    tip_part = np.clip(np.array(tip) / limit, -1.0, 1.0)  # a feature
                     row = [
                         p_now, p_next, score, shot.tolerance * 100.0, abs(shot.cut) / (math.pi / 2),
                         shot.cue_distance, shot.travel, contact.speed / top, tip_part[0],
                         tip_part[1], arrival, float(not nexts), left / 9.0,
                     ]  # fmt: skip
-                    action = np.concatenate([aim, tip_part]).astype(np.float32)
                     out.append(
                         Candidate(
                             action, shot.ball, shot.pocket, contact.aim, contact.speed, tip,
