@@ -1,6 +1,8 @@
 """Same-run A/B timing of the compiled shot loop: this tree against a git revision.
 
-Run: ``python bench/kernel_ab.py --ref main`` (a few minutes: each side compiles once).
+Run: ``python bench/kernel_ab.py --ref main`` (a few minutes: each side compiles once);
+``--env`` times a Gymnasium ``env.step`` of four ids instead (the decision process end to
+end: decoding, noise, the simulator, the rules, the observation and ``info``).
 Exports ``--ref`` with ``git archive`` to a temporary folder, then alternates fresh
 processes of the two trees (``--rounds`` times each), every one timing ``run_shot`` from a
 compiled loop (no Python in the measured path) and ``shoot``/``simulate_batch`` end to end.
@@ -99,10 +101,39 @@ print(" ".join(f"{k}={v:.3f}" for k, v in figures.items()))
 """
 
 
-def run(tree: Path, cache: Path) -> dict[str, float]:
+# The env-step child: the same seeded actions on both trees, a step's thread CPU time.
+ENV_CHILD = r"""
+import time
+import warnings
+
+import gymnasium as gym
+import pool_env  # noqa: F401  (registers the ids)
+
+warnings.filterwarnings("ignore")  # the v0 ids are out of date: timed all the same
+figures = {}
+for name in ("OneBall-v0", "OneBall-v1", "NineBallGame-v0", "NineBallGame-v1"):
+    env = gym.make("pool_env/" + name)
+    env.reset(seed=0)
+    env.action_space.seed(0)
+    actions = [env.action_space.sample() for _ in range(2000)]
+    best = 1e9
+    for block in range(9):  # the first block compiles or loads the kernels: not counted
+        env.reset(seed=block)
+        t0 = time.thread_time()
+        for a in actions:
+            if any(env.step(a)[2:4]):
+                env.reset()
+        if block:
+            best = min(best, (time.thread_time() - t0) / len(actions))
+    figures["step_" + name] = best * 1e6
+print(" ".join(f"{k}={v:.3f}" for k, v in figures.items()))
+"""
+
+
+def run(tree: Path, cache: Path, child: str = CHILD) -> dict[str, float]:
     env = {**os.environ, "PYTHONPATH": str(tree), "NUMBA_CACHE_DIR": str(cache)}
     out = subprocess.run(
-        [sys.executable, "-c", CHILD], cwd=tree, env=env, capture_output=True, text=True
+        [sys.executable, "-c", child], cwd=tree, env=env, capture_output=True, text=True
     )
     if out.returncode:
         raise RuntimeError(out.stderr)
@@ -113,7 +144,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--ref", default="main", help="git revision to compare against")
     parser.add_argument("--rounds", type=int, default=3)
+    parser.add_argument("--env", action="store_true", help="time env.step of four ids")
     args = parser.parse_args()
+    child = ENV_CHILD if args.env else CHILD
     with tempfile.TemporaryDirectory() as tmp:
         ref_tree = Path(tmp) / "ref"
         ref_tree.mkdir()
@@ -123,8 +156,8 @@ def main() -> None:
         subprocess.run(["tar", "-x", "-C", str(ref_tree)], input=archive, check=True)
         results: dict[str, list[dict[str, float]]] = {"ref": [], "this": []}
         for _ in range(args.rounds):
-            results["ref"].append(run(ref_tree, Path(tmp) / "cache-ref"))
-            results["this"].append(run(ROOT, Path(tmp) / "cache-this"))
+            results["ref"].append(run(ref_tree, Path(tmp) / "cache-ref", child))
+            results["this"].append(run(ROOT, Path(tmp) / "cache-this", child))
     load = os.getloadavg()[0]
     print(f"# kernel_ab: this tree vs {args.ref}, {args.rounds} rounds, load {load:.1f}")
     print("| figure (us, min) | ref | this | this / ref |")
