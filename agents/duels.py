@@ -19,6 +19,7 @@ import argparse
 import sys
 import time
 from collections import Counter
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -31,6 +32,38 @@ from pool_env.multiagent import AGENTS, PoolDuelEnv
 ENV_ID = "pool_env/NineBallGame-v1"
 #: The evaluation's execution noise (aim rad, speed m/s, tip fraction of R).
 NOISE = (0.003, 0.05, 0.05)
+
+
+def play_rack(
+    duel: PoolDuelEnv,
+    players: dict[str, Any],
+    seed: int,
+    agent_breaks: bool,
+    on_shot: Callable[[str, dict[str, Any]], None] | None = None,
+) -> str | None:
+    """Play one rack of ``players["agent"]`` against ``players["opponent"]`` to its end.
+
+    Args:
+        duel: The two-player env (reset here with ``seed``).
+        players: ``"agent"`` and ``"opponent"``, each with ``predict(obs)``.
+        seed: The rack's seed.
+        agent_breaks: Whether the agent takes ``player_0``'s seat (the break).
+        on_shot: Called after every shot with the shooter's side and its info.
+
+    Returns:
+        The side that won the rack, ``None`` for a draw (the shot limit).
+    """
+    duel.reset(seed=seed)
+    seats = ("agent", "opponent") if agent_breaks else ("opponent", "agent")
+    while not (duel.terminations[AGENTS[0]] or duel.truncations[AGENTS[0]]):
+        seat = duel.agent_selection
+        side = seats[AGENTS.index(seat)]
+        action, _ = players[side].predict(duel.observe(seat))
+        duel.step(np.asarray(action, dtype=np.float32))
+        if on_shot is not None:
+            on_shot(side, duel.infos[seat])
+    winner = duel.infos[AGENTS[0]].get("winner")
+    return None if winner is None else seats[AGENTS.index(winner)]
 
 
 def play_duels(
@@ -53,30 +86,26 @@ def play_duels(
     players = {"agent": make_agent(agent, envs[0]), "opponent": make_agent(opponent, envs[1])}
     counts = {side: Counter() for side in players}
     wins = losses = draws = 0
+    shot_of_rack = [0]
+
+    def count(side: str, info: dict[str, Any]) -> None:
+        c = counts[side]
+        c["shots"] += 1
+        c["pots"] += len(info["potted"])
+        c["fouls"] += info["foul"] is not None
+        c["scratches"] += bool(info["scratch"])
+        if shot_of_rack[0] == 0:  # the break
+            c["breaks"] += 1
+            c["break scratches"] += bool(info["scratch"])
+            c["breaks kept"] += not info["turn_over"]
+        shot_of_rack[0] += 1
+
     for k in range(racks):
-        duel.reset(seed=seed + k)
-        seats = ("agent", "opponent") if k % 2 == 0 else ("opponent", "agent")
-        first = True
-        while not (duel.terminations[AGENTS[0]] or duel.truncations[AGENTS[0]]):
-            seat = duel.agent_selection
-            side = seats[AGENTS.index(seat)]
-            action, _ = players[side].predict(duel.observe(seat))
-            duel.step(np.asarray(action, dtype=np.float32))
-            info = duel.infos[seat]
-            c = counts[side]
-            c["shots"] += 1
-            c["pots"] += len(info["potted"])
-            c["fouls"] += info["foul"] is not None
-            c["scratches"] += bool(info["scratch"])
-            if first:
-                c["breaks"] += 1
-                c["break scratches"] += bool(info["scratch"])
-                c["breaks kept"] += not info["turn_over"]
-                first = False
-        winner = duel.infos[AGENTS[0]].get("winner")
+        shot_of_rack[0] = 0
+        winner = play_rack(duel, players, seed + k, k % 2 == 0, count)
         if winner is None:
             draws += 1
-        elif seats[AGENTS.index(winner)] == "agent":
+        elif winner == "agent":
             wins += 1
         else:
             losses += 1

@@ -5,6 +5,9 @@ Two commands (run from the repository root):
     python -m agents.training.racks collect --racks 600 --seed 0 --out runs/racks/d0.npz
     python -m agents.training.racks fit runs/racks/d0.npz --out models/rack_value.npz
 
+(:mod:`agents.training.duel_racks` collects two-player racks against the ghost-ball agent
+for the same ``fit``: its rewards are the rack's outcome, its config says so.)
+
 ``collect`` plays 9-ball racks in run-out mode with the evaluation's execution noise (the
 racks' seeds from ``--seed``, kept apart from the evaluation's 10000..), a uniformly random
 break arm (:data:`~agents.rack_play.BREAK_ARMS`) per rack and, on every shot, a random
@@ -267,16 +270,18 @@ def main(argv: list[str] | None = None) -> int:
     data = merge(args.data)
     net, fallback, report = fit(data, args.gamma, args.rounds, args.hidden, args.seed, args.target)
     arms = break_values(net, data, args.gamma, fallback, args.target)
-    best = max(arms, key=lambda a: a["value"])
+    best = max((a for a in arms if a["racks"]), key=lambda a: a["value"])  # unplayed: unknown
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)
     np.savez(out, **net.weights())
+    duel = "outcome" in data  # two-player racks (agents.training.duel_racks): the outcome
     config = {
         "kind": "rack_value",
+        "returns": "duel outcome" if duel else "run-out pots",
         "env_id": ENV_ID,
-        "env_kwargs": ENV_KWARGS,
+        "env_kwargs": {"noise": ENV_KWARGS["noise"]} if duel else ENV_KWARGS,
         "gamma": args.gamma,
-        "win_bonus": WIN_BONUS,
+        "win_bonus": None if duel else WIN_BONUS,
         "rounds": args.rounds,
         "hidden": args.hidden,
         "seed": args.seed,
