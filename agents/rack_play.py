@@ -32,9 +32,7 @@ from numpy.typing import NDArray
 
 from agents.baselines.aiming import shot_to_action
 from agents.baselines.game_agents import GameGhostBallAgent
-from agents.baselines.geometry import ghost_shots
-from agents.baselines.ghost_ball import MIN_SIGMA
-from agents.baselines.spin_play import ARRIVAL_SPEEDS, PositionScore, plan_contact, pot_chance
+from agents.baselines.spin_play import ARRIVAL_SPEEDS, plan_contact, pot_chance
 
 #: The clear shots (most forgiving first) whose tips and speeds become candidates.
 CANDIDATE_SHOTS = 4
@@ -192,12 +190,7 @@ class RackAgent(GameGhostBallAgent):
         lo, top = spec.speed_range
         limit = float(spec.tip_limit or 1.0)
         targets = self._legal(positions, on)
-        shots = sorted(
-            (s for s in ghost_shots(table, ghost.mouths, positions, on, targets) if s.clear),
-            key=lambda s: -s.tolerance,
-        )[:CANDIDATE_SHOTS]
-        sigma = max(spec.noise[0] if spec.noise else 0.0, MIN_SIGMA)
-        scorer = PositionScore(table, ghost.mouths, sigma, ghost.next_targets)
+        shots, sigma, scorer = ghost.forgiving_shots(positions, on, targets, CANDIDATE_SHOTS)
         left = int(on[1:].sum())
         out: list[Candidate] = []
         for shot in shots:

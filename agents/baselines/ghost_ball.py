@@ -188,6 +188,28 @@ class GhostBallAgent(BaselineAgent):
                 return shot, speed, action
         return playable[0] if playable else (None, math.nan, None)
 
+    def forgiving_shots(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        targets: list[int],
+        count: int,
+    ) -> tuple[list[GhostShot], float, PositionScore]:
+        """The ``count`` most forgiving clear shots on ``targets``, and how to score position.
+
+        Returns:
+            The shots (most forgiving first), the aim noise their pot chances assume (the
+            env's, at least :data:`MIN_SIGMA`) and the :class:`PositionScore` of the next
+            shot under that noise.
+        """
+        table, spec = self.spec.table, self.spec
+        shots = sorted(
+            (s for s in ghost_shots(table, self.mouths, positions, on_table, targets) if s.clear),
+            key=lambda s: -s.tolerance,
+        )[:count]
+        sigma = max(spec.noise[0] if spec.noise else 0.0, MIN_SIGMA)
+        return shots, sigma, PositionScore(table, self.mouths, sigma, self.next_targets)
+
     def position_shot(
         self,
         positions: NDArray[np.float64],
@@ -207,12 +229,7 @@ class GhostBallAgent(BaselineAgent):
         self.last_traced = None
         lo, top = spec.speed_range
         targets = self.legal_targets(positions, on_table)
-        shots = sorted(
-            (s for s in ghost_shots(table, self.mouths, positions, on_table, targets) if s.clear),
-            key=lambda s: -s.tolerance,
-        )[:POSITION_SHOTS]
-        sigma = max(spec.noise[0] if spec.noise else 0.0, MIN_SIGMA)
-        scorer = PositionScore(table, self.mouths, sigma, self.next_targets)
+        shots, sigma, scorer = self.forgiving_shots(positions, on_table, targets, POSITION_SHOTS)
         limit = spec.tip_limit or 1.0
         best: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
         scratch: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
