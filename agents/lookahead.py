@@ -50,6 +50,8 @@ GRID_OFFSETS = (-0.85, -0.6, -0.3, 0.0, 0.3, 0.6, 0.85)
 GRID_SPEEDS = (0.9, 1.5, 2.3, 3.3)
 #: What the agent optimises: the two-player rack, or a run-out.
 OBJECTIVES = ("duel", "runout")
+#: The settings a saved model's config carries (:func:`load_lookahead_agent`).
+PLAY_SETTINGS = ("objective", "pots", "samples", "finalists", "final_samples", "break_arm")
 
 
 class LookaheadAgent(RackAgent):
@@ -224,6 +226,5 @@ class LookaheadAgent(RackAgent):
 
 def load_lookahead_agent(path: str | Path, env: Any, config: dict[str, Any]) -> LookaheadAgent:
     """The :class:`LookaheadAgent` of a layout value saved at ``path`` with its config."""
-    settings = {k: config[k] for k in ("objective", "pots", "samples", "finalists",
-                                       "final_samples", "break_arm") if k in config}  # fmt: skip
+    settings = {k: config[k] for k in PLAY_SETTINGS if k in config}
     return LookaheadAgent(env, LayoutValue.load(path), **settings)

@@ -25,6 +25,7 @@ the model and a ``<stem>_config.yaml`` that makes ``--agent models/<stem>.npz`` 
 from __future__ import annotations
 
 import argparse
+import inspect
 import time
 from pathlib import Path
 from typing import Any
@@ -37,6 +38,7 @@ from agents.duels import ENV_ID, NOISE, play_rack
 from agents.envs import make_env
 from agents.evaluate import make_agent
 from agents.layout_value import LAYOUT_FEATURES, fit_layout_value, layout_features
+from agents.lookahead import PLAY_SETTINGS, LookaheadAgent
 from pool_env.game.codec import decode_observations
 from pool_env.game.geometry import pocket_mouths
 from pool_env.multiagent import PoolDuelEnv
@@ -151,10 +153,12 @@ def main(argv: list[str] | None = None) -> int:
     model.save(out)
     p = model(x)
     loss = -np.mean(y * np.log(p + 1e-12) + (1 - y) * np.log(1 - p + 1e-12))
+    settings = inspect.signature(LookaheadAgent).parameters
     config = {
         "kind": "lookahead",
         "env_id": ENV_ID,
         "objective": args.objective,
+        **{k: settings[k].default for k in PLAY_SETTINGS if k != "objective"},
         "features": list(LAYOUT_FEATURES),
         "data": [str(p) for p in args.data],
         "layouts": int(y.size),
