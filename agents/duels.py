@@ -66,6 +66,23 @@ def play_rack(
     return None if winner is None else seats[AGENTS.index(winner)]
 
 
+def plan_kind(player: Any) -> str:
+    """What kind of shot a planner just chose (its ``last_plan``; ``"-"`` for a policy)."""
+    plan = getattr(player, "last_plan", None) or {}
+    kind = str(plan.get("kind", "-"))
+    shot = plan.get("shot")
+    return f"{kind} {shot}" if isinstance(shot, str) else kind
+
+
+def shot_outcome(info: dict[str, Any]) -> str:
+    """A shot's outcome by the rules: ``"won"``, ``"pot"``, ``"miss"`` or the foul's name."""
+    if info["foul"] is not None:
+        return str(info["foul"])
+    if info.get("winner") is not None:  # a legal shot that ends the rack wins it
+        return "won"
+    return "miss" if info["turn_over"] else "pot"
+
+
 def play_duels(
     agent: str, opponent: str, racks: int, seed: int, noise: tuple[float, ...] = NOISE
 ) -> dict[str, Any]:
@@ -90,6 +107,7 @@ def play_duels(
 
     def count(side: str, info: dict[str, Any]) -> None:
         c = counts[side]
+        c[f"plan {plan_kind(players[side])}: {shot_outcome(info)}"] += 1
         c["shots"] += 1
         c["pots"] += len(info["potted"])
         c["fouls"] += info["foul"] is not None
@@ -128,6 +146,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--racks", type=int, default=400)
     parser.add_argument("--seed", type=int, default=20_000)
     parser.add_argument("--noise", default="0.003,0.05,0.05")
+    parser.add_argument("--shots", action="store_true", help="shots by plan and outcome")
     args = parser.parse_args(argv)
     if args.racks < 1:
         parser.error("--racks must be >= 1")
@@ -152,6 +171,11 @@ def main(argv: list[str] | None = None) -> int:
             f"| {opponent} | {out['wins']} | {out['losses']} | {out['draws']} | "
             f"{out['win_rate']} | {'; '.join(sides)} | ({time.perf_counter() - start:.0f} s)"
         )
+        if args.shots:
+            for side in ("agent", "opponent"):
+                plans = sorted((k[5:], v) for k, v in out[side].items() if k.startswith("plan "))
+                listed = ", ".join(f"{k} {v}" for k, v in plans)
+                print(f"  {side} shots by plan: outcome: {listed}")
     return 0
 
 

@@ -41,9 +41,10 @@ from agents.baselines.random_agent import ConstantAgent, RandomAgent
 from agents.baselines.search import SearchAgent
 from agents.envs import make_env
 from agents.episodes import run_episodes
+from agents.lookahead import load_lookahead_agent
 from agents.metrics import Estimate
 from agents.pretrained import load_model, model_config
-from agents.rack_play import RackAgent, load_rack_agent
+from agents.rack_play import RackAgent, load_rack_agent, rack_model_config
 
 __all__ = [
     "BASELINES",
@@ -110,7 +111,10 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Any:
         return RackAgent(env)
     if name.endswith(".zip"):
         return load_model(name)
-    if name.endswith(".npz"):  # a learned rack value (agents.rack_play)
+    if name.endswith(".npz"):  # a learned rack value (agents.rack_play, agents.lookahead)
+        config = rack_model_config(name)
+        if config.get("kind") == "lookahead":
+            return load_lookahead_agent(name, env, config)
         return load_rack_agent(name, env)
     raise ValueError(
         f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1', a model .zip "

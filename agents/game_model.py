@@ -1,0 +1,93 @@
+"""The game's own step on copies of one position: what a planner with the true model sees.
+
+:class:`GameModel` holds a batch of tables of an env's config (:class:`pool_env.GameConfig`)
+and plays candidate actions from one position on them through :func:`pool_env.game.step.step`,
+the function every front steps with: the same decoding, execution noise, simulation and
+rules. Each table draws its execution noise from its own generator; :meth:`GameModel.play`
+gives the ``m``-th sample of every candidate the same noise (common random numbers), so
+that candidates are compared on the same errors and their differences are not the noise's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from pool_env.game.config import GameConfig
+from pool_env.game.kernels import wpa
+from pool_env.game.state import GameState, new_state
+from pool_env.game.step import StepResult, step
+
+
+class GameModel:
+    """A batch of model tables of ``config``, grown on demand.
+
+    Args:
+        config: The env's config (its rules, table and execution noise).
+        seed: Seed of the noise samples.
+    """
+
+    def __init__(self, config: GameConfig, seed: int = 0) -> None:
+        if not config.rules:
+            raise ValueError("GameModel plays the rules' game ids (game='nine' or 'eight')")
+        self.config = config
+        self.rng = np.random.default_rng(seed)
+        self.state: GameState = new_state(0, config.n_balls)
+
+    def _reserve(self, tables: int) -> None:
+        """At least ``tables`` tables, each with its own generator."""
+        have = self.state.n_tables
+        if tables <= have:
+            return
+        grown = new_state(tables, self.config.n_balls)
+        for b in range(tables):
+            grown.use_generator(b, np.random.Generator(np.random.PCG64(b)))
+        self.state = grown
+
+    def play(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        rack: NDArray[np.int64],
+        actions: NDArray[np.float64],
+        samples: int,
+    ) -> tuple[StepResult, NDArray[np.float64], NDArray[np.bool_]]:
+        """Play each of ``C`` actions ``samples`` times from one position.
+
+        Args:
+            positions: ``(N, 2)`` ball centres (the cue ball where it will be struck).
+            on_table: ``(N,)`` which balls are on the table.
+            rack: ``(N_RACK,)`` the rack state to shoot from (no ball in hand: the cue
+                ball is placed already).
+            actions: ``(C, A)`` env actions (the config's width).
+            samples: Plays of each action; sample ``m`` of every action draws the same
+                execution noise.
+
+        Returns:
+            ``(result, positions, on_table)``: the step's :class:`StepResult` over the
+            ``C * samples`` tables (action ``c``'s samples are rows ``c * samples ..``), and
+            copies of the tables' positions ``(C * samples, N, 2)`` and flags after it.
+
+        Raises:
+            ValueError: On a rack state with ball in hand or actions of the wrong width.
+        """
+        acts = np.asarray(actions, dtype=np.float64)
+        if acts.ndim != 2 or acts.shape[1] != self.config.action_size:
+            raise ValueError(f"actions must be (C, {self.config.action_size}), got {acts.shape}")
+        if rack[wpa.IN_HAND]:
+            raise ValueError("place the cue ball first: the model plays from a placed cue ball")
+        if samples < 1:
+            raise ValueError(f"samples must be >= 1, got {samples}")
+        n = acts.shape[0] * samples
+        self._reserve(n)
+        state = self.state
+        tables = np.arange(n)
+        state.positions[:n] = positions
+        state.on_table[:n] = on_table
+        state.rack[:n] = rack
+        state.shots[:n] = 0
+        noise = [np.random.PCG64(s).state for s in self.rng.integers(2**63, size=samples)]
+        for b in range(n):
+            state.generators[b].bit_generator.state = noise[b % samples]  # type: ignore[union-attr]
+        result = step(self.config, state, tables, np.repeat(acts, samples, axis=0), parallel=False)
+        return result, state.positions[:n].copy(), state.on_table[:n].copy()

@@ -1,0 +1,230 @@
+"""A 9-ball player that looks one shot ahead on the true model and values what each shot leaves.
+
+:class:`LookaheadAgent` plays the spin 9-ball ids (``pool_env/NineBallGame-v1``) and the
+two-player front (:class:`pool_env.multiagent.PoolDuelEnv`) from the observation alone. On
+every shot it:
+
+1. lists candidates: the spin planner's pots on the ball on (the ``pots`` best of
+   :meth:`agents.rack_play.RackAgent.candidates` by the planner's score), the ghost-ball
+   agent's own choice (so its set always holds the baseline's shot, banks included), and
+   a *grid* of centre-ball hits on the ball on, :data:`GRID_OFFSETS` across its face at
+   :data:`GRID_SPEEDS`: not aimed at any pocket, they are what the simulation makes of
+   them, safeties that leave the opponent nothing, combinations into other balls (the 9
+   too), kisses;
+2. plays each candidate ``samples`` times on the game's own step with the env's execution
+   noise (:class:`agents.game_model.GameModel`: the same decoding, physics and rules;
+   common noise across candidates), then the ``finalists`` best ``final_samples`` times
+   more;
+3. values each outcome by who shoots next and what they face: a won rack is 1, a lost one
+   0; a shot that keeps the table is worth :class:`agents.layout_value.LayoutValue` of the
+   layout it leaves (the chance that the shooter wins from there); a miss or a foul hands
+   the table over and is worth one minus the opponent's chance from what it leaves (ball in
+   hand after a foul); and plays the candidate of the highest mean.
+
+In run-out mode (``objective="runout"``: the first miss or foul ends the rack, nobody else
+shoots) a miss is worth 0 and a kept table the layout's value, a chance to run out.
+The layout value is learned (:mod:`agents.training.layout_value`), the rest is the model and
+the rules. The break and ball-in-hand placement are :class:`agents.rack_play.RackAgent`'s.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from agents.game_model import GameModel
+from agents.layout_value import LayoutValue, layout_features
+from agents.rack_play import RackAgent
+from pool_env.game.codec import encode_shots
+from pool_env.game.geometry import pocket_mouths
+from pool_env.game.rack import rack_row
+from pool_env.game.rules import FOUL, KEEPS, WINNER
+
+#: Where the cue ball's centre passes the ball on, in ball diameters across its face.
+GRID_OFFSETS = (-0.85, -0.6, -0.3, 0.0, 0.3, 0.6, 0.85)
+#: Cue speeds (m/s) of the grid: from a touch that barely reaches a rail to a firm hit.
+GRID_SPEEDS = (0.9, 1.5, 2.3, 3.3)
+#: What the agent optimises: the two-player rack, or a run-out.
+OBJECTIVES = ("duel", "runout")
+#: The settings a saved model's config carries (:func:`load_lookahead_agent`).
+PLAY_SETTINGS = ("objective", "pots", "samples", "finalists", "final_samples", "break_arm")
+
+
+class LookaheadAgent(RackAgent):
+    """Candidates played out on the true model, chosen by the value of what they leave.
+
+    Args:
+        env: A spin 9-ball game id (``pool_env/NineBallGame-v1``), wrapped or not.
+        value: The learned layout value (the shooter's chance to win, or to run out).
+        objective: ``"duel"`` or ``"runout"`` (module doc).
+        pots: The planner's pots kept as candidates, best by its score first.
+        samples: Noisy plays of every candidate.
+        finalists: Candidates played ``final_samples`` times more.
+        final_samples: Their extra plays.
+        break_arm: The break (:data:`agents.rack_play.BREAK_ARMS`; ``None``: the planner's).
+        seed: Seed of the noise samples.
+
+    Raises:
+        ValueError: On an env that is not a spin 9-ball id or a bad setting.
+    """
+
+    KIND = "lookahead"
+
+    def __init__(
+        self,
+        env: Any,
+        value: LayoutValue,
+        objective: str = "duel",
+        pots: int = 8,
+        samples: int = 8,
+        finalists: int = 6,
+        final_samples: int = 24,
+        break_arm: int | None = 15,
+        seed: int = 0,
+    ) -> None:
+        super().__init__(env, break_arm=break_arm, seed=seed)
+        if objective not in OBJECTIVES:
+            raise ValueError(f"objective must be one of {OBJECTIVES}, got {objective!r}")
+        if min(pots, samples, finalists) < 1 or final_samples < 0:
+            raise ValueError("pots, samples and finalists must be >= 1, final_samples >= 0")
+        self.layout_value = value
+        self.objective = objective
+        self.pots, self.samples = pots, samples
+        self.finalists, self.final_samples = finalists, final_samples
+        self.model = GameModel(self.config, seed)
+        self.mouths = pocket_mouths(self.config.table)
+        noise = self.config.noise
+        self.sigma = max(float(noise[0]) if noise else 0.0, 1e-3)
+        self._fouls = (0, 0)
+        #: The last shot's candidates' mean values and the index played.
+        self.last_values: NDArray[np.float64] | None = None
+
+    def _plan(
+        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> NDArray[np.float32]:
+        base = 4 * self.config.n_balls - 1  # the rule features (observe.py)
+        self._fouls = (round(2 * float(obs[base + 4])), round(2 * float(obs[base + 5])))
+        return super()._plan(obs, positions, on)
+
+    def _choose(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> tuple[int, NDArray[np.float32] | None]:
+        """The candidate whose outcomes are worth the most; ``None`` if none is playable."""
+        actions, pockets, kinds = self._candidates(positions, on, reference)
+        if not actions:
+            self.last_values = None
+            return -1, None
+        acts = np.stack(actions)
+        values = self._values(positions, on, acts, self.samples)
+        order = np.argsort(-values, kind="stable")
+        if self.final_samples and len(actions) > 1:
+            best = order[: self.finalists]
+            more = self._values(positions, on, acts[best], self.final_samples)
+            total = self.samples + self.final_samples
+            values[best] = (values[best] * self.samples + more * self.final_samples) / total
+            values[order[self.finalists :]] = -np.inf  # too few samples to be chosen
+        pick = int(np.argmax(values))
+        self.last_values = values
+        self._chosen = kinds[pick]  # last_plan["shot"]: "pot", "ghost" or "grid"
+        return pockets[pick], acts[pick, [0, 1, 5, 6]].astype(np.float32)
+
+    def _candidates(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> tuple[list[NDArray[np.float64]], list[int], list[str]]:
+        """Full env actions (no placement: it is done), their called pockets and kinds."""
+        width = self.config.action_size
+        actions: list[NDArray[np.float64]] = []
+        pockets: list[int] = []
+        kinds: list[str] = []
+
+        def add(strike: NDArray[np.floating], pocket: int, kind: str) -> None:
+            act = np.zeros(width)
+            act[[0, 1, 5, 6]] = strike
+            actions.append(act)
+            pockets.append(pocket)
+            kinds.append(kind)
+
+        found = sorted(self.candidates(positions, on, reference),
+                       key=lambda c: -c.features[2])[: self.pots]  # fmt: skip
+        for cand in found:
+            add(cand.action, cand.pocket, "pot")
+        pocket, ghost = super(RackAgent, self)._choose(positions, on, reference)
+        if ghost is not None:
+            add(ghost, pocket, "ghost")
+        for strike in self._grid(positions, on, reference):
+            add(strike, -1, "grid")
+        return actions, pockets, kinds
+
+    def _grid(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> list[NDArray[np.float64]]:
+        """Centre-ball strikes at the ball on across its face (:data:`GRID_OFFSETS`)."""
+        targets = self._legal(positions, on)
+        if not targets:
+            return []
+        r = self.config.table.ball_radius
+        gap = positions[targets[0]] - positions[0]
+        dist = float(np.hypot(*gap))
+        if dist <= 2.0 * r:
+            return []
+        centre = math.atan2(gap[1], gap[0])
+        angles = [centre + math.asin(min(1.0, f * 2.0 * r / dist)) for f in GRID_OFFSETS]
+        grid = [(a, s) for a in angles for s in GRID_SPEEDS]
+        acts, ok = encode_shots(
+            self.config, positions[None], reference[None], [[a for a, _ in grid]],
+            [[s for _, s in grid]], np.zeros((1, len(grid), 2)),
+        )  # fmt: skip
+        return [acts[0, k] for k in range(len(grid)) if ok[0, k]]
+
+    def _values(
+        self,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        actions: NDArray[np.float64],
+        samples: int,
+    ) -> NDArray[np.float64]:
+        """``(C,)`` each action's mean outcome value over ``samples`` noisy plays."""
+        mine, theirs = self._fouls
+        rack = rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
+        result, after, left = self.model.play(positions, on, rack, actions, samples)
+        hits = result.hits
+        foul = hits[:, FOUL] != 0
+        keeps = ~foul & (hits[:, KEEPS] != 0)
+        winner = hits[:, WINNER]
+        value = np.where(winner == 0, 1.0, 0.0)
+        open_rack = winner < 0
+        if self.objective == "runout":
+            go = open_rack & keeps
+            if go.any():
+                feats = layout_features(
+                    self.config.table, self.mouths, after[go], left[go],
+                    np.zeros(int(go.sum()), dtype=np.bool_), np.zeros((int(go.sum()), 2), int),
+                    self.sigma,
+                )  # fmt: skip
+                value[go] = self.layout_value(feats)
+        elif open_rack.any():
+            rows = np.flatnonzero(open_rack)
+            k = rows.size
+            kept = keeps[rows]
+            fouls = np.empty((k, 2), dtype=np.int64)
+            fouls[kept] = (0, min(theirs, 2))  # the shooter again: a legal shot clears fouls
+            fouls[~kept] = np.stack(
+                [np.full(k, min(theirs, 2)), np.where(foul[rows], min(mine + 1, 2), 0)], axis=1
+            )[~kept]
+            hand = ~kept & foul[rows]
+            feats = layout_features(
+                self.config.table, self.mouths, after[rows], left[rows], hand, fouls, self.sigma
+            )
+            chance = self.layout_value(feats)
+            value[rows] = np.where(kept, chance, 1.0 - chance)
+        return value.reshape(-1, samples).mean(axis=1)
+
+
+def load_lookahead_agent(path: str | Path, env: Any, config: dict[str, Any]) -> LookaheadAgent:
+    """The :class:`LookaheadAgent` of a layout value saved at ``path`` with its config."""
+    settings = {k: config[k] for k in PLAY_SETTINGS if k in config}
+    return LookaheadAgent(env, LayoutValue.load(path), **settings)
