@@ -8,6 +8,9 @@ Where a change goes:
   pots, scratches, clears, with 95% intervals); ``python -m agents.evaluate`` compares agents.
 * ``envs``, ``features``: the envs a learner sees (observation wrappers by name).
 * ``pretrained``: :func:`agents.load`, a saved model with the wrapper of its config.
+* ``rack_play``, ``lookahead`` (with ``layout_value`` and ``game_model``), ``duels``: 9-ball
+  players on the spin ids (a learned value over the planner's pots; candidates played out
+  on the game's own step and valued by a learned layout value) and head-to-head racks.
 * ``training/`` and ``train`` (``python train.py``): training on SB3 (the ``train`` extra).
 * ``vec/``: vector-env adapters (SB3 ``VecEnv``, Gymnasium's same-step stack).
 * ``integrations/``: Ray RLlib and RL Zoo.
