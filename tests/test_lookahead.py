@@ -315,3 +315,23 @@ def test_a_committed_value_prizes_an_easier_ball_on(name) -> None:
         value = agent.layout_value(f)
         assert np.all((value > 0.0) & (value < 1.0))
         assert np.all(np.diff(value) > 0.0), (name, hand, last, value)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"objective": "pots"}, "objective must be one of"),
+        ({"pots": 0}, "must be >= 1"),
+        ({"samples": 0}, "must be >= 1"),
+        ({"final_samples": -1}, "final_samples >= 0"),
+        ({"break_arm": 99}, "break_arm must index"),
+    ],
+)
+def test_bad_settings_are_refused(kwargs, message) -> None:
+    with pytest.raises(ValueError, match=message):
+        LookaheadAgent(_env(), _flat_value(), **kwargs)
+
+
+def test_the_agent_refuses_a_roll_table_id() -> None:
+    with pytest.raises(ValueError, match="spin 9-ball"):
+        LookaheadAgent(gym.make("pool_env/NineBallGame-v0"), _flat_value())
