@@ -10,7 +10,9 @@ breaks half of the same racks. Each agent is built as :func:`agents.evaluate.mak
 builds it on the single-player id with the same settings (the planners read the table,
 the ranges and the noise from it) and plays from its seat's observation. The win rate is
 won racks over all racks with its Wilson interval; a rack that reaches the shot limit is a
-draw. Per side it also counts shots, pots, fouls and scratches, and how the breaks went.
+draw. Per side it also counts shots, pots, fouls and scratches, and how the breaks went;
+``--shots`` prints each side's shots by the plan its player chose (``last_plan``: a pot, a
+safety or grid shot, a break, ...) and the outcome by the rules.
 """
 
 from __future__ import annotations
@@ -91,7 +93,8 @@ def play_duels(
     Returns:
         ``wins``, ``losses``, ``draws``, ``win_rate`` (an :class:`~agents.metrics.Estimate`)
         and per side (``"agent"``, ``"opponent"``) a :class:`~collections.Counter` of
-        shots, pots, fouls, scratches, break scratches and breaks that kept the table.
+        shots, pots, fouls, scratches, break scratches and breaks that kept the table,
+        and ``"plan <kind>: <outcome>"`` counts (:func:`plan_kind`, :func:`shot_outcome`).
 
     Raises:
         ValueError: If ``racks < 1``.

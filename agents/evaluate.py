@@ -87,7 +87,12 @@ GAME_COLUMNS: tuple[tuple[str, str, bool], ...] = (
 
 
 def make_agent(name: str, env: Any, seed: int = 0) -> Any:
-    """One of :data:`BASELINES` (``"const:a0,a1"`` too) or an SB3 ``.zip`` path, playing ``env``."""
+    """One of :data:`BASELINES` (``"const:a0,a1"`` too), an SB3 ``.zip`` or a 9-ball ``.npz`` model.
+
+    A ``.npz`` is a :class:`~agents.rack_play.RackAgent` value, or a
+    :class:`~agents.lookahead.LookaheadAgent` layout value when its config says
+    ``kind: lookahead``.
+    """
     if name == "random":
         return RandomAgent(env, seed=seed)
     if name in ("ghost", "ghost-centre"):
