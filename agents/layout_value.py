@@ -34,6 +34,7 @@ from pool_env.game.geometry import (
     PocketMouths,
     ghost_shots,
 )
+from pool_env.game.kernels.observe import RULE_FEATURES
 from pool_env.sim import Table
 
 #: The columns of :func:`layout_features`.
@@ -48,6 +49,19 @@ LAYOUT_FEATURES = (
 )
 #: How far behind the ghost-ball point a cue ball in hand is placed for a straight-in shot.
 PLACE_DISTANCE = 0.25
+
+
+def observed_rack(obs: NDArray[np.floating], n_balls: int) -> tuple[bool, bool, tuple[int, int]]:
+    """What a rule observation says of the rack: ``(in_hand, breaking, fouls)``.
+
+    ``fouls`` are the viewer's and the opponent's successive fouls (0..2), read back from
+    the observation's halves (:data:`pool_env.game.kernels.observe.RULE_FEATURES`, after the
+    ``3 N`` ball entries and the ``N - 1`` legal-ball flags).
+    """
+    base = 4 * n_balls - 1
+    rule = {name: float(obs[base + k]) for k, name in enumerate(RULE_FEATURES)}
+    fouls = (round(2 * rule["fouls"]), round(2 * rule["opponent_fouls"]))
+    return rule["ball_in_hand"] > 0.5, rule["break"] > 0.5, fouls
 
 
 def ball_on(on_table: NDArray[np.bool_]) -> NDArray[np.int64]:
@@ -107,7 +121,9 @@ def layout_features(
     rows = ghost_shots(table, mouths, pos, on, target[:, None])[:, 0]  # (B, K, NG)
     chances = _chances(rows, sigma)
     if hand.any():
-        chances[hand] = _placed_chances(table, mouths, pos[hand], on[hand], target[hand], sigma)
+        chances[hand] = _placed_chances(
+            table, mouths, pos[hand], on[hand], target[hand], rows[hand], sigma
+        )
     ranked = -np.sort(-chances, axis=1)
     out = np.empty((b, len(LAYOUT_FEATURES)))
     out[:, 0] = hand
@@ -125,6 +141,7 @@ def _placed_chances(
     pos: NDArray[np.float64],
     on: NDArray[np.bool_],
     target: NDArray[np.int64],
+    rows: NDArray[np.float64],
     sigma: float,
 ) -> NDArray[np.float64]:
     """``(B, K)`` the pot chance of a straight-in shot per pocket, the cue ball placed for it.
@@ -133,8 +150,7 @@ def _placed_chances(
     the pocket's aim point; a point off the cloth or on another ball gives 0.
     """
     b = on.shape[0]
-    rows = ghost_shots(table, mouths, pos, on, target[:, None])[:, 0]  # (B, K, NG)
-    k = rows.shape[1]
+    k = rows.shape[1]  # rows: the ghost shots on the ball on from where the cue ball lies
     ghost = rows[..., [GX, GY]]
     away = ghost - rows[..., [AIM_X, AIM_Y]]
     norm = np.hypot(away[..., 0], away[..., 1])

@@ -36,9 +36,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from agents.baselines.ghost_ball import MIN_SIGMA
 from agents.game_model import GameModel
-from agents.layout_value import LayoutValue, layout_features
-from agents.rack_play import RackAgent
+from agents.layout_value import LayoutValue, layout_features, observed_rack
+from agents.rack_play import FEATURES, RackAgent
 from pool_env.game.codec import encode_shots
 from pool_env.game.geometry import pocket_mouths
 from pool_env.game.rack import rack_row
@@ -98,7 +99,7 @@ class LookaheadAgent(RackAgent):
         self.model = GameModel(self.config, seed)
         self.mouths = pocket_mouths(self.config.table)
         noise = self.config.noise
-        self.sigma = max(float(noise[0]) if noise else 0.0, 1e-3)
+        self.sigma = max(float(noise[0]) if noise else 0.0, MIN_SIGMA)  # as the planner's
         self._fouls = (0, 0)
         #: The last shot's candidates' mean values and the index played.
         self.last_values: NDArray[np.float64] | None = None
@@ -106,8 +107,7 @@ class LookaheadAgent(RackAgent):
     def _plan(
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
     ) -> NDArray[np.float32]:
-        base = 4 * self.config.n_balls - 1  # the rule features (observe.py)
-        self._fouls = (round(2 * float(obs[base + 4])), round(2 * float(obs[base + 5])))
+        self._fouls = observed_rack(obs, self.config.n_balls)[2]
         return super()._plan(obs, positions, on)
 
     def _choose(
@@ -148,8 +148,9 @@ class LookaheadAgent(RackAgent):
             pockets.append(pocket)
             kinds.append(kind)
 
+        score = FEATURES.index("planner_score")
         found = sorted(self.candidates(positions, on, reference),
-                       key=lambda c: -c.features[2])[: self.pots]  # fmt: skip
+                       key=lambda c: -c.features[score])[: self.pots]  # fmt: skip
         for cand in found:
             add(cand.action, cand.pocket, "pot")
         pocket, ghost = super(RackAgent, self)._choose(positions, on, reference)
@@ -208,13 +209,14 @@ class LookaheadAgent(RackAgent):
                 value[go] = self.layout_value(feats)
         elif open_rack.any():
             rows = np.flatnonzero(open_rack)
-            k = rows.size
             kept = keeps[rows]
-            fouls = np.empty((k, 2), dtype=np.int64)
-            fouls[kept] = (0, min(theirs, 2))  # the shooter again: a legal shot clears fouls
-            fouls[~kept] = np.stack(
-                [np.full(k, min(theirs, 2)), np.where(foul[rows], min(mine + 1, 2), 0)], axis=1
-            )[~kept]
+            mine_after = np.where(foul[rows], min(mine + 1, 2), 0)  # a legal shot clears them
+            # Whoever shoots next: the shooter again (its fouls cleared), or the opponent.
+            fouls = np.where(
+                kept[:, None],
+                np.stack([np.zeros_like(mine_after), np.full_like(mine_after, min(theirs, 2))], 1),
+                np.stack([np.full_like(mine_after, min(theirs, 2)), mine_after], 1),
+            )
             hand = ~kept & foul[rows]
             feats = layout_features(
                 self.config.table, self.mouths, after[rows], left[rows], hand, fouls, self.sigma

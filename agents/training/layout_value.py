@@ -37,7 +37,12 @@ from numpy.typing import NDArray
 from agents.duels import ENV_ID, NOISE, play_rack
 from agents.envs import make_env
 from agents.evaluate import make_agent
-from agents.layout_value import LAYOUT_FEATURES, fit_layout_value, layout_features
+from agents.layout_value import (
+    LAYOUT_FEATURES,
+    fit_layout_value,
+    layout_features,
+    observed_rack,
+)
 from agents.lookahead import PLAY_SETTINGS, LookaheadAgent
 from pool_env.game.codec import decode_observations
 from pool_env.game.geometry import pocket_mouths
@@ -56,8 +61,7 @@ class _Recorder:
         self.mouths = pocket_mouths(config.table)
 
     def predict(self, obs: NDArray[np.floating]) -> Any:
-        base = 4 * self.n - 1
-        if obs[base + 2] < 0.5:  # not the break
+        if not observed_rack(obs, self.n)[1]:  # not the break
             features = observation_features(self.table, self.mouths, self.n, obs)
             self.rows.append((self.side, features))
         return self.player.predict(obs)
@@ -67,11 +71,10 @@ def observation_features(
     table: Any, mouths: Any, n_balls: int, obs: NDArray[np.floating]
 ) -> NDArray[np.float64]:
     """:func:`layout_features` of one rule observation (``(F,)``), from its viewer's side."""
-    base = 4 * n_balls - 1
+    in_hand, _, fouls = observed_rack(obs, n_balls)
     positions, on = decode_observations(table, np.asarray(obs)[None, : 3 * n_balls])
-    fouls = np.array([[round(2 * float(obs[base + 4])), round(2 * float(obs[base + 5]))]])
-    hand = np.array([obs[base] > 0.5])
-    return layout_features(table, mouths, positions, on, hand, fouls, SIGMA)[0]
+    hand, counts = np.array([in_hand]), np.array([fouls])
+    return layout_features(table, mouths, positions, on, hand, counts, SIGMA)[0]
 
 
 def collect(
@@ -92,7 +95,7 @@ def collect(
             rows: list[NDArray[np.float64]] = []
             done, success = False, False
             while not done:
-                if obs[4 * config.n_balls + 1] < 0.5:
+                if not observed_rack(obs, config.n_balls)[1]:  # not the break
                     rows.append(observation_features(config.table, mouths, config.n_balls, obs))
                 action, _ = player.predict(obs)
                 obs, _, terminated, truncated, info = env.step(action)
