@@ -54,9 +54,9 @@ PLACE_DISTANCE = 0.25
 def observed_rack(obs: NDArray[np.floating], n_balls: int) -> tuple[bool, bool, tuple[int, int]]:
     """What a rule observation says of the rack: ``(in_hand, breaking, fouls)``.
 
-    ``fouls`` are the viewer's and the opponent's successive fouls (0..2), read back from
-    the observation's halves (:data:`pool_env.game.kernels.observe.RULE_FEATURES`, after the
-    ``3 N`` ball entries and the ``N - 1`` legal-ball flags).
+    ``fouls`` are the viewer's and the opponent's successive fouls (0..2), which the
+    observation stores halved (:data:`pool_env.game.kernels.observe.RULE_FEATURES`, after
+    the ``3 N`` ball entries and the ``N - 1`` legal-ball flags).
     """
     base = 4 * n_balls - 1
     rule = {name: float(obs[base + k]) for k, name in enumerate(RULE_FEATURES)}

@@ -101,7 +101,7 @@ class LookaheadAgent(RackAgent):
         noise = self.config.noise
         self.sigma = max(float(noise[0]) if noise else 0.0, MIN_SIGMA)  # as the planner's
         self._fouls = (0, 0)
-        #: The last shot's candidates' mean values and the index played.
+        #: The last shot's candidates' mean values (``-inf``: not among the finalists).
         self.last_values: NDArray[np.float64] | None = None
 
     def _plan(
