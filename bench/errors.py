@@ -21,7 +21,8 @@ from bench.scenes import Scene
 from pool_env import ShotResult, Table
 
 ROOT = Path(__file__).resolve().parents[1]
-REFERENCE_SOURCE = ROOT / "pool_env" / "testing" / "reference.py"
+#: The 50-digit reference's package: its sources key the on-disk cache of its outcomes.
+REFERENCE_SOURCE = ROOT / "pool_env" / "testing" / "reference"
 
 
 @dataclass
@@ -135,6 +136,18 @@ def _scene_key(scene: Scene) -> str:
     return hashlib.sha256(payload.encode()).hexdigest()[:24]
 
 
+def reference_fingerprint(source: Path | None = None) -> str:
+    """12 hex digits of the reference package's sources (names and bytes of its modules).
+
+    A change to any module of the reference makes a new cache file, so that no outcome of
+    an older reference is read back.
+    """
+    digest = hashlib.sha256()
+    for module in sorted((source or REFERENCE_SOURCE).glob("*.py")):
+        digest.update(module.name.encode() + b"\0" + module.read_bytes() + b"\0")
+    return digest.hexdigest()[:12]
+
+
 class ReferenceCache:
     """Reference outcomes, computed once per scene (memory, and disk if a folder is given)."""
 
@@ -143,7 +156,7 @@ class ReferenceCache:
         self._memory: dict[str, dict] = {}
         self._file: Path | None = None
         if folder is not None:
-            source = hashlib.sha256(REFERENCE_SOURCE.read_bytes()).hexdigest()[:12]
+            source = reference_fingerprint()
             folder.mkdir(parents=True, exist_ok=True)
             self._file = folder / f"reference-{source}.json"
             if self._file.exists():

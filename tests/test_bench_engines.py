@@ -77,3 +77,22 @@ def test_pymunk_engine_converges_to_the_event_simulator():
         errors.append(float(np.max(np.hypot(*(res.positions - exact).T))))
     assert errors[1] < errors[0] / 4.0
     assert errors[1] < 2e-3
+
+
+def test_the_reference_cache_is_keyed_by_every_module_of_the_reference(tmp_path) -> None:
+    """The on-disk cache names its file by the reference package's sources, all of them."""
+    import shutil
+
+    from bench.errors import REFERENCE_SOURCE, ReferenceCache, reference_fingerprint
+
+    modules = sorted(REFERENCE_SOURCE.glob("*.py"))
+    assert len(modules) > 1  # a package, not the old single module
+    copy = tmp_path / "reference"
+    shutil.copytree(REFERENCE_SOURCE, copy, ignore=shutil.ignore_patterns("__pycache__"))
+    assert reference_fingerprint(copy) == reference_fingerprint()
+    for module in sorted(copy.glob("*.py")):  # an edit to any one module changes the key
+        before = reference_fingerprint(copy)
+        module.write_bytes(module.read_bytes() + b"\n# edited\n")
+        assert reference_fingerprint(copy) != before
+    ReferenceCache(tmp_path / "cache")  # builds on the package as it is
+    assert [p.name for p in (tmp_path / "cache").iterdir()] == []  # written on first use
