@@ -32,7 +32,7 @@ def run_episodes(
     Examples:
         >>> import gymnasium as gym
         >>> from agents import GhostBallAgent, RandomAgent, run_episodes
-        >>> env = gym.make("pool_env/OneBall-v0")
+        >>> env = gym.make("pool_env/OneBallRoll-v1")
         >>> log = run_episodes(GhostBallAgent(env), env, episodes=20, seed=10000)
         >>> print(log.summary()["pots_per_shot"])  # rate [95% interval]
         1.000 [0.839, 1.000]

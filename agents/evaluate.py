@@ -2,8 +2,8 @@
 
 Usage::
 
-    python -m agents.evaluate --env pool_env/OneBall-v0 --agent random best-const ghost search
-    python -m agents.evaluate --env pool_env/OneBall-v0 --agent models/ppo_oneball.zip
+    python -m agents.evaluate --env pool_env/OneBallRoll-v1 --agent random best-const ghost search
+    python -m agents.evaluate --env pool_env/OneBallRoll-v1 --agent models/ppo_oneball.zip
 
 Episode ``k`` is reset with seed ``seed + k``, so every agent sees the same layouts. A model
 ``.zip`` is loaded with the SB3 algorithm its name or saved config names; its environment
@@ -45,6 +45,7 @@ from agents.lookahead import load_lookahead_agent
 from agents.metrics import Estimate
 from agents.pretrained import load_model, model_config
 from agents.rack_play import RackAgent, load_rack_agent, rack_model_config
+from pool_env.extras import require
 
 __all__ = [
     "BASELINES",
@@ -142,7 +143,7 @@ def evaluate_agent(
 
     Examples:
         >>> from agents import evaluate_agent
-        >>> summary = evaluate_agent("ghost", "pool_env/OneBall-v0", episodes=20, seed=10000)
+        >>> summary = evaluate_agent("ghost", "pool_env/OneBallRoll-v1", episodes=20, seed=10000)
         >>> print(summary["pots_per_shot"], summary["scratch_rate"])
         1.000 [0.839, 1.000] 0.100 [0.028, 0.301]
     """
@@ -240,7 +241,8 @@ def parse_noise(text: str) -> tuple[float, ...]:
 
 def _yaml_mapping(text: str) -> Any:
     """``--env-kwargs`` parsed as YAML."""
-    import yaml  # pyyaml: an extra (train), not the core install; needed for --env-kwargs only
+    # pyyaml: an extra (train), not the core install; needed for --env-kwargs only
+    yaml = require("yaml", "train", "--env-kwargs")
 
     return yaml.safe_load(text)
 
@@ -248,7 +250,7 @@ def _yaml_mapping(text: str) -> Any:
 def main(argv: list[str] | None = None) -> int:
     """Command-line entry point."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    parser.add_argument("--env", default="pool_env/OneBall-v0", help="registered env id")
+    parser.add_argument("--env", default="pool_env/OneBallRoll-v1", help="registered env id")
     parser.add_argument(
         "--agent",
         nargs="+",

@@ -6,7 +6,7 @@ plays it, its cut, distances, approach, whether the paths are clear, the speed a
 geometric model asks for), batched over observations (:func:`ghost_feature_batch`); its SB3
 ``VecEnv`` counterpart for training is :class:`agents.training.vec_features.GhostFeaturesVecEnv`.
 This module needs no stable-baselines3: a saved model's evaluation applies these wrappers.
-With them PPO and SAC learn to aim on OneBall-v0 (results/agents.md); without, PPO plays the
+With them PPO and SAC learn to aim on OneBallRoll-v1 (results/agents.md); without, PPO plays the
 best constant.
 
 PocketFeatures: the raw observation plus the pockets as seen along the aim line.
@@ -20,7 +20,7 @@ the thinnest cut, plus the cue-to-ball distance: what a player looks at. Sorting
 "cut towards the first pocket" a smooth function of the observation, where a fixed pocket
 order asks the network to learn an argmax. It computes nothing the observation does not
 determine, and it does not solve the shot: which pocket, how thin and how hard are still
-learned. Measured on OneBall-v0 (results/agents.md): PPO with it ends on the same plateau
+learned. Measured on OneBallRoll-v1 (results/agents.md): PPO with it ends on the same plateau
 as without (the constant full hit), at 300k and at 1M steps.
 """
 

@@ -12,14 +12,14 @@ candidate actions, decodes the model's action to the env's. Both are functions o
 observation alone, so nothing but the observation is needed.
 
 The committed models and their evaluations sit together in ``models/``:
-``ppo_oneball.zip`` (PPO, 200k steps on ``pool_env/OneBall-v0``), its settings
+``ppo_oneball.zip`` (PPO, 200k steps on ``pool_env/OneBallRoll-v1``), its settings
 ``ppo_oneball_config.yaml`` and its re-evaluation ``ppo_oneball_eval.md``.
 
 Examples:
     >>> import agents, gymnasium as gym
     >>> policy = agents.load("models/ppo_oneball.zip")
     >>> policy.env_id, policy.wrapper
-    ('pool_env/OneBall-v0', 'ghost_candidates')
+    ('pool_env/OneBallRoll-v1', 'ghost_candidates')
     >>> env = policy.make_env()  # gym.make(env_id, **env_kwargs), no wrapper
     >>> obs, _ = env.reset(seed=50000)
     >>> action, _ = policy.predict(obs, deterministic=True)
@@ -39,6 +39,7 @@ from numpy.typing import NDArray
 from agents.baselines.base import batch_obs, decode_observation
 from agents.candidates import decode_candidates
 from agents.envs import make_env
+from pool_env.extras import require
 
 __all__ = ["ALGO_CLASSES", "PretrainedPolicy", "algo_class", "load", "load_model", "model_config"]
 
@@ -57,14 +58,13 @@ def algo_class(name: str) -> Any:
         raise ValueError(f"unknown algorithm {name!r}: use one of {list(ALGO_CLASSES)}")
     # stable-baselines3 (and torch) come with the train extra: imported only when a model is
     # loaded or built, so that the baselines and their evaluation run on the core install.
-    import stable_baselines3
-
+    stable_baselines3 = require("stable_baselines3", "train", "a saved SB3 model")
     return getattr(stable_baselines3, ALGO_CLASSES[name])
 
 
 def model_config(path: str | Path) -> dict[str, Any]:
     """The saved run config of a model: ``config.yaml`` beside it or ``<stem>_config.yaml``."""
-    import yaml  # pyyaml comes with the train extra, which a saved model needs anyway
+    yaml = require("yaml", "train", "a saved model's config")
 
     path = Path(path)
     for candidate in (path.with_name(f"{path.stem}_config.yaml"), path.parent / "config.yaml"):

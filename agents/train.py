@@ -2,7 +2,7 @@
 
 Three names for one command: ``python train.py`` in a clone, ``python -m agents.train`` or
 the console script ``pool-env-train`` wherever the package is installed (the hyperparameter
-file ships with it). With no arguments it trains PPO on ``pool_env/OneBall-v0`` with the
+file ships with it). With no arguments it trains PPO on ``pool_env/OneBallRoll-v1`` with the
 hyperparameters of ``agents/training/hyperparams.yml`` (200k steps over the native vector
 env, acting by candidate shots: a ghost-ball feature row picked and refined,
 :mod:`agents.candidates`), then prints its pot rate next to random, the best constant
@@ -30,15 +30,16 @@ import argparse
 import sys
 from typing import Any
 
-import yaml
-
-from agents.integrations.rllib_train import resolve_run
-from agents.integrations.rllib_train import train as train_rllib
-from agents.training.train_lib import ALGOS, NATIVE_WRAPPERS, VEC_KINDS, resolve_config, train
+# Light imports only: the trainer (stable-baselines3, torch, Ray) loads after the first line
+# printed, which says what the command waits for.
+from agents.pretrained import ALGO_CLASSES
+from agents.training.hyperparams import VEC_KINDS
+from pool_env.extras import require
 
 
 def parse_sets(items: list[str]) -> dict[str, Any]:
     """``["key=value", ...]`` to a dict; values are parsed as YAML data (never evaluated)."""
+    yaml = require("yaml", "train", "python train.py")
     out: dict[str, Any] = {}
     for item in items:
         key, sep, value = item.partition("=")
@@ -53,13 +54,13 @@ def build_parser() -> argparse.ArgumentParser:
     p = argparse.ArgumentParser(
         description=__doc__.split("\n")[0], formatter_class=argparse.RawDescriptionHelpFormatter
     )
-    p.add_argument("--env", default="pool_env/OneBall-v0", help="registered env id")
+    p.add_argument("--env", default="pool_env/OneBallRoll-v1", help="registered env id")
     p.add_argument(
         "--backend", default="sb3", choices=("sb3", "rllib"), help="trainer (rllib: PPO only)"
     )
     p.add_argument("--env-runners", type=int, default=2, help="rllib: EnvRunner actors")
     p.add_argument("--address", help="rllib: Ray cluster address (default: RAY_ADDRESS or local)")
-    p.add_argument("--algo", default="ppo", choices=sorted(ALGOS))
+    p.add_argument("--algo", default="ppo", choices=sorted(ALGO_CLASSES))
     p.add_argument("--timesteps", type=int, help="training steps (default: from the YAML)")
     p.add_argument("--seed", type=int, default=0)
     p.add_argument(
@@ -89,19 +90,35 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+def first_line(env_id: str, algo: str, backend: str) -> str:
+    """What the command is about to do, and what it waits for before training starts."""
+    trainer = "Ray RLlib" if backend == "rllib" else "Stable-Baselines3"
+    return (
+        f"Training {algo.upper()} ({trainer}) on {env_id}. First the trainer loads and the "
+        "simulator compiles for this machine (20-40 s on 2 cores, on the first run only: "
+        "later runs load it from the disk cache in about a second)."
+    )
+
+
 def main(argv: list[str] | None = None) -> int:
     """Parse, resolve the config, train; print the final comparison."""
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.backend == "rllib":
+        require("ray.rllib", "rllib", "python train.py --backend rllib")
+    else:
+        require("stable_baselines3", "train", "python train.py")
     try:
         algo_kwargs = parse_sets(args.set)
     except ValueError as exc:
         parser.error(str(exc))
+    yaml = require("yaml", "train", "python train.py")
     extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
     if not isinstance(extra, dict):
         parser.error("--env-kwargs must be a YAML mapping")
     if args.aim:
         extra["aim"] = args.aim
+    print(first_line(args.env, args.algo, args.backend), flush=True)
     if args.backend == "rllib":
         return _train_rllib(parser, args, algo_kwargs, extra)
     overrides: dict[str, Any] = {
@@ -117,6 +134,8 @@ def main(argv: list[str] | None = None) -> int:
         "progress_bar": not args.no_progress,
         "algo_kwargs": algo_kwargs,
     }
+    from agents.training.train_lib import NATIVE_WRAPPERS, resolve_config, train
+
     config = resolve_config(args.env, args.algo, overrides, args.hyperparams)
     config.env_kwargs = {**config.env_kwargs, **extra}
     if args.wrapper:
@@ -150,6 +169,9 @@ def _train_rllib(
         "env_kwargs": env_kwargs,
         "algo_kwargs": algo_kwargs,
     }
+    from agents.integrations.rllib_train import resolve_run
+    from agents.integrations.rllib_train import train as train_rllib
+
     try:
         run = resolve_run(args.env, overrides, args.hyperparams)
     except (KeyError, ValueError) as exc:

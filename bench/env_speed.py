@@ -27,12 +27,12 @@ import pool_env  # noqa: F401  (registers the ids)
 from pool_env.registration import ENV_IDS
 
 STEPS = {
-    "pool_env/Pool-v0": 20_000,
-    "pool_env/OneBall-v0": 40_000,
-    "pool_env/NineBall-v0": 10_000,
-    "pool_env/EightBall-v0": 6_000,
-    "pool_env/NineBallGame-v0": 6_000,
-    "pool_env/EightBallGame-v0": 4_000,
+    "pool_env/PoolRoll-v1": 20_000,
+    "pool_env/OneBallRoll-v1": 40_000,
+    "pool_env/NineBallRoll-v1": 10_000,
+    "pool_env/EightBallRoll-v1": 6_000,
+    "pool_env/NineBallGameRoll-v1": 6_000,
+    "pool_env/EightBallGameRoll-v1": 4_000,
     # the spin level (v1): ~2x the simulator's cost per shot
     "pool_env/Pool-v1": 10_000,
     "pool_env/OneBall-v1": 20_000,
@@ -42,8 +42,8 @@ STEPS = {
     "pool_env/EightBallGame-v1": 2_000,
 }
 TARGETS = {
-    "pool_env/OneBall-v0": 20_000,
-    "pool_env/NineBall-v0": 3_000,
+    "pool_env/OneBallRoll-v1": 20_000,
+    "pool_env/NineBallRoll-v1": 3_000,
     "pool_env/OneBall-v1": 15_000,  # issue 23
     "pool_env/NineBallGame-v1": 5_000,
 }

@@ -1,10 +1,10 @@
 """Speed of the ghost-ball feature wrappers that sit in the training loop.
 
 Run: ``python -m bench.feature_speed`` (about 30 s; hold ``/work``'s CPU lock or a quiet
-machine). Prints, best of three: steps per second of the native vector env (64 OneBall-v0
+machine). Prints, best of three: steps per second of the native vector env (64 OneBallRoll-v1
 tables) behind ``GhostFeaturesVecEnv`` and behind ``GhostCandidatesVecEnv`` (200 steps of
 random actions drawn before timing), and the time of one
-:meth:`agents.features.GhostShotFeatures.of_observations` call on NineBall-v0 observations
+:meth:`agents.features.GhostShotFeatures.of_observations` call on NineBallRoll-v1 observations
 in batches of 1, 64 and 256. ``results/feature_speed.md`` quotes it.
 """
 
@@ -44,8 +44,8 @@ def wrapper_speed(wrapper: str) -> float:
 
 
 def feature_call_us(batch: int) -> float:
-    """Microseconds of one ``of_observations`` call on ``batch`` NineBall-v0 observations."""
-    env = gym.make("pool_env/NineBall-v0")
+    """Microseconds of one ``of_observations`` call on ``batch`` NineBallRoll-v1 observations."""
+    env = gym.make("pool_env/NineBallRoll-v1")
     features = GhostShotFeatures(env_spec(env))
     obs = np.stack([env.reset(seed=k)[0] for k in range(batch)])
     features.of_observations(obs)
@@ -64,7 +64,7 @@ def main() -> None:
     for wrapper in ("ghost_features", "ghost_candidates"):
         print(f"{wrapper}: {wrapper_speed(wrapper):,.0f} steps/s ({N_ENVS} tables)")
     for batch in (1, 64, 256):
-        print(f"of_observations, NineBall-v0, batch {batch}: {feature_call_us(batch):,.1f} us")
+        print(f"of_observations, NineBallRoll-v1, batch {batch}: {feature_call_us(batch):,.1f} us")
 
 
 if __name__ == "__main__":

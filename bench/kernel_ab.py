@@ -104,14 +104,12 @@ print(" ".join(f"{k}={v:.3f}" for k, v in figures.items()))
 # The env-step child: the same seeded actions on both trees, a step's thread CPU time.
 ENV_CHILD = r"""
 import time
-import warnings
 
 import gymnasium as gym
 import pool_env  # noqa: F401  (registers the ids)
 
-warnings.filterwarnings("ignore")  # the v0 ids are out of date: timed all the same
 figures = {}
-for name in ("OneBall-v0", "OneBall-v1", "NineBallGame-v0", "NineBallGame-v1"):
+for name in ("OneBallRoll-v1", "OneBall-v1", "NineBallGameRoll-v1", "NineBallGame-v1"):
     env = gym.make("pool_env/" + name)
     env.reset(seed=0)
     env.action_space.seed(0)

@@ -2,7 +2,7 @@
 
 Env steps per second *sampled* (policy forward pass, action, one compiled step of every
 table), not trained: sampling is what more EnvRunners scale; the learner is one process.
-Every configuration uses a ``PoolVectorEnv`` of ``--tables`` tables of OneBall-v0 and a
+Every configuration uses a ``PoolVectorEnv`` of ``--tables`` tables of OneBallRoll-v1 and a
 [64, 64] MLP on one torch thread, in the same run, on the same machine:
 
 * RLlib: ``foreach_env_runner(sample)`` on every remote EnvRunner at once (they run in
@@ -24,7 +24,7 @@ import sys
 import time
 from pathlib import Path
 
-ENV_ID = "pool_env/OneBall-v0"
+ENV_ID = "pool_env/OneBallRoll-v1"
 
 
 def load() -> str:
@@ -129,7 +129,7 @@ def main(argv: list[str] | None = None) -> int:
     ratio = rates[2] / rates[1]
     command = "python bench/" + Path(__file__).name + " " + " ".join(argv or sys.argv[1:])
     lines = [
-        "# Sampling speed: RLlib EnvRunners against SB3 (OneBall-v0, native vector env)",
+        "# Sampling speed: RLlib EnvRunners against SB3 (OneBallRoll-v1, native vector env)",
         "",
         f"Command: `{command.strip()}`; {cpus} CPUs; {args.tables} tables per vector env; "
         f"{args.steps} env steps per runner per round; median of {args.repeats} rounds; "

@@ -34,8 +34,8 @@ import pool_env  # noqa: F401  (registers the ids)
 from pool_env.game import step as game_step
 from pool_env.game.kernels import observe
 
-PAIRS = {"pool_env/NineBallGame-v0": "pool_env/NineBall-v0",
-         "pool_env/EightBallGame-v0": "pool_env/EightBall-v0"}  # fmt: skip
+PAIRS = {"pool_env/NineBallGameRoll-v1": "pool_env/NineBallRoll-v1",
+         "pool_env/EightBallGameRoll-v1": "pool_env/EightBallRoll-v1"}  # fmt: skip
 RULE_FUNCTIONS = ("place_in_hand", "_place", "judge_rules", "encode_rule_observations")
 
 

@@ -33,15 +33,20 @@ from typing import Any
 
 T_START = time.perf_counter()
 
-IDS = ("pool_env/OneBall-v0", "pool_env/NineBall-v0", "pool_env/OneBall-v1", "pool_env/NineBall-v1")
+IDS = (
+    "pool_env/OneBallRoll-v1",
+    "pool_env/NineBallRoll-v1",
+    "pool_env/OneBall-v1",
+    "pool_env/NineBall-v1",
+)
 KINDS = ("native", "native+sb3", "sync", "dummy", "async", "subproc")
 PROCESS_KINDS = ("async", "subproc")
 N_VALUES = (1, 16, 256, 4096)
 WORKER_MB = 200  # private memory of one SubprocVecEnv worker here (it imports SB3 and torch)
-TARGET_SHOTS = 200_000  # OneBall-v0, native, N >= 256
+TARGET_SHOTS = 200_000  # OneBallRoll-v1, native, N >= 256
 TARGET_SPIN_SHOTS = 100_000  # OneBall-v1 (the spin level), native, N >= 256 (issue 23)
 TARGET_RATIO = 10.0  # native against SubprocVecEnv at the same N
-PPO_SETTINGS = {  # agents/training/hyperparams.yml, pool_env/OneBall-v0, ppo
+PPO_SETTINGS = {  # agents/training/hyperparams.yml, pool_env/OneBallRoll-v1, ppo
     "n_steps": 256,
     "batch_size": 256,
     "n_epochs": 10,
@@ -117,7 +122,7 @@ def measure(kind: str, env_id: str, n: int, repeats: int, seconds: float) -> dic
 
 
 def ppo(kind: str, timesteps: int, n_envs: int, seed: int) -> dict[str, Any]:
-    """Wall time of PPO learning ``timesteps`` on OneBall-v0 with a ``kind`` vector env."""
+    """Wall time of PPO learning ``timesteps`` on OneBallRoll-v1 with a ``kind`` vector env."""
     import torch
     from stable_baselines3 import PPO
     from stable_baselines3.common.vec_env import VecEnvWrapper, VecMonitor
@@ -143,7 +148,7 @@ def ppo(kind: str, timesteps: int, n_envs: int, seed: int) -> dict[str, Any]:
             return self.venv.step_wait()
 
     torch.set_num_threads(1)  # as train.py: fastest on this machine
-    env_id = "pool_env/OneBall-v0"
+    env_id = "pool_env/OneBallRoll-v1"
     if kind == "native":
         from agents.vec.native_vec import make_native_vec_env
 
@@ -264,13 +269,13 @@ def report(speed: dict, runs: dict, args: argparse.Namespace, loads: list[float]
             ratio = ours["median"] / theirs["median"]
             verdict = "met" if ratio >= TARGET_RATIO else "MISSED"
             lines.append(
-                f"- OneBall-v0 at N={n}: native {ours['median']:,.0f} / SubprocVecEnv "
+                f"- OneBallRoll-v1 at N={n}: native {ours['median']:,.0f} / SubprocVecEnv "
                 f"{theirs['median']:,.0f} = {ratio:.1f}x against >= {TARGET_RATIO:g}x: {verdict}."
             )
     if runs:
         lines += [
             "",
-            f"## PPO, same budget: {args.ppo_steps:,} steps of OneBall-v0",
+            f"## PPO, same budget: {args.ppo_steps:,} steps of OneBallRoll-v1",
             "",
             "Project settings (agents/training/hyperparams.yml: n_steps x n_envs = 2,048 per "
             "update, batch 256, 10 epochs, gamma 0), one torch thread. `env s`: time inside the "

@@ -54,7 +54,7 @@ aim is relative to the nearest object ball on the table, or absolute, by ``aim``
 * ``"absolute"``: radians from the table's +x axis (its length); default +-pi.
 
 Why ``cut`` is the default: the best action is a smooth function of the layout, and
-learners do better with it. On ``OneBall-v0`` (1000 episodes on seeds 10000+,
+learners do better with it. On ``OneBallRoll-v1`` (1000 episodes on seeds 10000+,
 ``results/agents.md``), PPO (300k steps, seed 0, the ghost-ball features) pots 63.4% of
 its shots with ``cut`` aim and 61.4% with ``relative`` (500 episodes); SAC (100k steps)
 90.1% and 81.4%. For scale: random actions pot 15.6%, a constant full hit at the top
@@ -167,20 +167,20 @@ the tip limit). ``reset`` returns ``{}``.
 | ``model`` | str or None | None | ``"spin"``: the spin table and the tip (the table's) |
 | ``tip_limit`` | float or None | None | spin: the tip's largest offset (R; the miscue limit) |
 
-Registered ids (``import pool_env``): ``pool_env/Pool-v0`` (these defaults, 50 shots),
-``pool_env/OneBall-v0`` (``scene="one_ball"``, ``end_on_miss=True``: one shot per
+Registered ids (``import pool_env``): ``pool_env/PoolRoll-v1`` (these defaults, 50 shots),
+``pool_env/OneBallRoll-v1`` (``scene="one_ball"``, ``end_on_miss=True``: one shot per
 episode, since a pot clears the table and a miss ends the turn; 10 shots with
-``end_on_miss=False``), ``pool_env/NineBall-v0`` (break, 50 shots) and
-``pool_env/EightBall-v0`` (break, 80 shots), all solitaire;
-``pool_env/NineBallGame-v0`` and ``pool_env/EightBallGame-v0`` under the rules (below).
+``end_on_miss=False``), ``pool_env/NineBallRoll-v1`` (break, 50 shots) and
+``pool_env/EightBallRoll-v1`` (break, 80 shots), all solitaire;
+``pool_env/NineBallGameRoll-v1`` and ``pool_env/EightBallGameRoll-v1`` under the rules (below).
 Each has a v1 (``pool_env/OneBall-v1``, ...): the same task with ``model="spin"``. In
-``SubprocVecEnv`` workers use the id ``"pool_env:pool_env/OneBall-v0"`` (or import
+``SubprocVecEnv`` workers use the id ``"pool_env:pool_env/OneBallRoll-v1"`` (or import
 ``pool_env`` in the main script), so that each worker imports the package that
 registers the ids.
 
 ## Rules: the game ids
 
-``pool_env/NineBallGame-v0`` and ``pool_env/EightBallGame-v0`` (or ``game=`` with the
+``pool_env/NineBallGameRoll-v1`` and ``pool_env/EightBallGameRoll-v1`` (or ``game=`` with the
 ``nine_ball`` / ``eight_ball`` scene, or any layout of 9 / 15 object balls) play one rack
 under the WPA rules, compiled in :mod:`pool_env.game.kernels.wpa` (its docstring states
 every rule). One agent shoots every shot: a foul gives ball in hand to its next shot

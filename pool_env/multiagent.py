@@ -15,7 +15,8 @@ Action (``Box(-1, 1, (5,))``): aim, speed, cue ball x and y (used only with the 
 hand), called pocket (used only when shooting at the 8); see :class:`pool_env.PoolEnv`.
 ``model="spin"`` plays the v1 ids' table (``pool_env/NineBallGame-v1``, ...): the action is
 then ``Box(7)``, the cue tip's side and vertical offsets at its end.
-Every default is the game id's (``pool_env/NineBallGame-v0``, ``pool_env/EightBallGame-v0``):
+Every default is the game's roll id's (``pool_env/NineBallGameRoll-v1``,
+``pool_env/EightBallGameRoll-v1``):
 its registered arguments, :func:`pool_env.game.config.make_config`'s defaults for the rest
 (``"cut"`` aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as
 the shot limit of the rack (both players' shots).
@@ -38,8 +39,8 @@ import gymnasium as gym
 import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
-from pettingzoo import AECEnv
 
+from pool_env.extras import require
 from pool_env.game import step as game_step
 from pool_env.game.checks import check_actions, check_options, check_seed
 from pool_env.game.config import GameConfig, make_config
@@ -48,16 +49,17 @@ from pool_env.game.kernels import wpa
 from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TRUNCATED
 from pool_env.game.state import GameState, new_state
-from pool_env.registration import ENV_IDS
+from pool_env.registration import ROLL_IDS
 from pool_env.sim.table import Table
 
+AECEnv = require("pettingzoo", "multiagent", "pool_env.multiagent").AECEnv
 AGENTS = ("player_0", "player_1")
 _ONE = np.zeros(1, dtype=np.intp)
 #: game -> the registered arguments (less ``game``) and ``max_episode_steps`` of its id.
 _GAME_IDS: dict[str, tuple[dict[str, Any], int]] = {
     kwargs["game"]: ({k: v for k, v in kwargs.items() if k != "game"}, steps)
-    for env_id, (kwargs, steps) in ENV_IDS.items()
-    if "game" in kwargs and env_id.endswith("-v0")  # the v1 ids: model="spin" (kwargs)
+    for env_id, (kwargs, steps) in ROLL_IDS.items()
+    if "game" in kwargs
 }
 _OPTIONS = ("positions", "on_table", "rules")
 

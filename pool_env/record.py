@@ -16,6 +16,8 @@ from typing import Any
 import gymnasium as gym
 from gymnasium.wrappers import RecordVideo
 
+from pool_env.extras import require
+
 
 class RecordShots(RecordVideo):
     """Record videos of episodes, every frame of every shot (``render_mode="rgb_array_list"``).
@@ -27,9 +29,11 @@ class RecordShots(RecordVideo):
 
     Raises:
         ValueError: If ``env`` renders in another mode.
+        gymnasium.error.DependencyNotInstalled: Without moviepy (the ``render`` extra).
     """
 
     def __init__(self, env: gym.Env, video_folder: str, **kwargs: Any) -> None:
+        require("moviepy", "render", "RecordShots", gym.error.DependencyNotInstalled)
         super().__init__(env, video_folder, **kwargs)  # first: its __del__ needs its state
         if env.render_mode != "rgb_array_list":
             raise ValueError(

@@ -20,43 +20,74 @@ ENTRY_POINT = "pool_env.env:PoolEnv"
 #: step for all tables); ``vectorization_mode="sync"`` / ``"async"`` still wrap PoolEnvs.
 VECTOR_ENTRY_POINT = "pool_env.vector:PoolVectorEnv"
 
-#: id -> (make() keyword arguments, max_episode_steps).
-ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {
+# How the ids are named, and why. Every task is played on two models of one table: the spin
+# table (``model="spin"``: sliding, draw, follow, english, throw, squirt; the action ends with
+# the cue tip's offsets) and the roll table (``model="roll"``: constant rolling deceleration,
+# the cheap model, kept on purpose for scenes that need no spin). They are two models of one
+# task, not a version and its successor, so they get two names at one version:
+# ``pool_env/<Task>-v1`` is the spin table, the realistic default, and
+# ``pool_env/<Task>Roll-v1`` the roll table. Gymnasium reads ``-vN`` as "N replaces N-1" and
+# warns on every make() of a lower version of a name, so the roll table can no longer be
+# ``<Task>-v0`` beside the spin table's ``<Task>-v1`` without a false "out of date" warning.
+# The old ``pool_env/<Task>-v0`` ids stay registered as aliases of ``<Task>Roll-v1`` (the
+# same arguments, the same episodes bit for bit: tests/test_registration.py), so old code
+# and saved configs keep working; Gymnasium's warning on them is now true (a newer spelling
+# exists). ``model=`` stays an argument of every id: ``gym.make("pool_env/OneBall-v1",
+# model="roll")`` is ``pool_env/OneBallRoll-v1`` under the spin id's name.
+
+#: task -> (make() keyword arguments, max_episode_steps), the model left out.
+TASKS: dict[str, tuple[dict[str, Any], int]] = {
     # The configurable one: 3 random object balls by default; every argument via make().
-    "pool_env/Pool-v0": ({}, 50),
+    "Pool": ({}, 50),
     # One shot per episode (a miss ends it, a pot clears the table): a clean contextual
     # bandit whose success rate is the pot rate. end_on_miss=False makes it multi-shot.
-    "pool_env/OneBall-v0": ({"scene": "one_ball", "end_on_miss": True}, 10),
+    "OneBall": ({"scene": "one_ball", "end_on_miss": True}, 10),
     # Break, then keep shooting until the table is clear: 50 shots is ~5 a ball.
-    "pool_env/NineBall-v0": ({"scene": "nine_ball"}, 50),
-    "pool_env/EightBall-v0": ({"scene": "eight_ball"}, 80),
+    "NineBall": ({"scene": "nine_ball"}, 50),
+    "EightBall": ({"scene": "eight_ball"}, 80),
     # The games under their rules (pool_env.game.kernels.wpa), one agent at the table:
-    # fouls, ball in hand (Box(5) actions), a break at break speed; the episode ends when
-    # the rack is won or lost (end_on_foul=True: at the first foul or missed turn).
-    "pool_env/NineBallGame-v0": ({"scene": "nine_ball", "game": "nine"}, 100),
-    "pool_env/EightBallGame-v0": ({"scene": "eight_ball", "game": "eight"}, 150),
+    # fouls, ball in hand (Box(5) actions, Box(7) with the tip), a break at break speed; the
+    # episode ends when the rack is won or lost (end_on_foul=True: at the first foul or
+    # missed turn).
+    "NineBallGame": ({"scene": "nine_ball", "game": "nine"}, 100),
+    "EightBallGame": ({"scene": "eight_ball", "game": "eight"}, 150),
 }
 
-#: The v1 ids: each v0 task on the spin table (``model="spin"``), with the cue tip's side
-#: and vertical offsets as the action's last two components (``Box(4)``, rules
-#: ``Box(7)``). Gymnasium bumps the version when the dynamics change, and they change for
-#: every task alike: the spin table is the realistic physics of all six (sliding, draw,
-#: follow, throw, squirt), and a tip action is as meaningful on a 3-ball practice table
-#: (``Pool``) or a solitaire run (``NineBall``, ``EightBall``) as in the games. So every v0
-#: id gets its v1 (the same scene, rules and time limit), and ``-v0`` -> ``-v1`` is the one
-#: rule a user or a tool needs; the v0 ids stay as they were, bit for bit.
+
+def spin_id(task: str) -> str:
+    """The id of ``task`` on the spin table: ``pool_env/<task>-v1``."""
+    return f"pool_env/{task}-v1"
+
+
+def roll_id(task: str) -> str:
+    """The id of ``task`` on the roll table: ``pool_env/<task>Roll-v1``."""
+    return f"pool_env/{task}Roll-v1"
+
+
+#: The spin table's ids, the realistic physics of every task (``model="spin"``).
 SPIN_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    env_id.replace("-v0", "-v1"): ({**kwargs, "model": "spin"}, steps)
-    for env_id, (kwargs, steps) in ENV_IDS.items()
+    spin_id(task): ({**kwargs, "model": "spin"}, steps) for task, (kwargs, steps) in TASKS.items()
 }
-ENV_IDS.update(SPIN_IDS)
+
+#: The roll table's ids (``model="roll"``, the default of ``make_config``).
+ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
+    roll_id(task): (dict(kwargs), steps) for task, (kwargs, steps) in TASKS.items()
+}
+
+#: Every supported id -> (make() keyword arguments, max_episode_steps).
+ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {**SPIN_IDS, **ROLL_IDS}
+
+#: The old names of the roll ids (``pool_env/<task>-v0`` -> ``pool_env/<task>Roll-v1``),
+#: registered with the same arguments; Gymnasium reports them out of date.
+LEGACY_IDS: dict[str, str] = {f"pool_env/{task}-v0": roll_id(task) for task in TASKS}
 
 
 def register_envs() -> None:
-    """Register every id of :data:`ENV_IDS` that is not registered yet."""
+    """Register every id of :data:`ENV_IDS` and :data:`LEGACY_IDS` not registered yet."""
     import gymnasium as gym  # here, not at the top: see the module's docstring
 
-    for env_id, (kwargs, max_steps) in ENV_IDS.items():
+    legacy = {old: ENV_IDS[new] for old, new in LEGACY_IDS.items()}
+    for env_id, (kwargs, max_steps) in {**ENV_IDS, **legacy}.items():
         if env_id not in gym.registry:
             gym.register(
                 id=env_id,
@@ -67,8 +98,8 @@ def register_envs() -> None:
             )
 
 
-#: The ids played under the 9-ball or 8-ball rules (``Box(5)`` actions, ``Box(7)`` on v1);
-#: the others are solitaire (``Box(2)``, ``Box(4)`` on v1).
+#: The ids played under the 9-ball or 8-ball rules (``Box(7)`` actions on the spin table,
+#: ``Box(5)`` on the roll table); the others are solitaire (``Box(4)``, ``Box(2)``).
 GAME_IDS: tuple[str, ...] = tuple(k for k, (kw, _) in ENV_IDS.items() if "game" in kw)
 
 

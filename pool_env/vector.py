@@ -94,7 +94,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     (without the shot trails of ``PoolEnv``, since batched shots keep no trajectories).
 
     Registered as the ``vector_entry_point`` of every id:
-    ``gym.make_vec("pool_env/OneBall-v0", num_envs=256)`` returns one.
+    ``gym.make_vec("pool_env/OneBallRoll-v1", num_envs=256)`` returns one.
 
     Examples:
         >>> import numpy as np

@@ -117,7 +117,7 @@ def _straight_pot(name: str, object_ball: int, n_balls: int, shaping: float) -> 
     cleared = not any(final_on[1:])
     return Shot(
         name,
-        "pool_env/OneBall-v0" if n_balls == 1 else "pool_env/Pool-v0",
+        "pool_env/OneBallRoll-v1" if n_balls == 1 else "pool_env/PoolRoll-v1",
         {"reward_shaping": shaping} if n_balls == 1 else {"n_balls": n_balls, "max_shots": 1},
         positions,
         on,
@@ -143,7 +143,7 @@ def _pot_and_scratch() -> Shot:
     positions = [tuple(cue), tuple(cue + 0.3 * u), (0.3, 1.0)]
     return Shot(
         "pot-and-scratch",
-        "pool_env/Pool-v0",
+        "pool_env/PoolRoll-v1",
         {"n_balls": 2, "end_on_miss": True, "table": {"e_ball": 0.0}},
         positions,
         [True, True, True],
@@ -162,7 +162,7 @@ def _scratch() -> Shot:
     positions = [(0.3, 0.3), (2.0, 1.0)]
     return Shot(
         "scratch",
-        "pool_env/OneBall-v0",
+        "pool_env/OneBallRoll-v1",
         {"aim": "absolute"},
         positions,
         [True, True],
@@ -183,7 +183,7 @@ def _miss() -> Shot:
     rest = (0.6 + v * v / (2 * A), 0.635)
     return Shot(
         "miss",
-        "pool_env/Pool-v0",
+        "pool_env/PoolRoll-v1",
         {"aim": "absolute", "n_balls": 1, "max_shots": 1, "reward_no_contact": -0.5},
         positions,
         [True, True],

@@ -18,7 +18,7 @@ from agents.baselines.base import decode_observation, env_spec
 from agents.baselines.random_agent import ConstantAgent
 from agents.features import PocketFeatures
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 
 
 def test_search_beats_random_by_a_wide_margin() -> None:
@@ -39,7 +39,7 @@ def test_search_pots_in_every_aim_mode(aim: str) -> None:
 
 
 def test_search_clears_a_nine_ball_rack() -> None:
-    env = gym.make("pool_env/NineBall-v0")
+    env = gym.make("pool_env/NineBallRoll-v1")
     stats = run_episodes(SearchAgent(env), env, 2, seed=0).summary()
     assert stats["pots_per_shot"].value > 0.5
     assert stats["clear_rate"].value > 0.0
@@ -66,7 +66,7 @@ def test_baselines_work_with_sb3_evaluate_policy() -> None:
 
 @pytest.mark.parametrize("aim", ["cut", "relative", "absolute"])
 def test_shot_to_action_inverts_the_env_decoding(aim: str) -> None:
-    env = gym.make("pool_env/Pool-v0", aim=aim)
+    env = gym.make("pool_env/PoolRoll-v1", aim=aim)
     spec = env_spec(env)
     rng = np.random.default_rng(0)
     checked = 0
@@ -94,7 +94,7 @@ def test_unrepresentable_shot_gives_none() -> None:
 
 
 def test_decode_observation_round_trip() -> None:
-    env = gym.make("pool_env/NineBall-v0")
+    env = gym.make("pool_env/NineBallRoll-v1")
     obs, _ = env.reset(seed=1)
     pos, on = decode_observation(obs, env.unwrapped.table)
     assert np.array_equal(on, env.unwrapped.on_table)
@@ -138,6 +138,6 @@ def test_search_with_execution_noise_and_on_pool_v0() -> None:
     search = run_episodes(SearchAgent(env), env, 60, seed=11).summary()
     rand = run_episodes(RandomAgent(env, seed=0), env, 60, seed=11).summary()
     assert search["clean_pot_rate"].value - rand["clean_pot_rate"].value >= 0.15
-    pool = gym.make("pool_env/Pool-v0")
+    pool = gym.make("pool_env/PoolRoll-v1")
     stats = run_episodes(SearchAgent(pool), pool, 4, seed=2).summary()
     assert stats["clear_rate"].value == 1.0 and stats["pots_per_turn"].value >= 2.0

@@ -51,7 +51,7 @@ def test_the_blocker_blocks() -> None:
 
 
 def test_evaluate_runs_the_baselines_without_the_train_extra() -> None:
-    env_id, episodes, seed = "pool_env/OneBall-v0", 4, 10_000
+    env_id, episodes, seed = "pool_env/OneBallRoll-v1", 4, 10_000
     out = _run_blocked(
         f"""
         sys.argv = ["agents.evaluate", "--env", "{env_id}", "--agent", "random", "ghost",

@@ -23,7 +23,7 @@ from agents.candidates import (
 from agents.features import GhostBallFeatures, GhostShotFeatures
 from agents.training.runs import process_seconds
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 PER = GhostShotFeatures.PER_SHOT
 
 

@@ -12,10 +12,10 @@ import pool_env
 from pool_env import PoolEnv, Shot, decode_action, encode_action
 
 IDS = [
-    "pool_env/OneBall-v0",
+    "pool_env/OneBallRoll-v1",
     "pool_env/OneBall-v1",
     "pool_env/Pool-v1",
-    "pool_env/NineBallGame-v0",
+    "pool_env/NineBallGameRoll-v1",
     "pool_env/NineBallGame-v1",
     "pool_env/EightBallGame-v1",
 ]

@@ -136,11 +136,14 @@ def test_max_shots_truncates_the_raw_env() -> None:
 
 
 def test_time_limit_truncates_through_make() -> None:
-    env = gym.make("pool_env/Pool-v0", table={"pockets": "none"}, max_episode_steps=4)
+    env = gym.make("pool_env/PoolRoll-v1", table={"pockets": "none"}, max_episode_steps=4)
     env.reset(seed=1)
     truncated = [env.step(env.action_space.sample())[3] for _ in range(4)]
     assert truncated == [False, False, False, True]
-    assert gym.make("pool_env/Pool-v0").spec.max_episode_steps == ENV_IDS["pool_env/Pool-v0"][1]
+    assert (
+        gym.make("pool_env/PoolRoll-v1").spec.max_episode_steps
+        == ENV_IDS["pool_env/PoolRoll-v1"][1]
+    )
 
 
 def test_reward_options_no_contact_and_shaping() -> None:
@@ -239,7 +242,7 @@ def test_an_impossible_scene_fails_at_make_with_a_clear_error() -> None:
     with pytest.raises(
         ValueError, match=r"scene='random', n_balls=15: cannot lay out.*fewer balls"
     ):
-        gym.make("pool_env/Pool-v0", table=tiny, n_balls=15)
+        gym.make("pool_env/PoolRoll-v1", table=tiny, n_balls=15)
 
 
 def test_reset_options_start_from_a_given_layout() -> None:
@@ -327,7 +330,7 @@ def test_long_random_rollouts_stay_in_the_observation_space(
 
 @pytest.mark.parametrize("render_mode", [None, "rgb_array"])
 def test_pickling_mid_episode_resumes_identically(render_mode: str | None) -> None:
-    env = gym.make("pool_env/NineBall-v0", noise=(0.01, 0.1), render_mode=render_mode)
+    env = gym.make("pool_env/NineBallRoll-v1", noise=(0.01, 0.1), render_mode=render_mode)
     env.reset(seed=9)
     for action in ([0.0, 0.8], [0.3, -0.5], [-0.2, -0.2]):
         env.step(np.array(action))
@@ -343,7 +346,7 @@ def test_pickling_mid_episode_resumes_identically(render_mode: str | None) -> No
 
 
 def test_unwrapped_exposes_what_agents_need() -> None:
-    env = gym.make("pool_env/OneBall-v0")
+    env = gym.make("pool_env/OneBallRoll-v1")
     env.reset(seed=0)
     raw = env.unwrapped
     assert isinstance(raw, PoolEnv)
@@ -363,7 +366,7 @@ def test_subproc_vec_env_with_two_workers_matches_dummy_vec_env() -> None:
     from stable_baselines3.common.vec_env import DummyVecEnv, SubprocVecEnv
 
     # "module:id" makes each worker import pool_env, whatever its start method.
-    env_id = "pool_env:pool_env/NineBall-v0"
+    env_id = "pool_env:pool_env/NineBallRoll-v1"
     sub = make_vec_env(env_id, n_envs=2, seed=3, vec_env_cls=SubprocVecEnv)
     dummy = make_vec_env(env_id, n_envs=2, seed=3, vec_env_cls=DummyVecEnv)
     try:

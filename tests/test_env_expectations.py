@@ -59,7 +59,7 @@ def test_the_shots_are_not_trivial() -> None:
     assert by_name["scratch"].observation[:3].tolist() == [-0.5, 0.0, 1.0]  # head spot
 
 
-@pytest.mark.parametrize("env_id", ["pool_env/OneBall-v0", "pool_env/NineBall-v0"])
+@pytest.mark.parametrize("env_id", ["pool_env/OneBallRoll-v1", "pool_env/NineBallRoll-v1"])
 def test_vector_table_i_is_the_single_env_seeded_seed_plus_i(env_id: str) -> None:
     """The documented seeding: table i of reset(seed=s) is gym.make(id).reset(seed=s + i)."""
     n, seed = 3, 11

@@ -14,7 +14,7 @@ from agents.baselines.random_agent import ConstantAgent
 from agents.evaluate import evaluate_agent, load_model, main, run_episodes
 from agents.metrics import mean_ci, ratio_ci, wilson
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 
 
 def test_wilson_interval_known_values() -> None:
@@ -55,7 +55,7 @@ def test_run_episodes_counts_shots_pots_and_scratches() -> None:
 
 
 def test_multi_shot_episodes_count_turns() -> None:
-    env = gym.make("pool_env/Pool-v0", n_balls=2, max_shots=5)
+    env = gym.make("pool_env/PoolRoll-v1", n_balls=2, max_shots=5)
     agent = ConstantAgent(env, (0.0, -0.5))
     log = run_episodes(agent, env, 5, seed=0)
     # Replay the episodes and count by the rule: a shot that pots nothing or scratches

@@ -25,7 +25,7 @@ from agents.training.train_lib import TrainConfig, make_vec
 from pool_env import encode_observations, nearest_object_ball
 from pool_env.sim.table import standard_pockets
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 PER = GhostShotFeatures.PER_SHOT
 
 
@@ -72,7 +72,7 @@ def test_batched_features_equal_the_geometry_shot_by_shot(aim: str, pockets: str
     kwargs: dict = {"aim": aim}
     if pockets == "circles":
         kwargs["table"] = pool_env.Table(pockets=standard_pockets(2.54, 1.27, 0.028575))
-    env = gym.make("pool_env/Pool-v0", n_balls=6, **kwargs)
+    env = gym.make("pool_env/PoolRoll-v1", n_balls=6, **kwargs)
     features = GhostShotFeatures(env_spec(env))
     rng = np.random.default_rng(7)
     layouts = [_scatter(rng, features.spec.table, 7) for _ in range(60)]

@@ -18,7 +18,7 @@ CUT = {k: v for k, v in KWARGS.items() if k != "aim"}  # the default cut aim
 
 
 def _shoot(game: str, balls: dict, rules: dict | None = None) -> tuple[Any, dict, Any]:
-    env = gym.make(f"pool_env/{'Nine' if game == 'nine' else 'Eight'}BallGame-v0", **CUT)
+    env = gym.make(f"pool_env/{'Nine' if game == 'nine' else 'Eight'}BallGameRoll-v1", **CUT)
     obs, _ = env.reset(seed=0, options={**layout(game, balls), "rules": rules or {}})
     agent = GameGhostBallAgent(env)
     action, _ = agent.predict(obs)
@@ -51,11 +51,11 @@ def test_ghost_calls_the_pocket_of_its_shot_on_the_eight() -> None:
 
 
 def test_evaluate_makes_the_rules_agent_for_a_game_id() -> None:
-    env = gym.make("pool_env/NineBallGame-v0")
+    env = gym.make("pool_env/NineBallGameRoll-v1")
     assert isinstance(make_agent("ghost", env), GameGhostBallAgent)
-    assert type(make_agent("ghost", gym.make("pool_env/NineBall-v0"))) is GhostBallAgent
+    assert type(make_agent("ghost", gym.make("pool_env/NineBallRoll-v1"))) is GhostBallAgent
     with pytest.raises(ValueError, match="game ids"):
-        GameGhostBallAgent(gym.make("pool_env/NineBall-v0"))
+        GameGhostBallAgent(gym.make("pool_env/NineBallRoll-v1"))
 
 
 class _Scripted(gym.Env):

@@ -171,7 +171,7 @@ def test_points_free_is_the_games_placement_rule() -> None:
 
 
 @pytest.mark.parametrize("aim", ["cut", "relative", "absolute"])
-@pytest.mark.parametrize("env_id", ["pool_env/Pool-v0", "pool_env/Pool-v1"])
+@pytest.mark.parametrize("env_id", ["pool_env/PoolRoll-v1", "pool_env/Pool-v1"])
 def test_encode_shots_is_encode_action_for_many_shots(env_id: str, aim: str) -> None:
     env = gym.make(env_id, aim=aim).unwrapped
     config = env.config
@@ -210,7 +210,7 @@ def test_encode_shots_is_encode_action_for_many_shots(env_id: str, aim: str) -> 
 
 def test_encode_shots_refuses_tips_it_cannot_play() -> None:
     pos, on = np.array([[[0.5, 0.5], [1.0, 0.5]]]), np.ones((1, 2), bool)
-    roll = gym.make("pool_env/OneBall-v0").unwrapped.config
+    roll = gym.make("pool_env/OneBallRoll-v1").unwrapped.config
     with pytest.raises(ValueError, match="spin table"):
         encode_shots(roll, pos, on, [[0.0]], [[1.0]], [[(0.1, 0.0)]])
     spin = gym.make("pool_env/OneBall-v1").unwrapped.config

@@ -30,7 +30,7 @@ from tests.rules_harness import compiled_judge, same_verdict
 from tests.test_wpa import TABLE, TOWARD_CORNER, R, _graze_into_corner, diag, parked, straight_in
 from tests.wpa_reference import N_BALLS, OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
 
-IDS = {"nine": "pool_env/NineBallGame-v0", "eight": "pool_env/EightBallGame-v0"}
+IDS = {"nine": "pool_env/NineBallGameRoll-v1", "eight": "pool_env/EightBallGameRoll-v1"}
 W = TABLE.width
 MID = W / 2
 # Absolute aim and 0-10 m/s for every shot, the break included: action = (angle / pi,
@@ -302,11 +302,11 @@ def test_bad_rule_options_and_arguments_raise() -> None:
         with pytest.raises(ValueError, match=match):
             env.reset(options={**balls, "rules": rules})
     with pytest.raises(ValueError, match="rules"):
-        gym.make("pool_env/NineBall-v0").reset(options={**layout("nine", SOFT), "rules": {}})
+        gym.make("pool_env/NineBallRoll-v1").reset(options={**layout("nine", SOFT), "rules": {}})
     with pytest.raises(ValueError, match="9 object balls"):
-        gym.make("pool_env/Pool-v0", game="nine")
+        gym.make("pool_env/PoolRoll-v1", game="nine")
     with pytest.raises(ValueError, match="end_on_foul"):
-        gym.make("pool_env/Pool-v0", end_on_foul=True)
+        gym.make("pool_env/PoolRoll-v1", end_on_foul=True)
     with pytest.raises(ValueError, match="players"):
         gym.make_vec(IDS["nine"], 2, vectorization_mode="vector_entry_point", players=2)
     env = make("nine")

@@ -20,7 +20,7 @@ from agents.baselines.geometry import cue_speed, pocket_mouths
 from pool_env.sim.kernels import loop
 from pool_env.sim.table import CORNER_MOUTH, SIDE_MOUTH, standard_pockets
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 R = 0.028575
 L, W = 2.54, 1.27
 #: Bottom-left corner (pocket 0) and bottom side (pocket 1) mouth midpoints, derived from
@@ -32,7 +32,7 @@ CIRCLES = pool_env.Table(pockets=standard_pockets(L, W, R))
 
 
 def _one_ball_env(**kwargs: object) -> gym.Env:
-    return gym.make("pool_env/Pool-v0", n_balls=1, **kwargs)
+    return gym.make("pool_env/PoolRoll-v1", n_balls=1, **kwargs)
 
 
 def _cut_layout(ball: np.ndarray, target: np.ndarray, cut_deg: float, cue_dist: float):
@@ -154,7 +154,11 @@ def test_search_beats_or_matches_ghost_on_a_seeded_sample() -> None:
 
 @pytest.mark.parametrize(
     ("env_id", "episodes"),
-    [("pool_env/Pool-v0", 20), ("pool_env/NineBall-v0", 10), ("pool_env/EightBall-v0", 5)],
+    [
+        ("pool_env/PoolRoll-v1", 20),
+        ("pool_env/NineBallRoll-v1", 10),
+        ("pool_env/EightBallRoll-v1", 5),
+    ],
 )
 def test_ghost_outplays_random_on_every_rack_id(env_id: str, episodes: int) -> None:
     env = gym.make(env_id)
@@ -165,7 +169,7 @@ def test_ghost_outplays_random_on_every_rack_id(env_id: str, episodes: int) -> N
 
 
 def test_legal_targets_is_the_one_rule_to_override() -> None:
-    env = gym.make("pool_env/Pool-v0", n_balls=2, aim="absolute")
+    env = gym.make("pool_env/PoolRoll-v1", n_balls=2, aim="absolute")
     # Ball 1 lines up straight into the side pocket, ball 2 into the corner.
     positions = np.array([[1.27, 0.9], [1.27, 0.5], [0.4, 0.4]])
     env.reset(seed=0, options={"positions": positions})

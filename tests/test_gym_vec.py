@@ -10,7 +10,7 @@ from gymnasium.vector import AutoresetMode
 from agents.vec.gym_vec import SameStepEpisodeStatistics, make_cleanrl_envs, make_vec
 from agents.vec.native_vec import make_native_vec_env
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 
 
 def _episodes(envs: gym.vector.VectorEnv, steps: int) -> int:
@@ -24,7 +24,7 @@ def _episodes(envs: gym.vector.VectorEnv, steps: int) -> int:
 
 def test_one_shot_episodes_per_vector_step_by_autoreset_mode() -> None:
     n, steps = 16, 20
-    # OneBall-v0 ends every episode after one shot. Next-step (Gymnasium's default) spends
+    # OneBallRoll-v1 ends every episode after one shot. Next-step (Gymnasium's default) spends
     # every other step resetting: 0.5 episodes per table per step; same-step: 1.0.
     default = gym.make_vec(ONE, num_envs=n, vectorization_mode="vector_entry_point")
     assert default.metadata["autoreset_mode"] == AutoresetMode.NEXT_STEP
@@ -55,7 +55,7 @@ def test_same_step_statistics_count_each_episode_with_its_own_reward() -> None:
         np.testing.assert_array_equal(info["episode"]["r"], raw_rewards)
         np.testing.assert_array_equal(info["episode"]["l"], np.ones(n))
     # Multi-shot episodes: the return is the sum of the episode's shots.
-    multi = SameStepEpisodeStatistics(make_vec("pool_env/Pool-v0", 4, max_shots=3))
+    multi = SameStepEpisodeStatistics(make_vec("pool_env/PoolRoll-v1", 4, max_shots=3))
     multi.reset(seed=1)
     totals = np.zeros(4)
     for _ in range(3):

@@ -334,4 +334,4 @@ def test_bad_settings_are_refused(kwargs, message) -> None:
 
 def test_the_agent_refuses_a_roll_table_id() -> None:
     with pytest.raises(ValueError, match="spin 9-ball"):
-        LookaheadAgent(gym.make("pool_env/NineBallGame-v0"), _flat_value())
+        LookaheadAgent(gym.make("pool_env/NineBallGameRoll-v1"), _flat_value())

@@ -19,11 +19,11 @@ from pool_env.vector import PoolVectorEnv
 @pytest.mark.parametrize(
     ("env_id", "kwargs"),
     [
-        ("pool_env/OneBall-v0", {}),
-        ("pool_env/Pool-v0", {"max_shots": 4, "noise": (0.02, 0.2)}),
-        ("pool_env/NineBall-v0", {"aim": "relative"}),
-        ("pool_env/NineBallGame-v0", {"noise": (0.003, 0.05)}),
-        ("pool_env/EightBallGame-v0", {"end_on_foul": True}),
+        ("pool_env/OneBallRoll-v1", {}),
+        ("pool_env/PoolRoll-v1", {"max_shots": 4, "noise": (0.02, 0.2)}),
+        ("pool_env/NineBallRoll-v1", {"aim": "relative"}),
+        ("pool_env/NineBallGameRoll-v1", {"noise": (0.003, 0.05)}),
+        ("pool_env/EightBallGameRoll-v1", {"end_on_foul": True}),
     ],
 )
 def test_same_trajectories_as_a_dummy_vec_env(env_id: str, kwargs: dict) -> None:
@@ -48,7 +48,7 @@ def test_same_trajectories_as_a_dummy_vec_env(env_id: str, kwargs: dict) -> None
 
 
 def test_terminal_observation_and_time_limit_flags() -> None:
-    env = make_native_vec_env("pool_env/Pool-v0", 3, 0, {"max_shots": 1})
+    env = make_native_vec_env("pool_env/PoolRoll-v1", 3, 0, {"max_shots": 1})
     env.reset()
     obs, rewards, dones, infos = env.step(np.zeros((3, 2), dtype=np.float32))
     assert dones.all() and rewards.dtype == np.float32
@@ -61,7 +61,7 @@ def test_terminal_observation_and_time_limit_flags() -> None:
 def test_vec_monitor_and_vec_normalize_on_top_and_ppo_learns_a_few_updates() -> None:
     from stable_baselines3 import PPO
 
-    env = VecNormalize(VecMonitor(make_native_vec_env("pool_env/OneBall-v0", 8, 0)), gamma=0.0)
+    env = VecNormalize(VecMonitor(make_native_vec_env("pool_env/OneBallRoll-v1", 8, 0)), gamma=0.0)
     model = PPO(
         "MlpPolicy", env, n_steps=16, batch_size=64, n_epochs=2, gamma=0.0, seed=0, device="cpu"
     )
@@ -76,7 +76,7 @@ def test_vec_monitor_and_vec_normalize_on_top_and_ppo_learns_a_few_updates() -> 
 
 
 def test_seed_attributes_methods_and_options() -> None:
-    env = make_native_vec_env("pool_env/OneBall-v0", 3, 5)
+    env = make_native_vec_env("pool_env/OneBallRoll-v1", 3, 5)
     first = env.reset()
     env.seed(5)
     np.testing.assert_array_equal(env.reset(), first)
@@ -103,4 +103,4 @@ def test_the_adapter_needs_same_step_autoreset() -> None:
         NativeVecEnv(PoolVectorEnv(2))
     with pytest.raises(ValueError, match="not a pool_env id"):
         make_native_vec_env("CartPole-v1", 2, 0)
-    assert make_native_vec_env("pool_env:pool_env/OneBall-v0", 2, 0).num_envs == 2
+    assert make_native_vec_env("pool_env:pool_env/OneBallRoll-v1", 2, 0).num_envs == 2

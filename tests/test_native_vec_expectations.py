@@ -48,9 +48,9 @@ def test_a_finished_episode_reports_the_worked_out_outcome(shot: Shot) -> None:
 def test_table_i_is_seeded_seed_plus_i() -> None:
     """make_native_vec_env(id, n, seed): table i starts as gym.make(id).reset(seed=seed + i)."""
     n, seed = 3, 21
-    env = make_native_vec_env("pool_env/OneBall-v0", n, seed)
+    env = make_native_vec_env("pool_env/OneBallRoll-v1", n, seed)
     obs = env.reset()
-    kwargs = dict(gym.spec("pool_env/OneBall-v0").kwargs)
+    kwargs = dict(gym.spec("pool_env/OneBallRoll-v1").kwargs)
     for i in range(n):
         expected, _ = PoolEnv(**kwargs).reset(seed=seed + i)
         np.testing.assert_array_equal(obs[i], expected)

@@ -119,7 +119,7 @@ def test_a_break_arm_plays_its_speed_and_tip(arm: int) -> None:
     with pytest.raises(ValueError, match="break_arm"):
         RackAgent(env, break_arm=len(BREAK_ARMS))
     with pytest.raises(ValueError, match="spin 9-ball"):
-        RackAgent(gym.make("pool_env/NineBallGame-v0"))
+        RackAgent(gym.make("pool_env/NineBallGameRoll-v1"))
 
 
 @pytest.mark.parametrize(

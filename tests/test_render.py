@@ -78,7 +78,7 @@ def test_a_potted_ball_disappears_and_the_shot_leaves_trails() -> None:
 def test_frames_are_deterministic() -> None:
     frames = []
     for _ in range(2):
-        env = gym.make("pool_env/NineBall-v0", render_mode="rgb_array")
+        env = gym.make("pool_env/NineBallRoll-v1", render_mode="rgb_array")
         env.reset(seed=4)
         env.step(np.array([0.0, 0.7]))
         frames.append(env.render())
@@ -147,7 +147,7 @@ def test_save_shot_as_mp4(tmp_path: object) -> None:
 def test_human_mode_opens_a_window_and_animates(monkeypatch: pytest.MonkeyPatch) -> None:
     pytest.importorskip("pygame")
     monkeypatch.setenv("SDL_VIDEODRIVER", "dummy")  # headless CI
-    env = gym.make("pool_env/OneBall-v0", render_mode="human")
+    env = gym.make("pool_env/OneBallRoll-v1", render_mode="human")
     env.reset(seed=0)
     raw = env.unwrapped
     assert raw._window is not None
@@ -182,7 +182,7 @@ def test_record_video_writes_one_trail_frame_per_shot(tmp_path: object) -> None:
     from gymnasium.wrappers import RecordVideo
 
     env = gym.make(
-        "pool_env/Pool-v0", render_mode="rgb_array", render_width=320, max_episode_steps=5
+        "pool_env/PoolRoll-v1", render_mode="rgb_array", render_width=320, max_episode_steps=5
     )
     folder = tmp_path / "videos"  # type: ignore[operator]
     env = RecordVideo(env, str(folder), episode_trigger=lambda episode: True, disable_logger=True)
@@ -211,7 +211,7 @@ def test_ball_colours_cover_the_set() -> None:
         assert (top.min() > 180) == (k > 8)
 
 
-def _list_env(env_id: str = "pool_env/OneBall-v0", **kwargs: object) -> gym.Env:
+def _list_env(env_id: str = "pool_env/OneBallRoll-v1", **kwargs: object) -> gym.Env:
     return gym.make(env_id, render_mode="rgb_array_list", render_width=320, **kwargs)
 
 
@@ -268,7 +268,7 @@ def test_record_shots_records_every_frame_of_every_shot(tmp_path: object) -> Non
     env.reset(seed=1)
     durations = []
     done = False
-    while not done:  # OneBall-v0: one shot per episode
+    while not done:  # OneBallRoll-v1: one shot per episode
         *_, terminated, truncated, _ = env.step(env.action_space.sample())
         durations.append(env.unwrapped.last_shot.duration)
         done = terminated or truncated
@@ -280,14 +280,14 @@ def test_record_shots_records_every_frame_of_every_shot(tmp_path: object) -> Non
     assert in_file >= 1 + 20 * len(durations)
     assert frames - 1 <= in_file <= frames  # moviepy may round the last frame off the clip
     with pytest.raises(ValueError, match="rgb_array_list"):
-        RecordShots(gym.make("pool_env/OneBall-v0", render_mode="rgb_array"), str(folder / "x"))
+        RecordShots(gym.make("pool_env/OneBallRoll-v1", render_mode="rgb_array"), str(folder / "x"))
 
 
 def test_save_video_writes_an_rgb_array_list_episode(tmp_path: object) -> None:
     pytest.importorskip("moviepy")
     from gymnasium.utils.save_video import save_video
 
-    env = _list_env("pool_env/NineBall-v0", max_episode_steps=2)
+    env = _list_env("pool_env/NineBallRoll-v1", max_episode_steps=2)
     env.reset(seed=0)
     for _ in range(2):
         env.step(env.action_space.sample())

@@ -109,7 +109,7 @@ def test_nan_rows_of_balls_off_the_table_are_refused() -> None:
     batch[1, 7] = np.inf
     with pytest.raises(ValueError, match=r"table 1: options\['positions'\] row 7"):
         vec.reset(options={"positions": batch, "on_table": options["on_table"]})
-    solitaire = gym.make("pool_env/Pool-v0", n_balls=2)
+    solitaire = gym.make("pool_env/PoolRoll-v1", n_balls=2)
     with pytest.raises(ValueError, match="row 2 is not finite"):
         solitaire.reset(options={"positions": [[0.3, 0.3], [1, 0.6], [np.nan, 0.0]],
                                  "on_table": [True, True, False]})  # fmt: skip
@@ -117,8 +117,8 @@ def test_nan_rows_of_balls_off_the_table_are_refused() -> None:
 
 @pytest.mark.parametrize("options", [[1], "positions", 3, (("rules", {}),)])
 def test_options_that_are_not_a_dict_raise_value_error(options) -> None:
-    for env in (_env("nine"), gym.make("pool_env/OneBall-v0"),
-                gym.make_vec("pool_env/OneBall-v0", 2, vectorization_mode="vector_entry_point"),
+    for env in (_env("nine"), gym.make("pool_env/OneBallRoll-v1"),
+                gym.make_vec("pool_env/OneBallRoll-v1", 2, vectorization_mode="vector_entry_point"),
                 PoolDuelEnv("nine")):  # fmt: skip
         with pytest.raises(ValueError, match="options must be a dict or None"):
             env.reset(options=options)
@@ -126,12 +126,12 @@ def test_options_that_are_not_a_dict_raise_value_error(options) -> None:
 
 @pytest.mark.parametrize("seed", [np.int64(5), np.uint32(5), np.int8(5)])
 def test_numpy_integer_seeds_are_accepted_like_python_ints(seed) -> None:
-    a, b = gym.make("pool_env/OneBall-v0"), gym.make("pool_env/OneBall-v0")
+    a, b = gym.make("pool_env/OneBallRoll-v1"), gym.make("pool_env/OneBallRoll-v1")
     obs_a, _ = a.reset(seed=seed)
     obs_b, _ = b.reset(seed=5)
     assert np.array_equal(obs_a, obs_b)
     assert a.unwrapped.np_random_seed == 5 and type(a.unwrapped.np_random_seed) is int
-    vec = gym.make_vec("pool_env/OneBall-v0", 2, vectorization_mode="vector_entry_point")
+    vec = gym.make_vec("pool_env/OneBallRoll-v1", 2, vectorization_mode="vector_entry_point")
     obs_v, _ = vec.reset(seed=seed)
     assert np.array_equal(obs_v[0], obs_a)
 

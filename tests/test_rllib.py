@@ -28,7 +28,7 @@ from agents.integrations.rllib_train import (  # noqa: E402
 from agents.training import hyperparams  # noqa: E402
 from pool_env.vector import PoolVectorEnv  # noqa: E402
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 
 
 def test_make_env_gives_the_native_vector_env_in_next_step_mode() -> None:
@@ -111,9 +111,10 @@ def test_ppo_trains_on_two_env_runners_with_the_plain_id(local_ray: None, tmp_pa
     assert any(
         not np.allclose(b.numpy(), a.detach().numpy()) for b, a in zip(before, after, strict=True)
     )
-    rows = list(csv.DictReader((tmp_path / "progress.csv").open()))
+    with (tmp_path / "progress.csv").open() as progress:
+        rows = list(csv.DictReader(progress))
     assert len(rows) == 1
-    # OneBall-v0 is one shot per episode: every sampled step ends an episode.
+    # OneBallRoll-v1 is one shot per episode: every sampled step ends an episode.
     assert int(rows[0]["episodes"]) == int(rows[0]["env_steps"]) == steps
     assert -1.0 <= float(rows[0]["episode_return_mean"]) <= 1.0
     report = json.loads((tmp_path / "evaluation.json").read_text())

@@ -22,7 +22,7 @@ from ray.cluster_utils import Cluster  # noqa: E402
 
 from agents.integrations.rllib_train import build_config, resolve_run  # noqa: E402
 
-ONE = "pool_env/OneBall-v0"
+ONE = "pool_env/OneBallRoll-v1"
 
 
 @pytest.fixture

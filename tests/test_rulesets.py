@@ -31,11 +31,11 @@ from pool_env.sim.table import Table
 # (id, object balls, observation size, action size): 3 N for solitaire; the WPA games add
 # N - 1 legal-ball flags and 7 rule features; actions 2 / 5, and 2 tip components on spin.
 SPACES = [
-    ("pool_env/OneBall-v0", 1, 6, 2),
+    ("pool_env/OneBallRoll-v1", 1, 6, 2),
     ("pool_env/EightBall-v1", 15, 48, 4),
-    ("pool_env/NineBallGame-v0", 9, 30 + 9 + 7, 5),
+    ("pool_env/NineBallGameRoll-v1", 9, 30 + 9 + 7, 5),
     ("pool_env/NineBallGame-v1", 9, 30 + 9 + 7, 7),
-    ("pool_env/EightBallGame-v0", 15, 48 + 15 + 7, 5),
+    ("pool_env/EightBallGameRoll-v1", 15, 48 + 15 + 7, 5),
 ]
 
 

@@ -48,7 +48,7 @@ def test_ghost_draws_back_for_a_ball_behind_the_cue_ball() -> None:
     """Straight into the bottom side pocket, the next ball up behind the cue ball: draw."""
     env = gym.make("pool_env/Pool-v1", n_balls=2) if _has("pool_env/Pool-v1") else None
     if env is None:
-        env = gym.make("pool_env/Pool-v0", n_balls=2, model="spin")
+        env = gym.make("pool_env/PoolRoll-v1", n_balls=2, model="spin")
     positions = np.array([[1.27, 0.55], [1.27, 0.30], [1.45, 1.05]])
     obs, _ = env.reset(seed=0, options={"positions": positions})
     agent = GhostBallAgent(env)

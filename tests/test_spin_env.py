@@ -19,6 +19,7 @@ from pool_env import PoolEnv, Table, shoot
 from pool_env.game.config import default_tip_limit, make_config
 from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, place_in_hand
 from pool_env.game.state import generator_addresses
+from pool_env.registration import TASKS, roll_id, spin_id
 
 LAYOUT = np.array([[0.8, 0.635], [1.1, 0.635]])  # a straight shot along +x, 0.3 m apart
 R = Table().ball_radius
@@ -155,7 +156,7 @@ def test_tip_noise_draws_after_angle_and_speed() -> None:
 
 
 def test_v0_and_v1_streams_agree_up_to_the_tip_draws() -> None:
-    v0 = gym.make("pool_env/OneBall-v0", noise=(0.01, 0.05))
+    v0 = gym.make("pool_env/OneBallRoll-v1", noise=(0.01, 0.05))
     v1 = gym.make("pool_env/OneBall-v1", noise=(0.01, 0.05, 0.05))
     a, b = v0.reset(seed=3), v1.reset(seed=3)
     np.testing.assert_array_equal(a[0], b[0])  # the same layout: the same draws
@@ -225,12 +226,12 @@ def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str) -> N
     assert len(set(out[1][3].tolist())) == 6  # every pocket was called
 
 
-def test_every_v1_id_is_its_v0_on_the_spin_table() -> None:
-    for env_id, (kwargs, steps) in pool_env.ENV_IDS.items():
-        if env_id.endswith("-v1"):
-            v0_kwargs, v0_steps = pool_env.ENV_IDS[env_id.replace("-v1", "-v0")]
-            assert kwargs == {**v0_kwargs, "model": "spin"} and steps == v0_steps
-            spin = gym.make(env_id).unwrapped
-            roll = PoolEnv(**v0_kwargs)
-            assert spin.table.model == "spin" and roll.table.model == "roll"
-            assert spin.action_space.shape[0] == roll.action_space.shape[0] + 2
+def test_every_spin_id_is_its_roll_id_on_the_spin_table() -> None:
+    for task in TASKS:
+        kwargs, steps = pool_env.ENV_IDS[spin_id(task)]
+        roll_kwargs, roll_steps = pool_env.ENV_IDS[roll_id(task)]
+        assert kwargs == {**roll_kwargs, "model": "spin"} and steps == roll_steps
+        spin = gym.make(spin_id(task)).unwrapped
+        roll = PoolEnv(**roll_kwargs)
+        assert spin.table.model == "spin" and roll.table.model == "roll"
+        assert spin.action_space.shape[0] == roll.action_space.shape[0] + 2

@@ -33,7 +33,7 @@ def test_train_py_writes_a_complete_run_folder(
     # The compile notice comes before training; the last lines set the run beside the baselines.
     assert printed.index("Preparing the simulator") < printed.index("pots per shot: ppo")
     assert all(f"| {name} " in printed for name in ("random", "best-const", "ghost", "search"))
-    (run,) = (tmp_path / "OneBall-v0").iterdir()
+    (run,) = (tmp_path / "OneBallRoll-v1").iterdir()
     for name in ("config.yaml", "command.txt", "model.zip", "evaluation.md", "evaluation.json",
                  "curve.csv", "learning_curve.png"):  # fmt: skip
         assert (run / name).is_file(), name
@@ -76,7 +76,7 @@ def _assert_saved_model_is_the_evaluated_one(run: Path, name: str) -> None:
 def test_sac_runs(tmp_path: Path) -> None:
     argv = [*TINY, "--algo", "sac", "--runs", str(tmp_path), "--no-baselines", "--eval-freq", "0"]
     assert train.main([*argv, "--set", "learning_starts=64", "gradient_steps=1"]) == 0
-    (run,) = (tmp_path / "OneBall-v0").iterdir()
+    (run,) = (tmp_path / "OneBallRoll-v1").iterdir()
     model = load_model(run / "model.zip")
     assert type(model).__name__ == "SAC" and model.num_timesteps == 512
     assert model._n_updates > 0  # it trained after learning_starts, not only collected
@@ -132,7 +132,7 @@ def test_default_recipe_trains_on_what_its_evaluation_sees(algo: str, wrapper: s
     """The OneBall recipes on the native vector env see and act as their eval env does."""
     from agents.envs import make_env
 
-    config = resolve_config("pool_env/OneBall-v0", algo, {"n_envs": 2})
+    config = resolve_config("pool_env/OneBallRoll-v1", algo, {"n_envs": 2})
     assert (config.vec, config.wrapper) == ("native", wrapper)
     venv = make_vec(config)
     env = make_env(config.env_id, config.env_kwargs, config.wrapper)

@@ -60,7 +60,7 @@ def _compare(sync: gym.vector.VectorEnv, native: PoolVectorEnv, steps: int, seed
 @pytest.mark.parametrize("mode", [NEXT, SAME])
 @pytest.mark.parametrize("env_id", list(ENV_IDS))
 def test_equals_a_sync_vector_env_of_pool_envs(env_id: str, mode: AutoresetMode) -> None:
-    steps = 120 if env_id == "pool_env/OneBall-v0" else 60
+    steps = 120 if env_id == "pool_env/OneBallRoll-v1" else 60
     if env_id == "pool_env/EightBall-v1":  # no table clears 15 balls in 60 shots: truncation
         steps = 85
     ended = _compare(*_pair(env_id, 5, mode), steps=steps, seed=11)
@@ -81,11 +81,11 @@ def test_equals_a_sync_vector_env_of_pool_envs(env_id: str, mode: AutoresetMode)
 )
 def test_equals_sync_under_every_option(kwargs: dict) -> None:
     for mode in (NEXT, SAME):
-        _compare(*_pair("pool_env/Pool-v0", 4, mode, **kwargs), steps=40, seed=5)
+        _compare(*_pair("pool_env/PoolRoll-v1", 4, mode, **kwargs), steps=40, seed=5)
 
 
 def test_disabled_autoreset_waits_for_a_masked_reset_and_equals_sync() -> None:
-    sync, native = _pair("pool_env/OneBall-v0", 4, DISABLED)
+    sync, native = _pair("pool_env/OneBallRoll-v1", 4, DISABLED)
     _assert_same(sync.reset(seed=2), native.reset(seed=2), "reset")
     rng = np.random.default_rng(2)
     for _ in range(10):
@@ -247,7 +247,7 @@ def test_gymnasium_vector_wrappers_work_on_top() -> None:
     )
 
     env = DictInfoToList(RecordEpisodeStatistics(NormalizeObservation(gym.make_vec(
-        "pool_env/OneBall-v0", num_envs=4
+        "pool_env/OneBallRoll-v1", num_envs=4
     ))))  # fmt: skip
     env.reset(seed=0)
     episodes = 0

@@ -41,26 +41,30 @@ def test_a_wrapper_becomes_a_zoo_env_wrapper(tmp_path: Path) -> None:
     path = tmp_path / "hp.yml"
     ppo = {"n_timesteps": 10, "wrapper": "pocket_features", "vec": "native"}
     path.write_text(yaml.safe_dump({"default": {"ppo": ppo}}))
-    entry = zoo_entry("pool_env/OneBall-v0", "ppo", path)
+    entry = zoo_entry("pool_env/OneBallRoll-v1", "ppo", path)
     assert entry == {"n_timesteps": 10, "env_wrapper": "agents.features.PocketFeatures"}
     path.write_text(yaml.safe_dump({"default": {"ppo": {"wrapper": "mystery"}}}))
     with pytest.raises(ValueError, match="mystery"):
-        zoo_entry("pool_env/OneBall-v0", "ppo", path)
+        zoo_entry("pool_env/OneBallRoll-v1", "ppo", path)
 
 
 def test_zoo_trains_ppo_with_the_shipped_file(tmp_path: Path) -> None:
     pytest.importorskip("rl_zoo3", reason="needs the zoo extra: pip install -e '.[zoo]'")
     command = [
-        sys.executable, "-m", "rl_zoo3.train", "--algo", "ppo", "--env", "pool_env/OneBall-v0",
+        sys.executable, "-m", "rl_zoo3.train", "--algo", "ppo", "--env", "pool_env/OneBallRoll-v1",
         "--gym-packages", "pool_env", "-conf", "agents/integrations/zoo/ppo.yml", "-n", "2048",
         "--num-threads", "1", "-f", str(tmp_path), "--eval-freq", "-1", "--seed", "0",
     ]  # fmt: skip
     done = subprocess.run(command, cwd=ROOT, capture_output=True, text=True, timeout=300)
     assert done.returncode == 0, done.stderr[-2000:]
-    run = tmp_path / "ppo" / "pool_env-OneBall-v0_1"
-    assert (run / "pool_env-OneBall-v0.zip").is_file()
-    saved = yaml.unsafe_load((run / "pool_env-OneBall-v0" / "config.yml").read_text())
+    run = tmp_path / "ppo" / "pool_env-OneBallRoll-v1_1"
+    assert (run / "pool_env-OneBallRoll-v1.zip").is_file()
+    saved = yaml.unsafe_load((run / "pool_env-OneBallRoll-v1" / "config.yml").read_text())
     # Zoo used the file's values, not its own defaults (gamma 0.99, n_steps 2048).
     assert dict(saved)["gamma"] == 0.0
-    assert dict(saved)["n_steps"] == hyperparams.load("pool_env/OneBall-v0", "ppo")["n_steps"] == 64
+    assert (
+        dict(saved)["n_steps"]
+        == hyperparams.load("pool_env/OneBallRoll-v1", "ppo")["n_steps"]
+        == 64
+    )
     assert "total_timesteps" in done.stdout

@@ -42,7 +42,7 @@ class GameGhostBallAgent(BaselineAgent):
     legal ball at the top of the break speed range.
 
     Args:
-        env: A game-id environment (``gym.make("pool_env/NineBallGame-v0")``, wrapped or not).
+        env: A game-id environment (``gym.make("pool_env/NineBallGameRoll-v1")``, wrapped or not).
         arrival_speed: As :class:`GhostBallAgent`.
     """
 

@@ -89,7 +89,7 @@ class GhostBallAgent(BaselineAgent):
         >>> import gymnasium as gym
         >>> import pool_env
         >>> from agents import GhostBallAgent
-        >>> env = gym.make("pool_env/OneBall-v0")
+        >>> env = gym.make("pool_env/OneBallRoll-v1")
         >>> agent = GhostBallAgent(env)
         >>> obs, _ = env.reset(seed=10000)
         >>> action, _ = agent.predict(obs)  # cut offset and speed, both in [-1, 1]

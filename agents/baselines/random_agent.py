@@ -33,7 +33,7 @@ class RandomAgent(BaselineAgent):
 class ConstantAgent(BaselineAgent):
     """Always the same action: the floor a learner must clear when one shot fits most layouts.
 
-    On ``OneBall-v0`` with the default ``cut`` aim, action ``(0, 1)`` (a full hit as hard as
+    On ``OneBallRoll-v1`` with the default ``cut`` aim, action ``(0, 1)`` (a full hit as hard as
     possible) pots often: the object ball runs around the low-friction table until some
     pocket's capture circle takes it. A policy that only learned that has learned no aiming.
 

@@ -1,7 +1,7 @@
 """The env creator RLlib calls in every EnvRunner: pool ids by their plain name, in any worker.
 
 RLlib's EnvRunners are separate processes, on this machine or on other nodes, that never ran
-the driver's ``import pool_env``; ``config.environment("pool_env/OneBall-v0")`` alone fails
+the driver's ``import pool_env``; ``config.environment("pool_env/OneBallRoll-v1")`` alone fails
 there with ``NamespaceNotFound``. :func:`register` registers :func:`make_env` under the plain
 id with Ray's registry (shared by every worker of the cluster); RLlib then calls it in each
 EnvRunner, where it imports the package (which registers the ids) before making the env.

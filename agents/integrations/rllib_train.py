@@ -85,7 +85,7 @@ class RLlibRun:
             RLlib train batch.
     """
 
-    env_id: str = "pool_env/OneBall-v0"
+    env_id: str = "pool_env/OneBallRoll-v1"
     seed: int = 0
     n_timesteps: int = 300_000
     env_runners: int = 2

@@ -13,7 +13,10 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import yaml
+from pool_env.extras import require
+
+#: Vectorized environment kinds (``--vec``; the run key ``vec``).
+VEC_KINDS = ("dummy", "subproc", "native")
 
 #: The hyperparameter file shipped with the package.
 DEFAULT_PATH = Path(__file__).with_name("hyperparams.yml")
@@ -40,6 +43,7 @@ def load(env_id: str, algo: str, path: str | Path | None = None) -> dict[str, An
     Raises:
         KeyError: If neither the id nor ``default`` has an entry for ``algo``.
     """
+    yaml = require("yaml", "train", "the hyperparameter file")
     data = yaml.safe_load(Path(path or DEFAULT_PATH).read_text()) or {}
     for key in (env_id, "default"):
         if algo in (data.get(key) or {}):

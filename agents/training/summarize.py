@@ -3,7 +3,7 @@
 Usage::
 
     python -m agents.training.summarize runs            # every run under runs/
-    python -m agents.training.summarize runs/OneBall-v0 --env pool_env/OneBall-v0
+    python -m agents.training.summarize runs/OneBallRoll-v1 --env pool_env/OneBallRoll-v1
     python -m agents.training.summarize runs --plot results/oneball_cut_learning.png --title "..."
 
 The means over seeds carry a 95% interval (Student's t over the seeds' values: it says how

@@ -41,13 +41,11 @@ from agents.evaluate import evaluate_agent, format_table, one_line
 from agents.metrics import Estimate
 from agents.pretrained import ALGO_CLASSES, algo_class
 from agents.training import hyperparams, runs
+from agents.training.hyperparams import VEC_KINDS
 from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
 
 #: Algorithms by the name used in ``hyperparams.yml`` and on the command line.
 ALGOS: dict[str, type[BaseAlgorithm]] = {name: algo_class(name) for name in ALGO_CLASSES}
-
-#: Vectorized environment kinds (``--vec``).
-VEC_KINDS = ("dummy", "subproc", "native")
 
 #: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
 #: features as the ``gym.Env`` wrapper of that name (:data:`agents.envs.WRAPPERS`), which the
@@ -89,7 +87,7 @@ class TrainConfig:
         algo_kwargs: Algorithm keyword arguments in their data form (``hyperparams.yml``).
     """
 
-    env_id: str = "pool_env/OneBall-v0"
+    env_id: str = "pool_env/OneBallRoll-v1"
     algo: str = "ppo"
     seed: int = 0
     n_timesteps: int = 100_000
@@ -254,8 +252,8 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
 
     if not quiet:
         print(
-            "Preparing the simulator: numba compiles its kernels on a first run (about a "
-            "minute on 2 cores, not counted as training), later runs load them from its cache",
+            "Preparing the simulator: numba compiles its kernels on a first run (20-40 s on "
+            "2 cores, not counted as training); later runs load them from the disk cache",
             flush=True,
         )
     compile_seconds = warm_up(config)

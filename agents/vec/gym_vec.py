@@ -1,6 +1,6 @@
 """Vector envs for plain Gymnasium loops and CleanRL-style scripts, same-step autoreset.
 
-A pool episode is often one shot (``OneBall-v0``: always). With Gymnasium's default
+A pool episode is often one shot (``OneBallRoll-v1``: always). With Gymnasium's default
 next-step autoreset, the step after an episode ends is a reset that ignores its action: half
 of all vector steps are no-ops (0.5 episodes per table per step, measured in
 ``tests/test_gym_vec.py``). Same-step autoreset resets a finished table inside the step that

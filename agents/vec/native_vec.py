@@ -147,7 +147,7 @@ def make_native_vec_env(
     in ``VecMonitor`` (and ``VecNormalize``) as needed.
 
     Args:
-        env_id: A registered pool_env id (``"pool_env/OneBall-v0"``).
+        env_id: A registered pool_env id (``"pool_env/OneBallRoll-v1"``).
         n_envs: Number of tables.
         seed: Seed of table 0 (``None``: random).
         env_kwargs: ``PoolEnv`` keyword arguments, as for ``gymnasium.make``.

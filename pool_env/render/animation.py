@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.extras import require
 from pool_env.render.canvas import Renderer
 from pool_env.render.cue import strike_frames
 from pool_env.render.palette import Frame
@@ -72,7 +73,7 @@ def save_animation(frames: list[Frame], path: str | os.PathLike[str], fps: int =
     Raises:
         ValueError: On another file suffix or no frames.
         gymnasium.error.DependencyNotInstalled: Without imageio (the ``render`` extra), or
-            without ``imageio-ffmpeg`` for MP4.
+            without ``imageio-ffmpeg`` (which the extra's moviepy brings) for MP4.
     """
     from gymnasium.error import DependencyNotInstalled
 
@@ -81,19 +82,9 @@ def save_animation(frames: list[Frame], path: str | os.PathLike[str], fps: int =
         raise ValueError(f"save an animation as .gif or .mp4, got {str(path)!r}")
     if not frames:
         raise ValueError("no frames to save")
-    try:
-        import imageio.v3 as iio
-    except ImportError:
-        raise DependencyNotInstalled(
-            'saving animations needs imageio: pip install "pool_env[render]"'
-        ) from None
+    iio = require("imageio.v3", "render", "saving animations", DependencyNotInstalled)
     if suffix == ".gif":
         iio.imwrite(path, np.stack(frames), duration=1000.0 / fps, loop=0)
         return
-    try:
-        import imageio_ffmpeg  # noqa: F401
-    except ImportError:
-        raise DependencyNotInstalled(
-            "saving MP4 needs imageio-ffmpeg: pip install imageio-ffmpeg"
-        ) from None
+    require("imageio_ffmpeg", "render", "saving MP4", DependencyNotInstalled)
     iio.imwrite(path, np.stack(frames), fps=fps, codec="libx264", plugin="FFMPEG")

@@ -7,6 +7,7 @@ import sys
 
 import numpy as np
 
+from pool_env.extras import require
 from pool_env.render.palette import Frame
 
 
@@ -33,12 +34,7 @@ class Window:
         from gymnasium.error import DependencyNotInstalled
 
         os.environ.setdefault("PYGAME_HIDE_SUPPORT_PROMPT", "1")
-        try:
-            import pygame
-        except ImportError:
-            raise DependencyNotInstalled(
-                'render_mode="human" needs pygame: pip install "pool_env[render]"'
-            ) from None
+        pygame = require("pygame", "render", 'render_mode="human"', DependencyNotInstalled)
         if "SDL_VIDEODRIVER" not in os.environ and not has_display():
             # Silently: check_env opens every render mode and must pass without warnings.
             os.environ["SDL_VIDEODRIVER"] = "dummy"  # read by SDL at display.init()

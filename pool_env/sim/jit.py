@@ -42,6 +42,8 @@ from typing import Any, TypeVar
 import numba
 from numba.core.caching import FunctionCache
 
+from pool_env.sim import compile_notice
+
 F = TypeVar("F", bound=Callable[..., Any])
 
 # fastmath stays off: reassociation would break bit-for-bit determinism and the exactness
@@ -56,6 +58,7 @@ _PACKAGE = Path(__file__).resolve().parents[1]
 #: until it does.
 KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.jit",
+    "pool_env.sim.compile_notice",  # imported by this one (no compiled code)
     "pool_env.sim.kernels.batch",
     "pool_env.sim.kernels.jaws",
     "pool_env.sim.kernels.kinds",
@@ -147,6 +150,8 @@ def _cache_folder() -> Path | None:
 
 
 CACHE_FOLDER = _cache_folder()
+# A first compile takes tens of seconds: say so once, instead of looking hung.
+COMPILE_NOTICE = compile_notice.install(CACHE_FOLDER)
 _warned = False
 _healed = False
 
