@@ -13,7 +13,7 @@ proofs TP 3.5 and TP 3.6). Paths that meet a rail before the mouth count as they
 degrees from its axis. Beside each figure: the real-table figure and the issue's target
 range, and the same scan on the capture-circle table.
 
-The spin table (``Table(model="spin")``, the v1 ids' table, same jaws) is scanned twice:
+The spin table (``Table(model="spin")``, the spin ids' table, same jaws) is scanned twice:
 balls *rolling* into the mouth (spin tied to the velocity, the same run-up as above) and
 balls *sliding* into it (no spin, a short run-up :data:`SLIDE_RUN_UP` so that they still
 slide at the mouth: stun speed from ``v^2 = v_mouth^2 + 2 mu_slide g run``); the jaws are
@@ -171,7 +171,7 @@ def main() -> None:
         "",
         f"A slow ball rolling along the rail into the corner drops: {'yes' if rail else 'NO'}.",
         "",
-        'Spin table (`Table(model="spin")`, the v1 ids): the same jaws with the Han cushion',
+        'Spin table (`Table(model="spin")`, the spin ids): the same jaws with the Han cushion',
         "model (restitution, cushion friction, contact height) on facings and points. Rolling:",
         "the ball's spin tied to its velocity, the same run-up; sliding: no spin and a",
         f"{SLIDE_RUN_UP * 100:g} cm run-up, so it still slides when it reaches the mouth.",

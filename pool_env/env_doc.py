@@ -17,9 +17,10 @@ A cue ball and ``n`` object balls lie on a pool table (a 9-ft table with six poc
 default). Each step is one shot: the action is decoded to a direction and a speed, the
 cue ball is struck, and the simulator runs the shot exactly to rest (rolling resistance,
 ball-ball and cushion impacts, pockets with jaws cut to the WPA specifications). The
-v0 ids play the roll level (balls roll, no spin); ``model="spin"`` (the v1 ids) plays
-the spin level (:class:`~pool_env.Table` ``model="spin"``: sliding, draw, follow,
-english, throw and squirt) and adds the cue tip to the action. The table's defaults are
+spin ids (``pool_env/<Task>-v1``, ``model="spin"``) play the spin level
+(:class:`~pool_env.Table` ``model="spin"``: sliding, draw, follow, english, throw and
+squirt) and add the cue tip to the action; the roll ids (``pool_env/<Task>Roll-v1``,
+``model="roll"``) play the roll level (balls roll, no spin). The table's defaults are
 measured figures (:class:`~pool_env.Table`: ``mu_roll = 0.01``, ``e_ball = 0.95``,
 ``e_cushion = 0.65``), and so is the speed range
 (0.45 to 4.5 m/s, a slow shot to a power shot). ``table={"pockets": "circles"}`` gives
@@ -29,7 +30,7 @@ Ball ``0`` is the cue ball; object balls are numbered ``1..n``.
 ## Action Space
 
 ``Box(-1, 1, (2,), float32)``, or ``Box(-1, 1, (4,), float32)`` on a spin table
-(``model="spin"``, the v1 ids), each component mapped linearly onto a range:
+(``model="spin"``, the spin ids), each component mapped linearly onto a range:
 
 | Num | Action | -1 maps to | +1 maps to | default range |
 |-----|--------|------------|------------|---------------|
@@ -167,20 +168,23 @@ the tip limit). ``reset`` returns ``{}``.
 | ``model`` | str or None | None | ``"spin"``: the spin table and the tip (the table's) |
 | ``tip_limit`` | float or None | None | spin: the tip's largest offset (R; the miscue limit) |
 
-Registered ids (``import pool_env``): ``pool_env/PoolRoll-v1`` (these defaults, 50 shots),
-``pool_env/OneBallRoll-v1`` (``scene="one_ball"``, ``end_on_miss=True``: one shot per
-episode, since a pot clears the table and a miss ends the turn; 10 shots with
-``end_on_miss=False``), ``pool_env/NineBallRoll-v1`` (break, 50 shots) and
-``pool_env/EightBallRoll-v1`` (break, 80 shots), all solitaire;
-``pool_env/NineBallGameRoll-v1`` and ``pool_env/EightBallGameRoll-v1`` under the rules (below).
-Each has a v1 (``pool_env/OneBall-v1``, ...): the same task with ``model="spin"``. In
+Registered ids (``import pool_env``), each task on the spin table and on the roll table:
+``pool_env/Pool-v1`` / ``pool_env/PoolRoll-v1`` (these defaults, 50 shots),
+``pool_env/OneBall-v1`` / ``pool_env/OneBallRoll-v1`` (``scene="one_ball"``,
+``end_on_miss=True``: one shot per episode, since a pot clears the table and a miss ends
+the turn; 10 shots with ``end_on_miss=False``), ``pool_env/NineBall-v1`` /
+``pool_env/NineBallRoll-v1`` (break, 50 shots) and ``pool_env/EightBall-v1`` /
+``pool_env/EightBallRoll-v1`` (break, 80 shots), all solitaire; ``pool_env/NineBallGame-v1``
+/ ``pool_env/NineBallGameRoll-v1`` and ``pool_env/EightBallGame-v1`` /
+``pool_env/EightBallGameRoll-v1`` under the rules (below). The old names of the roll ids,
+``pool_env/<Task>-v0``, still work (Gymnasium reports them out of date). In
 ``SubprocVecEnv`` workers use the id ``"pool_env:pool_env/OneBallRoll-v1"`` (or import
 ``pool_env`` in the main script), so that each worker imports the package that
 registers the ids.
 
 ## Rules: the game ids
 
-``pool_env/NineBallGameRoll-v1`` and ``pool_env/EightBallGameRoll-v1`` (or ``game=`` with the
+``pool_env/NineBallGame-v1`` and ``pool_env/EightBallGame-v1`` (or ``game=`` with the
 ``nine_ball`` / ``eight_ball`` scene, or any layout of 9 / 15 object balls) play one rack
 under the WPA rules, compiled in :mod:`pool_env.game.kernels.wpa` (its docstring states
 every rule). One agent shoots every shot: a foul gives ball in hand to its next shot
@@ -203,7 +207,7 @@ Simplifications that remain, all deliberate:
 * No push-out (9-ball), no called shots but the 8's pocket (any object ball potted
   counts), no called safeties, no warning before a third foul, no jump, masse or
   "bad cue ball" fouls (the cue is level and its tip clipped to the miscue limit; the
-  v0 ids have no spin), no stalemate rule, no three-foul rule in 8-ball (WPA has none
+  roll ids have no spin), no stalemate rule, no three-foul rule in 8-ball (WPA has none
   either).
 * An illegal break is a foul with ball in hand on the table as it lies (no re-rack or
   re-break choice); the 8 on a legal break is always re-spotted (no re-break choice).
@@ -309,9 +313,10 @@ beyond ~70 degrees), so aiming and speed control are what pot balls.
   squirt; the action gains the cue tip's side and vertical offsets at its end
   (``Box(4)``, rules ``Box(7)``), clipped to the miscue limit; ``noise`` takes a tip
   sigma; ``info["tip"]``. Scenes, rules, rewards, observations and time limits are
-  v0's. Gymnasium notes once per process that a v0 id has a newer version.
-* v0: Initial version (the roll level: balls roll without spin). Unchanged, bit for
-  bit, by v1.
+  v0's. The roll table's ids are ``<Task>Roll-v1``: v0 under a name of its own, bit for
+  bit, since the two tables are two models of one task, not a version and its successor
+  (the ``-v0`` names remain as aliases).
+* v0: Initial version (the roll level: balls roll without spin).
 """
 
 

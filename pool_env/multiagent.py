@@ -13,7 +13,7 @@ truncated after ``max_shots`` shots (0 to both).
 
 Action (``Box(-1, 1, (5,))``): aim, speed, cue ball x and y (used only with the cue ball in
 hand), called pocket (used only when shooting at the 8); see :class:`pool_env.PoolEnv`.
-``model="spin"`` plays the v1 ids' table (``pool_env/NineBallGame-v1``, ...): the action is
+``model="spin"`` plays the spin ids' table (``pool_env/NineBallGame-v1``, ...): the action is
 then ``Box(7)``, the cue tip's side and vertical offsets at its end.
 Every default is the game's roll id's (``pool_env/NineBallGameRoll-v1``,
 ``pool_env/EightBallGameRoll-v1``):

@@ -7,7 +7,7 @@ table, one ball at a time, in Python floats. What it does borrow is the physics
 rare nearest-free-point search of a re-spot when the head spot is covered
 (:func:`pool_env.free_spot`, with its own tests). ``tests/test_game_reference.py`` plays
 random episodes of every registered id on this and on ``gym.make(id)`` and compares them
-exactly. On a spin table (the v1 ids) the action's last two components are the cue tip,
+exactly. On a spin table (the spin ids) the action's last two components are the cue tip,
 decoded here again (clip, scale by the tip limit, back onto the miscue circle) and struck
 through :func:`pool_env.shoot`'s ``tip``.
 """

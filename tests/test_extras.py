@@ -83,8 +83,8 @@ def test_a_broken_install_is_not_called_missing(tmp_path: Path) -> None:
 
 
 def test_the_error_type_is_the_callers() -> None:
-    class Missing(Exception):
+    class MissingError(Exception):
         pass
 
-    with pytest.raises(Missing, match=r'pip install "pool_env\[render\]"'):
-        require("no_such_module_anywhere", "render", "this test", Missing)
+    with pytest.raises(MissingError, match=r'pip install "pool_env\[render\]"'):
+        require("no_such_module_anywhere", "render", "this test", MissingError)

@@ -1,4 +1,4 @@
-"""The spin table as an environment: the cue tip action, its limit, its noise, the v1 ids.
+"""The spin table as an environment: the cue tip action, its limit, its noise, the spin ids.
 
 The strike's physics is the simulator's (``tests/test_spin_strike.py``); here the env's
 decoding of the two tip components is checked against the closed form of the strike, the

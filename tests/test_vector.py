@@ -154,8 +154,6 @@ def test_a_scratch_with_the_head_spot_taken_matches_pool_env() -> None:
 def test_make_vec_builds_it_with_the_ids_spaces_and_limit(env_id: str) -> None:
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # make_vec warns about missing autoreset metadata
-        # ... but Gymnasium's notice that a v0 id has a v1 (the spin table) is expected
-        warnings.filterwarnings("ignore", ".*is out of date", DeprecationWarning)
         env = gym.make_vec(env_id, num_envs=3)
     single = gym.make(env_id)
     assert isinstance(env, PoolVectorEnv)

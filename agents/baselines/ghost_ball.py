@@ -12,7 +12,7 @@ the distances, the rolling resistance and the ball-ball restitution
 :data:`ARRIVAL_SPEED`. When no direct shot exists (a rack, a ball in the way) it hits the
 nearest legal ball full at the top speed: the break, or a shot that opens the table.
 
-On a spin env (the v1 ids: the action ends with the cue tip's two components) it also
+On a spin env (the spin ids: the action ends with the cue tip's two components) it also
 plays position (:mod:`agents.baselines.spin_play`): for the most forgiving few shots it
 tries stun, follow and draw (:data:`~agents.baselines.spin_play.VERTICAL_TIPS`) at a few
 object-ball arrival speeds, works out each strike in closed form (throw, squirt, the cue

@@ -21,7 +21,7 @@ def parse_table(table: Table | dict[str, Any] | None, model: str | None = None) 
 
     Args:
         table: The table, its keyword arguments, or ``None`` (the default table).
-        model: ``"roll"`` or ``"spin"`` (the env's ``model`` keyword, which the v1 ids set),
+        model: ``"roll"`` or ``"spin"`` (the env's ``model`` keyword, which the spin ids set),
             or ``None``: the table's own. A dict or ``None`` gets it as its ``model``; a
             :class:`Table` (or a dict naming a model) must already have it.
 
@@ -106,7 +106,7 @@ def parse_noise(value: object, spin: bool = False) -> tuple[float, ...] | None:
     if len(sigmas) == 3 and sigmas[2] != 0.0 and not spin:
         raise ValueError(
             f"noise {value!r} has a tip sigma, but a roll table has no cue tip: use "
-            "model='spin' (the v1 ids) or give (sigma_angle, sigma_speed)"
+            "model='spin' (the spin ids) or give (sigma_angle, sigma_speed)"
         )
     if not spin:
         sigmas = sigmas[:2]

@@ -315,7 +315,7 @@ def parse_tip_limit(table: Table, tip_limit: object) -> float | None:
     """
     if table.model != "spin":
         if tip_limit is not None:
-            raise ValueError("tip_limit needs a spin table: model='spin' (the v1 ids)")
+            raise ValueError("tip_limit needs a spin table: model='spin' (the spin ids)")
         return None
     if tip_limit is None:
         return default_tip_limit(table)

@@ -244,7 +244,7 @@ def _strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity):
         angle = angle + params[SIGMA_ANGLE] * standard_normal(ptrs)
         s = speed + params[SIGMA_SPEED] * standard_normal(ptrs)
         speed = s if s > 0.0 else 0.0  # clipped at 0 (and -0.0 becomes 0.0)
-        if params[SIGMA_TIP] != 0.0:  # after angle and speed: v0's streams are unchanged
+        if params[SIGMA_TIP] != 0.0:  # after angle and speed: roll tables' streams unchanged
             side = side + params[SIGMA_TIP] * standard_normal(ptrs)
             vertical = vertical + params[SIGMA_TIP] * standard_normal(ptrs)
             side, vertical = onto_tip_circle(side, vertical, params[TIP_LIMIT])
