@@ -1,8 +1,9 @@
-"""A fixed-time-step integrator of the same model, written straight from the seed.
+"""A fixed-time-step integrator of the same model, written straight from the formulas.
 
-This is what a user would write from the seed document (``shared/seed``) without an event
-loop: explicit (forward Euler) steps of size ``dt``; a collision is noticed when two balls
-overlap (or a ball is past a rail) at the end of a step, and resolved then. It is compiled
+This is what a user would write from the classic formulas (``docs/physics.md``, "The
+model") without an event loop: explicit (forward Euler) steps of size ``dt``; a collision
+is noticed when two balls overlap (or a ball is past a rail) at the end of a step, and
+resolved then. It is compiled
 with numba, like the project's simulator, so the comparison is about the method and not the
 language.
 

@@ -29,8 +29,8 @@ Model (SI units):
   documented geometry (points, rail ends, tip centres, facings, fall lines) and offset by
   ``R`` here, at 50 digits.
 
-Departures from the printed seed document (``docs/physics.md``, "Where the seed document is
-wrong"):
+Departures from the classic formulas as printed (``docs/physics.md``, "Three mistakes in
+the classic formulas"):
 
 * The seed's restitution term has the wrong sign (``- m_b e (v_ib - v_ia)``); with that sign
   and ``e = 1``, equal masses pass through each other. The impact law (:mod:`.simulator`) uses
