@@ -28,6 +28,7 @@ from pool_env.sim.inputs import (
 from pool_env.sim.kernels import batch as _batch
 from pool_env.sim.kernels import spin_batch as _spin_batch
 from pool_env.sim.kernels import validation
+from pool_env.sim.kernels.packing import BatchOutput
 from pool_env.sim.spin_inputs import raise_spin_invalid
 from pool_env.sim.table import Table
 
@@ -83,6 +84,30 @@ class BatchResult:
     cushions_after_contact: NDArray[np.int64]
     pocket_order: NDArray[np.int64]
     stopped_by_cap: NDArray[np.bool_]
+
+
+def batch_result(out: BatchOutput) -> BatchResult:
+    """The :class:`BatchResult` of a kernel's :data:`~pool_env.sim.kernels.packing.BatchOutput`."""
+    return BatchResult(
+        positions=out.positions,
+        pocketed=out.pocketed,
+        n_events=out.n_events,
+        hit_event_cap=out.capped,
+        first_contact=out.first_contact,
+        first_hit=out.first_hit,
+        cushions_after_contact=out.cushions_after_contact,
+        pocket_order=out.pocket_order,
+        stopped_by_cap=out.stopped_by_cap,
+    )
+
+
+def check_threads(threads: object) -> int | None:
+    """A positive thread count, or ``None`` (every CPU)."""
+    if threads is not None and (
+        isinstance(threads, bool) or not isinstance(threads, int | np.integer) or threads < 1
+    ):
+        raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
+    return threads  # type: ignore[return-value]
 
 
 def simulate_batch(
@@ -145,17 +170,7 @@ def simulate_batch(
             raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
         except ValueError as exc:
             raise ValueError(f"table {b}: {exc}") from None
-    return BatchResult(
-        positions=out.positions,
-        pocketed=out.pocketed,
-        n_events=out.n_events,
-        hit_event_cap=out.capped,
-        first_contact=out.first_contact,
-        first_hit=out.first_hit,
-        cushions_after_contact=out.cushions_after_contact,
-        pocket_order=out.pocket_order,
-        stopped_by_cap=out.stopped_by_cap,
-    )
+    return batch_result(out)
 
 
 _pool: tuple[int, int, ThreadPoolExecutor] | None = None  # (owner pid, workers, pool)
@@ -180,7 +195,7 @@ def available_cpus() -> int:
         return os.cpu_count() or 1
 
 
-def _thread_pool(workers: int) -> ThreadPoolExecutor:
+def thread_pool(workers: int) -> ThreadPoolExecutor:
     """The process's shared pool, with at least ``workers`` threads.
 
     A caller that needs more threads gets a new, larger pool; the old one is never shut
@@ -236,10 +251,7 @@ def simulate_batch_threads(
         _no_spin(angular_velocities)
     active = as_active(active, n, positions.shape[1])
     max_events = check_max_events(max_events)
-    if threads is not None and (
-        isinstance(threads, bool) or not isinstance(threads, int | np.integer) or threads < 1
-    ):
-        raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
+    threads = check_threads(threads)
     parts = min(threads or available_cpus(), n)
     if parts <= 1:
         return simulate_batch(
@@ -262,7 +274,7 @@ def simulate_batch_threads(
 
     bounds = list(itertools.pairwise(edges))
     # The calling thread takes the last part itself instead of sleeping until the others end.
-    pool = _thread_pool(parts - 1)
+    pool = thread_pool(parts - 1)
     futures = [pool.submit(part, lo, hi) for lo, hi in bounds[:-1]]
     last = part(*bounds[-1])
     results = [f.result() for f in futures] + [last]
