@@ -33,7 +33,7 @@ from pool_env.sim.inputs import (
     raise_invalid,
 )
 from pool_env.sim.kernels import rollout as _rollout
-from pool_env.sim.kernels.packing import BatchOutput
+from pool_env.sim.kernels.packing import BatchOutput, allocate_batch
 from pool_env.sim.kernels.validation import OK
 from pool_env.sim.spin_inputs import raise_spin_invalid, strike
 from pool_env.sim.table import Table
@@ -180,18 +180,8 @@ def rollout(
     mass = np.ascontiguousarray(mass_all[index]) if mass_all.shape[0] else mass_all
     compact_cue = int(np.searchsorted(index, cue))
     n_shots = rows.shape[0]
-    fields = (
-        np.repeat(pos_all[None], n_shots, axis=0),  # a fresh, writable copy per shot
-        np.full((n_shots, n), -1, dtype=np.int64),
-        np.full((n_shots, n), -1, dtype=np.int64),
-        np.full((n_shots, n), -1, dtype=np.int64),
-        np.zeros((n_shots, n), dtype=np.int64),
-        np.zeros(n_shots, dtype=np.int64),
-        np.zeros(n_shots, dtype=np.bool_),
-        np.full((n_shots, 2), -1, dtype=np.int64),
-        np.zeros((n_shots, 3), dtype=np.int64),
-        np.zeros((n_shots, n), dtype=np.bool_),
-    )  # the fields of kernels.packing.allocate_batch, in its order
+    # Every shot starts from the layout: inactive balls keep their rows.
+    fields = tuple(allocate_batch(np.repeat(pos_all[None], n_shots, axis=0)))
     run, prm = (
         (_rollout.run_spin, table.spin_params)
         if table.model == "spin"
