@@ -163,8 +163,8 @@ def rollout(
         >>> from pool_env import Table
         >>> from pool_env.sim import rollout
         >>> layout = np.array([[0.635, 0.635], [1.27, 0.635]])
-        >>> out = rollout(Table(), layout, [[0.0, 2.0], [np.pi, 2.0]])
-        >>> out.first_contact.tolist()  # straight at ball 1, then away from it
+        >>> out = rollout(Table(), layout, [[0.0, 2.0], [np.pi / 2, 0.2]])
+        >>> out.first_contact.tolist()  # straight at ball 1; slowly away from it
         [[0, 1], [-1, -1]]
     """
     table = check_table(table)
