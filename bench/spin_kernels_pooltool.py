@@ -117,16 +117,17 @@ def _ours(cases: dict) -> dict:
     from types import SimpleNamespace
 
     from pool_env.sim.cue import from_pooltool
-    from pool_env.sim.kernels.spin_collide import ALCIATORE, POOLTOOL, ball_ball_spin
+    from pool_env.sim.kernels.spin_collide import ball_ball_spin
     from pool_env.sim.kernels.spin_cushion import cushion_han
+    from pool_env.sim.kernels.spin_params import ALCIATORE_FRICTION, POOLTOOL_FRICTION
     from pool_env.sim.kernels.spin_strike import cue_strike
 
     out: dict = {"ball_ball": [], "ball_ball_pt_mu": [], "cushion": [], "strike": []}
     buf = np.zeros(10)
     for v1, w1, v2, w2, n, e in cases["ball_ball"]:
-        ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, ALCIATORE, 0.0, buf)
+        ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, ALCIATORE_FRICTION, 0.0, buf)
         out["ball_ball"].append(buf.tolist())
-        ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, POOLTOOL, 0.0, buf)
+        ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, POOLTOOL_FRICTION, 0.0, buf)
         out["ball_ball_pt_mu"].append(buf.tolist())
     for v, w, n, h, e, f in cases["cushion"]:
         cushion_han(*v, *w, *n, R, h, e, f, buf)

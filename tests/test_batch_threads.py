@@ -5,6 +5,7 @@ from __future__ import annotations
 import threading
 
 import numpy as np
+import pytest
 
 from pool_env import Table
 from pool_env.sim import batch
@@ -50,3 +51,19 @@ def test_callers_with_different_thread_counts_share_the_pool_safely() -> None:
             w.join()
     assert errors == []
     assert mismatches == []
+
+
+def test_an_invalid_table_in_a_later_part_is_named_by_its_row() -> None:
+    """The parts hand back codes, not messages: the row counts from the batch's start."""
+    for model in ("roll", "spin"):
+        table = Table(model=model)
+        n = 10
+        pos = np.stack([[[0.4, 0.3], [1.6, 0.9]]] * n)
+        pos[7, 1] = pos[7, 0] + (0.01, 0.0)  # overlapping balls on table 7 (of part 3)
+        pos[8, 0] = (-1.0, 0.5)  # off the table, after it
+        vel = np.zeros_like(pos)
+        vel[:, 0, 0] = 1.0
+        on = np.ones((n, 2), np.bool_)
+        for threads in (1, 2, 3):
+            with pytest.raises(ValueError, match=r"^table 7: balls 0 and 1 overlap"):
+                simulate_batch_threads(table, pos, vel, on, threads)

@@ -17,7 +17,7 @@ from pool_env import Table, shoot, simulate
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.inputs import max_speed, reachable_speed
 from pool_env.sim.kernels import batch as kbatch
-from pool_env.sim.kernels import limits, loop, spin_loop, validation
+from pool_env.sim.kernels import limits, loop, validation
 from pool_env.testing.invariants import check_shot
 
 POS = [[1.0, 0.6], [1.5, 0.6]]
@@ -170,7 +170,7 @@ def test_the_energy_limit_is_named_alike_on_the_spin_level() -> None:
     assert message.startswith("the scene's kinetic energy could speed ball 1 (the lightest)")
     batch = _message(lambda: simulate_batch(table, np.array([pos]), np.array([fast]), masses))
     assert batch == f"table 0: {message}"
-    assert len({validation.TOO_ENERGETIC, spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST}) == 3
+    assert len({validation.TOO_ENERGETIC, validation.BAD_SPIN, validation.SPIN_TOO_FAST}) == 3
 
 
 def test_no_ball_ever_passes_the_energy_bound() -> None:

@@ -13,19 +13,19 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from pool_env.sim.kernels.spin_collide import (
-    ALCIATORE,
-    CONSTANT,
+from pool_env.sim.kernels.spin_collide import ball_ball_spin
+from pool_env.sim.kernels.spin_params import (
+    ALCIATORE_FRICTION,
+    CONSTANT_FRICTION,
     FRICTIONLESS,
-    POOLTOOL,
-    ball_ball_spin,
+    POOLTOOL_FRICTION,
 )
 
 R = 0.028575
 M = 0.170097
 
 
-def collide(v1, w1, v2, w2, n, m1=M, m2=M, e=0.95, mode=ALCIATORE, mu=0.0):
+def collide(v1, w1, v2, w2, n, m1=M, m2=M, e=0.95, mode=ALCIATORE_FRICTION, mu=0.0):
     """The kernel's result as (v1', w1', v2', w2') numpy vectors (v 2D, w 3D)."""
     out = np.full(10, np.nan)
     ball_ball_spin(*v1, *w1, *v2, *w2, *n, m1, m2, R, e, mode, mu, out)
@@ -120,7 +120,9 @@ def test_pooltool_mode_gives_pooltool_throw(speed, maximum):
     e = 0.95
     best = 0.0
     for cut in np.radians(np.linspace(0.5, 89.5, 17801)):
-        _, _, v2, _ = collide((speed, 0.0), (0, 0, 0), (0, 0), (0, 0, 0), unit(cut), mode=POOLTOOL)
+        _, _, v2, _ = collide(
+            (speed, 0.0), (0, 0, 0), (0, 0), (0, 0, 0), unit(cut), mode=POOLTOOL_FRICTION
+        )
         throw = math.degrees(cut - math.atan2(v2[1], v2[0]))
         mu = alciatore(speed * math.sin(cut))
         tangent = min(mu * e * math.cos(cut), math.sin(cut) / 7)
@@ -130,7 +132,7 @@ def test_pooltool_mode_gives_pooltool_throw(speed, maximum):
         best = max(best, throw)
     assert best == pytest.approx(maximum, abs=1e-3)
     _, _, same, _ = collide(
-        (speed, 0.0), (0, 0, 30.0), (0, 0), (0, 0, 0), unit(0.3), e=1.0, mode=POOLTOOL
+        (speed, 0.0), (0, 0, 30.0), (0, 0), (0, 0, 0), unit(0.3), e=1.0, mode=POOLTOOL_FRICTION
     )
     _, _, ref, _ = collide((speed, 0.0), (0, 0, 30.0), (0, 0), (0, 0, 0), unit(0.3), e=1.0)
     assert (same == ref).all()  # the two agree at e = 1
@@ -141,7 +143,7 @@ def test_throw_is_capped_at_the_no_slip_result(m1, m2):
     """A huge mu gives the sticking result: ball 2's contact point moves with ball 1's."""
     v1, w1, v2, w2 = np.array([1.5, 0.2]), np.zeros(3), np.zeros(2), np.zeros(3)
     n = unit(0.5)
-    a, b, c, d = collide(v1, w1, v2, w2, n, m1, m2, mode=CONSTANT, mu=1e3)
+    a, b, c, d = collide(v1, w1, v2, w2, n, m1, m2, mode=CONSTANT_FRICTION, mu=1e3)
     n3 = np.array([*n, 0.0])
     slip = (np.array([*a, 0.0]) + np.cross(b, R * n3)) - (np.array([*c, 0.0]) - np.cross(d, R * n3))
     slip -= (slip @ n3) * n3
@@ -157,7 +159,9 @@ def test_sliding_friction_is_coulomb_with_the_normal_impulse():
     n = unit(1.2)  # a thin cut: sliding throughout
     v1 = np.array([1.0, 0.0])
     mu, e = 0.06, 0.5
-    _, _, c, _ = collide(v1, np.zeros(3), np.zeros(2), np.zeros(3), n, e=e, mode=CONSTANT, mu=mu)
+    _, _, c, _ = collide(
+        v1, np.zeros(3), np.zeros(2), np.zeros(3), n, e=e, mode=CONSTANT_FRICTION, mu=mu
+    )
     tangent = np.array([n[1], -n[0]])  # the direction of ball 1's tangential motion
     assert c @ tangent == pytest.approx(mu * (1 + e) * (v1 @ n) / 2, rel=1e-13)
 
@@ -250,7 +254,7 @@ spins = st.floats(-300.0, 300.0, allow_nan=False)
     m1=st.floats(0.01, 1.0),
     m2=st.floats(0.01, 1.0),
     e=st.floats(0.0, 1.0),
-    mode=st.sampled_from([FRICTIONLESS, CONSTANT, ALCIATORE]),
+    mode=st.sampled_from([FRICTIONLESS, CONSTANT_FRICTION, ALCIATORE_FRICTION]),
     mu=st.floats(0.0, 2.0),
 )
 def test_ball_ball_laws(v, w, angle, m1, m2, e, mode, mu):

@@ -36,14 +36,14 @@ from numpy.typing import NDArray
 from agents.baselines.geometry import PocketMouths
 from agents.baselines.trace import TRACE_CUSHIONS, Trace, first_entry
 from pool_env import Table
-from pool_env.sim.kernels.spin_collide import (
-    ALCIATORE,
-    CONSTANT,
-    FRICTIONLESS,
-    POOLTOOL,
-    ball_ball_spin,
-)
+from pool_env.sim.kernels.spin_collide import ball_ball_spin
 from pool_env.sim.kernels.spin_cushion import cushion_han
+from pool_env.sim.kernels.spin_params import (
+    ALCIATORE_FRICTION,
+    CONSTANT_FRICTION,
+    FRICTIONLESS,
+    POOLTOOL_FRICTION,
+)
 from pool_env.sim.kernels.spin_strike import cue_strike, squirt_angle
 
 #: Points of the sliding parabola after contact where its polyline turns.
@@ -162,8 +162,8 @@ def friction_mode(table: Table) -> tuple[int, float]:
     """The ball-ball friction mode and constant of ``table`` (as the simulator reads them)."""
     friction = table.ball_friction
     if isinstance(friction, str):
-        return {"alciatore": ALCIATORE, "pooltool": POOLTOOL}[friction], 0.0
-    return (CONSTANT if friction > 0.0 else FRICTIONLESS), float(friction)
+        return {"alciatore": ALCIATORE_FRICTION, "pooltool": POOLTOOL_FRICTION}[friction], 0.0
+    return (CONSTANT_FRICTION if friction > 0.0 else FRICTIONLESS), float(friction)
 
 
 def collide(table: Table, cue: Motion, normal: NDArray[np.float64]) -> tuple[Motion, Motion]:

@@ -8,6 +8,7 @@ from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.cue import from_pooltool
 from pool_env.sim.kernels.spin_state import STATE_NAMES
 from pool_env.sim.result import Event, ShotResult, SpinShotResult
+from pool_env.sim.rollout import rollout
 from pool_env.sim.simulate import check_layout, shoot, simulate
 from pool_env.sim.table import Table
 
@@ -19,6 +20,7 @@ __all__ = [
     "Table",
     "check_layout",
     "from_pooltool",
+    "rollout",
     "shoot",
     "simulate",
     "simulate_batch",

@@ -28,6 +28,7 @@ from pool_env.sim.inputs import (
 from pool_env.sim.kernels import batch as _batch
 from pool_env.sim.kernels import spin_batch as _spin_batch
 from pool_env.sim.kernels import validation
+from pool_env.sim.kernels.packing import BatchOutput
 from pool_env.sim.spin_inputs import raise_spin_invalid
 from pool_env.sim.table import Table
 
@@ -85,6 +86,30 @@ class BatchResult:
     stopped_by_cap: NDArray[np.bool_]
 
 
+def batch_result(out: BatchOutput) -> BatchResult:
+    """The :class:`BatchResult` of a kernel's :data:`~pool_env.sim.kernels.packing.BatchOutput`."""
+    return BatchResult(
+        positions=out.positions,
+        pocketed=out.pocketed,
+        n_events=out.n_events,
+        hit_event_cap=out.capped,
+        first_contact=out.first_contact,
+        first_hit=out.first_hit,
+        cushions_after_contact=out.cushions_after_contact,
+        pocket_order=out.pocket_order,
+        stopped_by_cap=out.stopped_by_cap,
+    )
+
+
+def check_threads(threads: object) -> int | None:
+    """A positive thread count, or ``None`` (every CPU)."""
+    if threads is not None and (
+        isinstance(threads, bool) or not isinstance(threads, int | np.integer) or threads < 1
+    ):
+        raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
+    return threads  # type: ignore[return-value]
+
+
 def simulate_batch(
     table: Table,
     positions: ArrayLike,
@@ -128,34 +153,57 @@ def simulate_batch(
         parallel = n_tables >= PARALLEL_FROM
     if table.model == "spin":
         ang = _batch_angular(angular_velocities, n_tables, n_balls)
-        run = _spin_batch.run_spin_batch_parallel if parallel else _spin_batch.run_spin_batch
-        out = run(pos, vel, ang, mass, on, table.spin_params, table.pocket_geometry, max_events)
     else:
         _no_spin(angular_velocities)
-        run = _batch.run_batch_parallel if parallel else _batch.run_batch
-        out = run(pos, vel, mass, on, table.params, table.pocket_geometry, max_events)
-    error = out.error
+        ang = None
+    out = _batch_output(table, pos, vel, ang, mass, on, max_events, parallel)
+    raise_batch_error(table, out.error, pos, vel, ang, mass)
+    return batch_result(out)
+
+
+def _batch_output(
+    table: Table,
+    pos: NDArray[np.float64],
+    vel: NDArray[np.float64],
+    ang: NDArray[np.float64] | None,
+    mass: NDArray[np.float64],
+    on: NDArray[np.bool_],
+    max_events: int,
+    parallel: bool,
+) -> BatchOutput:
+    """The kernel's output for checked arrays (``ang`` ``None`` on a roll table); no raise."""
+    if ang is not None:
+        run = _spin_batch.run_spin_batch_parallel if parallel else _spin_batch.run_spin_batch
+        return run(pos, vel, ang, mass, on, table.spin_params, table.pocket_geometry, max_events)
+    run = _batch.run_batch_parallel if parallel else _batch.run_batch
+    return run(pos, vel, mass, on, table.params, table.pocket_geometry, max_events)
+
+
+def raise_batch_error(
+    table: Table,
+    error: NDArray[np.int64],
+    pos: NDArray[np.float64],
+    vel: NDArray[np.float64],
+    ang: NDArray[np.float64] | None,
+    mass: NDArray[np.float64],
+) -> None:
+    """Raise the ``ValueError`` of the first table whose ``error`` row is not ``OK``.
+
+    ``error`` is the kernel's ``(B, 3)`` rows of validation codes and indices (see
+    :data:`~pool_env.sim.kernels.packing.BatchOutput`); the message names the table by its
+    row and says what :func:`pool_env.simulate` would say of it.
+    """
     bad = np.flatnonzero(error[:, 0] != validation.OK)
-    if bad.size:
-        b = int(bad[0])
-        code, i, j = (int(v) for v in error[b])
-        try:
-            if table.model == "spin":
-                raise_spin_invalid(code, i, j, table, pos[b], vel[b], ang[b], mass[b])
-            raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
-        except ValueError as exc:
-            raise ValueError(f"table {b}: {exc}") from None
-    return BatchResult(
-        positions=out.positions,
-        pocketed=out.pocketed,
-        n_events=out.n_events,
-        hit_event_cap=out.capped,
-        first_contact=out.first_contact,
-        first_hit=out.first_hit,
-        cushions_after_contact=out.cushions_after_contact,
-        pocket_order=out.pocket_order,
-        stopped_by_cap=out.stopped_by_cap,
-    )
+    if not bad.size:
+        return
+    b = int(bad[0])
+    code, i, j = (int(v) for v in error[b])
+    try:
+        if ang is not None:
+            raise_spin_invalid(code, i, j, table, pos[b], vel[b], ang[b], mass[b])
+        raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
+    except ValueError as exc:
+        raise ValueError(f"table {b}: {exc}") from None
 
 
 _pool: tuple[int, int, ThreadPoolExecutor] | None = None  # (owner pid, workers, pool)
@@ -180,7 +228,7 @@ def available_cpus() -> int:
         return os.cpu_count() or 1
 
 
-def _thread_pool(workers: int) -> ThreadPoolExecutor:
+def thread_pool(workers: int) -> ThreadPoolExecutor:
     """The process's shared pool, with at least ``workers`` threads.
 
     A caller that needs more threads gets a new, larger pool; the old one is never shut
@@ -236,10 +284,7 @@ def simulate_batch_threads(
         _no_spin(angular_velocities)
     active = as_active(active, n, positions.shape[1])
     max_events = check_max_events(max_events)
-    if threads is not None and (
-        isinstance(threads, bool) or not isinstance(threads, int | np.integer) or threads < 1
-    ):
-        raise ValueError(f"threads must be a positive integer or None, got {threads!r}")
+    threads = check_threads(threads)
     parts = min(threads or available_cpus(), n)
     if parts <= 1:
         return simulate_batch(
@@ -248,24 +293,20 @@ def simulate_batch_threads(
         )  # fmt: skip
     edges = np.linspace(0, n, parts + 1).astype(np.int64).tolist()
     ang = angular_velocities
+    mass = as_batch_masses(table, None, n, positions.shape[1])
 
-    def part(lo: int, hi: int) -> BatchResult:
-        try:
-            return simulate_batch(
-                table, positions[lo:hi], velocities[lo:hi], active=active[lo:hi],
-                max_events=max_events, parallel=False,
-                angular_velocities=None if ang is None else ang[lo:hi],
-            )  # fmt: skip
-        except ValueError as exc:
-            first, rest = str(exc).split(":", 1)  # "table k: ..." counted from lo
-            raise ValueError(f"table {lo + int(first.split()[-1])}:{rest}") from None
+    def part(lo: int, hi: int) -> BatchOutput:
+        return _batch_output(
+            table, positions[lo:hi], velocities[lo:hi], None if ang is None else ang[lo:hi],
+            mass[lo:hi], active[lo:hi], max_events, False,
+        )  # fmt: skip
 
     bounds = list(itertools.pairwise(edges))
     # The calling thread takes the last part itself instead of sleeping until the others end.
-    pool = _thread_pool(parts - 1)
+    pool = thread_pool(parts - 1)
     futures = [pool.submit(part, lo, hi) for lo, hi in bounds[:-1]]
     last = part(*bounds[-1])
-    results = [f.result() for f in futures] + [last]
-    return BatchResult(
-        *(np.concatenate([getattr(r, f) for r in results]) for f in BatchResult.__slots__)
-    )
+    outs = [f.result() for f in futures] + [last]
+    out = BatchOutput(*(np.concatenate([o[k] for o in outs]) for k in range(len(last))))
+    raise_batch_error(table, out.error, positions, velocities, ang, mass)
+    return batch_result(out)

@@ -70,6 +70,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.kernels.predict",
     "pool_env.sim.kernels.record",
     "pool_env.sim.kernels.resolve",
+    "pool_env.sim.kernels.rollout",
     "pool_env.sim.kernels.roots",
     "pool_env.sim.kernels.sequence",
     "pool_env.sim.kernels.spin_batch",

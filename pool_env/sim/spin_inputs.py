@@ -19,7 +19,7 @@ from pool_env.sim.inputs import (
     raise_invalid,
     speed_limits,
 )
-from pool_env.sim.kernels import limits, spin_loop
+from pool_env.sim.kernels import limits, spin_loop, validation
 from pool_env.sim.kernels.spin_strike import cue_strike
 from pool_env.sim.result import SpinShotResult
 from pool_env.sim.scalars import real_number
@@ -89,7 +89,7 @@ def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.floa
 
 def raise_bad_spin(code: int, i: int, table: Table, ang: NDArray[np.float64]) -> None:
     """Raise the ``ValueError`` for a spin validation code of ``spin_loop.validate_spins``."""
-    if code == spin_loop.BAD_SPIN:
+    if code == validation.BAD_SPIN:
         raise ValueError(f"angular_velocities must be finite: ball {i} has {ang[i].tolist()}")
     surface = table.ball_radius * float(np.sqrt(ang[i] @ ang[i]))
     raise ValueError(
@@ -141,9 +141,9 @@ def raise_spin_invalid(
     As :func:`~pool_env.sim.inputs.raise_invalid`, with the spin's codes and the energy
     limit counting the spin.
     """
-    if code in (spin_loop.BAD_SPIN, spin_loop.SPIN_TOO_FAST):
+    if code in (validation.BAD_SPIN, validation.SPIN_TOO_FAST):
         raise_bad_spin(code, i, table, ang)
-    if code == spin_loop.TOO_ENERGETIC:
+    if code == validation.TOO_ENERGETIC:
         reach = reachable_spin_speed(table, vel, ang, mass if mass.shape[0] else None)
         raise ValueError(
             f"the scene's kinetic energy could speed ball {i} (the lightest) up to "
@@ -171,7 +171,7 @@ def run_spin(
     raw = spin_loop.packed_spin_shot(
         pos, vel, ang, mass, table.spin_params, table.pocket_geometry, max_events, record
     )
-    if raw[0] != spin_loop.OK:
+    if raw[0] != validation.OK:
         raise_spin_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
     return SpinShotResult(raw, pos.shape[0], table.deceleration, record)
 
@@ -208,7 +208,7 @@ def run_spin_strike(
         pos, cue, speed, angle, a, b, elevation, mass, table.spin_params,
         table.pocket_geometry, max_events, record,
     )  # fmt: skip
-    if raw[0] != spin_loop.OK:  # the arrays the message names, rebuilt (rare)
+    if raw[0] != validation.OK:  # the arrays the message names, rebuilt (rare)
         vel, ang = np.zeros((pos.shape[0], 2)), np.zeros((pos.shape[0], 3))
         vel[cue], ang[cue] = strike(table, speed, angle, a, b, elevation)
         raise_spin_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)

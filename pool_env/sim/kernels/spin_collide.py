@@ -60,9 +60,12 @@ from __future__ import annotations
 import math
 
 from pool_env.sim.jit import kernel
+from pool_env.sim.kernels.spin_params import (
+    CONSTANT_FRICTION,
+    FRICTIONLESS,
+    POOLTOOL_FRICTION,
+)
 
-#: Friction modes of :func:`ball_ball_spin`.
-FRICTIONLESS, CONSTANT, ALCIATORE, POOLTOOL = 0, 1, 2, 3
 #: Alciatore's fit ``mu = A + B exp(-C |s|)`` (TP A-14; pooltool's ``AlciatoreBallBallFriction``).
 ALCIATORE_A, ALCIATORE_B, ALCIATORE_C = 9.951e-3, 0.108, 1.088
 
@@ -72,9 +75,9 @@ def ball_friction(mode, mu_const, slip):
     """The ball-ball friction coefficient for ``mode`` at a relative slip speed ``slip`` (m/s)."""
     if mode == FRICTIONLESS:
         return 0.0
-    if mode == CONSTANT:
+    if mode == CONSTANT_FRICTION:
         return mu_const
-    return ALCIATORE_A + ALCIATORE_B * math.exp(-ALCIATORE_C * slip)  # ALCIATORE, POOLTOOL
+    return ALCIATORE_A + ALCIATORE_B * math.exp(-ALCIATORE_C * slip)  # the two fits
 
 
 @kernel
@@ -130,7 +133,7 @@ def ball_ball_spin(
     tx = ty = tz = 0.0
     if slip > 0.0:
         mu = ball_friction(friction_mode, mu_const, slip)
-        if friction_mode == POOLTOOL:  # its impulse mu e_b c m = mu' J_n, equal masses
+        if friction_mode == POOLTOOL_FRICTION:  # its impulse mu e_b c m = mu' J_n, equal masses
             mu *= 2.0 * e_b / (1.0 + e_b)
         jt = min(mu * jn, (2.0 / 7.0) * reduced * slip)
         tx, ty, tz = -jt * sx / slip, -jt * sy / slip, -jt * sz / slip

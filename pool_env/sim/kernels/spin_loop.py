@@ -94,7 +94,13 @@ from pool_env.sim.kernels.spin_state import (
 )
 from pool_env.sim.kernels.spin_strike import cue_strike
 from pool_env.sim.kernels.spin_zeno import RAIL_NX, RAIL_NY, pressed_roll, stick, wedged_ball
-from pool_env.sim.kernels.validation import OK, TOO_ENERGETIC, validate
+from pool_env.sim.kernels.validation import (
+    BAD_SPIN,
+    OK,
+    SPIN_TOO_FAST,
+    TOO_ENERGETIC,
+    validate,
+)
 
 #: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
 SEG_COLS = 9
@@ -278,12 +284,6 @@ def shoot_spin(positions, velocities, angular, masses, prm, pockets, max_events,
                     _log_segment(segments, n_seg, i, now, st, ms)
                     n_seg += 1
     return st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
-
-
-#: Validation codes of the spin level, after the roll level's last (``validation.TOO_ENERGETIC``),
-#: so one code never means two things: a non-finite angular velocity, a surface speed
-#: ``R |w|`` beyond ``MAX_SPEED``.
-BAD_SPIN, SPIN_TOO_FAST = TOO_ENERGETIC + 1, TOO_ENERGETIC + 2
 
 
 @kernel

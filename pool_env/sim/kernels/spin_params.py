@@ -27,7 +27,8 @@ from pool_env.sim.kernels.params import N_PARAMS
 #: Length of ``Table.spin_params``.
 N_SPIN_PARAMS = N_PARAMS + 8
 
-#: Ball-ball friction modes (the ``friction_mode`` argument of the resolution kernel,
+#: Ball-ball friction modes, the one enumeration (``Table.spin_params[S_FRICTION_MODE]``, the
+#: ``friction_mode`` argument of the resolution kernel,
 #: :mod:`~pool_env.sim.kernels.spin_collide`): none, a constant, Alciatore's fit with
 #: Coulomb's impulse, Alciatore's fit with pooltool 0.6.0's impulse.
 FRICTIONLESS, CONSTANT_FRICTION, ALCIATORE_FRICTION, POOLTOOL_FRICTION = 0, 1, 2, 3

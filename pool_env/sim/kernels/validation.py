@@ -3,8 +3,8 @@
 :func:`validate` names the first problem of a scene as a code and the balls (or the pocket)
 involved; Python turns the code into its ``ValueError``
 (:func:`~pool_env.sim.inputs.raise_invalid`). The codes are shared by the single shot, the
-batches and the spin level (which continues the numbering after ``TOO_ENERGETIC``), so one
-code never means two things.
+batches and the spin level (whose two codes, ``BAD_SPIN`` and ``SPIN_TOO_FAST``, are
+listed here too: one enumeration), so one code never means two things.
 """
 
 from __future__ import annotations
@@ -23,6 +23,9 @@ POS_TOL = 1e-9
 # Validation codes.
 OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAST = range(8)
 IN_JAW, BEHIND_LINE, TOO_ENERGETIC = 8, 9, 10
+#: The spin level's: a non-finite angular velocity, a surface speed ``R |w|`` beyond
+#: ``limits.MAX_SPEED`` (:func:`pool_env.sim.kernels.spin_loop.validate_spins`).
+BAD_SPIN, SPIN_TOO_FAST = 11, 12
 
 
 @kernel
