@@ -9,21 +9,26 @@
   evaluation, copied as they stand, so that the pages link to them and the site never
   holds a second copy that could drift.
 * ``changelog.md``: ``CHANGELOG.md``.
-* ``img/``: pictures drawn now by the project's renderer (``docs/make_picture.py``), so a
-  page shows what today's code does.
+
+The pages link to these as the repository holds them (``../results/agents.md``), which
+``docs/site_links.py`` maps to the copies here when a page is rendered.
 """
 
 from __future__ import annotations
 
 import re
 import shutil
+import sys
 from pathlib import Path
 
 import griffe
-import imageio.v3 as iio
 import mkdocs_gen_files
 
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "docs"))  # site_links, beside this file
+
+from site_links import page_of  # noqa: E402  (the one mapping of modules to pages)
+
 PACKAGES = ("pool_env", "agents")
 COPIED = {"results": ("*.md", "*.png"), "models": ("*.md", "*.yaml")}
 
@@ -41,11 +46,6 @@ def module_names(package: str) -> list[tuple[str, ...]]:
             continue
         names.append(parts)
     return names
-
-
-def page_of(parts: tuple[str, ...], is_package: bool) -> str:
-    """The reference page of a module: ``a/b/index.md`` for a package, ``a/b.md`` otherwise."""
-    return "/".join(parts) + ("/index.md" if is_package else ".md")
 
 
 def resolve_export(package: griffe.Module, name: str) -> griffe.Object:
@@ -149,9 +149,22 @@ def list_simulator_modules(loader: dict[str, griffe.Module]) -> None:
         out.write("\n".join(rows) + "\n")
 
 
+def page_title(path: Path) -> str:
+    """The first heading of a Markdown file (its name if it has none), for the menu."""
+    for line in path.read_text().splitlines():
+        if line.startswith("# "):
+            return line[2:].strip().replace("[", "(").replace("]", ")")
+    return path.stem
+
+
 def copy_reports() -> None:
-    """``results/`` and ``models/`` reports into the site, as they stand."""
+    """``results/`` and ``models/`` reports into the site, as they stand, each in the menu.
+
+    Each folder gets a ``SUMMARY.md`` (literate-nav) listing its pages by their titles, so a
+    report that others add shows in the site's menu without an edit here.
+    """
     for folder, patterns in COPIED.items():
+        nav = []
         for pattern in patterns:
             for path in sorted((ROOT / folder).glob(pattern)):
                 with (
@@ -159,23 +172,14 @@ def copy_reports() -> None:
                     mkdocs_gen_files.open(f"{folder}/{path.name}", "wb") as dst,
                 ):
                     shutil.copyfileobj(src, dst)
+                if path.suffix == ".md":
+                    nav.append(f"* [{page_title(path)}]({path.name})\n")
+        with mkdocs_gen_files.open(f"{folder}/SUMMARY.md", "w") as out:
+            out.writelines(nav)
     with mkdocs_gen_files.open("changelog.md", "w") as out:
         out.write((ROOT / "CHANGELOG.md").read_text())
-
-
-def draw_pictures() -> None:
-    """``img/break.png``: a 9-ball break with its paths; ``img/cut.png``: the README's shot."""
-    import sys
-
-    sys.path.insert(0, str(ROOT / "docs"))
-    import make_picture  # docs/make_picture.py
-
-    for name, env in (("break", make_picture.break_env(800)), ("cut", make_picture.cut_shot_env())):
-        with mkdocs_gen_files.open(f"img/{name}.png", "wb") as out:
-            out.write(iio.imwrite("<bytes>", env.render(), extension=".png"))
 
 
 write_reference()
 list_simulator_modules(load_packages())
 copy_reports()
-draw_pictures()

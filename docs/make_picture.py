@@ -1,9 +1,10 @@
-"""Draw the README's pictures with the project's own renderer: ``docs/shot.png`` and ``.gif``.
+"""Draw the docs' pictures with the project's renderer: ``shot.png``, ``shot.gif``, ``break.png``.
 
 A cut shot on four object balls: ``shot.png`` is the frame with the paths the shot left,
-``shot.gif`` the shot animated from its exact trajectories. The docs site draws its pages'
-animations with :func:`cut_shot_env` and :func:`break_env` at build time
-(``docs/gen_pages.py``).
+``shot.gif`` the shot animated from its exact trajectories; ``break.png`` a 9-ball break
+with its paths. They are committed, so that the README and the docs pages show them on
+GitHub as on the site; ``tests/test_docs_links.py`` checks that the PNGs are what today's
+renderer draws.
 
 Run: ``python docs/make_picture.py``.
 """
@@ -60,7 +61,9 @@ def main() -> None:
     iio.imwrite(png, cut_shot_env().render(), optimize=True)
     gif = here / "shot.gif"
     cut_shot_env(width=480).save_shot(str(gif))
-    for out in (png, gif):
+    rack = here / "break.png"
+    iio.imwrite(rack, break_env(800).render(), optimize=True)
+    for out in (png, gif, rack):
         print(f"wrote {out} ({out.stat().st_size / 1024:.0f} KB)")
 
 
