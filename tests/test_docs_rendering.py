@@ -98,3 +98,18 @@ def test_no_returns_section_is_split_into_rows(package: str) -> None:
                 broken.append(f"{obj.path} {title}: cut at a colon after {head!r}")
     assert checked > 20, checked  # the probe reads the docstrings at all
     assert not broken, "\n".join(broken)
+
+
+CODE_WIDTH = 88  # characters a code block shows on the site's page without scrolling
+PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
+
+
+@pytest.mark.parametrize("page", PAGES, ids=lambda p: str(p.relative_to(ROOT)))
+def test_no_code_line_runs_off_the_page(page: Path) -> None:
+    long, fenced = [], False
+    for number, line in enumerate(page.read_text().splitlines(), 1):
+        if line.startswith("```"):
+            fenced = not fenced
+        elif fenced and len(line) > CODE_WIDTH:
+            long.append(f"line {number}: {len(line)} characters")
+    assert not long, long
