@@ -11,8 +11,8 @@ from pool_env.game.rollout import candidates_state, rollout_actions
 from pool_env.game.state import new_state
 from pool_env.game.step import step
 
-IDS = ["pool_env/OneBall-v0", "pool_env/OneBall-v1", "pool_env/NineBallGame-v0",
-       "pool_env/NineBallGame-v1", "pool_env/EightBallGame-v0"]  # fmt: skip
+IDS = ["pool_env/OneBallRoll-v1", "pool_env/OneBall-v1", "pool_env/NineBallGameRoll-v1",
+       "pool_env/NineBallGame-v1", "pool_env/EightBallGameRoll-v1"]  # fmt: skip
 
 
 @pytest.mark.parametrize("env_id", IDS)
