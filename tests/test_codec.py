@@ -111,5 +111,26 @@ def test_encode_refuses_what_the_action_cannot_play() -> None:
         encode_action(roll.config, Shot(0.0, 1.0), roll.positions, rack=game.rack)
 
 
+@pytest.mark.parametrize("clip", [False, True])
+@pytest.mark.parametrize(
+    "shot",
+    [
+        Shot(0.0, 1.0, tip=(math.nan, 0.0)),
+        Shot(0.0, 1.0, tip=(math.inf, 0.0)),
+        Shot(0.0, 1.0, tip=(0.0, -math.inf)),
+        Shot(0.0, math.nan),
+        Shot(0.0, math.inf),
+        Shot(math.nan, 1.0),
+        Shot(0.0, 1.0, cue=(math.nan, 0.5)),
+    ],
+)
+def test_encode_refuses_a_part_that_is_not_finite(shot: Shot, clip: bool) -> None:
+    """NaN and infinities raise, with or without clip (clipping NaN gave a NaN action)."""
+    game = PoolEnv(scene="nine_ball", game="nine", model="spin")
+    game.reset(seed=0)
+    with pytest.raises(ValueError, match="not a finite number"):
+        encode_action(game.config, shot, game.positions, rack=game.rack, clip=clip)
+
+
 def test_the_codec_is_public() -> None:
     assert {"Shot", "decode_action", "encode_action"} <= set(pool_env.__all__)

@@ -64,6 +64,17 @@ class Shot:
     pocket: int = 0
 
 
+def _check_finite(shot: Shot) -> None:
+    """Refuse a shot with a part that is NaN or infinite (clipping cannot place it)."""
+    parts = {"angle": shot.angle, "speed": shot.speed, "tip": shot.tip}
+    if shot.cue is not None:
+        parts["cue"] = shot.cue
+    for name, value in parts.items():
+        values = np.asarray(value, dtype=np.float64)
+        if not np.all(np.isfinite(values)):
+            raise ValueError(f"shot {name} {value!r} is not a finite number")
+
+
 def _table(
     config: GameConfig, positions: ArrayLike, on_table: ArrayLike | None, rack: Any
 ) -> GameState:
@@ -306,8 +317,10 @@ def encode_action(
         ValueError: On a part the action cannot play (without ``clip``): an angle outside
             the aim range (cut aim: more than 90 degrees off its reference ball), a speed
             outside its range, a tip beyond the tip limit or any tip on a roll table, a
-            pocket that does not exist; or a malformed layout or rack.
+            pocket that does not exist; on a part that is not a finite number (with or
+            without ``clip``: no edge is nearest to NaN); or a malformed layout or rack.
     """
+    _check_finite(shot)
     state = _table(config, positions, on_table, rack)
     out = np.zeros(config.action_size)
     _tip(config, shot.tip, out, clip)
