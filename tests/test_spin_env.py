@@ -176,6 +176,10 @@ def test_v0_and_v1_streams_agree_up_to_the_tip_draws() -> None:
         ({"model": "spin", "tip_limit": 0.0}, "tip_limit must lie"),
         ({"model": "spin", "tip_limit": 1.2}, "tip_limit must lie"),
         ({"model": "spin", "tip_limit": float("nan")}, "tip_limit must be finite"),
+        ({"model": "spin", "tip_limit": "0.5"}, "tip_limit must be a number"),  # float() took it
+        ({"model": "spin", "tip_limit": True}, "tip_limit must be a number"),  # as 1.0
+        ({"model": "spin", "noise": (True, 0.05)}, r"noise must be \(sigma_angle"),
+        ({"speed_range": ("1", 4.0)}, "speed_range must be a pair"),
         ({"tip_limit": 0.5}, "tip_limit needs a spin table"),
         ({"noise": (0.0, 0.0, 0.1)}, "roll table has no cue tip"),
         ({"model": "spin", "noise": (0.0, 0.0, -0.1)}, "must be >= 0"),

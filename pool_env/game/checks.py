@@ -56,7 +56,9 @@ def parse_table(table: Table | dict[str, Any] | None, model: str | None = None) 
 
 
 def parse_float(name: str, value: object) -> float:
-    """A finite number."""
+    """A finite number: not a string or a bool, which ``float()`` would take (``"0.5"``, 1.0)."""
+    if isinstance(value, str | bytes | bool | np.bool_):
+        raise ValueError(f"{name} must be a number, got {value!r}")
     try:
         out = float(value)  # type: ignore[arg-type]
     except (TypeError, ValueError):
