@@ -12,7 +12,13 @@ import numpy as np
 import pytest
 
 from pool_env import Table, shoot, simulate
-from pool_env.sim import STATE_NAMES, SpinShotResult, simulate_batch, simulate_batch_threads
+from pool_env.sim import (
+    STATE_NAMES,
+    SpinShotResult,
+    rollout,
+    simulate_batch,
+    simulate_batch_threads,
+)
 from pool_env.sim.kernels.params import N_PARAMS
 from pool_env.sim.kernels.spin_params import (
     ALCIATORE_FRICTION,
@@ -118,6 +124,33 @@ def test_bad_tip(tip, elevation, match) -> None:
     t = Table(model="spin", pockets="none")
     with pytest.raises(ValueError, match=match):
         shoot(t, [[1.0, 0.6]], 0.0, 1.0, tip=tip, elevation=elevation)
+
+
+@pytest.mark.parametrize(
+    ("tip", "tip_radius", "plays"),
+    [
+        ((1.0, 1.0), None, False),  # the default 10.6 mm tip: a' = b' = 0.73, off the ball
+        ((0.9, 0.9), 1e-4, False),  # a 0.1 mm tip: the contact is the axis point, off
+        ((0.7, 0.7), None, True),  # a'^2 + b'^2 = 0.52
+        ((0.7, 0.7), 1e-4, True),
+        ((1.0, 0.0), 1e-4, True),  # a grazing hit on the outline
+    ],
+)
+def test_a_tip_must_meet_the_ball_on_its_surface(tip, tip_radius, plays) -> None:
+    """The contact offset (a, b) / (1 + r_tip / R) lies within the ball's outline, or raise."""
+    kwargs = {} if tip_radius is None else {"cue_tip_radius": tip_radius}
+    t = Table(model="spin", pockets="none", **kwargs)
+    reach = 1.0 + t.cue_tip_radius / t.ball_radius
+    assert (tip[0] ** 2 + tip[1] ** 2 <= reach**2) is plays  # the case is what it says
+    layout = [[1.0, 0.6], [2.0, 0.9]]
+    if plays:
+        shoot(t, layout, 0.0, 1.0, tip=tip)
+        rollout(t, layout, [[0.0, 1.0, *tip, 0.0]])
+    else:
+        with pytest.raises(ValueError, match="off its surface"):
+            shoot(t, layout, 0.0, 1.0, tip=tip)
+        with pytest.raises(ValueError, match="off its surface"):
+            rollout(t, layout, [[0.0, 1.0, *tip, 0.0]])
 
 
 def test_bad_angular_velocities() -> None:

@@ -35,7 +35,7 @@ from pool_env.sim.inputs import (
 from pool_env.sim.kernels import rollout as _rollout
 from pool_env.sim.kernels.packing import BatchOutput, allocate_batch
 from pool_env.sim.kernels.validation import OK
-from pool_env.sim.spin_inputs import raise_spin_invalid, strike
+from pool_env.sim.spin_inputs import raise_spin_invalid, strike, tip_touches_ball
 from pool_env.sim.table import Table
 
 __all__ = ["SHOT_COLUMNS", "rollout"]
@@ -67,6 +67,7 @@ def _as_shots(table: Table, shots: ArrayLike) -> NDArray[np.float64]:
         (speed >= 0.0, "needs a non-negative finite speed"),  # NaN fails
         (np.isfinite(speed), "needs a non-negative finite speed"),
         ((np.abs(a) <= 1.0) & (np.abs(b) <= 1.0), "has tip offsets outside [-1, 1]"),
+        (tip_touches_ball(table, a, b), "has a tip that meets the ball off its surface"),
         ((elevation >= 0.0) & (elevation < 0.5 * math.pi), "has elevation outside [0, pi/2)"),
     )
     for ok, problem in checks:

@@ -7,6 +7,7 @@ Used by :func:`pool_env.simulate` and :func:`pool_env.shoot` on a ``Table(model=
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -28,12 +29,26 @@ from pool_env.sim.table import Table
 _NO_TIP = (0.0, 0.0)
 
 
+def tip_touches_ball(table: Table, a: Any, b: Any) -> Any:
+    """Whether a cue axis offset ``(a, b)`` (fractions of R) meets the ball on its surface.
+
+    The tip is a sphere of radius ``r_tip``; at contact its centre lies ``R + r_tip`` from
+    the ball's, so the contact point's offset is ``(a, b) / (1 + r_tip / R)``
+    (:mod:`pool_env.sim.kernels.spin_strike`), and it lies on the ball only within its
+    outline: ``a^2 + b^2 <= (1 + r_tip / R)^2``. Beyond it the strike model would give a
+    spin that no cue can give. Scalars or arrays (element by element).
+    """
+    reach = 1.0 + table.cue_tip_radius / table.ball_radius
+    return a * a + b * b <= reach * reach
+
+
 def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, float, float]:
-    """The cue's tip offset ``(a, b)`` in [-1, 1] and elevation in [0, pi/2) (radians).
+    """The cue's tip offset ``(a, b)`` in [-1, 1], on the ball, and elevation in [0, pi/2).
 
     Raises:
-        ValueError: On a malformed or out-of-range value, or a non-zero one on a roll table
-            (it has no spin: the message says to use ``model="spin"``).
+        ValueError: On a malformed or out-of-range value, a tip whose contact point lies off
+            the ball (:func:`tip_touches_ball`), or a non-zero one on a roll table (it has
+            no spin: the message says to use ``model="spin"``).
     """
     if tip is _NO_TIP and type(elevation) is float and elevation == 0.0:
         return 0.0, 0.0, 0.0  # the default, fast
@@ -41,7 +56,8 @@ def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, floa
         a, b = tip
         if isinstance(a, float) and isinstance(b, float) and isinstance(elevation, float):
             a, b, elev = float(a), float(b), float(elevation)  # NaN fails every test below
-            if -1.0 <= a <= 1.0 and -1.0 <= b <= 1.0 and 0.0 <= elev < 0.5 * math.pi:
+            in_box = -1.0 <= a <= 1.0 and -1.0 <= b <= 1.0 and 0.0 <= elev < 0.5 * math.pi
+            if in_box and tip_touches_ball(table, a, b):
                 return a, b, elev
     try:
         a_raw, b_raw = tip  # type: ignore[misc]
@@ -51,6 +67,12 @@ def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, floa
     elev = real_number("elevation", elevation)
     if not (-1.0 <= a <= 1.0 and -1.0 <= b <= 1.0):
         raise ValueError(f"tip offsets must lie in [-1, 1] (fractions of R), got {(a, b)}")
+    if not tip_touches_ball(table, a, b):
+        reach = 1.0 + table.cue_tip_radius / table.ball_radius
+        raise ValueError(
+            f"tip {(a, b)} meets the ball off its surface: a cue tip of radius "
+            f"{table.cue_tip_radius!r} m touches it only within a^2 + b^2 <= {reach * reach:.4g}"
+        )
     if not 0.0 <= elev < 0.5 * math.pi:
         raise ValueError(f"elevation must lie in [0, pi/2) radians, got {elev!r}")
     if table.model != "spin" and (a != 0.0 or b != 0.0 or elev != 0.0):
