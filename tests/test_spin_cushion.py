@@ -144,3 +144,26 @@ def test_han_laws(v, w, angle, h, e, f):
     a_m, b_m = bounce(mirror @ vel, spin_m, n, h, e, f)
     np.testing.assert_allclose(a_m, mirror @ a, atol=tol)
     np.testing.assert_allclose(b_m, [*(-(mirror @ b[:2])), -b[2]], atol=tol / R)
+
+
+def test_the_docstring_quotes_the_tables_defaults() -> None:
+    """The module's worked figures use Table's cushion defaults, and the closed form gives them."""
+    import re
+
+    from pool_env import Table
+    from pool_env.sim.kernels import spin_cushion
+
+    doc = " ".join(spin_cushion.__doc__.split())
+    quoted = re.search(
+        r"``Table``'s defaults \(``e_c = ([\d.]+)``, ``f_c = ([\d.]+)``, ``h = ([\d.]+) R``\)"
+        r" it is ``([\d.]+) vx``",
+        doc,
+    )
+    assert quoted is not None
+    e_c, f_c, h, factor = (float(g) for g in quoted.groups())
+    table = Table(model="spin")
+    assert (e_c, f_c) == (table.e_cushion, table.cushion_friction)
+    assert h == pytest.approx(table.cushion_height / table.ball_radius)
+    sin2 = (h - 1.0) ** 2  # sin(theta) = (h - R) / R
+    rebound = (1 + e_c) * (1 - sin2) + (2 / 7) * sin2 - 1  # a head-on stun ball, in vx
+    assert factor == pytest.approx(rebound, abs=5e-4)

@@ -51,8 +51,9 @@ topspin (``wy > 0``) speeds the rebound and draw slows it, and a stun ball leave
 topspin for its rebound. A head-on stun ball (``vy = 0``, ``w = 0``) sticks when
 ``tan(theta) <= (7/2) f_c (1 + e_c)`` and rebounds at
 ``vx [(1 + e_c) cos^2(theta) + (2/7) sin^2(theta) - 1]`` with topspin
-``(5/7)(vx / R) sin(theta)``; with ``theta = 0`` that is the textbook ``-e_c vx``, and at the
-defaults (``e_c = 0.85``, ``f_c = 0.2``, ``h = 1.27 R``) it is ``0.736 vx``.
+``(5/7)(vx / R) sin(theta)``; with ``theta = 0`` that is the textbook ``-e_c vx``, and at
+``Table``'s defaults (``e_c = 0.65``, ``f_c = 0.2``, ``h = 1.27 R``) it is ``0.551 vx``
+(``0.736 vx`` at pooltool 0.6.0's ``e_c = 0.85``).
 
 Simplifications. The vertical velocity the impulse gives (into the cloth, or up for a
 sliding ball with strong draw) is dropped: the model is planar, the cloth takes the downward
@@ -71,8 +72,8 @@ would still move into the cushion once its vertical velocity is dropped, and poo
 the same cushion again at once, shrinking that velocity geometrically. Here it is set to zero
 instead: the ball slides along the cushion (the limit of those repeats, without their
 events). It cannot happen while ``(1 + e_c) cos^2(theta) - 1 > f_c (1 + e_c) cos(theta)
-sin(theta)``, as with the defaults (``e_c = 0.85``, ``f_c = 0.2``, ``h = 1.27 R``: 0.715 against
-0.096).
+sin(theta)``, as with ``Table``'s defaults (``e_c = 0.65``, ``f_c = 0.2``, ``h = 1.27 R``:
+0.530 against 0.086; at pooltool's ``e_c = 0.85``, 0.715 against 0.096).
 
 Energy never increases: the normal part loses ``(1 - e_c^2) m c^2 / 2``, friction removes
 ``|P_t| (|s| + |s'|) / 2`` of slip energy, and dropping a vertical velocity only removes.
