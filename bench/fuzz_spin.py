@@ -43,7 +43,7 @@ from pool_env import Table, shoot, simulate
 from pool_env.sim.inputs import max_speed
 from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.result import ShotResult
-from pool_env.sim.spin_inputs import reachable_spin_speed, strike
+from pool_env.sim.spin_inputs import reachable_spin_speed, strike, tip_touches_ball
 
 DEFAULT = Table()
 
@@ -84,9 +84,19 @@ def spin_table_kwargs(spin: dict[str, object], radius: float) -> dict[str, objec
 
 
 def _random_tip(rng: np.random.Generator, table: Table) -> tuple[float, float]:
-    """A tip axis offset: inside the safe range (contact offset <= R / 2) or anywhere."""
+    """A tip axis offset: inside the safe range (contact offset <= R / 2) or anywhere on the ball.
+
+    "Anywhere" draws in the API's box [-1, 1]^2 and scales a draw whose contact point would
+    lie off the ball onto the ball's outline (``spin_inputs.tip_touches_ball``), so the
+    random stream is the same draw for draw.
+    """
     if rng.random() < 1 / 3:
-        return float(rng.uniform(-1, 1)), float(rng.uniform(-1, 1))
+        a, b = float(rng.uniform(-1, 1)), float(rng.uniform(-1, 1))
+        if not tip_touches_ball(table, a, b):
+            reach = 1.0 + table.cue_tip_radius / table.ball_radius
+            scale = reach / math.hypot(a, b) * (1.0 - 1e-12)
+            a, b = a * scale, b * scale
+        return a, b
     reach = 0.5 * (1.0 + table.cue_tip_radius / table.ball_radius)  # axis offset, safe
     rho = reach * math.sqrt(rng.random())
     phi = rng.uniform(0, 2 * math.pi)
