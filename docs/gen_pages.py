@@ -27,10 +27,9 @@ import mkdocs_gen_files
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "docs"))  # site_links, beside this file
 
-from site_links import page_of  # noqa: E402  (the one mapping of modules to pages)
+from site_links import COPIED, page_of  # noqa: E402  (one copy of what the site holds)
 
 PACKAGES = ("pool_env", "agents")
-COPIED = {"results": ("*.md", "*.png"), "models": ("*.md", "*.yaml")}
 
 
 def module_names(package: str) -> list[tuple[str, ...]]:

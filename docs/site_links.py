@@ -21,7 +21,8 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
-COPIED = ("results", "models")  # folders gen_pages copies into the site as they stand
+#: Folders gen_pages copies into the site as they stand, with the files it copies.
+COPIED = {"results": ("*.md", "*.png"), "models": ("*.md", "*.yaml")}
 PACKAGES = ("pool_env", "agents")
 LINK = re.compile(r"(!?\[[^\]]*\])\(([^)\s]+)\)")
 

@@ -12,6 +12,7 @@ import yaml
 
 import train
 from agents.evaluate import evaluate_agent, load_model
+from agents.train import first_line
 from agents.training import hyperparams
 from agents.training.paired import paired_clean
 from agents.training.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
@@ -30,8 +31,11 @@ def test_train_py_writes_a_complete_run_folder(
         train.main([*TINY, "--runs", str(tmp_path), "--set", "n_steps=128", "batch_size=64"]) == 0
     )
     printed = capsys.readouterr().out
-    # The compile notice comes before training; the last lines set the run beside the baselines.
-    assert printed.index("Preparing the simulator") < printed.index("pots per shot: ppo")
+    # The first line says what the command waits for (the trainer, the compile); the
+    # warm-up comes before training; the last lines set the run beside the baselines.
+    assert printed.splitlines()[0] == first_line("pool_env/OneBallRoll-v1", "ppo", "sb3")
+    assert "simulator compiles" in printed.splitlines()[0]
+    assert printed.index("Ready in") < printed.index("pots per shot: ppo")
     assert all(f"| {name} " in printed for name in ("random", "best-const", "ghost", "search"))
     (run,) = (tmp_path / "OneBallRoll-v1").iterdir()
     for name in ("config.yaml", "command.txt", "model.zip", "evaluation.md", "evaluation.json",

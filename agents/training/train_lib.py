@@ -250,12 +250,6 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     (out / "config.yaml").write_text(yaml.safe_dump(asdict(config), sort_keys=False))
     runs.write_command(out)
 
-    if not quiet:
-        print(
-            "Preparing the simulator: numba compiles its kernels on a first run (20-40 s on "
-            "2 cores, not counted as training); later runs load them from the disk cache",
-            flush=True,
-        )
     compile_seconds = warm_up(config)
     if not quiet:
         print(
