@@ -4,11 +4,14 @@ Run: ``python bench/kernel_ab.py --ref main`` (a few minutes: each side compiles
 ``--env`` times a Gymnasium ``env.step`` of four ids instead (the decision process end to
 end: decoding, noise, the simulator, the rules, the observation and ``info``).
 Exports ``--ref`` with ``git archive`` to a temporary folder, then alternates fresh
-processes of the two trees (``--rounds`` times each), every one timing ``run_shot`` from a
-compiled loop (no Python in the measured path) and ``shoot``/``simulate_batch`` end to end.
+processes of the two trees (``--rounds`` times each), every one timing the roll level's
+event loop from a compiled loop (no Python in the measured path) and
+``shoot``/``simulate_batch`` end to end.
 Times are thread CPU time (``time.thread_time``), the minimum over repeats: on a shared
 machine that is far steadier than wall time. Prints the minimum of each figure over the
-rounds and the ratio this tree / ref; nothing is written.
+rounds and the ratio this tree / ref; nothing is written. The compiled loop is each tree's
+own roll loop: ``loop.shoot`` with the roll marker since the model levels (issue 30),
+``loop._shoot`` before.
 """
 
 from __future__ import annotations
@@ -34,14 +37,24 @@ from pool_env.sim.layouts import break_scene
 from pool_env.testing.scenes_random import random_layout
 
 table = Table()
-run_shot = loop.run_shot
+try:  # the one event loop of the model levels (issue 30), given the roll level's marker
+    from pool_env.sim.kernels.roll.level import ROLL
+
+    @numba.njit
+    def one(p, v, w, m, params, pockets, record):
+        return loop.shoot(ROLL, p, v, w, m, params, pockets, 10000, record)[5]
+except ImportError:  # a tree before the model levels: the roll level's own loop
+    @numba.njit
+    def one(p, v, w, m, params, pockets, record):
+        return loop._shoot(p, v, m, params, pockets, 10000, record)[4]
 
 
 @numba.njit
 def many(p, v, m, params, pockets, k, record):
     s = 0
+    w = np.zeros((p.shape[0], 3))  # angular velocities: read by neither tree's roll loop
     for _ in range(k):
-        s += run_shot(p, v, m, params, pockets, 10000, record)[1][0]
+        s += one(p, v, w, m, params, pockets, record)
     return s
 
 

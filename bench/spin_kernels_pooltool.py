@@ -117,10 +117,10 @@ def _ours(cases: dict) -> dict:
     from types import SimpleNamespace
 
     from pool_env.sim.cue import from_pooltool
-    from pool_env.sim.kernels.spin_collide import ball_ball_spin
-    from pool_env.sim.kernels.spin_cushion import cushion_han
-    from pool_env.sim.kernels.spin_params import ALCIATORE_FRICTION, POOLTOOL_FRICTION
-    from pool_env.sim.kernels.spin_strike import cue_strike
+    from pool_env.sim.kernels.spin.collide import ball_ball_spin
+    from pool_env.sim.kernels.spin.cushion import cushion_han
+    from pool_env.sim.kernels.spin.params import ALCIATORE_FRICTION, POOLTOOL_FRICTION
+    from pool_env.sim.kernels.spin.strike import cue_strike
 
     out: dict = {"ball_ball": [], "ball_ball_pt_mu": [], "cushion": [], "strike": []}
     buf = np.zeros(10)

@@ -135,7 +135,7 @@ Largest differences, pooltool as released (collisions in pooltool's order):
 - Its throw impulse is `mu * e * |du_n|` (friction times the *separation* speed), not the
   Coulomb `mu * (1 + e) / 2 * |du_n|` of the normal impulse: at e = 0.95 a 2.6% smaller
   throw, and none at all at e = 0, which no friction law gives. Coulomb's is right; the
-  spin level (`pool_env/sim/kernels/spin_collide.py`) and the reference use it, the
+  spin level (`pool_env/sim/kernels/spin/collide.py`) and the reference use it, the
   reference has pooltool's as `throw="pooltool"` (both pinned by
   `tests/test_spin_reference_selfcheck.py`). It assumes equal masses (`(1 +- e) / 2`),
   averages the two balls' `e_b`, and drops the vertical velocity the spin-induced

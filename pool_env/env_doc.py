@@ -73,7 +73,7 @@ beyond a contact offset of about half a radius, and the contact point lies
 (:func:`pool_env.game.config.default_tip_limit`; ``GameConfig.tip_limit``). An offset
 outside the circle of radius ``tip_limit`` (the corners of the action square) is scaled
 back onto it along its direction: clipped, never a miscue. The strike is pooltool's
-instantaneous point strike (:mod:`pool_env.sim.kernels.spin_strike`): the speed stays
+instantaneous point strike (:mod:`pool_env.sim.kernels.spin.strike`): the speed stays
 the cue ball's speed, the ball leaves along the aim plus the squirt, with spin
 ``(5 v / 2R)`` times the contact offset (a centre-line hit at contact offset 2/5 leaves
 rolling). The cue is level (no elevation: no masse, no jump).

@@ -71,7 +71,7 @@ def test_straight_in_shot_drops_in_the_side_pocket(monkeypatch: pytest.MonkeyPat
     agent = GhostBallAgent(env)
     with monkeypatch.context() as m:  # geometry only: the simulator must not be called
         m.setattr(loop, "packed_shot", _forbidden)
-        m.setattr(loop, "run_shot", _forbidden)
+        m.setattr(loop, "packed_strike", _forbidden)
         action, _ = agent.predict(env.unwrapped._observation())
     shot = agent.last_plan["shot"]
     assert shot.pocket == 1 and shot.cut == pytest.approx(0.0, abs=1e-12)

@@ -254,8 +254,9 @@ def test_one_compiled_version_for_every_array_layout(table: Table) -> None:
     shoot(table, pos, 0.0, 1.0)
     shoot(table, pos, 0.0, 1.0, masses=[0.17, 0.2])
     shoot(table, pos, 0.0, 1.0, record=False)
+    simulate(table, pos, np.array(VEL))
     simulate_batch(table, np.array([POS]), np.array([VEL]))
-    kernels = (loop.packed_shot, validation.validate, kbatch.run_batch)
+    kernels = (loop.packed_shot, loop.packed_strike, validation.validate, kbatch.run_batch)
     counts = [len(k.signatures) for k in kernels]
     frozen = pos.copy()
     frozen.setflags(write=False)

@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 from pool_env import Table, simulate
-from pool_env.sim.kernels.resolve import V_ZENO, lump_off_rail, lump_off_rails
+from pool_env.sim.kernels.contact import V_ZENO, lump_off_rail, lump_off_rails
 from pool_env.testing.invariants import check_shot
 from pool_env.testing.scenes_random import within_limits
 from tests.helpers_sim import normal_velocities, speed_after, unfold

@@ -36,7 +36,7 @@ def test_ghost_pots_on_oneball_v1_without_the_simulator(monkeypatch: pytest.Monk
         obs, _ = env.reset(seed=10_000 + k)
         with monkeypatch.context() as m:
             m.setattr(loop, "packed_shot", _forbidden)
-            m.setattr(loop, "run_shot", _forbidden)
+            m.setattr(loop, "packed_strike", _forbidden)
             action, _ = agent.predict(obs)
         assert action.shape == (4,) and np.all(np.abs(action) <= 1.0)
         *_, info = env.step(action)

@@ -20,7 +20,7 @@ from pool_env.sim import (
     simulate_batch_threads,
 )
 from pool_env.sim.kernels.params import N_PARAMS
-from pool_env.sim.kernels.spin_params import (
+from pool_env.sim.kernels.spin.params import (
     ALCIATORE_FRICTION,
     CONSTANT_FRICTION,
     FRICTIONLESS,

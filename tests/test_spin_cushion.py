@@ -13,7 +13,7 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from pool_env.sim.kernels.spin_cushion import cushion_han
+from pool_env.sim.kernels.spin.cushion import cushion_han
 from tests.test_spin_resolve import R, energy, finite, spins, unit
 
 H = 1.27 * R  # the WPA nose height, 63.5 % of the ball's diameter

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from pool_env import Table, shoot, simulate
-from pool_env.sim.kernels.spin_cushion import cushion_han
+from pool_env.sim.kernels.spin.cushion import cushion_han
 from pool_env.testing.invariants import check_geometry, check_termination
 
 TOL = 1e-9

@@ -13,8 +13,8 @@ import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
-from pool_env.sim.kernels.spin_collide import ball_ball_spin
-from pool_env.sim.kernels.spin_params import (
+from pool_env.sim.kernels.spin.collide import ball_ball_spin
+from pool_env.sim.kernels.spin.params import (
     ALCIATORE_FRICTION,
     CONSTANT_FRICTION,
     FRICTIONLESS,

@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 from pool_env.sim import cue
 from pool_env.sim.cue import POOLTOOL_CUE_MASS, from_pooltool
-from pool_env.sim.kernels.spin_strike import cue_strike
+from pool_env.sim.kernels.spin.strike import cue_strike
 
 R = 0.028575
 M = 0.170097

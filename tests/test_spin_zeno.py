@@ -1,6 +1,6 @@
 """The spin level's Zeno rules against closed forms: a stuck lump, the pressed cushion.
 
-These pin :mod:`pool_env.sim.kernels.spin_zeno` for the mutation catalogue
+These pin :mod:`pool_env.sim.kernels.spin.zeno` for the mutation catalogue
 (``tools/mutant_catalogue/spin.py``): each rule's outcome is a closed form.
 """
 

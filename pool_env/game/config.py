@@ -70,7 +70,7 @@ def default_tip_limit(table: Table) -> float:
     """The default tip limit of a spin table: the axis offset of a half-radius contact.
 
     The tip's contact point lies ``1 / (1 + r_tip / R)`` of the axis offset from the ball's
-    centre line (:mod:`pool_env.sim.kernels.spin_strike`), so the axis offset of a contact
+    centre line (:mod:`pool_env.sim.kernels.spin.strike`), so the axis offset of a contact
     offset ``c`` is ``c (1 + r_tip / R)``: 0.685 for the default 10.6 mm tip (capped at 1).
     """
     return min(1.0, MISCUE_CONTACT_OFFSET * (1.0 + table.cue_tip_radius / table.ball_radius))
@@ -133,7 +133,7 @@ class GameConfig:
     @property
     def spin(self) -> bool:
         """Whether the table is the spin level: the action then ends with the cue tip."""
-        return self.table.model == "spin"
+        return self.table.has_spin
 
     @property
     def tip_columns(self) -> tuple[int, int] | None:
@@ -200,7 +200,7 @@ def kernel_params(
     if noise is not None:
         params[[kp.NOISE, kp.SIGMA_ANGLE, kp.SIGMA_SPEED]] = (1.0, *noise[:2])
         params[kp.SIGMA_TIP] = noise[2] if len(noise) > 2 else 0.0
-    if table.model == "spin":
+    if table.has_spin:
         params[kp.SPIN] = 1.0
         params[[kp.BALL_MASS, kp.CUE_END_MASS, kp.CUE_TIP_RADIUS]] = (
             table.ball_mass, table.cue_end_mass, table.cue_tip_radius
@@ -242,7 +242,7 @@ def make_config(
             refused here, never at a reset.
     """
     parsed_table = checks.parse_table(table, model)
-    spin = parsed_table.model == "spin"
+    spin = parsed_table.has_spin
     if aim not in AIM_MODES:
         raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {aim!r}")
     aims = checks.parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
@@ -313,7 +313,7 @@ def parse_tip_limit(table: Table, tip_limit: object) -> float | None:
     Raises:
         ValueError: Unless a number in ``(0, 1]``, or when given for a roll table.
     """
-    if table.model != "spin":
+    if not table.has_spin:
         if tip_limit is not None:
             raise ValueError("tip_limit needs a spin table: model='spin' (the spin ids)")
         return None

@@ -179,7 +179,7 @@ def strike_frames(
     for gap in gaps:
         img = base.copy()
         draw_cue(renderer, img, cue_ball, angle, side, gap)
-        if renderer.table.model == "spin":  # the tip is a choice only on the spin level
+        if renderer.table.has_spin:  # the tip is a choice only on the spin level
             draw_tip_marker(renderer, img, cue_ball, (side, vertical))
         frames.append(img)
     return frames

@@ -6,7 +6,7 @@ This layer knows nothing of Gymnasium: arrays and a frozen :class:`Table` in, a
 
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.cue import from_pooltool
-from pool_env.sim.kernels.spin_state import STATE_NAMES
+from pool_env.sim.kernels.spin.state import STATE_NAMES
 from pool_env.sim.result import Event, ShotResult, SpinShotResult
 from pool_env.sim.rollout import rollout
 from pool_env.sim.simulate import check_layout, shoot, simulate

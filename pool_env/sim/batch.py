@@ -23,31 +23,28 @@ from pool_env.sim.inputs import (
     check_max_events,
     check_table,
     kernel_array,
-    raise_invalid,
 )
 from pool_env.sim.kernels import batch as _batch
-from pool_env.sim.kernels import spin_batch as _spin_batch
 from pool_env.sim.kernels import validation
 from pool_env.sim.kernels.packing import BatchOutput
-from pool_env.sim.spin_inputs import raise_spin_invalid
+from pool_env.sim.levels import level_of
 from pool_env.sim.table import Table
 
 #: Batches this large and larger run in parallel by default.
 PARALLEL_FROM = 64
 
 
-def _no_spin(angular_velocities: object) -> None:
-    if angular_velocities is not None:
+def _batch_angular(
+    table: Table, value: ArrayLike | None, n_tables: int, n_balls: int
+) -> NDArray[np.float64]:
+    """``(B, N, 3)`` angular velocities of a batch (zeros for ``None``; spin tables only)."""
+    if value is None:
+        return np.zeros((n_tables, n_balls, 3))
+    if not table.has_spin:
         raise ValueError(
             "angular_velocities need the spin level: use Table(model='spin'); the roll "
             "level has no spin"
         )
-
-
-def _batch_angular(value: ArrayLike | None, n_tables: int, n_balls: int) -> NDArray[np.float64]:
-    """``(B, N, 3)`` angular velocities of a spin batch (zeros for ``None``)."""
-    if value is None:
-        return np.zeros((n_tables, n_balls, 3))
     arr = kernel_array("angular_velocities", value, "a (B, N, 3) array")
     if arr.shape != (n_tables, n_balls, 3):
         raise ValueError(
@@ -151,11 +148,7 @@ def simulate_batch(
     max_events = check_max_events(max_events)
     if parallel is None:
         parallel = n_tables >= PARALLEL_FROM
-    if table.model == "spin":
-        ang = _batch_angular(angular_velocities, n_tables, n_balls)
-    else:
-        _no_spin(angular_velocities)
-        ang = None
+    ang = _batch_angular(table, angular_velocities, n_tables, n_balls)
     out = _batch_output(table, pos, vel, ang, mass, on, max_events, parallel)
     raise_batch_error(table, out.error, pos, vel, ang, mass)
     return batch_result(out)
@@ -165,18 +158,19 @@ def _batch_output(
     table: Table,
     pos: NDArray[np.float64],
     vel: NDArray[np.float64],
-    ang: NDArray[np.float64] | None,
+    ang: NDArray[np.float64],
     mass: NDArray[np.float64],
     on: NDArray[np.bool_],
     max_events: int,
     parallel: bool,
 ) -> BatchOutput:
-    """The kernel's output for checked arrays (``ang`` ``None`` on a roll table); no raise."""
-    if ang is not None:
-        run = _spin_batch.run_spin_batch_parallel if parallel else _spin_batch.run_spin_batch
-        return run(pos, vel, ang, mass, on, table.spin_params, table.pocket_geometry, max_events)
+    """The kernel's output for checked arrays (``ang`` zeros on a roll table); no raise."""
+    level = level_of(table)
     run = _batch.run_batch_parallel if parallel else _batch.run_batch
-    return run(pos, vel, mass, on, table.params, table.pocket_geometry, max_events)
+    return run(
+        level.marker, pos, vel, ang, mass, on, level.params_of(table), table.pocket_geometry,
+        max_events,
+    )  # fmt: skip
 
 
 def raise_batch_error(
@@ -184,7 +178,7 @@ def raise_batch_error(
     error: NDArray[np.int64],
     pos: NDArray[np.float64],
     vel: NDArray[np.float64],
-    ang: NDArray[np.float64] | None,
+    ang: NDArray[np.float64],
     mass: NDArray[np.float64],
 ) -> None:
     """Raise the ``ValueError`` of the first table whose ``error`` row is not ``OK``.
@@ -199,9 +193,7 @@ def raise_batch_error(
     b = int(bad[0])
     code, i, j = (int(v) for v in error[b])
     try:
-        if ang is not None:
-            raise_spin_invalid(code, i, j, table, pos[b], vel[b], ang[b], mass[b])
-        raise_invalid(code, i, j, table, pos[b], vel[b], mass[b])
+        level_of(table).raise_invalid(code, i, j, table, pos[b], vel[b], ang[b], mass[b])
     except ValueError as exc:
         raise ValueError(f"table {b}: {exc}") from None
 
@@ -278,10 +270,7 @@ def simulate_batch_threads(
     positions = as_batch_points("positions", positions)
     velocities = as_batch_points("velocities", velocities, positions.shape)
     n = positions.shape[0]
-    if table.model == "spin":
-        angular_velocities = _batch_angular(angular_velocities, n, positions.shape[1])
-    else:
-        _no_spin(angular_velocities)
+    ang = _batch_angular(table, angular_velocities, n, positions.shape[1])
     active = as_active(active, n, positions.shape[1])
     max_events = check_max_events(max_events)
     threads = check_threads(threads)
@@ -289,15 +278,14 @@ def simulate_batch_threads(
     if parts <= 1:
         return simulate_batch(
             table, positions, velocities, active=active, max_events=max_events,
-            angular_velocities=angular_velocities,
+            angular_velocities=None if angular_velocities is None else ang,
         )  # fmt: skip
     edges = np.linspace(0, n, parts + 1).astype(np.int64).tolist()
-    ang = angular_velocities
     mass = as_batch_masses(table, None, n, positions.shape[1])
 
     def part(lo: int, hi: int) -> BatchOutput:
         return _batch_output(
-            table, positions[lo:hi], velocities[lo:hi], None if ang is None else ang[lo:hi],
+            table, positions[lo:hi], velocities[lo:hi], ang[lo:hi],
             mass[lo:hi], active[lo:hi], max_events, False,
         )  # fmt: skip
 

@@ -6,7 +6,7 @@ leftmost point) and ``b`` (``+1`` the top) in fractions of the radius, which its
 as the contact point itself. This API takes the cue ball's speed after the strike, the aim
 and elevation in radians, and ``tip``: the offset of the cue's axis (right english
 positive), which the strike maps to the contact point by ``1 / (1 + r_tip / R)``
-(:mod:`pool_env.sim.kernels.spin_strike`). So
+(:mod:`pool_env.sim.kernels.spin.strike`). So
 
 * ``angle = radians(phi)``, ``elevation = radians(theta)``;
 * ``tip = (-a, b) (1 + r_tip / R)``: the axis offset whose contact point is pooltool's;

@@ -90,13 +90,13 @@ def as_batch_points(name: str, value: ArrayLike, shape: tuple[int, ...] | None =
 
 # Masses left to the kernels: every ball weighs the table's ball_mass. Writable like every
 # other array the kernels get (one compiled version); it is empty, so nothing can change.
-_TABLE_MASSES = np.empty(0, dtype=np.float64)
+TABLE_MASSES = np.empty(0, dtype=np.float64)
 
 
 def as_masses(masses: ArrayLike | None, n: int) -> NDArray[np.float64]:
     """``(N,)`` per-ball masses, or an empty array for the table's ``ball_mass``."""
     if masses is None:
-        return _TABLE_MASSES
+        return TABLE_MASSES
     arr = kernel_array("masses", masses, "a sequence of N")
     if arr.shape != (n,):
         raise ValueError(f"masses must have shape ({n},), got {arr.shape}")

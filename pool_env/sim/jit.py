@@ -32,6 +32,7 @@ cache is written back through numba's atomic rename, for every later process to 
 from __future__ import annotations
 
 import hashlib
+import inspect
 import os
 import tempfile
 import warnings
@@ -41,6 +42,7 @@ from typing import Any, TypeVar
 
 import numba
 from numba.core.caching import FunctionCache
+from numba.extending import overload
 
 from pool_env.sim import compile_notice
 
@@ -60,30 +62,33 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.jit",
     "pool_env.sim.compile_notice",  # imported by this one (no compiled code)
     "pool_env.sim.kernels.batch",
+    "pool_env.sim.kernels.contact",
     "pool_env.sim.kernels.jaws",
     "pool_env.sim.kernels.kinds",
+    "pool_env.sim.kernels.level",
     "pool_env.sim.kernels.limits",
     "pool_env.sim.kernels.loop",
-    "pool_env.sim.kernels.motion",
     "pool_env.sim.kernels.packing",
     "pool_env.sim.kernels.params",
-    "pool_env.sim.kernels.predict",
     "pool_env.sim.kernels.record",
-    "pool_env.sim.kernels.resolve",
+    "pool_env.sim.kernels.roll.jaws",
+    "pool_env.sim.kernels.roll.level",
+    "pool_env.sim.kernels.roll.motion",
+    "pool_env.sim.kernels.roll.predict",
+    "pool_env.sim.kernels.roll.resolve",
     "pool_env.sim.kernels.rollout",
     "pool_env.sim.kernels.roots",
     "pool_env.sim.kernels.sequence",
-    "pool_env.sim.kernels.spin_batch",
-    "pool_env.sim.kernels.spin_collide",
-    "pool_env.sim.kernels.spin_cushion",
-    "pool_env.sim.kernels.spin_jaws",
-    "pool_env.sim.kernels.spin_loop",
-    "pool_env.sim.kernels.spin_params",
-    "pool_env.sim.kernels.spin_predict",
-    "pool_env.sim.kernels.spin_state",
-    "pool_env.sim.kernels.spin_strike",
-    "pool_env.sim.kernels.spin_timeline",
-    "pool_env.sim.kernels.spin_zeno",
+    "pool_env.sim.kernels.spin.collide",
+    "pool_env.sim.kernels.spin.cushion",
+    "pool_env.sim.kernels.spin.jaws",
+    "pool_env.sim.kernels.spin.level",
+    "pool_env.sim.kernels.spin.params",
+    "pool_env.sim.kernels.spin.predict",
+    "pool_env.sim.kernels.spin.state",
+    "pool_env.sim.kernels.spin.strike",
+    "pool_env.sim.kernels.spin.timeline",
+    "pool_env.sim.kernels.spin.zeno",
     "pool_env.sim.kernels.timeline",
     "pool_env.sim.kernels.validation",
     "pool_env.game.kernels.actions",
@@ -245,3 +250,35 @@ def inline_kernel(fn: F) -> F:
 def parallel_kernel(fn: F) -> F:
     """Like :func:`kernel` but with ``parallel=True`` (for ``prange`` loops over tables)."""
     return _compile(fn, {**_OPTIONS, "parallel": True})
+
+
+def level_method(stub: Callable[..., Any], level_class: type) -> Callable[[F], F]:
+    """Register the decorated function as model level ``level_class``'s ``stub``.
+
+    The shared kernels call a model level's parts through the stubs of
+    :mod:`pool_env.sim.kernels.level`, passing the level's marker (an instance of
+    ``level_class``, a named tuple) first; numba picks the implementation from the
+    marker's type when it compiles the caller. A compiled caller is therefore one
+    specialised function per level, cached on disk like any kernel (the marker's type is
+    part of its signature). The implementation is compiled as a function of its own, not
+    inlined at numba's IR level: numba's IR inliner loses stores through a named tuple of
+    arrays passed to an inlined overload (the segment log's rows came back unwritten). The
+    implementation takes the stub's parameters, the marker included.
+
+    Args:
+        stub: The interface function (its signature is the implementation's).
+        level_class: The marker type of the level that implements it.
+
+    Returns:
+        A decorator that registers and returns the implementation.
+    """
+
+    def register(impl: F) -> F:
+        def typer(*args: Any) -> F | None:
+            return impl if getattr(args[0], "instance_class", None) is level_class else None
+
+        typer.__signature__ = inspect.signature(impl)  # type: ignore[attr-defined]
+        overload(stub, jit_options=_OPTIONS)(typer)
+        return impl
+
+    return register

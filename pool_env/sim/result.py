@@ -7,10 +7,11 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.sim.kernels import packing, spin_loop
+from pool_env.sim.kernels import packing
 from pool_env.sim.kernels.kinds import CUSHION_KINDS, KIND_NAMES, EventKind
-from pool_env.sim.kernels.spin_state import POTTED, STATIONARY
-from pool_env.sim.kernels.spin_timeline import spin_positions_at, spin_positions_at_many
+from pool_env.sim.kernels.spin.level import SEG_COLS as SPIN_SEG_COLS
+from pool_env.sim.kernels.spin.state import POTTED, STATIONARY
+from pool_env.sim.kernels.spin.timeline import spin_positions_at, spin_positions_at_many
 from pool_env.sim.kernels.timeline import positions_at as _positions_at
 from pool_env.sim.kernels.timeline import positions_at_many as _positions_at_many
 
@@ -256,7 +257,7 @@ class ShotResult:
 
     @property
     def motion_states(self) -> NDArray[np.int8]:
-        """``(N,)`` final motion states (:data:`~pool_env.sim.kernels.spin_state.STATE_NAMES`).
+        """``(N,)`` final motion states (:data:`~pool_env.sim.kernels.spin.state.STATE_NAMES`).
 
         On the roll level every ball ends at rest (``STATIONARY``) or ``POTTED``.
         """
@@ -289,7 +290,7 @@ class SpinShotResult(ShotResult):
     """
 
     __slots__ = ()
-    _SEG_WIDTH = spin_loop.SEG_COLS
+    _SEG_WIDTH = SPIN_SEG_COLS
 
     def _tail(self) -> tuple[int, int]:
         return packing.tail_starts(self.n_balls, self._n_logged, self._n_segments, self._SEG_WIDTH)

@@ -30,12 +30,12 @@ from pool_env.sim.inputs import (
     check_max_events,
     check_table,
     kernel_array,
-    raise_invalid,
 )
 from pool_env.sim.kernels import rollout as _rollout
 from pool_env.sim.kernels.packing import BatchOutput, allocate_batch
 from pool_env.sim.kernels.validation import OK
-from pool_env.sim.spin_inputs import raise_spin_invalid, strike, tip_touches_ball
+from pool_env.sim.levels import level_of
+from pool_env.sim.spin_inputs import tip_touches_ball
 from pool_env.sim.table import Table
 
 __all__ = ["SHOT_COLUMNS", "rollout"]
@@ -75,7 +75,7 @@ def _as_shots(table: Table, shots: ArrayLike) -> NDArray[np.float64]:
         if bad.size:
             s = int(bad[0])
             raise ValueError(f"shot {s} {problem}: {arr[s].tolist()}")
-    if table.model != "spin" and np.any(arr[:, 2:] != 0.0):
+    if not table.has_spin and np.any(arr[:, 2:] != 0.0):
         s = int(np.flatnonzero(np.any(arr[:, 2:] != 0.0, axis=1))[0])
         raise ValueError(
             f"shot {s} puts spin on the ball (a tip offset or elevation): the roll level has "
@@ -109,12 +109,10 @@ def _raise_shot(
     code, i, j = (int(v) for v in error)
     vel = np.zeros_like(positions)
     ang = np.zeros((positions.shape[0], 3))
+    level = level_of(table)
     try:
-        if table.model == "spin":
-            vel[cue], ang[cue] = strike(table, shot[1], shot[0], shot[2], shot[3], shot[4])
-            raise_spin_invalid(code, i, j, table, positions, vel, ang, mass)
-        vel[cue] = shot[1] * math.cos(shot[0]), shot[1] * math.sin(shot[0])
-        raise_invalid(code, i, j, table, positions, vel, mass)
+        vel[cue], ang[cue] = level.strike(table, shot[1], shot[0], shot[2], shot[3], shot[4])
+        level.raise_invalid(code, i, j, table, positions, vel, ang, mass)
     except ValueError as exc:
         raise ValueError(f"shot {s}: {exc}") from None
 
@@ -183,15 +181,13 @@ def rollout(
     n_shots = rows.shape[0]
     # Every shot starts from the layout: inactive balls keep their rows.
     fields = tuple(allocate_batch(np.repeat(pos_all[None], n_shots, axis=0)))
-    run, prm = (
-        (_rollout.run_spin, table.spin_params)
-        if table.model == "spin"
-        else (_rollout.run_roll, table.params)
-    )
-    pockets = table.pocket_geometry
+    level = level_of(table)
+    marker, prm, pockets = level.marker, level.params_of(table), table.pocket_geometry
 
     def part(lo: int, hi: int) -> None:
-        run(pos, mass, index, compact_cue, rows, prm, pockets, max_events, lo, hi, fields)
+        _rollout.run_shots(
+            marker, pos, mass, index, compact_cue, rows, prm, pockets, max_events, lo, hi, fields
+        )
 
     parts = max(1, min(threads or available_cpus(), n_shots // SHOTS_PER_THREAD))
     edges = np.linspace(0, n_shots, parts + 1).astype(np.int64).tolist()

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -10,6 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from pool_env.sim.inputs import (
     DEFAULT_MAX_EVENTS,
+    TABLE_MASSES,
     as_masses,
     as_points,
     check_angle,
@@ -20,11 +20,12 @@ from pool_env.sim.inputs import (
     raise_invalid,
 )
 from pool_env.sim.kernels import loop, validation
+from pool_env.sim.levels import level_of
 from pool_env.sim.result import ShotResult
-from pool_env.sim.spin_inputs import as_angular, check_tip, run_spin, run_spin_strike
+from pool_env.sim.spin_inputs import as_angular, check_tip
 from pool_env.sim.table import Table
 
-__all__ = ["DEFAULT_MAX_EVENTS", "check_layout", "shoot", "simulate"]
+__all__ = ["DEFAULT_MAX_EVENTS", "check_layout", "shoot", "simulate", "simulate_checked_arrays"]
 
 
 def simulate(
@@ -84,36 +85,54 @@ def simulate(
     pos = as_points("positions", positions)
     vel = as_points("velocities", velocities, pos.shape[0])
     table = check_table(table)
-    if table.model == "spin":
-        ang = as_angular(table, angular_velocities, pos.shape[0])
-        return run_spin(table, pos, vel, ang, masses, max_events, record)
-    if angular_velocities is not None:
+    if not table.has_spin and angular_velocities is not None:
         raise ValueError(
             "angular_velocities need the spin level: use Table(model='spin'); the roll "
             "level has no spin"
         )
-    return _run(table, pos, vel, masses, max_events, record)
-
-
-def _run(
-    table: Table,
-    pos: NDArray[np.float64],
-    vel: NDArray[np.float64],
-    masses: ArrayLike | None,
-    max_events: int,
-    record: bool,
-) -> ShotResult:
-    """:func:`simulate` once ``pos`` and ``vel`` are kernel arrays of matching shapes."""
-    table = check_table(table)
+    ang = as_angular(table, angular_velocities, pos.shape[0])
     mass = as_masses(masses, pos.shape[0])
     max_events = check_max_events(max_events)
-    record = bool(record)  # one compiled version: a bool, never an int
+    level = level_of(table)
     raw = loop.packed_shot(
-        pos, vel, mass, table.params, table.pocket_geometry, max_events, record
-    )  # one compiled call: validation, the loop and the result, in two arrays
+        level.marker, pos, vel, ang, mass, level.params_of(table), table.pocket_geometry,
+        max_events, bool(record),  # one compiled version: a bool, never an int
+    )  # fmt: skip  # one compiled call: validation, the loop and the result, in one buffer
     if raw[0] != validation.OK:
-        raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, mass)
-    return ShotResult(raw, pos.shape[0], table.deceleration, record)
+        level.raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
+    return level.result(raw, pos.shape[0], table.deceleration, bool(record))
+
+
+def simulate_checked_arrays(
+    table: Table,
+    positions: NDArray[np.float64],
+    velocities: NDArray[np.float64],
+    angular_velocities: NDArray[np.float64] | None,
+    record: bool,
+) -> ShotResult:
+    """:func:`simulate` for a caller whose arrays are already the kernel's (the game layer).
+
+    The internal entry point: no Python argument checks (their cost is about a tenth of a
+    two-ball shot). The caller guarantees a checked ``table``, C-contiguous float64
+    ``(N, 2)`` positions and velocities, ``(N, 3)`` angular velocities or ``None``
+    (``None`` on a roll table), the table's ball mass and the default event cap. The scene
+    itself is still validated inside the compiled call, as :func:`simulate` does, so a
+    state the rules got wrong raises the same ``ValueError`` instead of running.
+
+    Returns:
+        What :func:`simulate` returns for the same arguments, bit for bit.
+    """
+    level = level_of(table)
+    n = positions.shape[0]
+    ang = np.zeros((n, 3)) if angular_velocities is None else angular_velocities
+    record = bool(record)
+    raw = loop.packed_shot(
+        level.marker, positions, velocities, ang, TABLE_MASSES, level.params_of(table),
+        table.pocket_geometry, DEFAULT_MAX_EVENTS, record,
+    )  # fmt: skip
+    if raw[0] != validation.OK:
+        level.raise_invalid(raw[0], raw[1], raw[2], table, positions, velocities, ang, TABLE_MASSES)
+    return level.result(raw, n, table.deceleration, record)
 
 
 def shoot(
@@ -174,14 +193,18 @@ def shoot(
     n = pos.shape[0]
     cue = check_cue(cue, n)
     a, b, elevation = check_tip(table, tip, elevation)
-    if table.model == "spin":
-        return run_spin_strike(
-            table, pos, cue, speed, angle, (a, b, elevation), masses, max_events, record
-        )
-    vel = np.zeros((n, 2))
-    vel[cue, 0] = speed * math.cos(angle)
-    vel[cue, 1] = speed * math.sin(angle)
-    return _run(table, pos, vel, masses, max_events, record)
+    mass = as_masses(masses, n)
+    max_events = check_max_events(max_events)
+    level = level_of(table)
+    raw = loop.packed_strike(
+        level.marker, pos, cue, speed, angle, a, b, elevation, mass, level.params_of(table),
+        table.pocket_geometry, max_events, bool(record),
+    )  # fmt: skip  # the strike, validation, the loop and the result: one compiled call
+    if raw[0] != validation.OK:  # the arrays the message names, rebuilt (rare)
+        vel, ang = np.zeros((n, 2)), np.zeros((n, 3))
+        vel[cue], ang[cue] = level.strike(table, speed, angle, a, b, elevation)
+        level.raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
+    return level.result(raw, n, table.deceleration, bool(record))
 
 
 def check_layout(table: Table, positions: ArrayLike) -> NDArray[np.float64]:

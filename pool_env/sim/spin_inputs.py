@@ -15,14 +15,12 @@ from numpy.typing import ArrayLike, NDArray
 from pool_env.sim.inputs import (
     as_masses,
     as_points,
-    check_max_events,
     kernel_array,
     raise_invalid,
     speed_limits,
 )
-from pool_env.sim.kernels import limits, spin_loop, validation
-from pool_env.sim.kernels.spin_strike import cue_strike
-from pool_env.sim.result import SpinShotResult
+from pool_env.sim.kernels import limits, validation
+from pool_env.sim.kernels.spin.strike import cue_strike
 from pool_env.sim.scalars import real_number
 from pool_env.sim.table import Table
 
@@ -34,7 +32,7 @@ def tip_touches_ball(table: Table, a: Any, b: Any) -> Any:
 
     The tip is a sphere of radius ``r_tip``; at contact its centre lies ``R + r_tip`` from
     the ball's, so the contact point's offset is ``(a, b) / (1 + r_tip / R)``
-    (:mod:`pool_env.sim.kernels.spin_strike`), and it lies on the ball only within its
+    (:mod:`pool_env.sim.kernels.spin.strike`), and it lies on the ball only within its
     outline: ``a^2 + b^2 <= (1 + r_tip / R)^2``. Beyond it the strike model would give a
     spin that no cue can give. Scalars or arrays (element by element).
     """
@@ -52,7 +50,7 @@ def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, floa
     """
     if tip is _NO_TIP and type(elevation) is float and elevation == 0.0:
         return 0.0, 0.0, 0.0  # the default, fast
-    if type(tip) is tuple and len(tip) == 2 and table.model == "spin":  # floats in range, fast
+    if type(tip) is tuple and len(tip) == 2 and table.has_spin:  # floats in range, fast
         a, b = tip
         if isinstance(a, float) and isinstance(b, float) and isinstance(elevation, float):
             a, b, elev = float(a), float(b), float(elevation)  # NaN fails every test below
@@ -75,7 +73,7 @@ def check_tip(table: Table, tip: object, elevation: object) -> tuple[float, floa
         )
     if not 0.0 <= elev < 0.5 * math.pi:
         raise ValueError(f"elevation must lie in [0, pi/2) radians, got {elev!r}")
-    if table.model != "spin" and (a != 0.0 or b != 0.0 or elev != 0.0):
+    if not table.has_spin and (a != 0.0 or b != 0.0 or elev != 0.0):
         raise ValueError(
             "a cue tip offset or elevation puts spin on the ball: the roll level has none, "
             "use Table(model='spin')"
@@ -99,7 +97,7 @@ def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.floa
     """``(N, 3)`` angular velocities as a kernel array (zeros for ``None``).
 
     Their values (finite, a surface speed ``R |w|`` within ``limits.MAX_SPEED``) are checked
-    by the compiled validation of :func:`run_spin`, in one call with the rest.
+    by the compiled validation of :func:`pool_env.simulate`, in one call with the rest.
     """
     if value is None:
         return np.zeros((n, 3))
@@ -110,7 +108,7 @@ def as_angular(table: Table, value: ArrayLike | None, n: int) -> NDArray[np.floa
 
 
 def raise_bad_spin(code: int, i: int, table: Table, ang: NDArray[np.float64]) -> None:
-    """Raise the ``ValueError`` for a spin validation code of ``spin_loop.validate_spins``."""
+    """Raise the ``ValueError`` for a spin validation code of ``spin.level.validate_spins``."""
     if code == validation.BAD_SPIN:
         raise ValueError(f"angular_velocities must be finite: ball {i} has {ang[i].tolist()}")
     surface = table.ball_radius * float(np.sqrt(ang[i] @ ang[i]))
@@ -158,7 +156,7 @@ def raise_spin_invalid(
     ang: NDArray[np.float64],
     mass: NDArray[np.float64],
 ) -> None:
-    """Raise the ``ValueError`` for a code of ``spin_loop.validate_spin_scene``.
+    """Raise the ``ValueError`` for a code of ``spin.level.validate_spin_scene``.
 
     As :func:`~pool_env.sim.inputs.raise_invalid`, with the spin's codes and the energy
     limit counting the spin.
@@ -175,63 +173,3 @@ def raise_spin_invalid(
             "closer"
         )
     raise_invalid(code, i, j, table, pos, vel, mass)
-
-
-def run_spin(
-    table: Table,
-    pos: NDArray[np.float64],
-    vel: NDArray[np.float64],
-    ang: NDArray[np.float64],
-    masses: ArrayLike | None,
-    max_events: int,
-    record: bool,
-) -> SpinShotResult:
-    """Simulate a spin shot from kernel arrays of matching shapes (one compiled call)."""
-    mass = as_masses(masses, pos.shape[0])
-    max_events = check_max_events(max_events)
-    record = bool(record)
-    raw = spin_loop.packed_spin_shot(
-        pos, vel, ang, mass, table.spin_params, table.pocket_geometry, max_events, record
-    )
-    if raw[0] != validation.OK:
-        raise_spin_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
-    return SpinShotResult(raw, pos.shape[0], table.deceleration, record)
-
-
-def run_spin_strike(
-    table: Table,
-    pos: NDArray[np.float64],
-    cue: int,
-    speed: float,
-    angle: float,
-    tip: tuple[float, float, float],
-    masses: ArrayLike | None,
-    max_events: int,
-    record: bool,
-) -> SpinShotResult:
-    """:func:`pool_env.shoot` on a spin table: the strike and the shot in one compiled call.
-
-    Args:
-        table: The spin table.
-        pos: ``(N, 2)`` kernel array of ball centres.
-        cue: The struck ball (checked).
-        speed: The cue ball's speed after the strike (checked).
-        angle: The cue's aim (checked).
-        tip: ``(a, b, elevation)`` as :func:`check_tip` returns them.
-        masses: ``(N,)`` masses or ``None``.
-        max_events: The event cap.
-        record: Whether to record events and trajectories.
-    """
-    mass = as_masses(masses, pos.shape[0])
-    max_events = check_max_events(max_events)
-    record = bool(record)
-    a, b, elevation = tip
-    raw = spin_loop.packed_spin_strike(
-        pos, cue, speed, angle, a, b, elevation, mass, table.spin_params,
-        table.pocket_geometry, max_events, record,
-    )  # fmt: skip
-    if raw[0] != validation.OK:  # the arrays the message names, rebuilt (rare)
-        vel, ang = np.zeros((pos.shape[0], 2)), np.zeros((pos.shape[0], 3))
-        vel[cue], ang[cue] = strike(table, speed, angle, a, b, elevation)
-        raise_spin_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
-    return SpinShotResult(raw, pos.shape[0], table.deceleration, record)

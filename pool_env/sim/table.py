@@ -23,7 +23,7 @@ from pool_env.sim.kernels.params import (
     P_RADIUS,
     P_WIDTH,
 )
-from pool_env.sim.kernels.spin_params import (
+from pool_env.sim.kernels.spin.params import (
     ALCIATORE_FRICTION,
     CONSTANT_FRICTION,
     FRICTIONLESS,
@@ -53,6 +53,8 @@ __all__ = ["CORNER_MOUTH", "SIDE_MOUTH", "JawSpec", "PocketJaws", "Table", "stan
 
 #: The model levels: "roll" (balls roll without spin, the cheap level) and "spin".
 MODELS = ("roll", "spin")
+#: The model levels whose balls carry spin (angular velocities, a cue tip, elevation).
+SPIN_MODELS = ("spin",)
 #: pooltool 0.6.0's ``u_sp / R`` (its spin-deceleration default ``u_sp = 0.444 R``).
 SPIN_FRICTION_RATIO = 0.444
 #: Cushion nose height as a fraction of the ball diameter (WPA equipment specifications:
@@ -109,7 +111,7 @@ class Table:
         model: ``"roll"`` (default): balls roll without spin and the parameters below are
             ignored (bit for bit the original model); ``"spin"``: the spin level (sliding,
             rolling, spinning, english, throw, cushion spin), see
-            :mod:`pool_env.sim.kernels.spin_loop`; every pocket model.
+            :mod:`pool_env.sim.kernels.spin.level`; every pocket model.
         mu_slide: Sliding friction ball-cloth, 0.2 (Alciatore's physical-properties table:
             0.15-0.4, typical 0.2; pooltool 0.6.0's default). A sliding ball decelerates at
             ``mu_slide * g`` against its contact point's slip.
@@ -120,7 +122,7 @@ class Table:
             to Marlow's data ``0.00995 + 0.108 exp(-1.088 v_rel)`` (pooltool 0.6.0's
             default), ``"pooltool"`` for the same fit with pooltool 0.6.0's friction impulse
             ``mu e_b c`` (its exact model, for comparisons; see
-            :mod:`~pool_env.sim.kernels.spin_collide`), a constant ``>= 0``, or 0 for
+            :mod:`~pool_env.sim.kernels.spin.collide`), a constant ``>= 0``, or 0 for
             frictionless balls.
         cushion_friction: Ball-cushion friction, 0.2 (pooltool 0.6.0's default).
         cushion_height: Height of the cushion nose's contact above the cloth (m), in
@@ -300,6 +302,11 @@ class Table:
         """Number of pockets (0 on a carom table)."""
         return int(self.pockets.shape[0])
 
+    @property
+    def has_spin(self) -> bool:
+        """Whether this table's model level has spin (angular velocities, tip, elevation)."""
+        return self.model in SPIN_MODELS
+
     def stop_distance(self, speed: float) -> float:
         """Distance a free ball rolls from ``speed`` to rest: ``v^2 / (2 mu g)``."""
         return speed * speed / (2.0 * self.deceleration)
@@ -309,7 +316,7 @@ class Table:
         return speed / self.deceleration
 
     def _spin_repr(self) -> str:
-        if self.model == "roll":
+        if not self.has_spin:
             return ""
         names = ("mu_slide", "spin_decel", "ball_friction", "cushion_friction")
         names += ("cushion_height", "cue_tip_radius", "cue_end_mass")

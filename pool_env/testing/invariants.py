@@ -26,8 +26,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.sim.kernels.contact import CONTACT_TOL
 from pool_env.sim.kernels.jaws import LOC_CIRCLE, LOC_FREE, locate_many
-from pool_env.sim.kernels.resolve import CONTACT_TOL
 from pool_env.sim.result import ShotResult, SpinShotResult
 from pool_env.sim.table import Table
 from pool_env.testing import spin_invariants

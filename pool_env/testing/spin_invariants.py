@@ -30,7 +30,7 @@ from numpy.typing import NDArray
 from pool_env.sim.result import KIND_NAMES, SpinShotResult
 from pool_env.sim.table import Table
 
-# Motion states of the contract (pool_env.sim.kernels.spin_state), written here on purpose.
+# Motion states of the contract (pool_env.sim.kernels.spin.state), written here on purpose.
 STATIONARY, POTTED = 0, 4
 SLIDE_ROLL, STOP, ROLL_SPIN, SPIN_STOP = (
     KIND_NAMES.index(k) for k in ("slide_roll", "stop", "roll_spin", "spin_stop")

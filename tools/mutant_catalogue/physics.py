@@ -17,7 +17,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "impact-seed-sign",
         "impacts",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "ui_new = (mi * ui + mj * uj + mj * e_eff * (uj - ui)) / total",
         "ui_new = (mi * ui + mj * uj - mj * e_eff * (uj - ui)) / total",
         SIM,
@@ -26,7 +26,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "impact-elastic",
         "impacts",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "e_eff = e if approach",
         "e_eff = 1.0 if approach",
         SIM,
@@ -35,7 +35,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "impact-normal-swapped",
         "impacts",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "nx, ny = dx / dist, dy / dist",
         "nx, ny = dy / dist, dx / dist",
         SIM,
@@ -44,7 +44,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "impact-masses-swapped",
         "impacts",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "mi, mj = masses[i], masses[j]",
         "mi, mj = masses[j], masses[i]",
         SIM_AND_REFERENCE,
@@ -53,7 +53,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "impact-tangential-loss",
         "impacts",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "vxi += (ui_new - ui) * nx",
         "vxi = 0.99 * vxi + (ui_new - ui) * nx",
         SIM_AND_REFERENCE,
@@ -63,7 +63,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "cushion-e-ball",
         "cushions",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "a, e = params[P_DECEL], params[P_E_CUSHION]",
         "a, e = params[P_DECEL], params[P_E_BALL]",
         SIM,
@@ -72,7 +72,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "cushion-tangential",
         "cushions",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "            vx = -e * vx",
         "            vx = -vx\n            vy = e * vy",
         SIM,
@@ -81,7 +81,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "cushion-far-rail-line",
         "cushions",
-        K + "predict.py",
+        K + "roll/predict.py",
         "line = length - radius if ux > 0.0 else radius",
         "line = length - 0.5 * radius if ux > 0.0 else radius",
         SIM,
@@ -100,7 +100,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "motion-rest-distance",
         "motion",
-        K + "motion.py",
+        K + "roll/motion.py",
         "s = spd * spd / (2.0 * a)",
         "s = spd * spd / a",
         SIM,
@@ -109,7 +109,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "motion-arc-time",
         "motion",
-        K + "motion.py",
+        K + "roll/motion.py",
         "den = speed + math.sqrt(disc)",
         "den = 2.0 * speed",
         SIM,
@@ -155,7 +155,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "predict-cull-radius",
         "roots",
-        K + "predict.py",
+        K + "roll/predict.py",
         "capsules_may_meet(caps, i, j, 2.0 * radius + CULL_MARGIN)",
         "capsules_may_meet(caps, i, j, radius + CULL_MARGIN)",
         SIM_AND_PROPERTIES,
@@ -196,7 +196,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "zeno-threshold-1e-3",
         "zeno",
-        K + "resolve.py",
+        K + "contact.py",
         "V_ZENO = 1e-6  # m/s",
         "V_ZENO = 1e-3  # m/s",
         SIM,
@@ -205,7 +205,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "zeno-isolated-inelastic",
         "zeno",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "(approach > 0.0 and repeats < 2)",
         "(approach > 0.0 and repeats < 1)",
         SIM,
@@ -214,7 +214,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "zeno-contact-tolerance",
         "zeno",
-        K + "resolve.py",
+        K + "contact.py",
         "CONTACT_TOL = 1e-9  # m",
         "CONTACT_TOL = 1e-3  # m",
         SIM_AND_PROPERTIES,
@@ -223,7 +223,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "zeno-pressed-sign",
         "zeno",
-        K + "resolve.py",
+        K + "roll/resolve.py",
         "+ 2.0 * (dx * cx + dy * cy) <= 0.0",
         "- 2.0 * (dx * cx + dy * cy) <= 0.0",
         SIM_AND_PROPERTIES,
@@ -234,10 +234,10 @@ MUTANTS: tuple[Mutant, ...] = (
         "loop-cushion-no-repredict",
         "loop",
         K + "loop.py",
-        "            _repredict_pairs(st, status, bi, now, params, own, caps, pair)\n",
-        "",
+        "            _repredict_pairs(level, st, ms, changed[c], now, prm, own, boxes, pair)\n",
+        "            pass  # no re-prediction\n",
         SIM_AND_PROPERTIES,
-        "pairs not re-predicted after a cushion (stale impact times)",
+        "pairs not re-predicted after an event (stale impact times)",
     ),
     Mutant(
         "tally-rail-before-contact",

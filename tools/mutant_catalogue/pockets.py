@@ -27,7 +27,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "pocket-radius-squared",
         "pockets",
-        K + "predict.py",
+        K + "roll/predict.py",
         "pockets[k, 1], r * r, True)",
         "pockets[k, 1], r * (r - 1e-4), True)",
         POCKETS,
@@ -208,7 +208,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "jaw-cull-own-throat",
         "jaws",
-        K + "predict.py",
+        K + "roll/predict.py",
         "for k in (here, enter_a, enter_b):",
         "for k in (enter_a, enter_b):",
         JAWS,

@@ -8,9 +8,9 @@ from tools.mutant_catalogue.base import K, Mutant
 SPIN_RESOLVE = ("tests/test_spin_resolve.py",)
 SPIN_CUSHION = ("tests/test_spin_cushion.py",)
 SPIN_STRIKE = ("tests/test_spin_strike.py",)
-_SC = K + "spin_collide.py"
-_SU = K + "spin_cushion.py"
-_SS = K + "spin_strike.py"
+_SC = K + "spin/collide.py"
+_SU = K + "spin/cushion.py"
+_SS = K + "spin/strike.py"
 
 
 # The spin level's motion, prediction and loop (issue 19): its closed forms, hard cases, the
@@ -21,9 +21,9 @@ SPIN_LOOP = (
     "tests/test_spin_reference_compare.py",
     "tests/test_spin_vs_roll.py",
 )
-_SST = K + "spin_state.py"
-_SPR = K + "spin_predict.py"
-_SJ = K + "spin_jaws.py"
+_SST = K + "spin/state.py"
+_SPR = K + "spin/predict.py"
+_SJ = K + "spin/jaws.py"
 
 # The spin level's Zeno rules: closed forms of a stuck lump and a pressed cushion, the jams.
 SPIN_ZENO = (
@@ -31,8 +31,8 @@ SPIN_ZENO = (
     "tests/test_spin_jam.py",
     "tests/test_spin_hard_cases.py",
 )
-_SZ = K + "spin_zeno.py"
-_SL = K + "spin_loop.py"
+_SZ = K + "spin/zeno.py"
+_SL = K + "spin/level.py"
 
 MUTANTS: tuple[Mutant, ...] = (
     Mutant(
@@ -304,6 +304,6 @@ MUTANTS: tuple[Mutant, ...] = (
         "e_eff = e",
         SPIN_ZENO,
         "no inelastic Zeno rule for slow repeated ball-ball impacts on the spin level",
-        "spin_loop._impact",
+        "spin.level._impact",
     ),
 )

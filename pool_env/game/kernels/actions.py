@@ -7,7 +7,7 @@ On a spin table (``params[SPIN]``) the action's last two components are the cue 
 offset ``(a, b)`` (side, vertical), each ``c * tip_limit`` for ``c`` in ``[-1, 1]`` and
 scaled back onto the circle of radius ``tip_limit`` when outside it (the miscue limit,
 :mod:`pool_env.game.kernels.tips`); the strike is
-:func:`pool_env.sim.kernels.spin_strike.cue_strike` (velocity with squirt, and spin). Tip
+:func:`pool_env.sim.kernels.spin.strike.cue_strike` (velocity with squirt, and spin). Tip
 noise draws after the angle and speed draws.
 """
 
@@ -48,7 +48,7 @@ from pool_env.game.kernels.rng import standard_normal
 from pool_env.game.kernels.tips import decode_tips, onto_tip_circle
 from pool_env.game.kernels.wpa import BEHIND, BREAKING, IN_HAND, SHOOTER, legal_targets
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.spin_strike import cue_strike
+from pool_env.sim.kernels.spin.strike import cue_strike
 
 
 @kernel

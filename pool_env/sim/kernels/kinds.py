@@ -28,6 +28,9 @@ SLIDE_ROLL = 6
 ROLL_SPIN = 7
 #: Spin level: ball ``i`` stops spinning in place.
 SPIN_STOP = 8
+#: Columns of a ball's own-event row (``own[i]``): time, kind, argument (rail, pocket,
+#: jaw); ``EV_END`` columns in all.
+EV_T, EV_KIND, EV_ARG, EV_END = 0, 1, 2, 3
 #: Greater than every kind: the loops' "no event found yet".
 NO_EVENT = 99
 

@@ -13,14 +13,14 @@ from collections import namedtuple
 import numpy as np
 
 from pool_env.sim.jit import inline_kernel, kernel
-from pool_env.sim.kernels.motion import POTTED, PX, PY, VX, VY
 
 #: The events of a shot, one row each: time, kind code, the two ids, and the first row of
 #: the segment log the event wrote (the rows up to the next event's are the balls it moved).
 EventLog = namedtuple("EventLog", ["t", "kind", "i", "j", "first_segment"])
 
-#: Trajectory anchors, one row each: ball ``ball`` follows ``state = (x, y, vx, vy)`` from
-#: time ``t`` on (``potted``: it was captured there).
+#: Trajectory anchors, one row each: ball ``ball`` follows ``state`` from time ``t`` on
+#: (``potted``: it was captured there). The columns of ``state`` are the model level's:
+#: ``x, y, vx, vy`` on the roll level, with spin and acceleration on the spin level.
 SegmentLog = namedtuple("SegmentLog", ["ball", "t", "state", "potted"])
 
 
@@ -67,12 +67,12 @@ def log_event(log, row, t, kind, i, j, first_segment):
 
 
 @inline_kernel
-def new_segment_log(capacity):
-    """An empty :data:`SegmentLog` with room for ``capacity`` rows."""
+def new_segment_log(capacity, width):
+    """An empty :data:`SegmentLog` with room for ``capacity`` rows of ``width`` columns."""
     return SegmentLog(
         np.empty(capacity, dtype=np.int64),
         np.empty(capacity, dtype=np.float64),
-        np.empty((capacity, 4), dtype=np.float64),
+        np.empty((capacity, width), dtype=np.float64),
         np.zeros(capacity, dtype=np.bool_),
     )
 
@@ -84,18 +84,6 @@ def grown_segment_log(log):
     return SegmentLog(
         _grow(log.ball, n), _grow(log.t, n), _grow(log.state, n), _grow(log.potted, n)
     )
-
-
-@kernel
-def log_segment(log, row, k, now, st, status):
-    """Write row ``row`` (below the capacity): ball ``k`` is re-anchored at ``now``."""
-    log.ball[row] = k
-    log.t[row] = now
-    log.state[row, 0] = st[k, PX]
-    log.state[row, 1] = st[k, PY]
-    log.state[row, 2] = st[k, VX]
-    log.state[row, 3] = st[k, VY]
-    log.potted[row] = status[k] == POTTED
 
 
 @inline_kernel

@@ -4,20 +4,29 @@ Simultaneous events are taken in one fixed total order, (time, kind, first id, s
 (:func:`next_event`), which makes reruns bit-for-bit identical; each event taken updates
 the per-ball rows the rules read (:func:`tally`: pocketing order, first contacts, cushion
 impacts after the first contact). The roll loop (:mod:`~pool_env.sim.kernels.loop`) and the
-spin loop (:mod:`~pool_env.sim.kernels.spin_loop`) both run on these.
+spin loop (:mod:`~pool_env.sim.kernels.spin.level`) both run on these.
 """
 
 from __future__ import annotations
 
 from pool_env.sim.jit import inline_kernel, kernel
-from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, NO_EVENT, POCKET, POINT
+from pool_env.sim.kernels.kinds import (
+    BALL,
+    CUSHION,
+    EV_ARG,
+    EV_KIND,
+    EV_T,
+    JAW,
+    NO_EVENT,
+    POCKET,
+    POINT,
+)
 from pool_env.sim.kernels.packing import (
     BALL_CUSHIONS,
     BALL_FIRST_HIT,
     BALL_POCKET,
     BALL_POCKET_ORDER,
 )
-from pool_env.sim.kernels.predict import EV_ARG, EV_KIND, EV_T
 from pool_env.sim.kernels.roots import INF
 
 

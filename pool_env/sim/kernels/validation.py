@@ -24,7 +24,7 @@ POS_TOL = 1e-9
 OK, BAD_POSITION, BAD_VELOCITY, BAD_MASS, OFF_TABLE, OVERLAP, IN_POCKET, TOO_FAST = range(8)
 IN_JAW, BEHIND_LINE, TOO_ENERGETIC = 8, 9, 10
 #: The spin level's: a non-finite angular velocity, a surface speed ``R |w|`` beyond
-#: ``limits.MAX_SPEED`` (:func:`pool_env.sim.kernels.spin_loop.validate_spins`).
+#: ``limits.MAX_SPEED`` (:func:`pool_env.sim.kernels.spin.level.validate_spins`).
 BAD_SPIN, SPIN_TOO_FAST = 11, 12
 
 

@@ -37,7 +37,7 @@ import math
 
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.params import P_DECEL, P_RADIUS
-from pool_env.sim.kernels.spin_params import S_SLIDE_DECEL, S_SPIN_DECEL
+from pool_env.sim.kernels.spin.params import S_SLIDE_DECEL, S_SPIN_DECEL
 
 #: Motion states (the contract's enumeration).
 STATIONARY, SPINNING, SLIDING, ROLLING, POTTED = 0, 1, 2, 3, 4

@@ -24,27 +24,20 @@ import math
 import numpy as np
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.jaws import (
-    J_FACING0,
-    J_TIP0,
-    JAW_COLS,
-    _slide,
-    _wedged,
-    jaw_normal,
-    opening_of,
-    throat_of,
-)
-from pool_env.sim.kernels.kinds import JAW, POINT
-from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
-from pool_env.sim.kernels.resolve import (
+from pool_env.sim.kernels.contact import (
     CONTACT_TOL,
     V_REST,
     V_ZENO,
     ZENO_REPEATS,
     lump_off_contacts,
+    slide,
+    wedged,
 )
+from pool_env.sim.kernels.jaws import J_FACING0, J_TIP0, JAW_COLS, jaw_normal, opening_of, throat_of
+from pool_env.sim.kernels.kinds import JAW, POINT
+from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
-from pool_env.sim.kernels.spin_state import FORCE_ROLL, POTTED, set_anchor, state_at
+from pool_env.sim.kernels.spin.state import FORCE_ROLL, POTTED, set_anchor, state_at
 
 #: Rails' unit normals into the table, by rail index (0: x = R, 1: x = L - R, 2, 3: y).
 RAIL_NX = (1.0, -1.0, 0.0, 0.0)
@@ -102,12 +95,12 @@ def _lump_off_cushions(snap, changed, size, vx, vy, prm, pockets):
         count = _gather_contacts(x, y, prm, pockets, normals, es, count)
     if pockets.shape[1] != JAW_COLS:
         return lump_off_contacts(vx, vy, normals, es, count)
-    if _wedged(normals, count, vx, vy, INF, V_REST) or _wedged(
+    if wedged(normals, count, vx, vy, INF, V_REST) or wedged(
         normals, count, vx, vy, V_ZENO, V_REST
     ):
         return 0.0, 0.0
     vx, vy = lump_off_contacts(vx, vy, normals, es, count)
-    return _slide(normals, count, vx, vy, V_ZENO, V_REST)
+    return slide(normals, count, vx, vy, V_ZENO, V_REST)
 
 
 @kernel
@@ -133,7 +126,7 @@ def wedged_ball(x, y, vx, vy, repeats, prm, pockets):
         return False
     if repeats >= ZENO_REPEATS:
         return True
-    return _wedged(normals, count, vx, vy, INF, V_REST) or _wedged(
+    return wedged(normals, count, vx, vy, INF, V_REST) or wedged(
         normals, count, vx, vy, V_ZENO, V_REST
     )
 

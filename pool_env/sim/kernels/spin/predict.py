@@ -1,7 +1,7 @@
 """Event prediction of the spin level (compiled): a ball's own events and a pair's impact.
 
 Every ball moves with a constant acceleration between its anchor and its next transition
-(:mod:`~pool_env.sim.kernels.spin_state`), so each question is a polynomial in the time
+(:mod:`~pool_env.sim.kernels.spin.state`), so each question is a polynomial in the time
 ``tau`` since the anchor, answered exactly (no time stepping):
 
 * a straight rail: the signed penetration ``g(tau) = g0 + g1 tau + g2 tau^2`` of the ball
@@ -11,7 +11,7 @@ Every ball moves with a constant acceleration between its anchor and its next tr
 * a capture circle: the squared distance to its centre less its squared radius is a
   quartic, solved by the bracketed :func:`~pool_env.sim.kernels.roots.first_contact`
   (a start inside captures now, in any direction); pocket jaws (facings, points, fall
-  lines): :mod:`~pool_env.sim.kernels.spin_jaws` (on a jaw table a rail crossing inside a
+  lines): :mod:`~pool_env.sim.kernels.spin.jaws` (on a jaw table a rail crossing inside a
   pocket's opening is no rail hit);
 * a pair of balls: the squared gap is a quartic in any mix of states
   (:func:`~pool_env.sim.kernels.roots.first_contact`), with the explicit degree drops: both
@@ -34,9 +34,18 @@ import math
 
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import JAW_COLS, opening_of
-from pool_env.sim.kernels.kinds import CUSHION, POCKET, ROLL_SPIN, SLIDE_ROLL, SPIN_STOP, STOP
+from pool_env.sim.kernels.kinds import (
+    CUSHION,
+    EV_ARG,
+    EV_KIND,
+    EV_T,
+    POCKET,
+    ROLL_SPIN,
+    SLIDE_ROLL,
+    SPIN_STOP,
+    STOP,
+)
 from pool_env.sim.kernels.params import P_LENGTH, P_RADIUS, P_WIDTH
-from pool_env.sim.kernels.predict import EV_ARG, EV_KIND, EV_T
 from pool_env.sim.kernels.roots import (
     APPROACH_RTOL,
     INF,
@@ -44,9 +53,9 @@ from pool_env.sim.kernels.roots import (
     first_contact,
     quadratic_roots,
 )
-from pool_env.sim.kernels.spin_jaws import predict_jaws
-from pool_env.sim.kernels.spin_params import S_SLIDE_DECEL, S_SPIN_DECEL
-from pool_env.sim.kernels.spin_state import (
+from pool_env.sim.kernels.spin.jaws import predict_jaws
+from pool_env.sim.kernels.spin.params import S_SLIDE_DECEL, S_SPIN_DECEL
+from pool_env.sim.kernels.spin.state import (
     AX,
     AY,
     POTTED,

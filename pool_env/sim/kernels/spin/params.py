@@ -29,6 +29,6 @@ N_SPIN_PARAMS = N_PARAMS + 8
 
 #: Ball-ball friction modes, the one enumeration (``Table.spin_params[S_FRICTION_MODE]``, the
 #: ``friction_mode`` argument of the resolution kernel,
-#: :mod:`~pool_env.sim.kernels.spin_collide`): none, a constant, Alciatore's fit with
+#: :mod:`~pool_env.sim.kernels.spin.collide`): none, a constant, Alciatore's fit with
 #: Coulomb's impulse, Alciatore's fit with pooltool 0.6.0's impulse.
 FRICTIONLESS, CONSTANT_FRICTION, ALCIATORE_FRICTION, POOLTOOL_FRICTION = 0, 1, 2, 3

@@ -60,7 +60,7 @@ from __future__ import annotations
 import math
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.spin_params import (
+from pool_env.sim.kernels.spin.params import (
     CONSTANT_FRICTION,
     FRICTIONLESS,
     POOLTOOL_FRICTION,

@@ -26,8 +26,9 @@ import math
 
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.jaws import JAW_COLS, opening_of, predict_pocket, throat_of
-from pool_env.sim.kernels.kinds import CUSHION, POCKET, STOP
-from pool_env.sim.kernels.motion import (
+from pool_env.sim.kernels.kinds import CUSHION, EV_ARG, EV_END, EV_KIND, EV_T, POCKET, STOP
+from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_RADIUS, P_WIDTH
+from pool_env.sim.kernels.roll.motion import (
     MOVING,
     POTTED,
     PX,
@@ -41,7 +42,6 @@ from pool_env.sim.kernels.motion import (
     rest_point,
     state_at,
 )
-from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.roots import (
     APPROACH_RTOL,
     INF,
@@ -50,8 +50,6 @@ from pool_env.sim.kernels.roots import (
     ray_circle_entry,
 )
 
-# Columns of the (N, 4) per-ball "own event" array.
-EV_T, EV_KIND, EV_ARG, EV_END = 0, 1, 2, 3
 # Columns of the (N, 4) capsule array: the segment a ball sweeps until its trajectory changes.
 CAP_AX, CAP_AY, CAP_BX, CAP_BY = 0, 1, 2, 3
 

@@ -1,7 +1,7 @@
 """Exact positions at any time from a spin shot's trajectory segments (compiled).
 
 Each segment row anchors a ball at its time with ``x, y, vx, vy, wx, wy, wz, ax, ay``
-(:data:`~pool_env.sim.kernels.spin_loop.SEG_COLS`); every transition is an event that
+(:data:`~pool_env.sim.kernels.spin.level.SEG_COLS`); every transition is an event that
 writes a row, so from its last row at or before ``t`` a ball follows
 ``p + v tau + acc tau^2 / 2`` exactly: the arithmetic of the loop's ``state_at``.
 """

@@ -48,18 +48,15 @@ import math
 import numpy as np
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.motion import POTTED, set_anchor, state_at
+from pool_env.sim.kernels.contact import (
+    CONTACT_TOL,
+    V_REST,
+    V_ZENO,
+    ZENO_REPEATS,
+    lump_off_rails,
+)
 from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_LENGTH, P_RADIUS, P_WIDTH
-
-V_ZENO = 1e-6  # m/s
-V_REST = 1e-9  # m/s
-# Impacts of one pair closer together than this are one contact repeating (a cascade of
-# sequential impulses through touching balls, or a ball wedged against a rail).
-ZENO_WINDOW = 1e-6  # s
-# A pair that repeats this often within ZENO_WINDOW of each impact sticks, whatever its e.
-ZENO_REPEATS = 16
-# Balls whose centres are within 2R + CONTACT_TOL touch, for sticking clusters.
-CONTACT_TOL = 1e-9  # m
+from pool_env.sim.kernels.roll.motion import POTTED, set_anchor, state_at
 
 
 @kernel
@@ -127,61 +124,6 @@ def ball_ball(st, status, masses, i, j, t, params, repeats):
     return repeats >= ZENO_REPEATS or (
         e_eff == 0.0 and (repeats >= 2 or _pressed_together(dx, dy, vxi, vyi, vxj, vyj, a))
     )
-
-
-@kernel
-def lump_off_rail(vx, vy, nx, ny, e):
-    """Velocity of a lump of balls after it meets, as one body, a rail it touches.
-
-    Args:
-        vx, vy: The lump's common velocity.
-        nx, ny: The rail's unit normal, pointing from the rail into the table (any
-            direction: axis-aligned rails and angled pocket facings alike).
-        e: The rail's restitution.
-
-    Returns:
-        ``(vx, vy, hit)``: a normal velocity into the rail ``v_n = v.n < 0`` becomes
-        ``-e v_n``, or 0 when slower than ``V_ZENO`` (a contact repeating at rounding
-        speed is inelastic, as for balls); the tangential part is kept. ``hit`` says
-        whether the lump was moving into the rail.
-    """
-    vn = vx * nx + vy * ny
-    if not vn < 0.0:
-        return vx, vy, False
-    k = 1.0 + e if -vn >= V_ZENO else 1.0
-    return vx - k * vn * nx, vy - k * vn * ny, True
-
-
-# Passes over a lump's rails before a lump still pressed into one is jammed (at rest).
-LUMP_PASSES = 8
-
-
-@kernel
-def lump_off_contacts(vx, vy, normals, es, count):
-    """:func:`lump_off_rail` against every contact a lump touches (``normals[:count]``).
-
-    Contact ``r`` (a rail, a jaw facing or a jaw point) has restitution ``es[r]``. Each pass
-    meets every contact in turn; orthogonal rails (a corner) settle in one pass whatever
-    their order. A lump still pressed into a contact after ``LUMP_PASSES`` passes (wedged
-    between contacts that keep turning it into each other) stops: energy only drops.
-    """
-    for _ in range(LUMP_PASSES):
-        pressed = False
-        for r in range(count):
-            vx, vy, hit = lump_off_rail(vx, vy, normals[r, 0], normals[r, 1], es[r])
-            pressed |= hit
-        if not pressed:
-            return vx, vy
-    for r in range(count):
-        if vx * normals[r, 0] + vy * normals[r, 1] < 0.0:
-            return 0.0, 0.0
-    return vx, vy
-
-
-@kernel
-def lump_off_rails(vx, vy, normals, count, e):
-    """:func:`lump_off_contacts` against rails that all have restitution ``e``."""
-    return lump_off_contacts(vx, vy, normals, np.full(max(count, 1), e), count)
 
 
 @kernel

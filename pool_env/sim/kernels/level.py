@@ -1,0 +1,157 @@
+"""What a model level is (compiled): the parts the one event loop calls, as a strategy.
+
+A model level is a motion law and its resolution models: how a ball moves in each of its
+motion states, when it changes state, when it can meet a rail, a jaw, a pocket or another
+ball, and what an impact does. The event loop (:mod:`~pool_env.sim.kernels.loop`), the
+batch (:mod:`~pool_env.sim.kernels.batch`) and the rollout
+(:mod:`~pool_env.sim.kernels.rollout`) are written once, against the functions below, and
+import no level. Each level lives in its own package and registers its implementation of
+every function here for its marker type (:func:`pool_env.sim.jit.level_method`):
+
+* :mod:`pool_env.sim.kernels.roll`: the seed's model, every moving ball rolling with
+  constant deceleration on a straight line; anchors ``(N, 9)``
+  (:mod:`~pool_env.sim.kernels.roll.motion`), states rest, moving, potted.
+* :mod:`pool_env.sim.kernels.spin`: sliding, rolling, spinning, english and throw
+  (pooltool's model); anchors ``(N, 11)`` (:mod:`~pool_env.sim.kernels.spin.state`).
+
+A caller passes the level's marker (``ROLL`` or ``SPIN``) as the first argument; numba
+compiles one specialised loop per marker type, calling the level's parts directly (no
+dispatch at run time: the marker is a type, not a value). A third level (an airborne ball, say)
+is a new package beside these two that defines a marker and implements every function here;
+the loop, the batch, the rollout, recording, validation and the Python API stay as they are
+(:mod:`pool_env.sim.levels` names it for the Python side).
+
+The functions below are the interface only: calling one from Python raises. ``st`` is the
+level's anchor array and ``ms`` its per-ball motion states (``int8``); ``prm`` the level's
+flat parameter array (``Table.params`` or ``Table.spin_params``); ``own`` and ``boxes`` the
+loop's ``(N, 4)`` next-own-event rows (columns of :mod:`~pool_env.sim.kernels.kinds`) and
+the level's per-ball reach bounds used to cull pair tests.
+"""
+
+from __future__ import annotations
+
+from typing import Any, NoReturn
+
+
+def _interface(name: str) -> NoReturn:
+    raise TypeError(
+        f"pool_env.sim.kernels.level.{name} is an interface: compiled callers get a model "
+        "level's implementation from its marker (ROLL or SPIN)"
+    )
+
+
+def start(level: Any, positions: Any, velocities: Any, angular: Any, prm: Any) -> Any:
+    """The anchors of a shot's balls at time 0: ``(st, ms)``.
+
+    ``positions``, ``velocities`` ``(N, 2)`` and ``angular`` ``(N, 3)`` are validated (a
+    level without spin is given zeros, and ignores them).
+    """
+    _interface("start")
+
+
+def predict_own(
+    level: Any, st: Any, ms: Any, i: int, prm: Any, pockets: Any, own: Any, boxes: Any
+) -> None:
+    """Write ball ``i``'s next own event (rail, jaw, pocket, transition) into ``own[i]``.
+
+    Also writes ``boxes[i]``, the bound on where the ball can be until then, for
+    :func:`predict_pair`.
+    """
+    _interface("predict_own")
+
+
+def predict_pair(
+    level: Any, st: Any, ms: Any, i: int, j: int, now: float, prm: Any, own: Any, boxes: Any
+) -> float:
+    """The time balls ``i < j`` next meet before either's own event (``inf`` if never)."""
+    _interface("predict_pair")
+
+
+def resolve(
+    level: Any,
+    st: Any,
+    ms: Any,
+    masses: Any,
+    kind: int,
+    i: int,
+    j: int,
+    now: float,
+    repeats: int,
+    prm: Any,
+    pockets: Any,
+    changed: Any,
+    out: Any,
+) -> int:
+    """Apply event ``(kind, i, j)`` at ``now``: re-anchor the balls it changes.
+
+    ``repeats`` counts this contact's occurrences in a row within ``ZENO_WINDOW`` (of the
+    pair ``i, j`` for a ball-ball impact, of ball ``i`` with any cushion for a rail, jaw or
+    point impact; the Zeno rules are the level's). ``out`` is scratch space of 10 floats.
+
+    Returns:
+        The number of balls re-anchored, listed first in ``changed``: the loop re-predicts
+        their own events and their pairs, and logs a segment for each. 0 means only ball
+        ``i``'s own event changed (a roll-level stop, whose pair predictions already hold
+        its rest): the loop re-predicts that alone and logs nothing.
+    """
+    _interface("resolve")
+
+
+def moving(level: Any, ms: Any, i: int) -> bool:
+    """Whether ball ``i`` is in motion (what the event cap stops)."""
+    _interface("moving")
+
+
+def halt(level: Any, st: Any, ms: Any, i: int, now: float, prm: Any) -> None:
+    """Stop moving ball ``i`` where it is at ``now`` (the event cap's end of a shot)."""
+    _interface("halt")
+
+
+def new_segments(level: Any, capacity: int) -> Any:
+    """An empty ``SegmentLog`` (:mod:`~pool_env.sim.kernels.record`) of the level's width."""
+    _interface("new_segments")
+
+
+def log_segment(level: Any, log: Any, row: int, k: int, now: float, st: Any, ms: Any) -> None:
+    """Write segment ``row`` (below the capacity): ball ``k`` re-anchored at ``now``."""
+    _interface("log_segment")
+
+
+def check_scene(
+    level: Any, positions: Any, velocities: Any, angular: Any, masses: Any, prm: Any, pockets: Any
+) -> Any:
+    """Validate a scene: ``(code, i, j)`` naming its first problem (``OK`` if none).
+
+    Codes of :mod:`~pool_env.sim.kernels.validation`.
+    """
+    _interface("check_scene")
+
+
+def strike(
+    level: Any,
+    speed: float,
+    angle: float,
+    a: float,
+    b: float,
+    elevation: float,
+    prm: Any,
+    out: Any,
+) -> None:
+    """The cue ball's velocity and spin just after a strike: ``out[:5]`` = vx, vy, wx, wy, wz.
+
+    ``speed`` and ``angle`` are the ball's speed in the table plane and the cue's aim;
+    ``a``, ``b`` the tip offsets and ``elevation`` the cue's (zero on a level without spin).
+    """
+    _interface("strike")
+
+
+def tail_sizes(level: Any) -> Any:
+    """``(floats, ints)`` per ball that the level adds to a packed shot's buffer."""
+    _interface("tail_sizes")
+
+
+def write_tails(
+    level: Any, floats: Any, ints: Any, f: int, k: int, st: Any, ms: Any, now: float, prm: Any
+) -> None:
+    """Write the level's per-ball tails into a packed buffer from ``floats[f]``, ``ints[k]``."""
+    _interface("write_tails")
