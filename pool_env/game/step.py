@@ -34,7 +34,7 @@ from pool_env.sim.batch import (
     simulate_batch,
     simulate_batch_threads,
 )
-from pool_env.sim.simulate import simulate
+from pool_env.sim.simulate import simulate_checked_arrays
 from pool_env.sim.table import Table
 
 __all__ = ["StepResult", "observe", "option_layouts", "reset", "step"]
@@ -199,8 +199,10 @@ def _simulate(
     """The shots to rest: ``simulate`` for one table (the balls on it), else the batch.
 
     ``spins`` are the ``(K, N, 3)`` angular velocities of a spin table (``None`` on a roll
-    table, which takes none). The simulator copies what it is given, so the state's
-    arrays are passed as they are.
+    table, which takes none). The simulator never writes its inputs, so the state's
+    arrays are passed as they are; one table goes through
+    :func:`~pool_env.sim.simulate.simulate_checked_arrays` (the state holds the kernel's
+    arrays already; the scene is still validated in the compiled call).
     """
     n_shots, n_balls = vel.shape[:2]
     spin = spins
@@ -210,10 +212,10 @@ def _simulate(
         balls = on.nonzero()[0]
         if balls.shape[0] == n_balls:
             ang = None if spin is None else spin[0]
-            shot = simulate(table, pos, vel[0], record=record, angular_velocities=ang)
+            shot = simulate_checked_arrays(table, pos, vel[0], ang, record)
         else:
             ang = None if spin is None else spin[0, balls]
-            shot = simulate(table, pos[balls], vel[0, balls], record=record, angular_velocities=ang)
+            shot = simulate_checked_arrays(table, pos[balls], vel[0, balls], ang, record)
         contact = shot.first_contact
         first = _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64)
         final, pocketed = shot.positions, shot.pocketed
