@@ -151,9 +151,9 @@ def test_the_docstring_quotes_the_tables_defaults() -> None:
     import re
 
     from pool_env import Table
-    from pool_env.sim.kernels import spin_cushion
+    from pool_env.sim.kernels.spin import cushion
 
-    doc = " ".join(spin_cushion.__doc__.split())
+    doc = " ".join(cushion.__doc__.split())
     quoted = re.search(
         r"``Table``'s defaults \(``e_c = ([\d.]+)``, ``f_c = ([\d.]+)``, ``h = ([\d.]+) R``\)"
         r" it is ``([\d.]+) vx``",
