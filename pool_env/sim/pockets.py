@@ -28,6 +28,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.sim.kernels.jaws import (
+    J_BOX,
     J_FACING0,
     J_FACING1,
     J_FNX,
@@ -250,7 +251,10 @@ def kernel_rows(jaws: tuple[PocketJaws, ...], ball_radius: float) -> NDArray[np.
     Per pocket: the fall line (a point and its unit normal to the table); each facing as the
     line a ball centre touches (start ``facing start + R n``, inward unit direction ``d``,
     free-side unit normal ``n``, extent length); each tip as its centre and contact radius
-    ``tip_radius + R``; each rail opening as (rail index, lo, hi) along the rail line.
+    ``tip_radius + R``; each rail opening as (rail index, lo, hi) along the rail line;
+    the reach box, the bounding box of the offset facings, the tip circles and the fall
+    line's end points (on the facings themselves, so beyond the offset ones): the mouth a
+    centre can be in, with every centre position at which the pocket has an event.
     """
     rows = np.zeros((len(jaws), JAW_COLS), dtype=np.float64)
     for k, jaw in enumerate(jaws):
@@ -274,6 +278,19 @@ def kernel_rows(jaws: tuple[PocketJaws, ...], ball_radius: float) -> NDArray[np.
             tip = J_TIP[f]
             row[tip : tip + 2] = jaw.tip_centres[f]
             row[tip + 2] = jaw.tip_radius + ball_radius
+        corners = [jaw.fall_line]
+        for f in range(2):
+            start = row[J_FACING[f] : J_FACING[f] + 2]
+            corners.append(
+                np.array(
+                    [start, start + row[J_FACING[f] + 6] * row[J_FACING[f] + 2 : J_FACING[f] + 4]]
+                )
+            )
+            rho = jaw.tip_radius + ball_radius
+            corners.append(np.array([jaw.tip_centres[f] - rho, jaw.tip_centres[f] + rho]))
+        every = np.concatenate(corners)
+        row[J_BOX : J_BOX + 2] = every.min(axis=0)
+        row[J_BOX + 2 : J_BOX + 4] = every.max(axis=0)
         rails = sorted(set(jaw.rails))
         for o in range(2):
             col = J_OPEN[o]

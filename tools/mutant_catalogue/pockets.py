@@ -214,4 +214,13 @@ MUTANTS: tuple[Mutant, ...] = (
         JAWS,
         "the jaw cull forgets the throat the ball is in (only openings crossed count)",
     ),
+    Mutant(
+        "spin-reach-box-shrunk",
+        "jaws",
+        K + "jaws.py",
+        "REACH_MARGIN = 1e-6",
+        "REACH_MARGIN = -0.02",
+        ("tests/test_reach_culling.py",),
+        "the spin level's reach test culls pockets a piece reaches (its box shrunk by 2 cm)",
+    ),
 )

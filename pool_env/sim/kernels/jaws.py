@@ -18,7 +18,9 @@ the normal component with restitution ``e_jaw``.
 Culling: every offset facing and tip lies outside the open rectangle of the rail lines, so
 a pocket's jaws matter only once a path leaves the rectangle through that pocket's opening
 (found from the rail-line crossing the predictor computes anyway) or while a ball is in
-its throat. A table without jaws never reaches this module.
+its throat. A path that is not straight (the spin level) is culled by reach instead: a
+pocket whose reach box (``J_BOX``) the piece's bounding box does not meet has no event on
+it (:func:`box_meets`). A table without jaws never reaches this module.
 """
 
 from __future__ import annotations
@@ -41,7 +43,11 @@ J_FX, J_FY, J_FNX, J_FNY = 0, 1, 2, 3
 J_FACING0, J_FACING1 = 4, 11
 J_TIP0, J_TIP1 = 18, 21
 J_OPEN0, J_OPEN1 = 24, 27
-JAW_COLS = 30
+# The pocket's reach box (x min, y min, x max, y max): the bounding box of its offset facings,
+# tip circles and fall line, which holds every centre position at which the pocket has an
+# event (see pool_env.sim.pockets.kernel_rows).
+J_BOX = 30
+JAW_COLS = 34
 
 # Results of locate().
 LOC_FREE, LOC_OUTSIDE, LOC_CIRCLE, LOC_JAW, LOC_FALL = 0, 1, 2, 3, 4
@@ -227,3 +233,28 @@ def locate_many(xs, ys, params, pockets, tol):
     for p in range(xs.shape[0]):
         codes[p], where[p] = locate(xs[p], ys[p], params, pockets, tol)
     return codes, where
+
+
+#: Slack of the reach test (m): far above the rounding of a centre computed on a piece
+#: (1e-15 m), far below any distance that separates a pocket from a path that reaches it.
+REACH_MARGIN = 1e-6
+
+
+@kernel
+def box_meets(row, xl, yl, xh, yh):
+    """Whether the box ``[xl, xh] x [yl, yh]`` meets pocket ``row``'s reach box.
+
+    The reach box bounds the pocket's offset facings, tip circles and fall line, and so the
+    closed mouth they and the rail-line opening enclose: a centre can meet a facing, a
+    point or the fall line (inside the pocket's throat) only at a position inside the
+    mouth's boundary or, beyond it, after crossing that boundary, which is itself an event
+    of the pocket at a position inside the box. A path whose box misses the reach box
+    (by more than :data:`REACH_MARGIN`) therefore has no event of this pocket: the test is
+    exact, not a heuristic.
+    """
+    return not (
+        xh < row[J_BOX] - REACH_MARGIN
+        or xl > row[J_BOX + 2] + REACH_MARGIN
+        or yh < row[J_BOX + 1] - REACH_MARGIN
+        or yl > row[J_BOX + 3] + REACH_MARGIN
+    )

@@ -30,6 +30,7 @@ from pool_env.sim.kernels.jaws import (
     J_FX,
     J_FY,
     J_TIP0,
+    box_meets,
     throat_of,
 )
 from pool_env.sim.kernels.kinds import JAW, POCKET, POINT
@@ -65,8 +66,14 @@ def _facing_time(row, col, x, y, vx, vy, ax, ay, span, tol, curv_tol):
 
 
 @kernel
-def predict_jaws(pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale, accel, t0, best):
+def predict_jaws(
+    pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale, accel, t0, best, box
+):
     """Fold every pocket's fall line, facings and points into ``best = (t, kind, arg)``.
+
+    A pocket whose reach box the piece's bounding box ``box = (xl, yl, xh, yh)`` misses has
+    no event on the piece (:func:`~pool_env.sim.kernels.jaws.box_meets`) and is skipped:
+    culling by reach, exact.
 
     Ties at equal times keep the lower kind (a fall before a jaw contact, a facing before a
     point where they meet at a tip's tangent point).
@@ -76,8 +83,11 @@ def predict_jaws(pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale,
         ``POINT`` (``arg = 2 k + side``).
     """
     best_t, best_kind, best_arg = best
+    xl, yl, xh, yh = box
     for k in range(pockets.shape[0]):
         row = pockets[k]
+        if not box_meets(row, xl, yl, xh, yh):
+            continue
         fall0 = (x - row[J_FX]) * row[J_FNX] + (y - row[J_FY]) * row[J_FNY]
         if fall0 <= 0.0:
             tau = 0.0

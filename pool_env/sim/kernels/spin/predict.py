@@ -22,7 +22,9 @@ Every ball moves with a constant acceleration between its anchor and its next tr
 A ball's own event (rail, pocket or transition) ends its piece of motion; a pair is
 predicted over the window up to the earlier own event of its two balls, and re-predicted
 whenever either ball is re-anchored (an impact or a transition): that is how a prediction
-covers a piecewise path. Pairs are culled first by the bounding boxes of the two pieces.
+covers a piecewise path. Pairs are culled first by the bounding boxes of the two pieces,
+pockets by reach: a capture circle or a pocket's jaws whose box the piece's bounding box
+misses is not solved for (exact: :func:`~pool_env.sim.kernels.jaws.box_meets`).
 
 A ball at a rail or facing with no normal speed whose slip presses it in is an impact now
 (the loop's pressed-cushion rule then sets it rolling along the cushion).
@@ -33,7 +35,7 @@ from __future__ import annotations
 import math
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.jaws import JAW_COLS, opening_of
+from pool_env.sim.kernels.jaws import JAW_COLS, REACH_MARGIN, opening_of
 from pool_env.sim.kernels.kinds import (
     CUSHION,
     EV_ARG,
@@ -173,11 +175,18 @@ def predict_own(st, ms, i, prm, pockets, own, boxes):
                 best = (best_t, best_kind, best_arg)
                 best_t, best_kind, best_arg = predict_jaws(
                     pockets, prm, x, y, vx, vy, ax, ay, span, tol, curv_tol, scale,
-                    prm[S_SLIDE_DECEL], t0, best,
+                    prm[S_SLIDE_DECEL], t0, best, (xl, yl, xh, yh),
                 )  # fmt: skip
         else:
+            # Culling by reach: a capture needs the centre within r of the pocket's centre,
+            # so a circle whose box the piece's box misses has no root to look for.
+            xl, xh = _extent(x, vx, ax, span)
+            yl, yh = _extent(y, vy, ay, span)
             for k in range(pockets.shape[0]):
                 qx, qy, r = pockets[k, 0], pockets[k, 1], pockets[k, 2]
+                reach = r + REACH_MARGIN
+                if xh < qx - reach or xl > qx + reach or yh < qy - reach or yl > qy + reach:
+                    continue
                 dx, dy = qx - x, qy - y
                 if dx * dx + dy * dy <= r * r:
                     tau = 0.0
