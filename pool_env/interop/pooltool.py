@@ -45,13 +45,14 @@ elastic tip, cue mass ``M``, ball mass ``m``; pooltool drops the vertical part):
 framed form, and :func:`cue_to_pooltool` the inverse).
 
 Parameters. One :class:`~pool_env.sim.table.Table` holds what pooltool keeps per ball, so
-the balls of a ``System`` must share them (their masses may differ: per-ball ``masses``)::
+the balls of a ``System`` share them (pooltool 0.6.0 itself holds every ball to one mass
+and radius)::
 
     Table            pooltool
     length, width    table.l, table.w (cushion segments "9" - "18", "12" - "3")
     cushion_height   the cushion segments' height (TableSpecs.cushion_height)
     ball_radius      BallParams.R
-    ball_mass        BallParams.m (the cue ball's; the others in Scene.masses if unequal)
+    ball_mass        BallParams.m
     mu_roll          BallParams.u_r
     mu_slide         BallParams.u_s
     spin_decel       (5/2) BallParams.u_sp_proportionality g   (u_sp = proportionality R)
@@ -78,7 +79,7 @@ Example:
     [[0.97, 0.635]]
     >>> cue = cue_to_pooltool(table, angle=0.0, speed=2.0, tip=(0.2, -0.3))
     >>> cue.phi, round(cue.a, 6), round(cue.b, 6)  # phi = 90: up pooltool's table
-    (90.0, -0.145833, -0.21875)
+    (90.0, -0.145884, -0.218826)
 """
 
 from __future__ import annotations
@@ -447,8 +448,9 @@ class Scene:
         speed: The cue ball's speed in the table plane after the strike (m/s).
         tip: The cue axis's offset ``(side, vertical)``, fractions of ``R``.
         elevation: The cue's elevation (radians).
-        masses: ``(N,)`` per-ball masses when they differ, else ``None`` (every ball has
-            ``table.ball_mass``).
+        masses: ``(N,)`` per-ball masses for :func:`pool_env.shoot`, or ``None`` (every
+            ball has ``table.ball_mass``; always so from a ``System``, and needed by
+            :meth:`to_system`: pooltool gives every ball one mass).
         cue_mass: The cue's mass (kg), pooltool's ``CueSpecs.M``.
     """
 
@@ -502,7 +504,18 @@ class Scene:
         return shoot(**self.shoot_kwargs(), **kwargs)
 
     def to_system(self) -> Any:
-        """The ``pooltool.System`` of this scene (:func:`to_system`)."""
+        """The ``pooltool.System`` of this scene (:func:`to_system`).
+
+        Raises:
+            ValueError: Per-ball masses other than ``table.ball_mass`` (pooltool 0.6.0's
+                ``System`` holds every ball to one mass), or as :func:`to_system`.
+        """
+        if self.masses is not None and (self.masses != self.table.ball_mass).any():
+            raise ValueError(
+                "pooltool 0.6.0 gives every ball one mass: a scene with masses "
+                f"{self.masses.tolist()} has no System (table.ball_mass is "
+                f"{self.table.ball_mass!r})"
+            )
         return to_system(
             self.table,
             self.positions,
@@ -511,7 +524,6 @@ class Scene:
             cue=self.cue,
             tip=self.tip,
             elevation=self.elevation,
-            masses=self.masses,
             ids=self.ids,
             cue_mass=self.cue_mass,
         )
@@ -543,7 +555,6 @@ def to_system(
     cue: int = 0,
     tip: tuple[float, float] = (0.0, 0.0),
     elevation: float = 0.0,
-    masses: ArrayLike | None = None,
     ids: Sequence[str] | None = None,
     cue_mass: float = POOLTOOL_CUE_MASS,
 ) -> Any:
@@ -564,7 +575,6 @@ def to_system(
         cue: The cue ball's row.
         tip: The cue axis's offset ``(side, vertical)``, as :func:`pool_env.shoot` takes it.
         elevation: The cue's elevation (radians).
-        masses: ``(N,)`` per-ball masses (kg); ``None``: ``table.ball_mass`` for every ball.
         ids: pooltool's ball ids, one per row; ``None``: ``"cue"`` for the cue ball and
             ``"1", "2", ...`` for the others in row order.
         cue_mass: The cue's mass (kg), pooltool's ``CueSpecs.M``.
@@ -588,7 +598,7 @@ def to_system(
         speed,
         tip,
         elevation,
-        masses,
+        None,
         cue_mass,
     )
     params = ball_params_from_table(scene.table)
@@ -602,14 +612,11 @@ def to_system(
         specs = pt.objects.PocketTableSpecs(
             l=table.length, w=table.width, cushion_height=table.cushion_height
         )
-    n = scene.positions.shape[0]
-    ball_masses = np.full(n, table.ball_mass) if scene.masses is None else scene.masses
     xy = xy_to_pooltool(scene.positions, table.width)
     balls = {
-        bid: pt.Ball.create(bid, xy=(float(xy[k, 0]), float(xy[k, 1])),
-                            **{**params, "m": float(ball_masses[k])})
+        bid: pt.Ball.create(bid, xy=(float(xy[k, 0]), float(xy[k, 1])), **params)
         for k, bid in enumerate(scene.ids)
-    }  # fmt: skip
+    }
     shot = cue_to_pooltool(table, scene.angle, scene.speed, scene.tip, scene.elevation,
                            cue_mass=scene.cue_mass)  # fmt: skip
     cue_specs = pt.objects.CueSpecs(
@@ -639,17 +646,16 @@ def _corners(table: Any) -> tuple[float, float, float, float, float]:
 
 
 def _shared_params(balls: Sequence[Any]) -> dict[str, float]:
-    """The ball parameters every ball shares (the cue ball's mass for ``m``)."""
+    """The ball parameters every ball shares."""
     first = balls[0].params
     shared = {name: float(getattr(first, name)) for name in PORTED_BALL_PARAMS}
     for ball in balls[1:]:
         for name in PORTED_BALL_PARAMS:
             value = float(getattr(ball.params, name))
-            if name != "m" and value != shared[name]:
+            if value != shared[name]:
                 raise ValueError(
                     f"ball {ball.id!r} has {name}={value!r} and ball {balls[0].id!r} "
-                    f"{shared[name]!r}: a Table holds one value for every ball (only the "
-                    "masses may differ)"
+                    f"{shared[name]!r}: a Table holds one value for every ball"
                 )
     return shared
 
@@ -702,9 +708,7 @@ def from_system(
     if cue_id not in ids:
         raise ValueError(f"the cue ball {cue_id!r} is not on the table (balls: {ids})")
     cue = ids.index(cue_id)
-    # the cue ball first, so that ball_mass (which the strike reads) is its mass
-    ordered = [on_table[cue], *on_table[:cue], *on_table[cue + 1 :]]
-    params = _shared_params(ordered)
+    params = _shared_params(on_table)
     specs = system.cue.specs
     options: dict[str, Any] = table_options_from_pooltool(
         params, length, width, height, specs.tip_radius, specs.end_mass
@@ -716,7 +720,6 @@ def from_system(
     options.update(table_options or {})
     table = Table(**options)
     xy = np.array([np.asarray(b.state.rvw[0][:2], dtype=np.float64) for b in on_table])
-    masses = np.array([float(b.params.m) for b in on_table])
     stroke = system.cue
     angle, speed, tip, elevation = cue_from_pooltool(
         table, stroke.V0, stroke.phi, stroke.theta, stroke.a, stroke.b, cue_mass=specs.M
@@ -730,6 +733,6 @@ def from_system(
         speed,
         tip,
         elevation,
-        None if (masses == table.ball_mass).all() else masses,
+        None,
         float(specs.M),
     )
