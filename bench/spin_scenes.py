@@ -19,13 +19,11 @@ from mpmath import mp, mpf
 from numpy.typing import NDArray
 
 from pool_env import Table
-from pool_env.interop.pooltool import cue_to_pooltool
+from pool_env.interop.pooltool import POOLTOOL_CUE_MASS, cue_to_pooltool
 from pool_env.testing import spin_physics_mp as ph
 from pool_env.testing.scenes_random import random_layout
 from pool_env.testing.spin_reference import params_from
 
-#: pooltool 0.6.0's cue mass (kg): only pooltool needs it, to turn our ball speed into V0.
-POOLTOOL_CUE_MASS = 0.567
 #: Alciatore's ball-ball friction fit ``a + b exp(-c v)``: pooltool 0.6.0's coefficients,
 #: which pool_env's spin level and the reference use too.
 ALCIATORE = (0.009951, 0.108, 1.088)

@@ -11,7 +11,8 @@ balls' ids, the cue ball's row and the shot's ``angle, speed, tip, elevation``, 
 
 The mapping, as :mod:`bench.engines.pooltool_worker` and ``bench/spin_scenes.py`` use it
 for the equal-model comparisons (final positions within 1e-11 m of pooltool's,
-``results/spin_vs_pooltool.md``):
+``results/spin_vs_pooltool.md``; pooltool-native shots ported by :func:`from_system`, in
+``tests/test_interop_pooltool.py``, within 1e-9 m):
 
 Frame. Both origins are a corner of the playing surface at the cushion noses, but
 pooltool's ``x`` runs across the width and its ``y`` along the length, this package's
@@ -70,7 +71,7 @@ pooltool table with pockets becomes this package's regulation jaw table
 pooltool's own ``PocketTableSpecs`` pockets or a ``BilliardTableSpecs`` table.
 
 Example:
-    Our break position, aimed up the table with a touch of draw and right english:
+    A cue ball in the kitchen, struck up the table with right english and a touch of draw:
 
     >>> from pool_env import Table
     >>> from pool_env.interop.pooltool import cue_to_pooltool, xy_to_pooltool
@@ -88,13 +89,13 @@ import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from types import ModuleType
-from typing import TYPE_CHECKING, Any, NamedTuple, Protocol
+from typing import TYPE_CHECKING, Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env.extras import require
-from pool_env.sim.cue import POOLTOOL_CUE_MASS, from_pooltool
+from pool_env.sim.cue import POOLTOOL_CUE_MASS, StrikeTable, from_pooltool
 from pool_env.sim.inputs import as_masses, as_points, check_cue, check_table
 from pool_env.sim.scalars import positive, real_number
 from pool_env.sim.simulate import check_layout, shoot
@@ -105,8 +106,10 @@ if TYPE_CHECKING:
     from pool_env.sim.result import ShotResult
 
 __all__ = [
+    "BALL_FIELDS",
     "INSTALL",
     "POOLTOOL_CUE_MASS",
+    "PORTED_BALL_PARAMS",
     "CueParams",
     "Scene",
     "angle_from_phi",
@@ -151,14 +154,6 @@ PORTED_BALL_PARAMS = (*BALL_FIELDS, "u_sp_proportionality")
 _POCKETED = 4
 #: pooltool's motion state of a ball at rest (``pooltool.constants.stationary``).
 _STATIONARY = 0
-
-
-class StrikeTable(Protocol):
-    """What the cue mapping reads from a table (a :class:`Table`, or any such object)."""
-
-    ball_radius: float
-    ball_mass: float
-    cue_tip_radius: float
 
 
 class CueParams(NamedTuple):
@@ -483,7 +478,9 @@ class Scene:
         a, b, elevation = check_tip(table, self.tip, self.elevation)
         object.__setattr__(self, "tip", (a, b))
         object.__setattr__(self, "elevation", elevation)
-        # the whole shot through the one mapping, for its checks (angle, speed, cue mass)
+        for name in ("angle", "speed", "cue_mass"):
+            object.__setattr__(self, name, real_number(name, getattr(self, name)))
+        # the whole shot through the one mapping, for its checks (a positive speed and mass)
         cue_to_pooltool(table, self.angle, self.speed, self.tip, elevation, cue_mass=self.cue_mass)
 
     def shoot_kwargs(self) -> dict[str, Any]:
