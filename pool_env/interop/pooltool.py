@@ -65,8 +65,8 @@ Not carried by a ``System``, so not ported: pooltool's physics engine (its defau
 resolver uses Stronge's compliant cushions, which this package does not model, and the
 frictional inelastic ball-ball model with Alciatore's friction fit, which is
 ``Table(ball_friction="pooltool")``; pass such choices in ``table_options``), its
-``BallParams.u_b`` (read by none of its default models), and its pocket geometry: a
-pooltool table with pockets becomes this package's regulation jaw table
+``BallParams.u_b`` (read only by its ``AverageBallBallFriction``, not a default), and its
+pocket geometry: a pooltool table with pockets becomes this package's regulation jaw table
 (``pockets="jaws"``), one without a carom table (``"none"``), and :func:`to_system` builds
 pooltool's own ``PocketTableSpecs`` pockets or a ``BilliardTableSpecs`` table.
 
