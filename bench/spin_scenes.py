@@ -19,12 +19,11 @@ from mpmath import mp, mpf
 from numpy.typing import NDArray
 
 from pool_env import Table
+from pool_env.interop.pooltool import POOLTOOL_CUE_MASS, cue_to_pooltool
 from pool_env.testing import spin_physics_mp as ph
 from pool_env.testing.scenes_random import random_layout
 from pool_env.testing.spin_reference import params_from
 
-#: pooltool 0.6.0's cue mass (kg): only pooltool needs it, to turn our ball speed into V0.
-POOLTOOL_CUE_MASS = 0.567
 #: Alciatore's ball-ball friction fit ``a + b exp(-c v)``: pooltool 0.6.0's coefficients,
 #: which pool_env's spin level and the reference use too.
 ALCIATORE = (0.009951, 0.108, 1.088)
@@ -95,21 +94,13 @@ def pooltool_strike(table: Any, shot: SpinShot) -> dict[str, float]:
 
     pooltool's instantaneous-point strike gives the ball ``V = 2 V0 / (1 + m/M + (5/2)(a^2
     + b^2))`` along the cue (contact offsets ``a, b``) and keeps ``V cos(theta)`` in the
-    plane; its frame is ours turned by +90 degrees.
+    plane; its frame is ours turned by +90 degrees (the mapping:
+    :func:`pool_env.interop.pooltool.cue_to_pooltool`).
     """
-    scale = 1.0 + table.cue_tip_radius / table.ball_radius
-    a, b = shot.tip[0] / scale, shot.tip[1] / scale
-    along = shot.speed / math.cos(shot.elevation)
-    v0 = along * (1.0 + table.ball_mass / POOLTOOL_CUE_MASS + 2.5 * (a * a + b * b)) / 2.0
-    return {
-        "V0": v0,
-        "phi": math.degrees(shot.angle) + 90.0,
-        "theta": math.degrees(shot.elevation),
-        "a": -a,
-        "b": b,
-        "M": POOLTOOL_CUE_MASS,
-        "end_mass": table.cue_end_mass,
-    }
+    cue = cue_to_pooltool(
+        table, shot.angle, shot.speed, shot.tip, shot.elevation, cue_mass=POOLTOOL_CUE_MASS
+    )
+    return {**cue._asdict(), "M": POOLTOOL_CUE_MASS, "end_mass": table.cue_end_mass}
 
 
 def _draw(rng: np.random.Generator, table: Any, k: int) -> SpinShot:
