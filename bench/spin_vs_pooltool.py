@@ -209,70 +209,121 @@ def compare(n: int) -> tuple[list[str], dict[str, Any]]:
     return lines, figures
 
 
-def time_mode(shots_n: int, breaks_n: int, repeats: int) -> None:
-    """Time pool_env's spin level and pooltool per shot in one run; prints a table."""
-    from pool_env import Table
+def _breaks(table: Any, n: int, seed: int) -> list[SpinShot]:
+    """``n`` seeded 9-ball breaks on ``table``: a centre-ball hit at 6-9 m/s on the apex."""
+    from bench.spin_scenes import strike_state
     from pool_env.sim.layouts import break_scene
 
-    table = spin_table()
-    shots = [s for s in spin_shots(4 * shots_n, table=table) if len(s.positions) == 2]
-    shots = shots[:shots_n]
-    rng = np.random.default_rng(9)
-    base = break_scene(Table(pockets="none"), "nine")
-    from bench.spin_scenes import strike_state
-
-    breaks = []
-    for k in range(breaks_n):
+    rng = np.random.default_rng(seed)
+    base = break_scene(table, "nine")
+    out = []
+    for k in range(n):
         aim = base[1] - base[0]
         angle = float(np.arctan2(aim[1], aim[0]) + rng.normal(0.0, np.radians(0.5)))
         speed = float(rng.uniform(6.0, 9.0))
         vel, ang = np.zeros((len(base), 2)), np.zeros((len(base), 3))
         vel[0], ang[0] = strike_state(table, angle, speed, (0.0, 0.0), 0.0)
-        breaks.append(SpinShot(f"break{k}", base.copy(), angle, speed, (0.0, 0.0), 0.0, vel, ang))
-    scenes = [worker_scene(table, s) for s in [*shots, *breaks]]
-    have_ours = pool_env_spin()
-    mine = time_ours(table, [*shots, *breaks], 2 * repeats + 1) if have_ours else []
-    roll = time_roll([*shots, *breaks], 2 * repeats + 1)
-    load = os.getloadavg()[0]
+        out.append(SpinShot(f"break{k}", base.copy(), angle, speed, (0.0, 0.0), 0.0, vel, ang))
+    return out
+
+
+def full_table_shots(table: Any, n: int, seed: int = 13) -> list[SpinShot]:
+    """``n`` seeded two-ball shots at 2 m/s on the full table: a centre-ball hit at ball 1.
+
+    Random layouts of the table (pockets and jaws included), the aim at the object ball
+    jittered by N(0, 0.05 rad).
+    """
+    from bench.spin_scenes import strike_state
+    from pool_env.testing.scenes_random import random_layout
+
+    rng = np.random.default_rng(seed)
+    out = []
+    for k in range(n):
+        pos = random_layout(table, 2, rng, min_gap=0.05)
+        d = pos[1] - pos[0]
+        angle = float(np.arctan2(d[1], d[0]) + rng.normal(0.0, 0.05))
+        vel, ang = np.zeros((2, 2)), np.zeros((2, 3))
+        vel[0], ang[0] = strike_state(table, angle, 2.0, (0.0, 0.0), 0.0)
+        out.append(SpinShot(f"full{k}", pos, angle, 2.0, (0.0, 0.0), 0.0, vel, ang))
+    return out
+
+
+def _time_set(
+    table: Any, shots: list[SpinShot], scenes: list[dict[str, Any]], repeats: int, n: int
+) -> list[str]:
+    """Time both simulators on one shot set; the report's rows (two-ball, then breaks)."""
+    mine = time_ours(table, shots, 2 * repeats + 1)
     out = run_pooltool(scenes, repeats=repeats, max_events=20000, timeout=300.0)
     if not out.get("available"):
         raise SystemExit(f"pooltool did not run: {out.get('reason')}")
     pt = [(float(np.median(r["times"])), float(np.median(r["cpu_times"])), r["n_events"])
           for r in out["results"]]  # fmt: skip
-    print(f"pooltool {out['pooltool']}; load {load:.1f} -> {os.getloadavg()[0]:.1f}; "
-          f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")  # fmt: skip
-    print("| suite | scenes | pooltool wall | pooltool CPU | pooltool per event | pool_env wall "
-          "| pool_env CPU | pool_env per event | ratio wall | ratio CPU |")  # fmt: skip
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    n = len(shots)
+    rows = []
     for name, part in (("two-ball shots", slice(0, n)), ("9-ball breaks", slice(n, None))):
         p = np.array(pt[part], dtype=float)
         pw, pc = np.median(p[:, 0]), np.median(p[:, 1])
         pe = np.median(p[:, 0] / np.maximum(p[:, 2], 1))
-        if have_ours:
-            o = np.array(mine[part], dtype=float)
-            ow, oc = np.median(o[:, 0]), np.median(o[:, 1])
-            oe = np.median(o[:, 0] / np.maximum(o[:, 2], 1))
-            tail = (f"{ow * 1e6:.1f} us | {oc * 1e6:.1f} us | {oe * 1e6:.2f} us | "
-                    f"{pw / ow:.0f}x | {pc / oc:.0f}x |")  # fmt: skip
-        else:
-            tail = "n/a | n/a | n/a | n/a | n/a |"
-        print(f"| {name} | {len(p)} | {pw * 1e3:.2f} ms | {pc * 1e3:.2f} ms | "
-              f"{pe * 1e6:.1f} us | {tail}")  # fmt: skip
-    print("\nThe roll level on the same scenes (same positions, aim and speed; no spin):")
-    print("| suite | roll wall | roll CPU | roll events | roll per event | spin per event |")
-    print("|---|---:|---:|---:|---:|---:|")
+        o = np.array(mine[part], dtype=float)
+        ow, oc = np.median(o[:, 0]), np.median(o[:, 1])
+        oe = np.median(o[:, 0] / np.maximum(o[:, 2], 1))
+        rows.append(
+            f"| {name} | {len(p)} | {np.median(p[:, 2]):.0f} | {pw * 1e3:.2f} ms | "
+            f"{pc * 1e3:.2f} ms | {pe * 1e6:.1f} us | {np.median(o[:, 2]):.0f} | "
+            f"{ow * 1e6:.1f} us | {oc * 1e6:.1f} us | {oe * 1e6:.2f} us | {pw / ow:.0f}x | "
+            f"{pc / oc:.0f}x |"
+        )
+    return rows
+
+
+def time_mode(shots_n: int, breaks_n: int, repeats: int) -> None:
+    """Time pool_env's spin level and pooltool per shot in one run, on both shot sets.
+
+    Set 1, equal models: the short shots of :mod:`bench.spin_scenes` (1-3 collisions) and
+    nine-ball breaks on a pocketless table, pooltool configured to the spin level's models.
+    Set 2, each at its defaults: 2 m/s two-ball shots and breaks on a full table with
+    pockets, ``Table(model="spin")`` (jaws) against pooltool's default pocket table,
+    physics engine and balls. Prints the tables; the roll level on set 1's scenes after.
+    """
+    from pool_env import Table
+
+    if not pool_env_spin():
+        raise SystemExit("pool_env has no spin level in this tree")
+    header = (
+        "| suite | scenes | pooltool events | pooltool wall | pooltool CPU | pooltool per event "
+        "| pool_env events | pool_env wall | pool_env CPU | pool_env per event | ratio wall "
+        "| ratio CPU |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    )
+    load = os.getloadavg()[0]
+    table = spin_table()
+    shots = [s for s in spin_shots(4 * shots_n, table=table) if len(s.positions) == 2]
+    equal = [*shots[:shots_n], *_breaks(table, breaks_n, 9)]
+    rows_equal = _time_set(table, equal, [worker_scene(table, s) for s in equal], repeats, shots_n)
+    full = Table(model="spin")
+    at_defaults = [*full_table_shots(full, shots_n), *_breaks(full, breaks_n, 10)]
+    scenes = []
+    for s in at_defaults:
+        scene = worker_scene(full, s)
+        scene["table"] |= {"defaults": True, "pockets": True}
+        scenes.append(scene)
+    rows_defaults = _time_set(full, at_defaults, scenes, repeats, shots_n)
+    roll = time_roll(equal, 2 * repeats + 1)
+    print(f"load {load:.1f} -> {os.getloadavg()[0]:.1f}; "
+          f"{time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}")  # fmt: skip
+    print("\nSet 1: equal models, short shots and breaks on a pocketless table")
+    print(header)
+    print("\n".join(rows_equal))
+    print("\nSet 2: each at its defaults, 2 m/s shots and breaks on a full table with pockets")
+    print(header)
+    print("\n".join(rows_defaults))
+    print("\nThe roll level on set 1's scenes (same positions, aim and speed; no spin):")
+    print("| suite | roll wall | roll CPU | roll events | roll per event |")
+    print("|---|---:|---:|---:|---:|")
+    n = shots_n
     for name, part in (("two-ball shots", slice(0, n)), ("9-ball breaks", slice(n, None))):
         r = np.array(roll[part], dtype=float)
-        spin_event = "n/a"
-        if have_ours:
-            o = np.array(mine[part], dtype=float)
-            spin_event = f"{np.median(o[:, 0] / np.maximum(o[:, 2], 1)) * 1e6:.2f} us"
         roll_event = np.median(r[:, 0] / np.maximum(r[:, 2], 1)) * 1e6
         print(f"| {name} | {np.median(r[:, 0]) * 1e6:.1f} us | {np.median(r[:, 1]) * 1e6:.1f} us "
-              f"| {np.median(r[:, 2]):.1f} | {roll_event:.2f} us | {spin_event} |")  # fmt: skip
-    if not have_ours:
-        print("pool_env has no spin level in this tree: only pooltool was timed.")
+              f"| {np.median(r[:, 2]):.1f} | {roll_event:.2f} us |")  # fmt: skip
 
 
 def main() -> None:

@@ -20,6 +20,9 @@ pocketless ``BilliardTableSpecs`` table with a ``Resolver`` of Han 2005 cushions
 frictional inelastic ball-ball model and the instantaneous-point strike; the balls start in
 the motion state their velocities and spins give, and the result adds the final
 velocities, angular velocities and the event list (``[time, type, [ball indices]]``).
+A spin scene whose table has ``"defaults": true`` runs pooltool as it ships instead: its
+default pocket table (``PocketTableSpecs`` of the given size), its default physics engine
+and its default ball parameters (the speed comparison "each simulator at its defaults").
 
 Output: versions, import and warm-up (numba compile) seconds, and per scene the wall times
 of ``pooltool.simulate`` (system construction is not timed), final positions, pocketed
@@ -66,6 +69,10 @@ def _from_pt(px: float, py: float, width: float) -> tuple[float, float]:
 
 
 def _table(spec: dict) -> pt.Table:
+    if spec.get("defaults"):
+        return pt.Table.from_table_specs(
+            pt.objects.PocketTableSpecs(l=spec["length"], w=spec["width"])
+        )
     if spec.get("model") == "spin":
         specs = pt.objects.BilliardTableSpecs(
             l=spec["length"], w=spec["width"], cushion_height=spec["cushion_height"]
@@ -79,7 +86,7 @@ def _table(spec: dict) -> pt.Table:
 
 def _engine(spec: dict) -> Any:
     """The pooltool physics engine configured to the spin level's models (or its default)."""
-    if spec.get("model") != "spin":
+    if spec.get("model") != "spin" or spec.get("defaults"):
         return None
     from pooltool.physics.engine import PhysicsEngine
     from pooltool.physics.resolve.ball_ball.friction import AlciatoreBallBallFriction
@@ -115,6 +122,10 @@ def _spin_ball(bid: str, scene: dict, k: int, mass: float) -> pt.Ball:
     x, y = scene["positions"][k]
     vx, vy = scene["velocities"][k]
     wx, wy, wz = scene["angular_velocities"][k]
+    if spec.get("defaults"):  # pooltool's own ball parameters
+        ball = pt.Ball.create(bid, xy=_to_pt(x, y, width))
+        ball.state.s = pt.constants.stationary
+        return ball
     ball = pt.Ball.create(
         bid,
         xy=_to_pt(x, y, width),
