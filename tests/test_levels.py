@@ -3,7 +3,7 @@
 The loop, the batch and the rollout are compiled once per level marker from the same
 source; these tests hold the Python side's picker to the table's model, the unchecked entry
 point of the game layer to :func:`pool_env.simulate` bit for bit, and the interface to
-refusing a call from Python.
+running a level from plain Python and refusing anything that is no level's marker.
 """
 
 from __future__ import annotations
@@ -32,9 +32,16 @@ def test_every_model_has_one_level_with_its_own_marker_type() -> None:
         assert lv.params_of(table) is (table.spin_params if table.has_spin else table.params)
 
 
-def test_the_interface_refuses_a_call_from_python() -> None:
-    with pytest.raises(TypeError, match="interface"):
-        level.resolve(None, None, None, None, 0, 0, 0, 0.0, 0, None, None, None, None)
+def test_the_interface_runs_a_level_from_python_and_refuses_anything_else() -> None:
+    """From plain Python (as with ``NUMBA_DISABLE_JIT=1``) a call runs the marker's level."""
+    roll, spin = LEVELS["roll"].marker, LEVELS["spin"].marker
+    assert level.tail_sizes(roll) == (0, 0)
+    assert level.tail_sizes(spin) == (3, 1)  # angular velocities, motion state
+    out = np.empty(5)
+    level.strike(roll, 2.0, 0.5, 0.0, 0.0, 0.0, Table().params, out)
+    np.testing.assert_array_equal(out, [2.0 * np.cos(0.5), 2.0 * np.sin(0.5), 0.0, 0.0, 0.0])
+    with pytest.raises(TypeError, match="marker"):
+        level.tail_sizes(None)
 
 
 @pytest.mark.parametrize("model", MODELS)

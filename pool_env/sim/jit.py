@@ -34,6 +34,7 @@ from __future__ import annotations
 import hashlib
 import inspect
 import os
+import sys
 import tempfile
 import warnings
 from collections.abc import Callable
@@ -279,6 +280,8 @@ def level_method(stub: Callable[..., Any], level_class: type) -> Callable[[F], F
 
         typer.__signature__ = inspect.signature(impl)  # type: ignore[attr-defined]
         overload(stub, jit_options=_OPTIONS)(typer)
+        # For the interface's calls from plain Python (numba's JIT disabled).
+        sys.modules[stub.__module__].IMPLEMENTATIONS[(stub.__name__, level_class)] = impl
         return impl
 
     return register

@@ -21,7 +21,10 @@ is a new package beside these two that defines a marker and implements every fun
 the loop, the batch, the rollout, recording, validation and the Python API stay as they are
 (:mod:`pool_env.sim.levels` names it for the Python side).
 
-The functions below are the interface only: calling one from Python raises. ``st`` is the
+The functions below are the interface: compiled, a call is the level's implementation;
+called from Python (with numba's JIT disabled, ``NUMBA_DISABLE_JIT=1``, the loop itself
+runs as Python), a function looks up the marker's implementation and runs it, and a
+value that is no level's marker raises ``TypeError``. ``st`` is the
 level's anchor array and ``ms`` its per-ball motion states (``int8``); ``prm`` the level's
 flat parameter array (``Table.params`` or ``Table.spin_params``); ``own`` and ``boxes`` the
 loop's ``(N, 4)`` next-own-event rows (columns of :mod:`~pool_env.sim.kernels.kinds`) and
@@ -30,14 +33,22 @@ the level's per-ball reach bounds used to cull pair tests.
 
 from __future__ import annotations
 
-from typing import Any, NoReturn
+from collections.abc import Callable
+from typing import Any
+
+#: Each level's implementations, by the interface function's name and the marker's type
+#: (filled by :func:`pool_env.sim.jit.level_method`), for calls from plain Python.
+IMPLEMENTATIONS: dict[tuple[str, type], Callable[..., Any]] = {}
 
 
-def _interface(name: str) -> NoReturn:
-    raise TypeError(
-        f"pool_env.sim.kernels.level.{name} is an interface: compiled callers get a model "
-        "level's implementation from its marker (ROLL or SPIN)"
-    )
+def _implementation(name: str, level: Any) -> Callable[..., Any]:
+    impl = IMPLEMENTATIONS.get((name, type(level)))
+    if impl is None:
+        raise TypeError(
+            f"pool_env.sim.kernels.level.{name} needs a model level's marker (ROLL or SPIN) "
+            f"first, got {level!r}"
+        )
+    return impl
 
 
 def start(level: Any, positions: Any, velocities: Any, angular: Any, prm: Any) -> Any:
@@ -46,7 +57,7 @@ def start(level: Any, positions: Any, velocities: Any, angular: Any, prm: Any) -
     ``positions``, ``velocities`` ``(N, 2)`` and ``angular`` ``(N, 3)`` are validated (a
     level without spin is given zeros, and ignores them).
     """
-    _interface("start")
+    return _implementation("start", level)(level, positions, velocities, angular, prm)
 
 
 def predict_own(
@@ -57,14 +68,14 @@ def predict_own(
     Also writes ``boxes[i]``, the bound on where the ball can be until then, for
     :func:`predict_pair`.
     """
-    _interface("predict_own")
+    return _implementation("predict_own", level)(level, st, ms, i, prm, pockets, own, boxes)
 
 
 def predict_pair(
     level: Any, st: Any, ms: Any, i: int, j: int, now: float, prm: Any, own: Any, boxes: Any
 ) -> float:
     """The time balls ``i < j`` next meet before either's own event (``inf`` if never)."""
-    _interface("predict_pair")
+    return _implementation("predict_pair", level)(level, st, ms, i, j, now, prm, own, boxes)
 
 
 def resolve(
@@ -94,27 +105,29 @@ def resolve(
         ``i``'s own event changed (a roll-level stop, whose pair predictions already hold
         its rest): the loop re-predicts that alone and logs nothing.
     """
-    _interface("resolve")
+    return _implementation("resolve", level)(
+        level, st, ms, masses, kind, i, j, now, repeats, prm, pockets, changed, out
+    )
 
 
 def moving(level: Any, ms: Any, i: int) -> bool:
     """Whether ball ``i`` is in motion (what the event cap stops)."""
-    _interface("moving")
+    return _implementation("moving", level)(level, ms, i)
 
 
 def halt(level: Any, st: Any, ms: Any, i: int, now: float, prm: Any) -> None:
     """Stop moving ball ``i`` where it is at ``now`` (the event cap's end of a shot)."""
-    _interface("halt")
+    return _implementation("halt", level)(level, st, ms, i, now, prm)
 
 
 def new_segments(level: Any, capacity: int) -> Any:
     """An empty ``SegmentLog`` (:mod:`~pool_env.sim.kernels.record`) of the level's width."""
-    _interface("new_segments")
+    return _implementation("new_segments", level)(level, capacity)
 
 
 def log_segment(level: Any, log: Any, row: int, k: int, now: float, st: Any, ms: Any) -> None:
     """Write segment ``row`` (below the capacity): ball ``k`` re-anchored at ``now``."""
-    _interface("log_segment")
+    return _implementation("log_segment", level)(level, log, row, k, now, st, ms)
 
 
 def check_scene(
@@ -124,7 +137,9 @@ def check_scene(
 
     Codes of :mod:`~pool_env.sim.kernels.validation`.
     """
-    _interface("check_scene")
+    return _implementation("check_scene", level)(
+        level, positions, velocities, angular, masses, prm, pockets
+    )
 
 
 def strike(
@@ -142,16 +157,16 @@ def strike(
     ``speed`` and ``angle`` are the ball's speed in the table plane and the cue's aim;
     ``a``, ``b`` the tip offsets and ``elevation`` the cue's (zero on a level without spin).
     """
-    _interface("strike")
+    return _implementation("strike", level)(level, speed, angle, a, b, elevation, prm, out)
 
 
 def tail_sizes(level: Any) -> Any:
     """``(floats, ints)`` per ball that the level adds to a packed shot's buffer."""
-    _interface("tail_sizes")
+    return _implementation("tail_sizes", level)(level)
 
 
 def write_tails(
     level: Any, floats: Any, ints: Any, f: int, k: int, st: Any, ms: Any, now: float, prm: Any
 ) -> None:
     """Write the level's per-ball tails into a packed buffer from ``floats[f]``, ``ints[k]``."""
-    _interface("write_tails")
+    return _implementation("write_tails", level)(level, floats, ints, f, k, st, ms, now, prm)
