@@ -10,7 +10,7 @@ On the two-ball shots of ``python -m bench.spin_vs_pooltool --time`` (the first 
 Five figures per shot, each a different cut of the same call:
 
 * ``shoot``: :func:`pool_env.shoot` end to end from Python;
-* ``kernel from Python``: the one compiled call ``loop.packed_strike`` (spin level) from
+* ``kernel from Python``: the one compiled call ``spin.level.ENTRIES.packed_strike`` from
   Python (what ``shoot`` makes after its argument checks);
 * ``result``: building the :class:`~pool_env.sim.result.SpinShotResult` from its return;
 * ``kernel compiled``: the same call from a compiled loop (no dispatcher, no boxing);
@@ -33,11 +33,10 @@ import numpy as np
 
 from bench.spin_scenes import spin_shots, spin_table
 from pool_env import shoot
-from pool_env.sim.kernels import loop
-from pool_env.sim.kernels.spin.level import SPIN
+from pool_env.sim.kernels.spin.level import ENTRIES
 from pool_env.sim.result import SpinShotResult
 
-_STRIKE = loop.packed_strike
+_STRIKE = ENTRIES.packed_strike
 
 
 @numba.njit
@@ -46,8 +45,8 @@ def _compiled(pos, shot, masses, prm, pockets, cap, reps):
     n_ev = 0
     for _ in range(reps):
         out = _STRIKE(
-            SPIN, pos, 0, shot[0], shot[1], shot[2], shot[3], shot[4], masses, prm, pockets,
-            cap, False,
+            pos, 0, shot[0], shot[1], shot[2], shot[3], shot[4], masses, prm, pockets, cap,
+            False,
         )  # fmt: skip
         n_ev = out[5]
     return n_ev
@@ -84,9 +83,9 @@ def breakdown(n_shots: int = 40, calls: int = 200) -> dict[str, float]:
 
         def run_kernel(pos=pos, a=floats) -> None:
             for _ in range(calls):
-                _STRIKE(SPIN, pos, 0, a[0], a[1], a[2], a[3], a[4], none, prm, pockets, cap, False)
+                _STRIKE(pos, 0, a[0], a[1], a[2], a[3], a[4], none, prm, pockets, cap, False)
 
-        raw = _STRIKE(SPIN, pos, 0, *arg.tolist(), none, prm, pockets, cap, False)
+        raw = _STRIKE(pos, 0, *arg.tolist(), none, prm, pockets, cap, False)
 
         def run_result(raw=raw) -> None:
             for _ in range(calls):

@@ -25,12 +25,12 @@ SHOT = """
 import hashlib, warnings
 warnings.simplefilter("always")
 from pool_env import Table, shoot
-from pool_env.sim.kernels import loop
+from pool_env.sim.kernels.roll.level import ENTRIES
 from pool_env.sim.layouts import break_scene
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
 print(hashlib.sha256(r.positions.tobytes()).hexdigest(), r.n_events)
-print("cache_hits", sum(loop.packed_strike.stats.cache_hits.values()))
+print("cache_hits", sum(ENTRIES.packed_strike.stats.cache_hits.values()))
 """
 
 
@@ -114,14 +114,15 @@ HEAL = """
 import hashlib, warnings
 warnings.simplefilter("always")
 from pool_env import Table, shoot
-from pool_env.sim.kernels import loop, timeline, validation
+from pool_env.sim.kernels import timeline, validation
+from pool_env.sim.kernels.roll.level import ENTRIES
 from pool_env.sim.layouts import break_scene
 from pool_env.sim.simulate import check_layout
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
 check_layout(t, break_scene(t, "nine"))  # validation.validate, from Python (shoot: packed_strike)
 print(hashlib.sha256(r.positions.tobytes() + r.positions_at(0.1).tobytes()).hexdigest())
-for k in (loop.packed_strike, validation.validate, timeline.positions_at):
+for k in (ENTRIES.packed_strike, validation.validate, timeline.positions_at):
     print(k.__name__, sum(k.stats.cache_hits.values()), sum(k.stats.cache_misses.values()))
 """
 
@@ -162,7 +163,9 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
         (path,) = folder.rglob(pattern)
         return path
 
-    only("loop.packed_strike-*.nbi").write_bytes(b"")  # a process killed mid-write
+    only("entries.entries.locals.packed_strike-*.nbi").write_bytes(
+        b""
+    )  # a process killed mid-write
     index = only("validation.validate-*.nbi")
     index.write_bytes(index.read_bytes()[: index.stat().st_size // 2])  # a full disk
     only("timeline.positions_at-*.nbc").write_bytes(b"\x80\x05garbage" * 64)

@@ -16,8 +16,8 @@ import pytest
 from pool_env import Table, shoot, simulate
 from pool_env.sim.batch import simulate_batch, simulate_batch_threads
 from pool_env.sim.inputs import max_speed, reachable_speed
-from pool_env.sim.kernels import batch as kbatch
-from pool_env.sim.kernels import limits, loop, validation
+from pool_env.sim.kernels import limits, validation
+from pool_env.sim.kernels.roll import level as roll_level
 from pool_env.testing.invariants import check_shot
 
 POS = [[1.0, 0.6], [1.5, 0.6]]
@@ -256,7 +256,8 @@ def test_one_compiled_version_for_every_array_layout(table: Table) -> None:
     shoot(table, pos, 0.0, 1.0, record=False)
     simulate(table, pos, np.array(VEL))
     simulate_batch(table, np.array([POS]), np.array([VEL]))
-    kernels = (loop.packed_shot, loop.packed_strike, validation.validate, kbatch.run_batch)
+    entry = roll_level.ENTRIES  # the roll table's compiled entry points
+    kernels = (entry.packed_shot, entry.packed_strike, validation.validate, entry.run_batch)
     counts = [len(k.signatures) for k in kernels]
     frozen = pos.copy()
     frozen.setflags(write=False)

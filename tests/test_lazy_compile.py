@@ -26,13 +26,21 @@ env.reset(seed=0)
 env.step(env.action_space.sample())
 # Each kernel with the types it was compiled for: the shared kernels (the event loop, the
 # batch) are one function per model level, told apart by the level marker's type.
+# A level's entry points sit in its ENTRIES tuple (closures made by kernels.entries).
+def dispatchers(module):
+    for attr, value in vars(module).items():
+        if isinstance(value, tuple) and hasattr(value, "_fields"):
+            for field, item in zip(value._fields, value):
+                yield f"{attr}.{field}", item
+        else:
+            yield attr, value
 loaded = sorted(
     f"{name}.{attr}" + "".join(f" {sig}" for sig in value.signatures)
     for name, module in list(sys.modules.items())
     if name.startswith("pool_env.")
-    for attr, value in vars(module).items()
+    for attr, value in dispatchers(module)
     if isinstance(value, numba.core.registry.CPUDispatcher) and value.overloads
-    and value.py_func.__module__ == name
+    and (value.py_func.__module__ == name or attr.startswith("ENTRIES."))
 )
 print(json.dumps(loaded))
 """

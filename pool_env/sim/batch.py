@@ -24,7 +24,6 @@ from pool_env.sim.inputs import (
     check_table,
     kernel_array,
 )
-from pool_env.sim.kernels import batch as _batch
 from pool_env.sim.kernels import validation
 from pool_env.sim.kernels.packing import BatchOutput
 from pool_env.sim.levels import level_of
@@ -166,11 +165,8 @@ def _batch_output(
 ) -> BatchOutput:
     """The kernel's output for checked arrays (``ang`` zeros on a roll table); no raise."""
     level = level_of(table)
-    run = _batch.run_batch_parallel if parallel else _batch.run_batch
-    return run(
-        level.marker, pos, vel, ang, mass, on, level.params_of(table), table.pocket_geometry,
-        max_events,
-    )  # fmt: skip
+    run = level.kernels.run_batch_parallel if parallel else level.kernels.run_batch
+    return run(pos, vel, ang, mass, on, level.params_of(table), table.pocket_geometry, max_events)
 
 
 def raise_batch_error(

@@ -253,7 +253,9 @@ def parallel_kernel(fn: F) -> F:
     return _compile(fn, {**_OPTIONS, "parallel": True})
 
 
-def level_method(stub: Callable[..., Any], level_class: type) -> Callable[[F], F]:
+def level_method(
+    stub: Callable[..., Any], level_class: type, inline: bool = True
+) -> Callable[[F], F]:
     """Register the decorated function as model level ``level_class``'s ``stub``.
 
     The shared kernels call a model level's parts through the stubs of
@@ -261,14 +263,16 @@ def level_method(stub: Callable[..., Any], level_class: type) -> Callable[[F], F
     ``level_class``, a named tuple) first; numba picks the implementation from the
     marker's type when it compiles the caller. A compiled caller is therefore one
     specialised function per level, cached on disk like any kernel (the marker's type is
-    part of its signature). The implementation is compiled as a function of its own, not
-    inlined at numba's IR level: numba's IR inliner loses stores through a named tuple of
-    arrays passed to an inlined overload (the segment log's rows came back unwritten). The
-    implementation takes the stub's parameters, the marker included.
+    part of its signature). The implementation takes the stub's parameters, the marker
+    included.
 
     Args:
         stub: The interface function (its signature is the implementation's).
         level_class: The marker type of the level that implements it.
+        inline: Inline the implementation into its callers at numba's IR level (as
+            :func:`inline_kernel` does): a call with array arguments costs per event. Off
+            for implementations that write through a named tuple of arrays (the segment
+            log): numba's IR inliner loses those stores (the rows came back unwritten).
 
     Returns:
         A decorator that registers and returns the implementation.
@@ -279,7 +283,8 @@ def level_method(stub: Callable[..., Any], level_class: type) -> Callable[[F], F
             return impl if getattr(args[0], "instance_class", None) is level_class else None
 
         typer.__signature__ = inspect.signature(impl)  # type: ignore[attr-defined]
-        overload(stub, jit_options=_OPTIONS)(typer)
+        options = {"inline": "always"} if inline else {}
+        overload(stub, jit_options=_OPTIONS, **options)(typer)
         # For the interface's calls from plain Python (numba's JIT disabled).
         sys.modules[stub.__module__].IMPLEMENTATIONS[(stub.__name__, level_class)] = impl
         return impl

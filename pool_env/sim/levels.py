@@ -2,7 +2,7 @@
 
 A model level (:mod:`pool_env.sim.kernels.level`) is a compiled strategy of the one event
 loop; this module maps ``Table.model`` to what the Python entry points need of it: the
-marker the compiled calls take, the parameter array, the result type, and the messages of
+compiled entry points, the parameter array, the result type, and the messages of
 a refused scene. :func:`pool_env.simulate`, :func:`pool_env.shoot`, the batch and the
 rollout call :func:`level_of` and nothing else asks which level a table has. A third level
 is one more entry in :data:`LEVELS` (and its kernel package).
@@ -13,14 +13,14 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.sim.inputs import raise_invalid
-from pool_env.sim.kernels.roll.level import ROLL
-from pool_env.sim.kernels.spin.level import SPIN
+from pool_env.sim.kernels import entries
+from pool_env.sim.kernels.roll import level as roll_level
+from pool_env.sim.kernels.spin import level as spin_level
 from pool_env.sim.result import ShotResult, SpinShotResult
 from pool_env.sim.spin_inputs import raise_spin_invalid, strike
 from pool_env.sim.table import Table
@@ -52,7 +52,8 @@ class Level:
 
     Attributes:
         name: ``Table.model`` of its tables.
-        marker: The compiled level's marker, the first argument of every shared kernel.
+        kernels: Its entry points, the shared kernels for this level
+            (:data:`~pool_env.sim.kernels.entries.Entries`).
         params_of: The flat parameter array its kernels read, from a table.
         result: The result type of one shot.
         raise_invalid: Raises the ``ValueError`` of a validation code ``(code, i, j,
@@ -62,7 +63,7 @@ class Level:
     """
 
     name: str
-    marker: Any
+    kernels: entries.Entries
     params_of: Callable[[Table], NDArray[np.float64]]
     result: type[ShotResult]
     raise_invalid: Callable[..., None]
@@ -71,9 +72,21 @@ class Level:
 
 #: Every model level, by ``Table.model``.
 LEVELS: dict[str, Level] = {
-    "roll": Level("roll", ROLL, lambda t: t.params, ShotResult, _raise_roll_invalid, _roll_strike),
+    "roll": Level(
+        "roll",
+        roll_level.ENTRIES,
+        lambda t: t.params,
+        ShotResult,
+        _raise_roll_invalid,
+        _roll_strike,
+    ),
     "spin": Level(
-        "spin", SPIN, lambda t: t.spin_params, SpinShotResult, raise_spin_invalid, strike
+        "spin",
+        spin_level.ENTRIES,
+        lambda t: t.spin_params,
+        SpinShotResult,
+        raise_spin_invalid,
+        strike,
     ),
 }
 

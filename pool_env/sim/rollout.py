@@ -182,12 +182,10 @@ def rollout(
     # Every shot starts from the layout: inactive balls keep their rows.
     fields = tuple(allocate_batch(np.repeat(pos_all[None], n_shots, axis=0)))
     level = level_of(table)
-    marker, prm, pockets = level.marker, level.params_of(table), table.pocket_geometry
+    run, prm, pockets = level.kernels.run_shots, level.params_of(table), table.pocket_geometry
 
     def part(lo: int, hi: int) -> None:
-        _rollout.run_shots(
-            marker, pos, mass, index, compact_cue, rows, prm, pockets, max_events, lo, hi, fields
-        )
+        run(pos, mass, index, compact_cue, rows, prm, pockets, max_events, lo, hi, fields)
 
     parts = max(1, min(threads or available_cpus(), n_shots // SHOTS_PER_THREAD))
     edges = np.linspace(0, n_shots, parts + 1).astype(np.int64).tolist()

@@ -19,7 +19,7 @@ from pool_env.sim.inputs import (
     check_table,
     raise_invalid,
 )
-from pool_env.sim.kernels import loop, validation
+from pool_env.sim.kernels import validation
 from pool_env.sim.levels import level_of
 from pool_env.sim.result import ShotResult
 from pool_env.sim.spin_inputs import as_angular, check_tip
@@ -94,9 +94,9 @@ def simulate(
     mass = as_masses(masses, pos.shape[0])
     max_events = check_max_events(max_events)
     level = level_of(table)
-    raw = loop.packed_shot(
-        level.marker, pos, vel, ang, mass, level.params_of(table), table.pocket_geometry,
-        max_events, bool(record),  # one compiled version: a bool, never an int
+    raw = level.kernels.packed_shot(
+        pos, vel, ang, mass, level.params_of(table), table.pocket_geometry, max_events,
+        bool(record),  # one compiled version: a bool, never an int
     )  # fmt: skip  # one compiled call: validation, the loop and the result, in one buffer
     if raw[0] != validation.OK:
         level.raise_invalid(raw[0], raw[1], raw[2], table, pos, vel, ang, mass)
@@ -126,8 +126,8 @@ def simulate_checked_arrays(
     n = positions.shape[0]
     ang = np.zeros((n, 3)) if angular_velocities is None else angular_velocities
     record = bool(record)
-    raw = loop.packed_shot(
-        level.marker, positions, velocities, ang, TABLE_MASSES, level.params_of(table),
+    raw = level.kernels.packed_shot(
+        positions, velocities, ang, TABLE_MASSES, level.params_of(table),
         table.pocket_geometry, DEFAULT_MAX_EVENTS, record,
     )  # fmt: skip
     if raw[0] != validation.OK:
@@ -196,8 +196,8 @@ def shoot(
     mass = as_masses(masses, n)
     max_events = check_max_events(max_events)
     level = level_of(table)
-    raw = loop.packed_strike(
-        level.marker, pos, cue, speed, angle, a, b, elevation, mass, level.params_of(table),
+    raw = level.kernels.packed_strike(
+        pos, cue, speed, angle, a, b, elevation, mass, level.params_of(table),
         table.pocket_geometry, max_events, bool(record),
     )  # fmt: skip  # the strike, validation, the loop and the result: one compiled call
     if raw[0] != validation.OK:  # the arrays the message names, rebuilt (rare)

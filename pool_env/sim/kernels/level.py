@@ -78,12 +78,11 @@ def predict_pair(
     return _implementation("predict_pair", level)(level, st, ms, i, j, now, prm, own, boxes)
 
 
-def resolve(
+def impact(
     level: Any,
     st: Any,
     ms: Any,
     masses: Any,
-    kind: int,
     i: int,
     j: int,
     now: float,
@@ -93,21 +92,56 @@ def resolve(
     changed: Any,
     out: Any,
 ) -> int:
-    """Apply event ``(kind, i, j)`` at ``now``: re-anchor the balls it changes.
+    """Resolve the impact of balls ``i < j`` at ``now``: re-anchor the balls it changes.
 
-    ``repeats`` counts this contact's occurrences in a row within ``ZENO_WINDOW`` (of the
-    pair ``i, j`` for a ball-ball impact, of ball ``i`` with any cushion for a rail, jaw or
-    point impact; the Zeno rules are the level's). ``out`` is scratch space of 10 floats.
+    ``repeats`` counts the pair's impacts in a row within ``ZENO_WINDOW`` (the Zeno rules
+    are the level's); ``out`` is scratch space of 10 floats.
 
     Returns:
-        The number of balls re-anchored, listed first in ``changed``: the loop re-predicts
-        their own events and their pairs, and logs a segment for each. 0 means only ball
-        ``i``'s own event changed (a roll-level stop, whose pair predictions already hold
-        its rest): the loop re-predicts that alone and logs nothing.
+        The number of balls re-anchored (two, or a stuck cluster), listed in ``changed``:
+        the loop re-predicts their own events and pairs and logs a segment for each.
     """
-    return _implementation("resolve", level)(
-        level, st, ms, masses, kind, i, j, now, repeats, prm, pockets, changed, out
+    return _implementation("impact", level)(
+        level, st, ms, masses, i, j, now, repeats, prm, pockets, changed, out
     )
+
+
+def cushion(
+    level: Any,
+    st: Any,
+    ms: Any,
+    kind: int,
+    i: int,
+    j: int,
+    now: float,
+    repeats: int,
+    prm: Any,
+    pockets: Any,
+    out: Any,
+) -> None:
+    """Resolve ball ``i`` meeting rail, jaw facing or jaw point ``j`` (``kind``) at ``now``.
+
+    ``repeats`` counts the ball's cushion impacts in a row within ``ZENO_WINDOW``.
+    """
+    return _implementation("cushion", level)(
+        level, st, ms, kind, i, j, now, repeats, prm, pockets, out
+    )
+
+
+def capture(level: Any, st: Any, ms: Any, i: int, now: float, prm: Any) -> None:
+    """Ball ``i`` drops into a pocket at ``now``: it stays where it was captured, still."""
+    return _implementation("capture", level)(level, st, ms, i, now, prm)
+
+
+def settle(level: Any, st: Any, ms: Any, kind: int, i: int, now: float, prm: Any) -> bool:
+    """Ball ``i`` changes its motion state at ``now`` (a stop, or a transition of ``kind``).
+
+    Returns:
+        Whether the ball's pair predictions still hold (a roll-level stop: each pair's
+        prediction already includes both balls' rest): the loop then re-predicts only the
+        ball's own event and logs no segment.
+    """
+    return _implementation("settle", level)(level, st, ms, kind, i, now, prm)
 
 
 def moving(level: Any, ms: Any, i: int) -> bool:

@@ -4,7 +4,7 @@ Every moving ball rolls on a straight line with constant deceleration ``a = mu_r
 (:mod:`~pool_env.sim.kernels.roll.motion`); impacts are the seed's, its misprints fixed
 (:mod:`~pool_env.sim.kernels.roll.resolve`, :mod:`~pool_env.sim.kernels.roll.jaws`). This
 module implements every function of :mod:`pool_env.sim.kernels.level` for the marker
-:data:`ROLL`.
+:data:`~pool_env.sim.kernels.roll.marker.ROLL`.
 
 A stop changes no pair prediction (each pair's prediction already includes both balls'
 rest phase), so a stop re-predicts only the ball's own event and logs no segment: the
@@ -14,19 +14,20 @@ segment a ball started with already ends at its rest point.
 from __future__ import annotations
 
 import math
-from collections import namedtuple
 
 import numpy as np
 
 from pool_env.sim.jit import level_method
 from pool_env.sim.kernels import level
 from pool_env.sim.kernels.contact import CONTACT_TOL, V_REST, V_ZENO
+from pool_env.sim.kernels.entries import entries
 from pool_env.sim.kernels.jaws import JAW_COLS
-from pool_env.sim.kernels.kinds import BALL, CUSHION, POCKET, STOP
+from pool_env.sim.kernels.kinds import CUSHION
 from pool_env.sim.kernels.params import P_DECEL
 from pool_env.sim.kernels.record import new_segment_log
-from pool_env.sim.kernels.roll import predict
+from pool_env.sim.kernels.roll import predict  # noqa: F401 (registers its predictors)
 from pool_env.sim.kernels.roll.jaws import jaw_impact, unpress_lump
+from pool_env.sim.kernels.roll.marker import ROLL, RollLevel  # noqa: F401 (ROLL: importing it from here registers the level)
 from pool_env.sim.kernels.roll.motion import (
     MOVING,
     NCOL,
@@ -42,10 +43,6 @@ from pool_env.sim.kernels.roll.motion import (
 from pool_env.sim.kernels.roll.resolve import ball_ball, cushion, stick_cluster
 from pool_env.sim.kernels.validation import validate
 
-#: The roll level's marker type (a named tuple: numba tells levels apart by type).
-RollLevel = namedtuple("RollLevel", ["code"])
-#: The marker the compiled callers pass for the roll level.
-ROLL = RollLevel(0)
 #: Columns of a roll segment row: ``x, y, vx, vy`` at the row's time.
 SEG_COLS = 4
 
@@ -65,42 +62,42 @@ def _start(level, positions, velocities, angular, prm):
     return st, status
 
 
-@level_method(level.predict_own, RollLevel)
-def _predict_own(level, st, ms, i, prm, pockets, own, boxes):
-    predict.predict_own(st, ms, i, prm, pockets, own, boxes)
-
-
-@level_method(level.predict_pair, RollLevel)
-def _predict_pair(level, st, ms, i, j, now, prm, own, boxes):
-    return predict.predict_pair(st, ms, i, j, now, prm, own, boxes)
-
-
-@level_method(level.resolve, RollLevel)
-def _resolve(level, st, ms, masses, kind, i, j, now, repeats, prm, pockets, changed, out):
-    a = prm[P_DECEL]
-    changed[0] = i
-    if kind == STOP:
-        x, y = rest_point(st, i, a)
-        set_anchor(st, ms, i, now, x, y, 0.0, 0.0, a, V_REST)
-        return 0
-    if kind == POCKET:
-        x, y, _, _ = state_at(st, ms, i, now, a)
-        set_anchor(st, ms, i, now, x, y, 0.0, 0.0, a, V_REST)
-        ms[i] = POTTED
-        return 1
-    if kind == CUSHION:
-        cushion(st, ms, i, j, now, prm)
-        return 1
-    if kind != BALL:  # a jaw facing or point
-        jaw_impact(st, ms, i, kind, j, now, prm, pockets, V_REST)
-        return 1
+@level_method(level.impact, RollLevel)
+def _impact(level, st, ms, masses, i, j, now, repeats, prm, pockets, changed, out):
     if ball_ball(st, ms, masses, i, j, now, prm, repeats):
         n_changed = stick_cluster(st, ms, masses, i, now, prm, changed)
         if pockets.shape[1] == JAW_COLS:
             unpress_lump(st, ms, changed, n_changed, now, prm, pockets, V_ZENO, CONTACT_TOL, V_REST)
         return n_changed
+    changed[0] = i
     changed[1] = j
     return 2
+
+
+@level_method(level.cushion, RollLevel)
+def _cushion(level, st, ms, kind, i, j, now, repeats, prm, pockets, out):
+    if kind == CUSHION:
+        cushion(st, ms, i, j, now, prm)
+    else:  # a jaw facing or point
+        jaw_impact(st, ms, i, kind, j, now, prm, pockets, V_REST)
+
+
+@level_method(level.capture, RollLevel)
+def _capture(level, st, ms, i, now, prm):
+    a = prm[P_DECEL]
+    x, y, _, _ = state_at(st, ms, i, now, a)
+    set_anchor(st, ms, i, now, x, y, 0.0, 0.0, a, V_REST)
+    ms[i] = POTTED
+
+
+@level_method(level.settle, RollLevel)
+def _settle(level, st, ms, kind, i, now, prm):
+    # The roll level's one transition: a stop. Each pair's prediction already includes
+    # the ball's rest phase, so they all hold.
+    a = prm[P_DECEL]
+    x, y = rest_point(st, i, a)
+    set_anchor(st, ms, i, now, x, y, 0.0, 0.0, a, V_REST)
+    return True
 
 
 @level_method(level.moving, RollLevel)
@@ -115,12 +112,12 @@ def _halt(level, st, ms, i, now, prm):
     set_anchor(st, ms, i, now, x, y, 0.0, 0.0, a, V_REST)
 
 
-@level_method(level.new_segments, RollLevel)
+@level_method(level.new_segments, RollLevel, inline=False)
 def _new_segments(level, capacity):
     return new_segment_log(capacity, SEG_COLS)
 
 
-@level_method(level.log_segment, RollLevel)
+@level_method(level.log_segment, RollLevel, inline=False)
 def _log_segment(level, log, row, k, now, st, ms):
     log.ball[row] = k
     log.t[row] = now
@@ -153,3 +150,7 @@ def _tail_sizes(level):
 @level_method(level.write_tails, RollLevel)
 def _write_tails(level, floats, ints, f, k, st, ms, now, prm):
     pass
+
+
+#: The level's entry points for Python (:mod:`~pool_env.sim.kernels.entries`).
+ENTRIES = entries(RollLevel)

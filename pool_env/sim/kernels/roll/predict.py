@@ -24,10 +24,12 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.jit import kernel
+from pool_env.sim.jit import kernel, level_method
+from pool_env.sim.kernels import level as interface
 from pool_env.sim.kernels.jaws import JAW_COLS, opening_of, predict_pocket, throat_of
 from pool_env.sim.kernels.kinds import CUSHION, EV_ARG, EV_END, EV_KIND, EV_T, POCKET, STOP
 from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_RADIUS, P_WIDTH
+from pool_env.sim.kernels.roll.marker import RollLevel
 from pool_env.sim.kernels.roll.motion import (
     MOVING,
     POTTED,
@@ -57,8 +59,8 @@ CAP_AX, CAP_AY, CAP_BX, CAP_BY = 0, 1, 2, 3
 CULL_MARGIN = 1e-9
 
 
-@kernel
-def predict_own(st, status, i, params, pockets, own, caps):
+@level_method(interface.predict_own, RollLevel, inline=False)
+def predict_own(level, st, status, i, params, pockets, own, caps):
     """Predict ball ``i``'s next own event and the capsule it sweeps until then.
 
     Writes ``own[i] = (time, kind, arg, end)`` where ``end`` is the time its trajectory next
@@ -237,8 +239,8 @@ def _both_moving(st, status, i, j, t_a, t_b, radius, a):
     return t_a + tau if tau < INF else INF
 
 
-@kernel
-def predict_pair(st, status, i, j, now, params, own, caps):
+@level_method(interface.predict_pair, RollLevel, inline=False)
+def predict_pair(level, st, status, i, j, now, params, own, caps):
     """Time of the next impact between balls ``i`` and ``j`` after ``now`` (``inf`` if none)."""
     if status[i] == POTTED or status[j] == POTTED:
         return INF

@@ -1,7 +1,7 @@
 """The spin level as a strategy of the one event loop (compiled): pooltool's model.
 
 It implements every function of :mod:`pool_env.sim.kernels.level` for the marker
-:data:`SPIN`, with:
+:data:`~pool_env.sim.kernels.spin.marker.SPIN`, with:
 
 * ball state with angular velocity and a motion state
   (:mod:`~pool_env.sim.kernels.spin.state`), motion on curved (parabolic) paths;
@@ -20,22 +20,23 @@ event re-anchors the ball it concerns and logs a segment (a transition changes t
 from __future__ import annotations
 
 import math
-from collections import namedtuple
 
 import numpy as np
 
 from pool_env.sim.jit import kernel, level_method
 from pool_env.sim.kernels import level
 from pool_env.sim.kernels.contact import V_ZENO, ZENO_REPEATS
+from pool_env.sim.kernels.entries import entries
 from pool_env.sim.kernels.jaws import jaw_normal
-from pool_env.sim.kernels.kinds import BALL, CUSHION, JAW, POCKET, POINT, SLIDE_ROLL
+from pool_env.sim.kernels.kinds import CUSHION, SLIDE_ROLL
 from pool_env.sim.kernels.limits import MAX_SPEED, reachable_speed2_spin, speed_allowed
 from pool_env.sim.kernels.packing import SPIN_TAIL_FLOATS, SPIN_TAIL_INTS
 from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_E_JAW, P_MASS, P_RADIUS
 from pool_env.sim.kernels.record import new_segment_log
-from pool_env.sim.kernels.spin import predict
+from pool_env.sim.kernels.spin import predict  # noqa: F401 (registers its predictors)
 from pool_env.sim.kernels.spin.collide import ball_ball_spin
 from pool_env.sim.kernels.spin.cushion import cushion_han
+from pool_env.sim.kernels.spin.marker import SPIN, SpinLevel  # noqa: F401 (SPIN: importing it from here registers the level)
 from pool_env.sim.kernels.spin.params import (
     S_CUSHION_FRICTION,
     S_CUSHION_HEIGHT,
@@ -69,10 +70,6 @@ from pool_env.sim.kernels.spin.strike import cue_strike
 from pool_env.sim.kernels.spin.zeno import RAIL_NX, RAIL_NY, pressed_roll, stick, wedged_ball
 from pool_env.sim.kernels.validation import BAD_SPIN, OK, SPIN_TOO_FAST, TOO_ENERGETIC, validate
 
-#: The spin level's marker type (a named tuple: numba tells levels apart by type).
-SpinLevel = namedtuple("SpinLevel", ["code"])
-#: The marker the compiled callers pass for the spin level.
-SPIN = SpinLevel(1)
 #: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
 SEG_COLS = 9
 
@@ -142,43 +139,44 @@ def _start(level, positions, velocities, angular, prm):
     return st, ms
 
 
-@level_method(level.predict_own, SpinLevel)
-def _predict_own(level, st, ms, i, prm, pockets, own, boxes):
-    predict.predict_own(st, ms, i, prm, pockets, own, boxes)
-
-
-@level_method(level.predict_pair, SpinLevel)
-def _predict_pair(level, st, ms, i, j, now, prm, own, boxes):
-    return predict.predict_pair(st, ms, i, j, now, prm, own, boxes)
-
-
-@level_method(level.resolve, SpinLevel)
-def _resolve(level, st, ms, masses, kind, i, j, now, repeats, prm, pockets, changed, out):
+@level_method(level.impact, SpinLevel)
+def _impact_event(level, st, ms, masses, i, j, now, repeats, prm, pockets, changed, out):
+    if _impact(st, ms, masses, i, j, now, prm, repeats, out):
+        return stick(st, ms, masses, i, now, prm, pockets, changed)
     changed[0] = i
-    if kind == BALL:
-        if _impact(st, ms, masses, i, j, now, prm, repeats, out):
-            return stick(st, ms, masses, i, now, prm, pockets, changed)
-        changed[1] = j
-        return 2
+    changed[1] = j
+    return 2
+
+
+@level_method(level.cushion, SpinLevel)
+def _cushion(level, st, ms, kind, i, j, now, repeats, prm, pockets, out):
     x, y, vx, vy, wx, wy, wz = state_at(st, ms, i, now, prm)
-    if kind == POCKET:
-        set_potted(st, ms, i, now, x, y)
-    elif kind == CUSHION or kind == JAW or kind == POINT:  # noqa: SIM109 (numba)
-        if kind == CUSHION:
-            nx, ny, e = RAIL_NX[j], RAIL_NY[j], prm[P_E_CUSHION]
-        else:
-            nx, ny = jaw_normal(pockets, kind, j, x, y)
-            e = prm[P_E_JAW]
-        if wedged_ball(x, y, vx, vy, repeats, prm, pockets):
-            set_anchor(st, ms, i, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
-        else:
-            cushion_han(
-                vx, vy, wx, wy, wz, nx, ny, prm[P_RADIUS], prm[S_CUSHION_HEIGHT], e,
-                prm[S_CUSHION_FRICTION], out,
-            )  # fmt: skip
-            mode = FORCE_ROLL if pressed_roll(out, nx, ny, prm[P_RADIUS]) else CLASSIFY
-            set_anchor(st, ms, i, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
-    elif kind == SLIDE_ROLL:
+    if kind == CUSHION:
+        nx, ny, e = RAIL_NX[j], RAIL_NY[j], prm[P_E_CUSHION]
+    else:
+        nx, ny = jaw_normal(pockets, kind, j, x, y)
+        e = prm[P_E_JAW]
+    if wedged_ball(x, y, vx, vy, repeats, prm, pockets):
+        set_anchor(st, ms, i, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
+        return
+    cushion_han(
+        vx, vy, wx, wy, wz, nx, ny, prm[P_RADIUS], prm[S_CUSHION_HEIGHT], e,
+        prm[S_CUSHION_FRICTION], out,
+    )  # fmt: skip
+    mode = FORCE_ROLL if pressed_roll(out, nx, ny, prm[P_RADIUS]) else CLASSIFY
+    set_anchor(st, ms, i, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
+
+
+@level_method(level.capture, SpinLevel)
+def _capture(level, st, ms, i, now, prm):
+    x, y, _, _, _, _, _ = state_at(st, ms, i, now, prm)
+    set_potted(st, ms, i, now, x, y)
+
+
+@level_method(level.settle, SpinLevel)
+def _settle(level, st, ms, kind, i, now, prm):
+    x, y, vx, vy, wx, wy, wz = state_at(st, ms, i, now, prm)
+    if kind == SLIDE_ROLL:
         set_anchor(st, ms, i, now, x, y, vx, vy, wx, wy, wz, prm, FORCE_ROLL)
     else:  # STOP, ROLL_SPIN (a rolling ball rests), SPIN_STOP
         if ms[i] == ROLLING:
@@ -186,7 +184,7 @@ def _resolve(level, st, ms, masses, kind, i, j, now, repeats, prm, pockets, chan
         else:
             wz = 0.0
         set_anchor(st, ms, i, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
-    return 1
+    return False  # a transition changes the path: every pair of the ball is re-predicted
 
 
 @level_method(level.moving, SpinLevel)
@@ -200,12 +198,12 @@ def _halt(level, st, ms, i, now, prm):
     set_anchor(st, ms, i, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
 
 
-@level_method(level.new_segments, SpinLevel)
+@level_method(level.new_segments, SpinLevel, inline=False)
 def _new_segments(level, capacity):
     return new_segment_log(capacity, SEG_COLS)
 
 
-@level_method(level.log_segment, SpinLevel)
+@level_method(level.log_segment, SpinLevel, inline=False)
 def _log_segment(level, log, row, k, now, st, ms):
     log.ball[row] = k
     log.t[row] = now
@@ -242,3 +240,7 @@ def _write_tails(level, floats, ints, f, k, st, ms, now, prm):
         floats[f + 3 * i + 1] = wy
         floats[f + 3 * i + 2] = wz
         ints[k + i] = ms[i]
+
+
+#: The level's entry points for Python (:mod:`~pool_env.sim.kernels.entries`).
+ENTRIES = entries(SpinLevel)

@@ -34,7 +34,8 @@ from __future__ import annotations
 
 import math
 
-from pool_env.sim.jit import kernel
+from pool_env.sim.jit import kernel, level_method
+from pool_env.sim.kernels import level as interface
 from pool_env.sim.kernels.jaws import JAW_COLS, REACH_MARGIN, opening_of
 from pool_env.sim.kernels.kinds import (
     CUSHION,
@@ -56,6 +57,7 @@ from pool_env.sim.kernels.roots import (
     quadratic_roots,
 )
 from pool_env.sim.kernels.spin.jaws import predict_jaws
+from pool_env.sim.kernels.spin.marker import SpinLevel
 from pool_env.sim.kernels.spin.params import S_SLIDE_DECEL, S_SPIN_DECEL
 from pool_env.sim.kernels.spin.state import (
     AX,
@@ -127,8 +129,8 @@ def _transition(st, ms, i, prm):
     return STOP
 
 
-@kernel
-def predict_own(st, ms, i, prm, pockets, own, boxes):
+@level_method(interface.predict_own, SpinLevel, inline=False)
+def predict_own(level, st, ms, i, prm, pockets, own, boxes):
     """Ball ``i``'s next own event (rail, pocket or transition) and its piece's box.
 
     Writes ``own[i] = (time, kind, arg, time)`` (the last column, the end of the piece,
@@ -210,8 +212,8 @@ def predict_own(st, ms, i, prm, pockets, own, boxes):
     boxes[i, B_YMAX] = yh
 
 
-@kernel
-def predict_pair(st, ms, i, j, now, prm, own, boxes):
+@level_method(interface.predict_pair, SpinLevel, inline=False)
+def predict_pair(level, st, ms, i, j, now, prm, own, boxes):
     """Time of the next impact of balls ``i`` and ``j`` after ``now`` (``inf`` if none).
 
     The window ends at the earlier own event of the two (the end of either piece).
