@@ -64,6 +64,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.compile_notice",  # imported by this one (no compiled code)
     "pool_env.sim.kernels.batch",
     "pool_env.sim.kernels.contact",
+    "pool_env.sim.kernels.entries",
     "pool_env.sim.kernels.jaws",
     "pool_env.sim.kernels.kinds",
     "pool_env.sim.kernels.level",
@@ -74,6 +75,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.kernels.record",
     "pool_env.sim.kernels.roll.jaws",
     "pool_env.sim.kernels.roll.level",
+    "pool_env.sim.kernels.roll.marker",
     "pool_env.sim.kernels.roll.motion",
     "pool_env.sim.kernels.roll.predict",
     "pool_env.sim.kernels.roll.resolve",
@@ -84,6 +86,7 @@ KERNEL_MODULES: tuple[str, ...] = (
     "pool_env.sim.kernels.spin.cushion",
     "pool_env.sim.kernels.spin.jaws",
     "pool_env.sim.kernels.spin.level",
+    "pool_env.sim.kernels.spin.marker",
     "pool_env.sim.kernels.spin.params",
     "pool_env.sim.kernels.spin.predict",
     "pool_env.sim.kernels.spin.state",
