@@ -34,11 +34,8 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
-from bench.rollout_speed import candidate_rows
-from bench.simulator_speed import break_shots, two_ball_shots
-from pool_env import Table, shoot
+from bench.rollout_speed import shot_set
+from pool_env import shoot
 from pool_env.sim.kernels import roots
 from pool_env.sim.kernels.roll import predict as roll_predict
 from pool_env.sim.kernels.spin import jaws as spin_jaws
@@ -66,23 +63,9 @@ def install() -> None:
     spin_jaws.first_contact = _counting("quartic", roots.first_contact)
 
 
-def shots(model: str, scene: str, n: int, seed: int) -> tuple[Table, np.ndarray, np.ndarray]:
-    """The layout and ``n`` shot rows of :mod:`bench.rollout_speed`'s set."""
-    table = Table(model=model)
-    rng = np.random.default_rng(seed)
-    if scene == "two-ball":
-        layout, angle, _ = two_ball_shots(table, rng, 1)[0]
-        rows = candidate_rows(rng, angle, 2.0, n, model == "spin", 0.02)
-    else:
-        layout, _, speed = break_shots(table, rng, 1, "nine")[0]
-        rows = candidate_rows(rng, 0.0, speed, n, model == "spin", 0.0)
-        rows[:, 0] = rng.uniform(-0.005, 0.005, n)
-    return table, layout, rows
-
-
 def count(model: str, scene: str, n: int, seed: int) -> dict[str, float]:
     """Per-shot means of the counts over ``n`` shots of one set."""
-    table, layout, rows = shots(model, scene, n, seed)
+    table, layout, rows = shot_set(model, scene, n, seed)
     COUNTS.clear()
     events: Counter[str] = Counter()
     for angle, speed, a, b, e in rows:

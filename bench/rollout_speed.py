@@ -55,8 +55,8 @@ def _median_time(f, repeats: int) -> float:
     return float(np.median(times))
 
 
-def measure(model: str, scene: str, n: int, repeats: int, seed: int) -> dict[str, float]:
-    """Shots per second of one shot set: rollout on 1 thread, on every CPU, and shoot()."""
+def shot_set(model: str, scene: str, n: int, seed: int) -> tuple[Table, np.ndarray, np.ndarray]:
+    """The default table of ``model``, one layout of ``scene`` and ``n`` shot rows from it."""
     table = Table(model=model)
     rng = np.random.default_rng(seed)
     if scene == "two-ball":
@@ -66,6 +66,12 @@ def measure(model: str, scene: str, n: int, repeats: int, seed: int) -> dict[str
         layout, _, speed = break_shots(table, rng, 1, "nine")[0]
         rows = candidate_rows(rng, 0.0, speed, n, model == "spin", 0.0)
         rows[:, 0] = rng.uniform(-0.005, 0.005, n)
+    return table, layout, rows
+
+
+def measure(model: str, scene: str, n: int, repeats: int, seed: int) -> dict[str, float]:
+    """Shots per second of one shot set: rollout on 1 thread, on every CPU, and shoot()."""
+    table, layout, rows = shot_set(model, scene, n, seed)
     cpus = available_cpus()
     one = _median_time(lambda: rollout(table, layout, rows, threads=1), repeats)
     every = _median_time(lambda: rollout(table, layout, rows, threads=cpus), repeats)
