@@ -303,7 +303,7 @@ class SpinShotResult(ShotResult):
 
     @property
     def motion_states(self) -> NDArray[np.int64]:
-        """``(N,)`` final motion states (codes of ``spin_state.STATE_NAMES``)."""
+        """``(N,)`` final motion states (codes of ``spin.state.STATE_NAMES``)."""
         _, k = self._tail()
         return self._ints[k : k + self.n_balls]
 

@@ -86,6 +86,20 @@ def grown_segment_log(log):
     )
 
 
+@kernel
+def log_anchor(log, row, k, now, st, columns, potted):
+    """Write segment ``row`` (below the capacity): ball ``k`` re-anchored at ``now``.
+
+    ``columns`` are the columns of the level's anchor array ``st`` that a segment row
+    holds, in order; ``potted`` whether the ball was captured there.
+    """
+    log.ball[row] = k
+    log.t[row] = now
+    for c in range(len(columns)):
+        log.state[row, c] = st[k, columns[c]]
+    log.potted[row] = potted
+
+
 @inline_kernel
 def trim_events(log, n):
     """Copies of the first ``n`` rows (exactly sized, owned by the caller)."""

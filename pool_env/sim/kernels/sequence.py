@@ -3,8 +3,8 @@
 Simultaneous events are taken in one fixed total order, (time, kind, first id, second id)
 (:func:`next_event`), which makes reruns bit-for-bit identical; each event taken updates
 the per-ball rows the rules read (:func:`tally`: pocketing order, first contacts, cushion
-impacts after the first contact). The roll loop (:mod:`~pool_env.sim.kernels.loop`) and the
-spin loop (:mod:`~pool_env.sim.kernels.spin.level`) both run on these.
+impacts after the first contact). The one event loop (:mod:`~pool_env.sim.kernels.loop`)
+runs on these for every model level.
 """
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ from pool_env.sim.kernels.entries import entries
 from pool_env.sim.kernels.jaws import JAW_COLS
 from pool_env.sim.kernels.kinds import CUSHION
 from pool_env.sim.kernels.params import P_DECEL
-from pool_env.sim.kernels.record import new_segment_log
+from pool_env.sim.kernels.record import log_anchor, new_segment_log
 from pool_env.sim.kernels.roll import predict  # noqa: F401 (registers its predictors)
 from pool_env.sim.kernels.roll.jaws import jaw_impact, unpress_lump
 from pool_env.sim.kernels.roll.marker import ROLL, RollLevel  # noqa: F401 (ROLL: importing it from here registers the level)
@@ -43,8 +43,10 @@ from pool_env.sim.kernels.roll.motion import (
 from pool_env.sim.kernels.roll.resolve import ball_ball, cushion, stick_cluster
 from pool_env.sim.kernels.validation import validate
 
-#: Columns of a roll segment row: ``x, y, vx, vy`` at the row's time.
-SEG_COLS = 4
+#: The anchor columns a roll segment row holds: ``x, y, vx, vy`` at the row's time.
+SEGMENT_COLUMNS = (PX, PY, VX, VY)
+#: Columns of a roll segment row.
+SEG_COLS = len(SEGMENT_COLUMNS)
 
 
 @level_method(level.start, RollLevel)
@@ -119,13 +121,7 @@ def _new_segments(level, capacity):
 
 @level_method(level.log_segment, RollLevel, inline=False)
 def _log_segment(level, log, row, k, now, st, ms):
-    log.ball[row] = k
-    log.t[row] = now
-    log.state[row, 0] = st[k, PX]
-    log.state[row, 1] = st[k, PY]
-    log.state[row, 2] = st[k, VX]
-    log.state[row, 3] = st[k, VY]
-    log.potted[row] = ms[k] == POTTED
+    log_anchor(log, row, k, now, st, SEGMENT_COLUMNS, ms[k] == POTTED)
 
 
 @level_method(level.check_scene, RollLevel)

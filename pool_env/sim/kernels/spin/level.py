@@ -32,7 +32,7 @@ from pool_env.sim.kernels.kinds import CUSHION, SLIDE_ROLL
 from pool_env.sim.kernels.limits import MAX_SPEED, reachable_speed2_spin, speed_allowed
 from pool_env.sim.kernels.packing import SPIN_TAIL_FLOATS, SPIN_TAIL_INTS
 from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_E_JAW, P_MASS, P_RADIUS
-from pool_env.sim.kernels.record import new_segment_log
+from pool_env.sim.kernels.record import log_anchor, new_segment_log
 from pool_env.sim.kernels.spin import predict  # noqa: F401 (registers its predictors)
 from pool_env.sim.kernels.spin.collide import ball_ball_spin
 from pool_env.sim.kernels.spin.cushion import cushion_han
@@ -70,8 +70,11 @@ from pool_env.sim.kernels.spin.strike import cue_strike
 from pool_env.sim.kernels.spin.zeno import RAIL_NX, RAIL_NY, pressed_roll, stick, wedged_ball
 from pool_env.sim.kernels.validation import BAD_SPIN, OK, SPIN_TOO_FAST, TOO_ENERGETIC, validate
 
-#: Columns of a spin segment row: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the row's time.
-SEG_COLS = 9
+#: The anchor columns a spin segment row holds: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the
+#: row's time.
+SEGMENT_COLUMNS = (PX, PY, VX, VY, WX, WY, WZ, AX, AY)
+#: Columns of a spin segment row.
+SEG_COLS = len(SEGMENT_COLUMNS)
 
 
 @kernel
@@ -205,12 +208,8 @@ def _new_segments(level, capacity):
 
 @level_method(level.log_segment, SpinLevel, inline=False)
 def _log_segment(level, log, row, k, now, st, ms):
-    log.ball[row] = k
-    log.t[row] = now
     # A still or potted ball's anchor holds zero velocity, surface spin and acceleration.
-    for c, col in enumerate((PX, PY, VX, VY, WX, WY, WZ, AX, AY)):
-        log.state[row, c] = st[k, col]
-    log.potted[row] = ms[k] == POTTED
+    log_anchor(log, row, k, now, st, SEGMENT_COLUMNS, ms[k] == POTTED)
 
 
 @level_method(level.check_scene, SpinLevel)
