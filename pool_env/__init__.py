@@ -22,11 +22,12 @@ from pool_env.sim import Event, ShotResult, Table, shoot, simulate
 if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
     from pool_env.env import PoolEnv
     from pool_env.game.codec import (
-        Shot,
         decode_action,
         decode_observations,
         encode_action,
         encode_shots,
+        obs_layout,
+        shot_constraints,
     )
     from pool_env.game.config import (
         AIM_MODES,
@@ -38,6 +39,7 @@ if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
     from pool_env.game.kernels.observe import encode_observations
     from pool_env.game.kernels.tips import onto_tip_circle
     from pool_env.game.scenes import SCENES, check_layout, free_spot
+    from pool_env.game.shots import Shot, ShotConstraints
     from pool_env.vector import PoolVectorEnv
 
 #: Public names of the game layer and the fronts -> the module defining each.
@@ -49,7 +51,10 @@ _LAZY: dict[str, str] = {
     "PoolEnv": "pool_env.env",
     "PoolVectorEnv": "pool_env.vector",
     "SCENES": "pool_env.game.scenes",
-    "Shot": "pool_env.game.codec",
+    "Shot": "pool_env.game.shots",
+    "ShotConstraints": "pool_env.game.shots",
+    "obs_layout": "pool_env.game.codec",
+    "shot_constraints": "pool_env.game.codec",
     "decode_action": "pool_env.game.codec",
     "decode_observations": "pool_env.game.codec",
     "encode_action": "pool_env.game.codec",
@@ -73,6 +78,7 @@ __all__ = [
     "PoolEnv",
     "PoolVectorEnv",
     "Shot",
+    "ShotConstraints",
     "ShotResult",
     "Table",
     "__version__",
@@ -85,9 +91,11 @@ __all__ = [
     "encode_shots",
     "free_spot",
     "nearest_object_ball",
+    "obs_layout",
     "onto_tip_circle",
     "register_envs",
     "shoot",
+    "shot_constraints",
     "simulate",
 ]
 

@@ -14,13 +14,13 @@ balls the rules let the cue ball hit first), so ``decode_action(encode_action(sh
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env.game.checks import check_actions
+from pool_env.game.components import unit_component
 from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
@@ -31,37 +31,17 @@ from pool_env.game.kernels.encode import (
     AIM_OUT_OF_RANGE,
     aim_parameter,
     tip_components,
-    to_unit,
 )
 from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
 from pool_env.game.kernels.encode import reference_balls as kernel_reference_balls
 from pool_env.game.kernels.tips import onto_tip_circle
 from pool_env.game.rack import rack_option, rack_row
+from pool_env.game.rulesets.wpa import encode_pocket as encode_pocket_of
+from pool_env.game.shots import Shot, ShotConstraints
 from pool_env.game.state import GameState, new_state
 from pool_env.sim import Table
 
 _ONE = np.zeros(1, dtype=np.intp)
-
-
-@dataclass(frozen=True)
-class Shot:
-    """A shot as the table sees it (the inverse image of an action).
-
-    Attributes:
-        angle: The cue's aim, radians counter-clockwise from +x (on a spin table the ball
-            leaves at it plus the squirt of side english).
-        speed: The cue ball's speed (m/s).
-        tip: The cue tip's axis offset ``(side, vertical)`` in fractions of R (spin
-            tables; ``(0.0, 0.0)`` on a roll table).
-        cue: Rules, cue ball in hand: where it is placed (m); ``None`` otherwise.
-        pocket: Rules: the pocket called for the 8 (index into ``table.pockets``).
-    """
-
-    angle: float
-    speed: float
-    tip: tuple[float, float] = (0.0, 0.0)
-    cue: tuple[float, float] | None = None
-    pocket: int = 0
 
 
 def _check_finite(shot: Shot) -> None:
@@ -88,7 +68,7 @@ def _table(
         raise ValueError(f"on_table must have shape ({n},), got {on.shape}")
     state = new_state(1, n)
     state.positions[0], state.on_table[0] = pos, on
-    if config.rules:
+    if config.ruleset.has_rack:  # the input's parsing; the encoding asks the ruleset
         state.rack[0] = _rack_row(config, rack)
     elif rack is not None:
         raise ValueError("rack is for the rules ids (game='nine' or 'eight')")
@@ -140,10 +120,9 @@ def decode_action(
     """
     actions = check_actions(action, 1, single=True, width=config.action_size)
     state = _table(config, positions, on_table, rack)
-    params, cue, ruleset = _quiet(config), None, config.ruleset
+    params, ruleset = _quiet(config), config.ruleset
     ruleset.place(config.table, params, state, _ONE, actions)
-    if config.rules and state.rack[0, wpa.IN_HAND]:
-        cue = (float(state.positions[0, 0, 0]), float(state.positions[0, 0, 1]))
+    cue = ruleset.placed_cue(state)
     shots, _, called = ruleset.execute(params, config.table.pockets, state, _ONE, actions)
     pocket = 0 if called is None else int(called[0])
     row = shots[0].tolist()
@@ -151,24 +130,11 @@ def decode_action(
     return Shot(angle=row[0], speed=row[1], tip=tip, cue=cue, pocket=pocket)
 
 
-def _component(name: str, value: float, low: float, high: float, clip: bool) -> float:
-    """``value`` in ``[low, high]`` as an action component in ``[-1, 1]``."""
-    if high == low and value != low and not clip:
-        raise ValueError(f"{name} {value!r} is not {low!r}, the only value of its range")
-    c = to_unit(value, low, high)
-    if not -1.0 - 1e-12 <= c <= 1.0 + 1e-12 and not clip:
-        raise ValueError(f"{name} {value!r} lies outside its range [{low!r}, {high!r}]")
-    return min(max(c, -1.0), 1.0)
-
-
 def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> float:
     """The aim component that plays the direction ``angle`` (radians from +x)."""
     params = config.params
     mode, (low, high) = int(params[kp.AIM_MODE]), config.aim_range
-    targets = state.on_table[0].copy()
-    if config.rules:
-        row = state.rack[0]
-        wpa.legal_targets(int(params[kp.GAME]), row, state.on_table[0], row[wpa.SHOOTER], targets)
+    targets = config.ruleset.aim_targets(state)
     j, dist, base = nearest_object_ball(state.positions[0], targets, 0)
     param, status = aim_parameter(mode, low, high, params[kp.RADIUS], angle, j, dist, base, 0.0)
     if mode == 0 and status == AIM_OUT_OF_RANGE:
@@ -183,7 +149,7 @@ def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> floa
             "aim cannot play it (use aim='absolute', or clip=True)"
         )
     name = ("angle", "angle (relative aim)", "cut")[mode]
-    return _component(name, param, low, high, clip)
+    return unit_component(name, param, low, high, clip)
 
 
 def encode_shots(
@@ -271,6 +237,45 @@ def decode_observations(
     return positions, per_ball[..., 2] > 0.5
 
 
+def obs_layout(config: GameConfig) -> dict[str, slice]:
+    """Where each part of the env's observation lies: a slice per part, by name.
+
+    Every game has ``"balls"`` (``(x, y, on_table)`` per ball, the cue ball first); the
+    rule games add ``"legal"`` (object balls ``1..N-1``: may the viewer hit it first) and
+    one entry per rule feature (``"ball_in_hand"``, ``"behind_head_string"``, ``"break"``,
+    ``"open_table"``, ``"fouls"``, ``"opponent_fouls"``, ``"to_shoot"``). The game's
+    :meth:`~pool_env.game.rulesets.base.Ruleset.obs_layout`.
+
+    Examples:
+        >>> import gymnasium as gym, pool_env
+        >>> from pool_env import obs_layout
+        >>> env = gym.make("pool_env/NineBallGame-v1")
+        >>> layout = obs_layout(env.unwrapped.config)
+        >>> layout["balls"], layout["legal"], layout["ball_in_hand"]
+        (slice(0, 30, None), slice(30, 39, None), slice(39, 40, None))
+    """
+    return config.ruleset.obs_layout(config.n_balls)
+
+
+def shot_constraints(config: GameConfig, observation: ArrayLike) -> ShotConstraints:
+    """What the next shot may do, as the observation's viewer sees it (the game's rules).
+
+    The legal first balls, ball in hand and its placement box, the break (and its speed
+    range), whether the called pocket counts: the game's
+    :meth:`~pool_env.game.rulesets.base.Ruleset.constraints`. Agents ask this rather than
+    restate the rules.
+
+    Raises:
+        ValueError: On an observation of another size.
+    """
+    obs = np.asarray(observation)
+    if obs.shape != (config.observation_size,):
+        raise ValueError(
+            f"observation must have shape ({config.observation_size},), got {obs.shape}"
+        )
+    return config.ruleset.constraints(config, obs)
+
+
 def reference_balls(positions: ArrayLike, refer: ArrayLike) -> NDArray[np.int64]:
     """The ball that relative and cut aim refer to in each of ``B`` layouts (-1: none).
 
@@ -324,17 +329,9 @@ def encode_action(
     state = _table(config, positions, on_table, rack)
     out = np.zeros(config.action_size)
     _tip(config, shot.tip, out, clip)
-    speeds = config.speed_range
-    if config.rules:
-        row = state.rack[0]
-        if row[wpa.IN_HAND] and shot.cue is not None:
-            out[2], out[3] = encode_placement(config, shot.cue, bool(row[wpa.BEHIND]), clip)
-            state.positions[0, 0] = shot.cue  # the aim refers from where the cue ball will be
-        out[4] = encode_pocket(config, shot.pocket)
-        if row[wpa.BREAKING]:
-            speeds = config.break_speed_range
+    speeds = config.ruleset.encode(config, shot, state, out, clip)
     out[0] = _aim(config, state, float(shot.angle), clip)
-    out[1] = _component("speed", float(shot.speed), *speeds, clip)
+    out[1] = unit_component("speed", float(shot.speed), *speeds, clip)
     return out
 
 
@@ -352,15 +349,7 @@ def encode_placement(
     Raises:
         ValueError: On a solitaire config, or a point outside the box (without ``clip``).
     """
-    if not config.rules:
-        raise ValueError("the cue ball is placed in hand under rules (game='nine' or 'eight')")
-    params = config.params
-    x, y = (float(v) for v in np.asarray(cue, dtype=np.float64).reshape(2))
-    x_high = params[kp.HEAD_X] if behind else params[kp.X_HIGH]
-    return (
-        _component("cue x", x, params[kp.X_LOW], x_high, clip),
-        _component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip),
-    )
+    return config.ruleset.encode_placement(config, cue, behind, clip)
 
 
 def encode_pocket(config: GameConfig, pocket: int) -> float:
@@ -369,10 +358,7 @@ def encode_pocket(config: GameConfig, pocket: int) -> float:
     Raises:
         ValueError: If the table has no pocket ``pocket``.
     """
-    n_pockets = config.table.n_pockets
-    if not 0 <= pocket < n_pockets:
-        raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {pocket!r}")
-    return (2.0 * pocket + 1.0) / n_pockets - 1.0
+    return encode_pocket_of(config.table, pocket)
 
 
 def _tip(

@@ -20,7 +20,7 @@ A new game is a new subclass in its own module of this package and a name in
 
 from __future__ import annotations
 
-from typing import Any, NamedTuple
+from typing import Any, NamedTuple, Protocol
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,6 +28,7 @@ from numpy.typing import NDArray
 from pool_env.game.kernels.observe import encode_observations
 from pool_env.game.rules import CUE, SPOT_TAKEN
 from pool_env.game.scenes import ScenePlan, free_spot
+from pool_env.game.shots import Shot, ShotConstraints
 from pool_env.game.state import GameState
 from pool_env.sim.result import ShotResult
 from pool_env.sim.table import Table
@@ -69,6 +70,25 @@ Executed = tuple[NDArray[np.float64], NDArray[np.float64], Any]
 Judged = tuple[NDArray[np.float64], NDArray[np.bool_], NDArray[np.int64]]
 
 
+class ConfigView(Protocol):
+    """What a ruleset reads of a :class:`~pool_env.game.config.GameConfig` (which holds it)."""
+
+    @property
+    def table(self) -> Table: ...  # noqa: D102
+
+    @property
+    def params(self) -> NDArray[np.float64]: ...  # noqa: D102
+
+    @property
+    def n_balls(self) -> int: ...  # noqa: D102
+
+    @property
+    def speed_range(self) -> tuple[float, float]: ...  # noqa: D102
+
+    @property
+    def break_speed_range(self) -> tuple[float, float]: ...  # noqa: D102
+
+
 class Ruleset:
     """A game: the steps of the decision process where games differ.
 
@@ -98,6 +118,55 @@ class Ruleset:
     def observation_width(self, n_balls: int) -> int:
         """Observation entries for ``n_balls`` balls (the cue ball included): ``3 N``."""
         return 3 * n_balls
+
+    def obs_layout(self, n_balls: int) -> dict[str, slice]:
+        """Where each part of an observation lies: here ``"balls"``, ``(x, y, on_table)`` each.
+
+        Ball ``j``'s entries are ``obs[layout["balls"]][3 j : 3 j + 3]``.
+        """
+        return {"balls": slice(0, 3 * n_balls)}
+
+    def constraints(self, config: ConfigView, observation: NDArray[Any]) -> ShotConstraints:
+        """What the next shot may do, read from one observation: any ball on the table."""
+        on = np.asarray(observation)[self.obs_layout(config.n_balls)["balls"]][2::3] > 0.5
+        first = tuple(int(j) for j in np.flatnonzero(on[1:]) + 1)
+        return ShotConstraints(first_balls=first, speed_range=config.speed_range)
+
+    def aim_targets(self, state: GameState) -> NDArray[np.bool_]:
+        """The balls of table 0 that relative and cut aim may refer to: those on the table."""
+        return state.on_table[0].copy()
+
+    def placed_cue(self, state: GameState) -> tuple[float, float] | None:
+        """Where table 0's cue ball was placed in hand by :meth:`place`: never here."""
+        return None
+
+    def encode(
+        self,
+        config: ConfigView,
+        shot: Shot,
+        state: GameState,
+        out: NDArray[np.float64],
+        clip: bool,
+    ) -> tuple[float, float]:
+        """Write the game's own action components of ``shot`` (none here) into ``out``.
+
+        Also moves table 0's cue ball of ``state`` to where the shot places it, so that
+        the aim refers from there.
+
+        Returns:
+            The speed range of this shot's speed component.
+        """
+        return config.speed_range
+
+    def encode_placement(
+        self, config: ConfigView, cue: Any, behind: bool, clip: bool
+    ) -> tuple[float, float]:
+        """The action components that place the cue ball in hand at ``cue``.
+
+        Raises:
+            ValueError: Always here: this game has no ball in hand.
+        """
+        raise ValueError("the cue ball is placed in hand under rules (game='nine' or 'eight')")
 
     def check(
         self, scene: ScenePlan, table: Table, end_on_miss: bool, end_on_foul: bool, players: int

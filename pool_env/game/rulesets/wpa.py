@@ -19,11 +19,16 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.components import unit_component
 from pool_env.game.contact import read_first
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
 from pool_env.game.kernels.actions import executed_rule_shots, place_in_hand
-from pool_env.game.kernels.observe import N_RULE_FEATURES, encode_rule_observations
+from pool_env.game.kernels.observe import (
+    N_RULE_FEATURES,
+    RULE_FEATURES,
+    encode_rule_observations,
+)
 from pool_env.game.kernels.wpa import FOUL_NAMES, LOSS_NAMES
 from pool_env.game.rules import (
     BALL_ON,
@@ -36,8 +41,16 @@ from pool_env.game.rules import (
     WINNER,
     judge_rules,
 )
-from pool_env.game.rulesets.base import Executed, Judged, Outcome, Ruleset, place_free
+from pool_env.game.rulesets.base import (
+    ConfigView,
+    Executed,
+    Judged,
+    Outcome,
+    Ruleset,
+    place_free,
+)
 from pool_env.game.scenes import ScenePlan
+from pool_env.game.shots import Shot, ShotConstraints
 from pool_env.game.state import GameState
 from pool_env.sim.layouts import foot_spot
 from pool_env.sim.table import Table
@@ -79,6 +92,88 @@ class WpaGame(Ruleset):
     def observation_width(self, n_balls: int) -> int:
         """``3 N`` ball entries, ``N - 1`` legal-ball flags and the rule features."""
         return 3 * n_balls + n_balls - 1 + N_RULE_FEATURES
+
+    def obs_layout(self, n_balls: int) -> dict[str, slice]:
+        """The balls, the legal-ball flags, then one part per rule feature.
+
+        ``"legal"`` holds balls ``1..N-1`` (may the viewer hit it first), and each name of
+        :data:`~pool_env.game.kernels.observe.RULE_FEATURES` its own entry.
+        """
+        layout = super().obs_layout(n_balls)
+        base = 4 * n_balls - 1
+        layout["legal"] = slice(3 * n_balls, base)
+        for k, name in enumerate(RULE_FEATURES):
+            layout[name] = slice(base + k, base + k + 1)
+        return layout
+
+    def constraints(self, config: ConfigView, observation: NDArray[Any]) -> ShotConstraints:
+        """The viewer's legal first balls, ball in hand and its box, the break, the 8's call."""
+        obs = np.asarray(observation)
+        layout = self.obs_layout(config.n_balls)
+        flag = {name: bool(obs[layout[name]][0] > 0.5) for name in RULE_FEATURES[:4]}
+        first = tuple(int(j) for j in np.flatnonzero(obs[layout["legal"]] > 0.5) + 1)
+        params = config.params
+        box = None
+        if flag["ball_in_hand"]:
+            x_high = params[kp.HEAD_X] if flag["behind_head_string"] else params[kp.X_HIGH]
+            box = (
+                (float(params[kp.X_LOW]), float(x_high)),
+                (float(params[kp.Y_LOW]), float(params[kp.Y_HIGH])),
+            )
+        breaking = flag["break"]
+        return ShotConstraints(
+            first_balls=first,
+            speed_range=config.break_speed_range if breaking else config.speed_range,
+            ball_in_hand=flag["ball_in_hand"],
+            placement=box,
+            breaking=breaking,
+            call_pocket=self.code == wpa.EIGHT and not breaking and first == (8,),
+        )
+
+    def aim_targets(self, state: GameState) -> NDArray[np.bool_]:
+        """The legal first balls of table 0's shooter (what the step's aim refers to)."""
+        row, on = state.rack[0], state.on_table[0]
+        targets = on.copy()
+        wpa.legal_targets(self.code, row, on, row[wpa.SHOOTER], targets)
+        return targets
+
+    def placed_cue(self, state: GameState) -> tuple[float, float] | None:
+        """Where table 0's cue ball stands if it was in hand, else ``None``."""
+        if not state.rack[0, wpa.IN_HAND]:
+            return None
+        return float(state.positions[0, CUE, 0]), float(state.positions[0, CUE, 1])
+
+    def encode(
+        self,
+        config: ConfigView,
+        shot: Shot,
+        state: GameState,
+        out: NDArray[np.float64],
+        clip: bool,
+    ) -> tuple[float, float]:
+        """The placement (cue ball in hand), the called pocket; the break's speed range."""
+        row = state.rack[0]
+        if row[wpa.IN_HAND] and shot.cue is not None:
+            out[2], out[3] = self.encode_placement(config, shot.cue, bool(row[wpa.BEHIND]), clip)
+            state.positions[0, CUE] = shot.cue  # the aim refers from where the cue ball will be
+        out[4] = encode_pocket(config.table, shot.pocket)
+        return config.break_speed_range if row[wpa.BREAKING] else config.speed_range
+
+    def encode_placement(
+        self, config: ConfigView, cue: Any, behind: bool, clip: bool
+    ) -> tuple[float, float]:
+        """``action[2]`` and ``action[3]``: the placement box (behind the head string or not).
+
+        Raises:
+            ValueError: On a point outside the box (without ``clip``).
+        """
+        params = config.params
+        x, y = (float(v) for v in np.asarray(cue, dtype=np.float64).reshape(2))
+        x_high = params[kp.HEAD_X] if behind else params[kp.X_HIGH]
+        return (
+            unit_component("cue x", x, params[kp.X_LOW], x_high, clip),
+            unit_component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip),
+        )
 
     def check(
         self, scene: ScenePlan, table: Table, end_on_miss: bool, end_on_foul: bool, players: int
@@ -241,6 +336,18 @@ class WpaGame(Ruleset):
             values = np.zeros(n_envs, dtype=dtype)
             values[tables] = hits[:, column]
             info[key], info[f"_{key}"] = values, present.copy()
+
+
+def encode_pocket(table: Table, pocket: int) -> float:
+    """The action component (``action[4]``) that calls ``pocket``: the middle of its bin.
+
+    Raises:
+        ValueError: If the table has no pocket ``pocket``.
+    """
+    n_pockets = table.n_pockets
+    if not 0 <= pocket < n_pockets:
+        raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {pocket!r}")
+    return (2.0 * pocket + 1.0) / n_pockets - 1.0
 
 
 #: 9-ball: nine object balls, the 9 wins.

@@ -1,0 +1,62 @@
+"""What one action plays, and what the rules let the next one play: two public value types.
+
+:class:`Shot` is an action's image on the table (:func:`pool_env.game.codec.decode_action`
+returns it and :func:`~pool_env.game.codec.encode_action` takes it). :class:`ShotConstraints`
+is the rules' answer to "what may the next shot do" (the game's
+:meth:`~pool_env.game.rulesets.base.Ruleset.constraints`, read from an observation, as
+pooltool's ``ShotConstraints`` is read from its game state): the agents ask it instead of
+restating a game's rules.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True)
+class Shot:
+    """A shot as the table sees it (the inverse image of an action).
+
+    Attributes:
+        angle: The cue's aim, radians counter-clockwise from +x (on a spin table the ball
+            leaves at it plus the squirt of side english).
+        speed: The cue ball's speed (m/s).
+        tip: The cue tip's axis offset ``(side, vertical)`` in fractions of R (spin
+            tables; ``(0.0, 0.0)`` on a roll table).
+        cue: Rules, cue ball in hand: where it is placed (m); ``None`` otherwise.
+        pocket: Rules: the pocket called for the 8 (index into ``table.pockets``).
+    """
+
+    angle: float
+    speed: float
+    tip: tuple[float, float] = (0.0, 0.0)
+    cue: tuple[float, float] | None = None
+    pocket: int = 0
+
+
+@dataclass(frozen=True)
+class ShotConstraints:
+    """What the next shot may do under the game's rules, from the shooter's seat.
+
+    Attributes:
+        first_balls: The object balls the cue ball may legally hit first, ascending
+            (solitaire: every object ball on the table; 9-ball: the ball on; 8-ball: the
+            shooter's group, or the 8 once it is cleared; the break: as the rules say).
+        ball_in_hand: The shooter places the cue ball (``Shot.cue``) before the shot.
+        placement: With the cue ball in hand, the box its centre may go in,
+            ``((x_low, x_high), (y_low, y_high))`` in metres (behind the head string:
+            ``x_high`` is the string); ``None`` without ball in hand.
+        breaking: The shot is a break (its speed range is the break's).
+        speed_range: The cue speeds (m/s) that the action's speed component spans for
+            this shot.
+        call_pocket: The called pocket (``Shot.pocket``) decides the rack: 8-ball's 8.
+        push_out: The shooter may declare a push-out (no rule offers one yet).
+    """
+
+    first_balls: tuple[int, ...]
+    speed_range: tuple[float, float]
+    ball_in_hand: bool = False
+    placement: tuple[tuple[float, float], tuple[float, float]] | None = None
+    breaking: bool = False
+    call_pocket: bool = False
+    push_out: bool = False
