@@ -56,7 +56,7 @@ class PocketFeatures(gym.ObservationWrapper):
 
     def __init__(self, env: gym.Env) -> None:
         super().__init__(env)
-        table = env.unwrapped.table
+        table = env.unwrapped.config.table
         self._pockets = np.asarray(table.pockets[:, :2], dtype=np.float64)
         self._diagonal = math.hypot(table.length, table.width)
         raw = env.observation_space.shape[0]

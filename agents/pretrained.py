@@ -150,7 +150,7 @@ class PretrainedPolicy:
         if self.wrapper in ("ghost_features", "ghost_candidates"):
             extra = env.ghost_features.of_observations(obs)
         else:  # pocket_features reads a layout: decode it from each observation
-            table = env.unwrapped.table
+            table = env.unwrapped.config.table
             extra = np.stack([env.features(*decode_observation(row, table)) for row in obs])
         return np.concatenate([obs, extra.astype(np.float32)], axis=1)
 

@@ -85,7 +85,7 @@ def rule_share(env_id: str, steps: int, seed: int) -> tuple[float, float]:
             setattr(game_step, name, fn)
     # The ball encoding inside the rule observation is every id's, not the rules': its
     # time per call (the observation of a step and of a reset) comes off.
-    state, table = env._state, env.table
+    state, table = env._state, env.config.table
     reps = 2000
     start = time.perf_counter()
     for _ in range(reps):

@@ -28,7 +28,7 @@ def cut_shot_env(render_mode: str = "rgb_array", width: int = 800) -> PoolEnv:
     """The env after the cut shot: ghost-ball aim at ball 1, into the top-right corner."""
     env = PoolEnv(scene=LAYOUT, aim="cut", render_mode=render_mode, render_width=width)
     env.reset(seed=0)
-    table = env.table
+    table = env.config.table
     cue, ball = LAYOUT[0], LAYOUT[1]
     pocket = np.array([table.length, table.width])
     to_pocket = (pocket - ball) / np.linalg.norm(pocket - ball)
@@ -37,7 +37,8 @@ def cut_shot_env(render_mode: str = "rgb_array", width: int = 800) -> PoolEnv:
     line = ball - cue
     # Offset of the cue ball's path from ball 1's centre, in ball diameters (+ = left side).
     offset = (aim[0] * line[1] - aim[1] * line[0]) / np.linalg.norm(aim) / (2 * table.ball_radius)
-    speed = 2 * (SPEED - env.speed_range[0]) / (env.speed_range[1] - env.speed_range[0]) - 1
+    low, high = env.config.speed_range
+    speed = 2 * (SPEED - low) / (high - low) - 1
     _, reward, *_, info = env.step(np.array([-offset, speed]))
     print(
         f"reward {reward}, potted {info['potted']}, cut {math.degrees(math.asin(offset)):.1f} deg"

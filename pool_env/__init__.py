@@ -39,6 +39,7 @@ if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
     from pool_env.game.kernels.observe import encode_observations
     from pool_env.game.kernels.tips import onto_tip_circle
     from pool_env.game.scenes import SCENES, check_layout, free_spot
+    from pool_env.game.sections import PoolConfig, default_config
     from pool_env.game.shots import Shot, ShotConstraints
     from pool_env.vector import PoolVectorEnv
 
@@ -48,6 +49,7 @@ _LAZY: dict[str, str] = {
     "DEFAULT_AIM_RANGE": "pool_env.game.config",
     "DEFAULT_SPEED_RANGE": "pool_env.game.config",
     "GameConfig": "pool_env.game.config",
+    "PoolConfig": "pool_env.game.sections",
     "PoolEnv": "pool_env.env",
     "PoolVectorEnv": "pool_env.vector",
     "SCENES": "pool_env.game.scenes",
@@ -56,6 +58,7 @@ _LAZY: dict[str, str] = {
     "obs_layout": "pool_env.game.codec",
     "shot_constraints": "pool_env.game.codec",
     "decode_action": "pool_env.game.codec",
+    "default_config": "pool_env.game.sections",
     "decode_observations": "pool_env.game.codec",
     "encode_action": "pool_env.game.codec",
     "encode_shots": "pool_env.game.codec",
@@ -75,6 +78,7 @@ __all__ = [
     "SCENES",
     "Event",
     "GameConfig",
+    "PoolConfig",
     "PoolEnv",
     "PoolVectorEnv",
     "Shot",
@@ -86,6 +90,7 @@ __all__ = [
     "decode_action",
     "decode_observations",
     "decode_shots",
+    "default_config",
     "encode_action",
     "encode_observations",
     "encode_shots",

@@ -13,30 +13,52 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from pool_env.env_doc import with_spec
 from pool_env.game import step as game
 from pool_env.game.checks import check_actions, check_render, check_seed
-from pool_env.game.config import (
-    CUE,
-    DEFAULT_BREAK_SPEED_RANGE,
-    DEFAULT_SPEED_RANGE,
-    AimMode,
-    GameConfig,
-    make_config,
-)
+from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TERMINATED, TRUNCATED
-from pool_env.game.scenes import SceneSpec
 from pool_env.game.state import GameState, new_state
 from pool_env.sim.result import ShotResult
-from pool_env.sim.table import Table
 
 _ONE = np.zeros(1, dtype=np.intp)  # the rows of the single table
 
 
 class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     """Pool: pot the object balls, a shot per step, on an exact event-based table simulator.
+
+    One step is one shot: the action (aim, speed; on a spin table also the cue tip; under
+    rules also the cue ball's placement and a called pocket, each in ``[-1, 1]``) is played
+    by the simulator to rest. The observation is each ball's ``(x, y, on_table)`` scaled
+    to ``[-1, 1]`` (under rules, then the legal first balls and the rack state:
+    :func:`pool_env.obs_layout` names each part). The reward counts pots (and under rules
+    fouls and the rack's result). The whole specification, with every ``info`` key, is
+    ``docs/environments/specification.md``.
+
+    Args:
+        config: The sectioned config (:class:`pool_env.PoolConfig`;
+            ``None``: :func:`pool_env.default_config`).
+        render_mode: ``"rgb_array"``, ``"rgb_array_list"``, ``"human"`` or ``None``.
+        render_width: Frame width in pixels.
+        **overrides: Keys of the config, each overriding its section's:
+
+            * table: ``table`` (a :class:`~pool_env.Table` or a dict of its
+              arguments), ``model`` (``"roll"`` or ``"spin"``);
+            * task: ``scene``, ``n_balls``, ``aim`` (``"cut"``, ``"relative"``,
+              ``"absolute"``), ``aim_range``, ``speed_range`` (m/s), ``tip_limit`` (spin,
+              fraction of R), ``end_on_miss``, ``max_shots``, ``reward_pot``,
+              ``reward_scratch``, ``reward_no_contact``, ``reward_shaping``;
+            * noise: ``noise`` (sigmas: rad, m/s and on a spin table the tip's, in R);
+            * rules: ``game`` (``"solitaire"``, ``"nine"``, ``"eight"``); 9-ball and
+              8-ball add ``end_on_foul``, ``break_speed_range``, ``reward_foul``,
+              ``reward_win``.
+
+            A section's name (``task``, ``rules``, ...) takes the section or a mapping of
+            its keys.
+
+    Raises:
+        ValueError: On an unknown key or a bad value, naming it (never at a reset).
 
     Examples:
         >>> import numpy as np
@@ -50,9 +72,6 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         (1.0, (1,), 1, True)
     """
 
-    # The specification, after the summary: long, it lives in pool_env/env_doc.py.
-    __doc__ = with_spec(__doc__)
-
     metadata: ClassVar[dict[str, Any]] = {
         "render_modes": ["human", "rgb_array", "rgb_array_list"],
         "render_fps": 2,  # rgb_array's; an instance carries its mode's (render.RENDER_FPS)
@@ -60,28 +79,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     def __init__(
         self,
-        table: Table | dict[str, Any] | None = None,
-        scene: SceneSpec = "random",
-        n_balls: int | None = None,
-        aim: AimMode = "cut",
-        aim_range: tuple[float, float] | None = None,
-        speed_range: tuple[float, float] = DEFAULT_SPEED_RANGE,
-        noise: tuple[float, float] | None = None,
-        end_on_miss: bool = False,
-        max_shots: int | None = None,
-        reward_pot: float = 1.0,
-        reward_scratch: float = -1.0,
-        reward_no_contact: float = 0.0,
-        reward_shaping: float = 0.0,
-        game: str = "solitaire",
-        end_on_foul: bool = False,
-        break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE,
-        reward_foul: float = -1.0,
-        reward_win: float = 1.0,
+        config: PoolConfig | None = None,
+        *,
         render_mode: str | None = None,
         render_width: int = 800,
-        model: str | None = None,
-        tip_limit: float | None = None,
+        **overrides: Any,
     ) -> None:
         self.render_width = check_render(render_mode, self.metadata["render_modes"], render_width)
         self.render_mode = render_mode
@@ -89,20 +91,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             from pool_env.render import RENDER_FPS
 
             self.metadata = {**self.metadata, "render_fps": RENDER_FPS[render_mode]}
-        self.config: GameConfig = make_config(
-            table, scene, n_balls, aim, aim_range, speed_range, noise, end_on_miss, max_shots,
-            reward_pot, reward_scratch, reward_no_contact, reward_shaping, game, 1, end_on_foul,
-            break_speed_range, reward_foul, reward_win, model, tip_limit,
-        )  # fmt: skip
+        self.config: GameConfig = make_config(config, 1, **overrides)
         config = self.config
-        self.game, self.end_on_foul = config.game, config.end_on_foul
-        self.table = config.table
-        self.aim: AimMode = config.aim
-        self.aim_range, self.speed_range = config.aim_range, config.speed_range
-        self.noise, self.end_on_miss = config.noise, config.end_on_miss
-        self.max_shots, self.reward_weights = config.max_shots, config.reward_weights
-        self.n_object_balls = config.n_object_balls
-        self.cue = CUE
         n = config.n_balls
         self.observation_space = gym.spaces.Box(-1.0, 1.0, (config.observation_size,), np.float32)
         self.action_space = gym.spaces.Box(-1.0, 1.0, (config.action_size,), np.float32)
@@ -229,7 +219,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         if self._renderer is None:
             from pool_env.render import Renderer
 
-            self._renderer = Renderer(self.table, self.render_width)
+            self._renderer = Renderer(self.config.table, self.render_width)
         return self._renderer
 
     def _frame(self) -> NDArray[np.uint8]:

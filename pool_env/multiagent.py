@@ -43,14 +43,13 @@ from numpy.typing import NDArray
 from pool_env.extras import require
 from pool_env.game import step as game_step
 from pool_env.game.checks import check_actions, check_options, check_seed
-from pool_env.game.config import GameConfig, make_config
+from pool_env.game.config import GameConfig, PoolConfig, default_config, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.kernels import wpa
 from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TRUNCATED
 from pool_env.game.state import GameState, new_state
 from pool_env.registration import ROLL_IDS
-from pool_env.sim.table import Table
 
 AECEnv = require("pettingzoo", "multiagent", "pool_env.multiagent").AECEnv
 AGENTS = ("player_0", "player_1")
@@ -69,12 +68,12 @@ class PoolDuelEnv(AECEnv):
 
     Args:
         game: ``"nine"`` or ``"eight"``.
-        table: The table (default ``Table()``), or ``Table`` keyword arguments.
-        max_shots: Shots of both players after which the rack is truncated (default: the
-            game id's ``max_episode_steps``).
-        **kwargs: Any other :func:`pool_env.game.config.make_config` argument (``aim``,
-            ``speed_range``, ``noise`` drawn from the generator seeded by
-            ``reset(seed=...)``, ``break_speed_range``, ...); the defaults are the game id's.
+        config: The sectioned config (:class:`pool_env.PoolConfig`); ``None``: the game
+            id's (its scene and model), truncated after the id's ``max_episode_steps``
+            shots of both players.
+        **overrides: Keyword overrides of the config, as :class:`pool_env.PoolEnv` takes
+            them (``table``, ``aim``, ``speed_range``, ``noise`` drawn from the generator
+            seeded by ``reset(seed=...)``, ``break_speed_range``, ``max_shots``, ...).
 
     Raises:
         ValueError: On an unknown game or a bad argument.
@@ -89,23 +88,15 @@ class PoolDuelEnv(AECEnv):
     def __init__(
         self,
         game: str = "nine",
-        table: Table | dict[str, Any] | None = None,
-        max_shots: int | None = None,
-        **kwargs: Any,
+        config: PoolConfig | None = None,
+        **overrides: Any,
     ) -> None:
         super().__init__()
         if game not in _GAME_IDS:
             raise ValueError(f"game must be 'nine' or 'eight', got {game!r}")
-        self.game = game
         registered, steps = _GAME_IDS[game]
-        self.config: GameConfig = make_config(
-            **{**registered, **kwargs}, table=table, game=game, players=2,
-            max_shots=steps if max_shots is None else max_shots,
-        )  # fmt: skip
-        self.table = self.config.table
-        self.speed_range = self.config.speed_range
-        self.noise = self.config.noise
-        self.max_shots = self.config.max_shots
+        base = default_config(**registered, max_shots=steps) if config is None else config
+        self.config: GameConfig = make_config(base, 2, game=game, **overrides)
         self.possible_agents = list(AGENTS)
         n = self.config.n_balls
         self._action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)

@@ -24,7 +24,7 @@ from pool_env.game.checks import (
     check_seeds,
     parse_count,
 )
-from pool_env.game.config import CUE, GameConfig, make_config
+from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import batch_info, potted_lookup
 from pool_env.game.rack import rack_dict
 from pool_env.game.state import GameState, new_state
@@ -125,7 +125,8 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         parallel: bool | None = None,
         render_mode: str | None = None,
         render_width: int = 800,
-        **env_kwargs: Any,
+        config: PoolConfig | None = None,
+        **overrides: Any,
     ) -> None:
         if num_envs is None or parse_count("num_envs", num_envs) is None:
             raise ValueError(f"num_envs must be a positive integer, got {num_envs!r}")
@@ -135,18 +136,10 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self.metadata = {**type(self).metadata, "autoreset_mode": self.autoreset_mode}
         self.parallel = parallel
         self.max_episode_steps = parse_count("max_episode_steps", max_episode_steps)
-        if "players" in env_kwargs:  # PoolEnv has one agent: so does each table here
-            raise ValueError("players is not an argument of PoolEnv: see pool_env.multiagent")
-        self.config: GameConfig = make_config(**env_kwargs).with_shot_limit(self.max_episode_steps)
+        self.config: GameConfig = make_config(config, 1, **overrides).with_shot_limit(
+            self.max_episode_steps
+        )
         config = self.config
-        self.table = config.table
-        self.aim, self.aim_range = config.aim, config.aim_range
-        self.speed_range, self.noise = config.speed_range, config.noise
-        self.end_on_miss, self.max_shots = config.end_on_miss, config.max_shots
-        self.game, self.end_on_foul = config.game, config.end_on_foul
-        self.reward_weights = config.reward_weights
-        self.n_object_balls = config.n_object_balls
-        self.cue = CUE
 
         self.num_envs = int(num_envs)
         n = config.n_balls
@@ -263,7 +256,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         if self._renderer is None:
             from pool_env.render import Renderer
 
-            self._renderer = Renderer(self.table, self.render_width)
+            self._renderer = Renderer(self.config.table, self.render_width)
         state = self._state
         return tuple(
             self._renderer.frame(p, o) for p, o in zip(state.positions, state.on_table, strict=True)

@@ -96,10 +96,10 @@ def test_unrepresentable_shot_gives_none() -> None:
 def test_decode_observation_round_trip() -> None:
     env = gym.make("pool_env/NineBallRoll-v1")
     obs, _ = env.reset(seed=1)
-    pos, on = decode_observation(obs, env.unwrapped.table)
+    pos, on = decode_observation(obs, env.unwrapped.config.table)
     assert np.array_equal(on, env.unwrapped.on_table)
     assert np.max(np.abs(pos - env.unwrapped.positions)) < 1e-6
-    pool_env.shoot(env.unwrapped.table, pos, 0.0, 0.0)  # a touching rack decodes valid
+    pool_env.shoot(env.unwrapped.config.table, pos, 0.0, 0.0)  # a touching rack decodes valid
 
 
 def test_predict_shapes_and_state() -> None:

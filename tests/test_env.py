@@ -322,7 +322,8 @@ def test_long_random_rollouts_stay_in_the_observation_space(
         assert on[0]  # the cue ball is always back on the table
         assert reward == len(info["potted"]) - info["scratch"]
         assert info["is_success"] == (not on[1:].any())
-        pool_env.shoot(raw.table, raw.positions[on], 0.0, 0.0)  # legal: inside, apart, not potted
+        # legal: inside, apart, not potted
+        pool_env.shoot(raw.config.table, raw.positions[on], 0.0, 0.0)
         if terminated or truncated:
             obs, _ = env.reset()
             assert env.observation_space.contains(obs)
@@ -350,12 +351,11 @@ def test_unwrapped_exposes_what_agents_need() -> None:
     env.reset(seed=0)
     raw = env.unwrapped
     assert isinstance(raw, PoolEnv)
-    assert isinstance(raw.table, Table)
-    assert raw.cue == 0
-    assert raw.aim == "cut"
-    assert raw.aim_range == (-1.0, 1.0)
-    assert raw.speed_range == (0.45, 4.5)
-    assert raw.n_object_balls == 1
+    assert isinstance(raw.config.table, Table)
+    assert raw.config.aim == "cut"
+    assert raw.config.aim_range == (-1.0, 1.0)
+    assert raw.config.speed_range == (0.45, 4.5)
+    assert raw.config.n_object_balls == 1
     assert raw.positions.shape == (2, 2)
     raw.positions[0] = 0.0  # a copy: the state cannot be changed through it
     assert raw.positions[0, 0] != 0.0

@@ -228,7 +228,7 @@ def test_ball_in_hand_on_an_occupied_spot_goes_to_the_nearest_free_point() -> No
     np.testing.assert_allclose(got, [1.0 + 2 * R + CLEARANCE, 0.6], rtol=0, atol=1e-9)
     others = env.unwrapped.on_table.copy()
     others[0] = False
-    want = free_spot(env.unwrapped.table, env.unwrapped.positions, others, target)
+    want = free_spot(env.unwrapped.config.table, env.unwrapped.positions, others, target)
     np.testing.assert_array_equal(got, want)  # the one placement search, deterministic
 
 

@@ -98,7 +98,7 @@ def test_thirty_degree_cut_drops_in_the_named_corner(cut_deg: float) -> None:
 
 def test_speed_reaches_the_pocket_but_is_not_maximal() -> None:
     env = _one_ball_env()
-    table = env.unwrapped.table
+    table = env.unwrapped.config.table
     positions = _cut_layout(np.array([0.6, 0.5]), CORNER_TARGET, 30.0, 0.5)
     agent, info, _ = _play(env, positions)
     shot, speed = agent.last_plan["shot"], agent.last_plan["speed"]
@@ -109,7 +109,7 @@ def test_speed_reaches_the_pocket_but_is_not_maximal() -> None:
     assert speed == pytest.approx(math.sqrt(v_contact**2 + 2 * a * shot.cue_distance), 1e-12)
     assert info["speed"] == pytest.approx(speed, rel=1e-6)
     assert info["potted"] == (1,)
-    assert speed < 0.25 * env.unwrapped.speed_range[1]
+    assert speed < 0.25 * env.unwrapped.config.speed_range[1]
 
 
 @pytest.mark.parametrize("cut_deg", [0.0, 30.0])
@@ -216,13 +216,13 @@ def test_ghost_ball_features_by_hand() -> None:
     per = GhostBallFeatures.PER_SHOT
     rows = obs[6:].reshape(6, per)
     diag = math.hypot(L, W)
-    table = env.unwrapped.table
+    table = env.unwrapped.config.table
     side_r = math.hypot(2 * R, SIDE_MOUTH / 2)
     travel = 0.8 - (side_r - R)  # down to the side circle centred R behind the rail
     a, e = table.deceleration, table.e_ball
     v_contact = math.sqrt(0.3**2 + 2 * a * travel) / ((1 + e) / 2)
     speed = math.sqrt(v_contact**2 + 2 * a * (0.4 - 2 * R))
-    lo, hi = env.unwrapped.speed_range
+    lo, hi = env.unwrapped.config.speed_range
     assert lo < speed < hi
     expected = [1, 1, 0, 1, (0.4 - 2 * R) / diag, (0.8 - R + 2 * R) / diag, 1,
                 2 * (speed - lo) / (hi - lo) - 1]  # fmt: skip
@@ -245,7 +245,7 @@ def test_cue_ball_trace_predicts_the_simulators_scratches() -> None:
     from agents.baselines.trace import cue_ball_scratches
 
     env = gym.make(ONE, table=CIRCLES)  # rails the whole length, as the trace assumes
-    table = env.unwrapped.table
+    table = env.unwrapped.config.table
     mouths = pocket_mouths(table)
     agree = scratches = n = 0
     for seed in range(120):

@@ -16,7 +16,7 @@ TOWARD_CORNER = -3 * math.pi / 4
 
 
 def _speed_action(env: PoolDuelEnv, speed: float) -> float:
-    lo, hi = env.speed_range
+    lo, hi = env.config.speed_range
     return 2.0 * (speed - lo) / (hi - lo) - 1.0
 
 
@@ -50,8 +50,8 @@ def test_a_break_that_touches_nothing_gives_the_opponent_ball_in_hand() -> None:
     # the head string (40), break (41), open table (42), own fouls (43), opponent's (44).
     assert env.agent_selection == "player_0" and env.observe("player_0")[39] == 1.0
     # Cue ball placed in the kitchen, shot softly into the head rail: it never reaches the rack.
-    r = env.table.ball_radius
-    ax = 2 * (0.3 - r) / (env.table.length / 4 - r) - 1  # the break's placement: the kitchen
+    r = env.config.table.ball_radius
+    ax = 2 * (0.3 - r) / (env.config.table.length / 4 - r) - 1  # the break's placement: the kitchen
     env.step(np.array([-1.0, -1.0, ax, 0.0, 0.0], np.float32))
     assert env.infos["player_1"]["foul"] == "illegal_break"
     assert env.agent_selection == "player_1"
@@ -154,8 +154,8 @@ def test_an_opponent_failure_takes_the_agents_shot_back(policy, match: str) -> N
     env = VersusPolicyEnv(opponent=_miss_then(policy), game="nine", aim="absolute",
                           break_speed_range=(0.5, 10.0))  # fmt: skip
     env.reset(seed=0)
-    r = env.duel.table.ball_radius
-    ax = 2 * (0.3 - r) / (env.duel.table.length / 4 - r) - 1
+    r = env.duel.config.table.ball_radius
+    ax = 2 * (0.3 - r) / (env.duel.config.table.length / 4 - r) - 1
     soft = np.array([-1.0, -1.0, ax, 0.0, 0.0], np.float32)  # into the head rail
     before = _state_of(env)
     with pytest.raises(ValueError, match=match):
@@ -251,8 +251,8 @@ def test_versus_policy_truncates_at_the_shot_limit_inside_the_opponents_turn() -
                           game="nine", max_shots=2, aim="absolute",
                           break_speed_range=(0.5, 10.0))  # fmt: skip
     env.reset(seed=0)
-    r = env.duel.table.ball_radius
-    ax = 2 * (0.3 - r) / (env.duel.table.length / 4 - r) - 1
+    r = env.duel.config.table.ball_radius
+    ax = 2 * (0.3 - r) / (env.duel.config.table.length / 4 - r) - 1
     _, reward, term, trunc, info = env.step(np.array([-1.0, -1.0, ax, 0, 0], np.float32))
     assert info["opponent_shots"] == 1 and env.duel.shots == 2
     assert trunc and not term and reward == 0.0
@@ -290,7 +290,7 @@ def test_the_opponent_winning_in_its_turn_gives_the_agent_minus_one() -> None:
     # The agent misses everything (a foul); the opponent, with ball in hand, places the cue
     # ball on the 9's diagonal and pots it: the agent's step ends the episode with -1.
     def potter(obs: np.ndarray) -> np.ndarray:
-        table = env.duel.table
+        table = env.duel.config.table
         r = table.ball_radius
         x = y = 0.45 / math.sqrt(2)
         u = 2 * (x - r) / (table.length - 2 * r) - 1

@@ -95,10 +95,10 @@ def test_the_v0_ids_are_the_roll_ids_under_their_old_names(old: str, new: str) -
 def test_ids_configure_the_scene(env_id: str, n_objects: int, terminal_on_miss: bool) -> None:
     env = gym.make(env_id)
     assert env.observation_space.shape == (3 * (n_objects + 1),)
-    assert env.unwrapped.end_on_miss is terminal_on_miss
+    assert env.unwrapped.config.end_on_miss is terminal_on_miss
     env = gym.make(env_id, aim="absolute", max_shots=7)  # any argument through make()
-    assert env.unwrapped.aim == "absolute"
-    assert env.unwrapped.max_shots == 7
+    assert env.unwrapped.config.aim == "absolute"
+    assert env.unwrapped.config.max_shots == 7
 
 
 @pytest.mark.parametrize("render_mode", [None, "rgb_array"])

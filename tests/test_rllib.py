@@ -35,7 +35,7 @@ def test_make_env_gives_the_native_vector_env_in_next_step_mode() -> None:
     env = make_env({"num_envs": 4, "env_kwargs": {"aim": "relative"}}, env_id=ONE)
     assert isinstance(env, PoolVectorEnv)
     assert env.num_envs == 4
-    assert env.aim == "relative"
+    assert env.config.aim == "relative"
     assert env.autoreset_mode == AutoresetMode.NEXT_STEP
     assert env.max_episode_steps == 10  # the id's TimeLimit, as gym.make(id)
     single = make_env({"env_id": ONE})

@@ -124,7 +124,7 @@ def test_a_crowded_scene_is_decided_at_construction_and_every_reset_succeeds() -
     env = PoolEnv(table=small, n_balls=11)
     for seed in range(200):
         env.reset(seed=seed)
-        check_layout(env.table, env.positions)
+        check_layout(env.config.table, env.positions)
     with pytest.raises(ValueError, match=r"n_balls=13: cannot lay out the scene.*fewer balls"):
         PoolEnv(table=small, n_balls=13)  # 14 balls do not fit: refused before any reset
 

@@ -220,7 +220,7 @@ def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str) -> N
         on, rack = (np.repeat(a, 200, axis=0) for a in (state.on_table, state.rack))
         ptrs = np.zeros((200, 3), dtype=np.uintp)
         rows = np.arange(200)
-        params, pockets = env.config.params, env.table.pockets
+        params, pockets = env.config.params, env.config.table.pockets
         unplaced = place_in_hand(params, pockets, actions[:, :width], rows, positions, on, rack)
         shots = executed_rule_shots(params, pockets, actions[:, :width], rows, positions, on,
                                     ptrs, rack)  # fmt: skip

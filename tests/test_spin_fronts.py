@@ -70,8 +70,8 @@ def test_the_rllib_creator_builds_spin_tables() -> None:
     from agents.integrations.rllib_env import make_env
 
     env = make_env({"num_envs": 3, "env_kwargs": {"noise": (0.0, 0.0, 0.05)}}, env_id=ONE)
-    assert isinstance(env, PoolVectorEnv) and env.table.model == "spin"
-    assert env.single_action_space.shape == (4,) and env.noise == (0.0, 0.0, 0.05)
+    assert isinstance(env, PoolVectorEnv) and env.config.table.model == "spin"
+    assert env.single_action_space.shape == (4,) and env.config.noise == (0.0, 0.0, 0.05)
 
 
 def test_agents_make_env_and_factory_take_a_spin_id() -> None:

@@ -147,7 +147,7 @@ def test_a_scratch_with_the_head_spot_taken_matches_pool_env() -> None:
     assert info["scratch"].all()
     np.testing.assert_array_equal(obs[1], expected[0])
     np.testing.assert_array_equal(env.positions[1], single.positions)
-    assert np.hypot(*(env.positions[1, 0] - HEAD)) > 2 * single.table.ball_radius
+    assert np.hypot(*(env.positions[1, 0] - HEAD)) > 2 * single.config.table.ball_radius
 
 
 @pytest.mark.parametrize("env_id", list(ENV_IDS))
@@ -364,4 +364,4 @@ def test_a_crowded_scene_never_fails_in_an_autoreset() -> None:
     for _ in range(30):
         env.step(rng.uniform(-1, 1, (16, 2)))
         for positions, on in zip(env.positions, env.on_table, strict=True):
-            pool_env.check_layout(env.table, positions[on])
+            pool_env.check_layout(env.config.table, positions[on])

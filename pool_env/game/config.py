@@ -1,8 +1,9 @@
 """The fixed model of the decision process: every environment argument, parsed once.
 
-:func:`make_config` turns the ``gym.make`` keywords into a frozen :class:`GameConfig`; the
+:func:`make_config` parses a sectioned :class:`~pool_env.game.sections.PoolConfig` (with
+keyword overrides: the ``gym.make`` keywords) into a frozen :class:`GameConfig`; the
 changing part (ball positions, generators, shot counts) is :class:`pool_env.game.state.GameState`.
-Both fronts build their config here, so defaults, checks and messages exist once.
+Every front builds its config here, so defaults, checks and messages exist once.
 """
 
 from __future__ import annotations
@@ -18,8 +19,26 @@ from pool_env.game import checks
 from pool_env.game.kernels import params as kp
 from pool_env.game.rules import CUE as RULES_CUE
 from pool_env.game.rulesets import RULESETS, Ruleset, ruleset_for
-from pool_env.game.scenes import ScenePlan, SceneSpec, placement, plan_scene
+from pool_env.game.rulesets.wpa import DEFAULT_BREAK_SPEED_RANGE
+from pool_env.game.scenes import ScenePlan, placement, plan_scene
+from pool_env.game.sections import DEFAULT_SPEED_RANGE, PoolConfig, default_config
 from pool_env.sim.table import Table
+
+__all__ = [
+    "AIM_MODES",
+    "CUE",
+    "DEFAULT_AIM_RANGE",
+    "DEFAULT_BREAK_SPEED_RANGE",
+    "DEFAULT_SPEED_RANGE",
+    "GAMES",
+    "GameConfig",
+    "PoolConfig",
+    "default_config",
+    "default_tip_limit",
+    "kernel_params",
+    "make_config",
+    "parse_tip_limit",
+]
 
 AimMode = Literal["absolute", "relative", "cut"]
 
@@ -43,15 +62,6 @@ DEFAULT_AIM_RANGE: dict[str, tuple[float, float]] = {
     "relative": (-math.radians(10.0), math.radians(10.0)),
     "cut": (-1.0, 1.0),
 }
-
-#: Default cue speed range (m/s): the shots real play uses, from Dr. Dave Alciatore's
-#: "typical speeds" FAQ (slow 0.45-0.89, medium 0.89-1.9, fast 1.9-3.2, power 3.2-4.5 m/s;
-#: research/REALISM.md). A soft touch rolls ~1 m, a power shot ~100 m if nothing stops it.
-DEFAULT_SPEED_RANGE = (0.45, 4.5)
-
-#: Default break speed range (m/s) of the rules' break shot: a pro breaks at 11-13 m/s,
-#: amateurs lower (Dr. Dave's "typical speeds" FAQ; research/REALISM.md).
-DEFAULT_BREAK_SPEED_RANGE = (8.0, 12.0)
 
 #: The games (:data:`pool_env.game.rulesets.RULESETS`), in the order of their codes in the
 #: kernels (:mod:`.kernels.wpa`).
@@ -104,6 +114,7 @@ class GameConfig:
             components map onto (:func:`default_tip_limit` by default).
         params: All of the above that the kernels read, as one read-only float64 array
             (:mod:`pool_env.game.kernels.params` names its entries).
+        source: The sectioned config this was parsed from (``None``: built by hand).
         ruleset: The game's :class:`~pool_env.game.rulesets.base.Ruleset` (from ``game``):
             what the step, the observation and the ``info`` ask wherever games differ.
     """
@@ -125,6 +136,7 @@ class GameConfig:
     break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
     rule_rewards: tuple[float, float] = (-1.0, 1.0)
     tip_limit: float | None = None
+    source: PoolConfig | None = field(default=None, repr=False, compare=False)
     ruleset: Ruleset = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -212,75 +224,44 @@ def kernel_params(
     return params
 
 
-def make_config(
-    table: Table | dict[str, Any] | None = None,
-    scene: SceneSpec = "random",
-    n_balls: int | None = None,
-    aim: AimMode = "cut",
-    aim_range: tuple[float, float] | None = None,
-    speed_range: tuple[float, float] = DEFAULT_SPEED_RANGE,
-    noise: tuple[float, float] | None = None,
-    end_on_miss: bool = False,
-    max_shots: int | None = None,
-    reward_pot: float = 1.0,
-    reward_scratch: float = -1.0,
-    reward_no_contact: float = 0.0,
-    reward_shaping: float = 0.0,
-    game: str = "solitaire",
-    players: int = 1,
-    end_on_foul: bool = False,
-    break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE,
-    reward_foul: float = -1.0,
-    reward_win: float = 1.0,
-    model: str | None = None,
-    tip_limit: float | None = None,
-) -> GameConfig:
-    """Parse and check the environment arguments (see :class:`pool_env.PoolEnv`).
+def make_config(config: PoolConfig | None = None, players: int = 1, **overrides: Any) -> GameConfig:
+    """Check and parse an environment's config (see :class:`pool_env.PoolEnv`).
+
+    Args:
+        config: The sectioned config (``None``: :func:`~pool_env.game.sections.default_config`).
+        players: 1 (one agent shoots every shot) or 2 (the turn passes by the rules): the
+            front's, not a user's choice.
+        **overrides: Keyword overrides of ``config`` (:meth:`PoolConfig.override`).
 
     Raises:
         ValueError: Naming the first bad argument; a scene that cannot fit on the table is
             refused here, never at a reset.
     """
-    parsed_table = checks.parse_table(table, model)
+    if config is not None and not isinstance(config, PoolConfig):
+        raise ValueError(f"config must be a pool_env.PoolConfig or None, got {config!r}")
+    source = (config or default_config()).override(**overrides)
+    task, rules = source.task, source.rules
+    parsed_table = checks.parse_table(source.table.table, source.table.model)
     spin = parsed_table.has_spin
-    if aim not in AIM_MODES:
-        raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {aim!r}")
-    aims = checks.parse_range("aim_range", aim_range or DEFAULT_AIM_RANGE[aim], None)
-    speeds = checks.parse_range("speed_range", speed_range, 0.0)
-    sigmas = checks.parse_noise(noise, spin)
-    limit = parse_tip_limit(parsed_table, tip_limit)
-    miss = checks.parse_bool("end_on_miss", end_on_miss)
-    shots = checks.parse_count("max_shots", max_shots)
+    if task.aim not in AIM_MODES:
+        raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {task.aim!r}")
+    aims = checks.parse_range("aim_range", task.aim_range or DEFAULT_AIM_RANGE[task.aim], None)
+    speeds = checks.parse_range("speed_range", task.speed_range, 0.0)
+    sigmas = checks.parse_noise(source.noise.sigmas, spin)
+    limit = parse_tip_limit(parsed_table, task.tip_limit)
+    miss = checks.parse_bool("end_on_miss", task.end_on_miss)
+    shots = checks.parse_count("max_shots", task.max_shots)
     weights = tuple(
-        checks.parse_float(name, value)
-        for name, value in (
-            ("reward_pot", reward_pot),
-            ("reward_scratch", reward_scratch),
-            ("reward_no_contact", reward_no_contact),
-            ("reward_shaping", reward_shaping),
-        )
+        checks.parse_float(name, getattr(task, name))
+        for name in ("reward_pot", "reward_scratch", "reward_no_contact", "reward_shaping")
     )
-    ruleset = ruleset_for(game)
+    ruleset = ruleset_for(rules.game)
     if players not in (1, 2) or isinstance(players, bool):
         raise ValueError(f"players must be 1 or 2, got {players!r}")
-    foul_ends = checks.parse_bool("end_on_foul", end_on_foul)
-    breaks = checks.parse_range("break_speed_range", break_speed_range, 0.0)
-    rule_rewards = (
-        checks.parse_float("reward_foul", reward_foul),
-        checks.parse_float("reward_win", reward_win),
-    )
-    plan = plan_scene(scene, parsed_table, n_balls)
+    foul_ends, breaks, rule_rewards = ruleset.parse_rules(rules)
+    plan = plan_scene(task.scene, parsed_table, task.n_balls)
     ruleset.check(plan, parsed_table, miss, foul_ends, players)
-    params = kernel_params(
-        parsed_table,
-        aim,
-        aims,
-        speeds,
-        sigmas,
-        weights,
-        miss,
-        shots or 0,  # type: ignore[arg-type]
-    )
+    params = kernel_params(parsed_table, task.aim, aims, speeds, sigmas, weights, miss, shots or 0)  # type: ignore[arg-type]
     if limit is not None:
         params = params.copy()
         params[kp.TIP_LIMIT] = limit
@@ -289,7 +270,7 @@ def make_config(
     return GameConfig(
         table=parsed_table,
         scene=plan,
-        aim=aim,
+        aim=task.aim,  # type: ignore[arg-type]
         aim_range=aims,
         speed_range=speeds,
         noise=sigmas,
@@ -298,12 +279,13 @@ def make_config(
         shot_limit=shots or 0,
         reward_weights=weights,  # type: ignore[arg-type]
         params=params,
-        game=game,
+        game=rules.game,
         players=players,
         end_on_foul=foul_ends,
         break_speed_range=breaks,
         rule_rewards=rule_rewards,
         tip_limit=limit,
+        source=source,
     )
 
 

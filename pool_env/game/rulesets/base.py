@@ -20,6 +20,7 @@ A new game is a new subclass in its own module of this package and a name in
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any, NamedTuple, Protocol
 
 import numpy as np
@@ -70,6 +71,28 @@ Executed = tuple[NDArray[np.float64], NDArray[np.float64], Any]
 Judged = tuple[NDArray[np.float64], NDArray[np.bool_], NDArray[np.int64]]
 
 
+@dataclass(frozen=True)
+class RulesSection:
+    """A game's section of the config (:mod:`pool_env.game.sections`): its name alone here.
+
+    A game with options of its own subclasses it (:class:`~.wpa.WpaRules`) and names the
+    subclass as its :attr:`Ruleset.section`.
+
+    Attributes:
+        game: The game (``"solitaire"``, ``"nine"``, ``"eight"``).
+    """
+
+    game: str = "solitaire"
+
+
+class RuleOptions(NamedTuple):
+    """A rules section parsed: what :class:`~pool_env.game.config.GameConfig` keeps of it."""
+
+    end_on_foul: bool
+    break_speed_range: tuple[float, float]
+    rule_rewards: tuple[float, float]
+
+
 class ConfigView(Protocol):
     """What a ruleset reads of a :class:`~pool_env.game.config.GameConfig` (which holds it)."""
 
@@ -104,6 +127,7 @@ class Ruleset:
             ball in hand), read by ``PoolEnv.rack`` and ``options["rules"]``.
         action_width: Action components before a spin table's two tip components.
         info_keys: The ``info`` keys this game adds to every step's.
+        section: The game's section of the config (its rule options and their defaults).
     """
 
     name: str = ""
@@ -111,6 +135,7 @@ class Ruleset:
     has_rack: bool = False
     action_width: int = 2
     info_keys: tuple[str, ...] = ()
+    section: type[RulesSection] = RulesSection
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"
@@ -167,6 +192,10 @@ class Ruleset:
             ValueError: Always here: this game has no ball in hand.
         """
         raise ValueError("the cue ball is placed in hand under rules (game='nine' or 'eight')")
+
+    def parse_rules(self, section: RulesSection) -> RuleOptions:
+        """Check and parse the game's section: no options here (no fouls, no break)."""
+        return RuleOptions(False, (0.0, 0.0), (0.0, 0.0))
 
     def check(
         self, scene: ScenePlan, table: Table, end_on_miss: bool, end_on_foul: bool, players: int

@@ -14,11 +14,13 @@ is a name, a code and the number of object balls, so the two games are two insta
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.checks import parse_bool, parse_float, parse_range
 from pool_env.game.components import unit_component
 from pool_env.game.contact import read_first
 from pool_env.game.kernels import params as kp
@@ -46,7 +48,9 @@ from pool_env.game.rulesets.base import (
     Executed,
     Judged,
     Outcome,
+    RuleOptions,
     Ruleset,
+    RulesSection,
     place_free,
 )
 from pool_env.game.scenes import ScenePlan
@@ -69,7 +73,33 @@ RULE_COLUMNS: dict[str, tuple[str, int, type]] = {
 #: :data:`RULE_COLUMNS`.
 RULE_KEYS: tuple[str, ...] = ("foul", "legal", "loss", "turn_over", *RULE_COLUMNS)
 
+#: Default break speed range (m/s) of the rules' break shot: a pro breaks at 11-13 m/s,
+#: amateurs lower (Dr. Dave's "typical speeds" FAQ; ``docs/physics.md``).
+DEFAULT_BREAK_SPEED_RANGE = (8.0, 12.0)
+
 _FOULS = np.array(FOUL_NAMES, dtype=object)
+
+
+@dataclass(frozen=True)
+class WpaRules(RulesSection):
+    """The rules section of 9-ball and 8-ball.
+
+    Attributes:
+        game: ``"nine"`` or ``"eight"``.
+        end_on_foul: A foul, or a legal shot that does not keep the table, ends the
+            episode (run-out mode); else play goes on (practice mode).
+        break_speed_range: Speeds (m/s) of ``action[1] = -1`` and ``+1`` on a break.
+        reward_foul: Reward of a foul.
+        reward_win: Reward of a won rack (a lost rack gives ``-reward_win``).
+    """
+
+    game: str = "nine"
+    end_on_foul: bool = False
+    break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
+    reward_foul: float = -1.0
+    reward_win: float = 1.0
+
+
 _LOSSES = np.array(LOSS_NAMES, dtype=object)
 
 
@@ -85,6 +115,7 @@ class WpaGame(Ruleset):
     has_rack = True
     action_width = 5
     info_keys = RULE_KEYS
+    section = WpaRules
 
     def __init__(self, name: str, code: int, n_objects: int) -> None:
         self.name, self.code, self.n_objects = name, code, n_objects
@@ -174,6 +205,16 @@ class WpaGame(Ruleset):
             unit_component("cue x", x, params[kp.X_LOW], x_high, clip),
             unit_component("cue y", y, params[kp.Y_LOW], params[kp.Y_HIGH], clip),
         )
+
+    def parse_rules(self, section: RulesSection) -> RuleOptions:
+        """Check the :class:`WpaRules` (``ValueError``, naming the first bad one)."""
+        assert isinstance(section, WpaRules)
+        return RuleOptions(
+            parse_bool("end_on_foul", section.end_on_foul),
+            parse_range("break_speed_range", section.break_speed_range, 0.0),
+            (parse_float("reward_foul", section.reward_foul),
+             parse_float("reward_win", section.reward_win)),
+        )  # fmt: skip
 
     def check(
         self, scene: ScenePlan, table: Table, end_on_miss: bool, end_on_foul: bool, players: int

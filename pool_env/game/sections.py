@@ -1,0 +1,232 @@
+"""The environment's configuration as sections: table, task, noise and the game's rules.
+
+Every front takes one :class:`PoolConfig` (``config=``, :func:`default_config` if none)
+and keyword overrides, in the manner of MuJoCo Playground's ``default_config()`` with
+overrides: ``PoolEnv(scene="one_ball", noise=(0.003, 0.05))`` is
+``PoolEnv(config=default_config().override(scene="one_ball", noise=(0.003, 0.05)))``.
+A keyword names a field of one section (:data:`KEYS` says which); a section's name takes
+the section itself, or a mapping of its fields (``task={"scene": "one_ball"}``). Two
+names are both a section and its main field: ``table`` (a :class:`~pool_env.Table` or
+a dict of its arguments) and ``noise`` (the sigmas).
+
+The sections hold the arguments as given; :func:`pool_env.game.config.make_config`
+checks and parses them into the :class:`~pool_env.game.config.GameConfig` the decision
+process runs on, which keeps its :class:`PoolConfig` as ``source``.
+
+The rules section belongs to the game: each ruleset names its own section type
+(:attr:`pool_env.game.rulesets.base.Ruleset.section`), so ``end_on_foul`` exists where a
+game has fouls, and ``game="nine"`` swaps the section for 9-ball's.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field, fields, replace
+from typing import Any
+
+from pool_env.game.rulesets import RULESETS, ruleset_for
+from pool_env.game.rulesets.base import RulesSection
+from pool_env.game.scenes import SceneSpec
+from pool_env.sim.table import Table
+
+#: Default cue speed range (m/s): the shots real play uses, from Dr. Dave Alciatore's
+#: "typical speeds" FAQ (slow 0.45-0.89, medium 0.89-1.9, fast 1.9-3.2, power 3.2-4.5 m/s;
+#: ``docs/physics.md``). A soft touch rolls ~1 m, a power shot ~100 m if nothing stops it.
+DEFAULT_SPEED_RANGE = (0.45, 4.5)
+
+
+@dataclass(frozen=True)
+class TableSection:
+    """The table and its model level.
+
+    Attributes:
+        table: A :class:`~pool_env.Table`, a dict of its arguments (a config file), or
+            ``None``: the default table.
+        model: ``"roll"`` or ``"spin"`` (the spin ids set it), or ``None``: the table's own.
+    """
+
+    table: Table | dict[str, Any] | None = None
+    model: str | None = None
+
+
+@dataclass(frozen=True)
+class TaskSection:
+    """The episode: the scene, how an action maps onto a shot, the rewards and the ends.
+
+    Attributes:
+        scene: A named scene (``"random"``, ``"one_ball"``, ``"nine_ball"``, ...), a list
+            of ball positions, or a function of the generator (``pool_env.SCENES``).
+        n_balls: Object balls of a random scene.
+        aim: ``"cut"``, ``"relative"`` or ``"absolute"``: what ``action[0]`` means.
+        aim_range: What ``action[0] = -1`` and ``+1`` map to (``None``: the aim's default).
+        speed_range: Cue ball speeds (m/s) of ``action[1] = -1`` and ``+1``.
+        tip_limit: Spin tables: the largest cue tip axis offset (fraction of ``R``);
+            ``None``: a half-radius contact, the miscue limit.
+        end_on_miss: A shot that pots nothing (or scratches) ends the episode.
+        max_shots: Shots after which the episode is truncated, or ``None``.
+        reward_pot: Reward per object ball potted.
+        reward_scratch: Reward when the cue ball drops.
+        reward_no_contact: Reward when the cue ball touches no object ball.
+        reward_shaping: Weight of the potential-based shaping term (0: none).
+    """
+
+    scene: SceneSpec = "random"
+    n_balls: int | None = None
+    aim: str = "cut"
+    aim_range: tuple[float, float] | None = None
+    speed_range: tuple[float, float] = DEFAULT_SPEED_RANGE
+    tip_limit: float | None = None
+    end_on_miss: bool = False
+    max_shots: int | None = None
+    reward_pot: float = 1.0
+    reward_scratch: float = -1.0
+    reward_no_contact: float = 0.0
+    reward_shaping: float = 0.0
+
+
+@dataclass(frozen=True)
+class NoiseSection:
+    """Execution noise: what the cue delivers against what the action asks.
+
+    Attributes:
+        sigmas: Gaussian sigmas ``(angle rad, speed m/s)``, on a spin table optionally
+            ``(angle, speed, tip)`` (tip in fractions of ``R``), or ``None``: no noise.
+    """
+
+    sigmas: tuple[float, ...] | None = None
+
+
+@dataclass(frozen=True)
+class PoolConfig:
+    """One environment's arguments, by section (see the module docstring).
+
+    Attributes:
+        table: The :class:`TableSection`.
+        task: The :class:`TaskSection`.
+        noise: The :class:`NoiseSection`.
+        rules: The game's rules section (``rules.game`` names the game).
+    """
+
+    table: TableSection = field(default_factory=TableSection)
+    task: TaskSection = field(default_factory=TaskSection)
+    noise: NoiseSection = field(default_factory=NoiseSection)
+    rules: RulesSection = field(default_factory=lambda: ruleset_for("solitaire").section())
+
+    def override(self, **overrides: Any) -> PoolConfig:
+        """This config with ``overrides`` applied (see the module docstring).
+
+        Raises:
+            ValueError: On a name that is no key or section, a section of the wrong type,
+                or a rule the config's game does not have.
+        """
+        config = self
+        if "game" in overrides or "rules" in overrides:  # the game first: it owns the rest
+            config = config._with_rules(overrides.pop("rules", None), overrides.pop("game", None))
+        for name, value in overrides.items():
+            config = config._with(name, value)
+        return config
+
+    def keys(self) -> dict[str, Any]:
+        """Every keyword and its value in this config (the flat view)."""
+        out: dict[str, Any] = {}
+        for section in (self.table, self.task, self.rules):
+            out.update((f.name, getattr(section, f.name)) for f in fields(section))
+        out["noise"] = self.noise.sigmas
+        return out
+
+    def _with(self, name: str, value: Any) -> PoolConfig:
+        if name in _WHOLE and isinstance(value, _WHOLE[name]):
+            return replace(self, **{name: value})
+        if name in ("task",) and isinstance(value, Mapping):
+            return self._update("task", dict(value))
+        if name == "noise" and isinstance(value, Mapping):
+            return replace(self, noise=_section(NoiseSection, "noise", dict(value)))
+        if name == "players":  # the front's: PoolEnv has one agent, PoolDuelEnv two
+            raise ValueError("players is not an argument of PoolEnv: see pool_env.multiagent")
+        if name not in KEYS:
+            raise ValueError(
+                f"unknown config key {name!r}: use one of {sorted(KEYS)} or a section "
+                f"({', '.join(SECTIONS)})"
+            )
+        section = KEYS[name]
+        if section == "rules":
+            return self._with_rules({name: value}, None)
+        if section == "noise":
+            return replace(self, noise=NoiseSection(sigmas=value))
+        return self._update(section, {name: value})
+
+    def _update(self, section: str, values: dict[str, Any]) -> PoolConfig:
+        current = getattr(self, section)
+        return replace(self, **{section: _section(type(current), section, values, current)})
+
+    def _with_rules(self, rules: Any, game: Any) -> PoolConfig:
+        values: dict[str, Any] = {}
+        if isinstance(rules, RulesSection):
+            if game is not None and game != rules.game:
+                raise ValueError(f"game={game!r} but rules is {rules!r}: give one game")
+            return replace(self, rules=rules)
+        if isinstance(rules, Mapping):
+            values = dict(rules)
+        elif rules is not None:
+            raise ValueError(f"rules must be a rules section or a mapping, got {rules!r}")
+        name = values.pop("game", game if game is not None else self.rules.game)
+        section_type = ruleset_for(name).section
+        current = self.rules if type(self.rules) is section_type else section_type()
+        for key in values:
+            if key not in {f.name for f in fields(section_type)}:
+                owners = [g for g, r in RULESETS.items() if key in _field_names(r.section)]
+                raise ValueError(
+                    f"{key} is a rule of game {' or '.join(map(repr, owners))}, not of "
+                    f"game={name!r}"
+                    if owners
+                    else f"unknown rules key {key!r}: use {sorted(_field_names(section_type))}"
+                )
+        return replace(self, rules=replace(current, game=name, **values))
+
+
+def default_config(**overrides: Any) -> PoolConfig:
+    """The default configuration (solitaire, random scene, default table), with overrides.
+
+    Examples:
+        >>> from pool_env import default_config
+        >>> config = default_config(scene="one_ball", game="solitaire")
+        >>> config.task.scene, config.rules.game
+        ('one_ball', 'solitaire')
+        >>> default_config(game="nine").rules.end_on_foul
+        False
+    """
+    return PoolConfig().override(**overrides)
+
+
+def _field_names(section_type: type) -> set[str]:
+    return {f.name for f in fields(section_type)}
+
+
+def _section(section_type: type, name: str, values: dict[str, Any], current: Any = None) -> Any:
+    unknown = set(values) - _field_names(section_type)
+    if unknown:
+        raise ValueError(
+            f"unknown {name} keys {sorted(unknown)}: use {sorted(_field_names(section_type))}"
+        )
+    return replace(current if current is not None else section_type(), **values)
+
+
+#: The sections by name, in the order of :class:`PoolConfig`.
+SECTIONS: tuple[str, ...] = ("table", "task", "noise", "rules")
+
+#: Sections given whole, by name.
+_WHOLE: dict[str, type] = {
+    "table": TableSection,
+    "task": TaskSection,
+    "noise": NoiseSection,
+    "rules": RulesSection,
+}
+
+#: Every keyword override and the section it sets (``noise`` sets the noise's sigmas;
+#: a rule key is valid where the config's game has it).
+KEYS: dict[str, str] = {
+    **{f.name: "table" for f in fields(TableSection)},
+    **{f.name: "task" for f in fields(TaskSection)},
+    "noise": "noise",
+    **{f.name: "rules" for r in RULESETS.values() for f in fields(r.section)},
+}
