@@ -18,8 +18,11 @@ import numpy as np
 import pytest
 
 import pool_env
-from pool_env import ENV_IDS, PoolEnv, Table
+from pool_env import ENV_IDS, Table
 from pool_env.game.config import DEFAULT_AIM_RANGE, DEFAULT_SPEED_RANGE, make_config
+from pool_env.game.rulesets.base import RulesSection
+from pool_env.game.rulesets.wpa import WpaRules
+from pool_env.game.sections import KEYS, NoiseSection, TableSection, TaskSection
 
 ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
@@ -46,19 +49,32 @@ def literal(cell: str) -> object:
 
 # Documented defaults that are not literals, and what the code's default must be for them.
 NON_LITERAL = {
-    "``Table()``": None,  # None: make_config builds Table()
+    "`Table()`": None,  # None: make_config builds Table()
     "scene's": None,  # None: the scene decides
-    "by ``aim``": None,  # None: DEFAULT_AIM_RANGE[aim]
+    "by `aim`": None,  # None: DEFAULT_AIM_RANGE[aim]
 }
 
 
-def test_poolenv_arguments_table_matches_the_signature() -> None:
-    rows = table_rows(inspect.getdoc(PoolEnv), "| Parameter | Type | Default |")
-    signature = inspect.signature(PoolEnv.__init__).parameters
-    documented = {row[0].strip("`"): row[2] for row in rows}
-    assert set(documented) == set(signature) - {"self"}  # every argument, no other
-    for name, cell in documented.items():
-        code = signature[name].default
+SPEC = ROOT / "docs" / "environments" / "specification.md"
+
+
+def _section_defaults() -> dict[str, object]:
+    """Every config key's default, from the section dataclasses (the one signature source)."""
+    defaults: dict[str, object] = {}
+    for section in (TableSection, TaskSection, WpaRules, RulesSection):  # game: solitaire's
+        defaults.update((f.name, f.default) for f in dataclasses.fields(section))
+    defaults["noise"] = NoiseSection().sigmas
+    return defaults
+
+
+def test_specification_table_matches_the_config_sections() -> None:
+    rows = table_rows(SPEC.read_text(), "| Section | Key | Type | Default |")
+    documented = {row[1].strip("`"): (row[0], row[3]) for row in rows}
+    assert set(documented) == set(KEYS)  # every key, no other
+    defaults = _section_defaults()
+    for name, (section, cell) in documented.items():
+        assert section.split()[0] == KEYS[name], (name, section)
+        code = defaults[name]
         expected = NON_LITERAL[cell] if cell in NON_LITERAL else literal(cell)
         assert code == expected, (name, cell, code)
         if isinstance(expected, tuple):  # and the same type: a tuple, not a list
@@ -72,14 +88,14 @@ def test_poolenv_arguments_table_matches_the_signature() -> None:
     assert config.aim_range == DEFAULT_AIM_RANGE["cut"]  # "by aim"
 
 
-def test_poolenv_spec_quotes_the_code_defaults() -> None:
-    doc = inspect.getdoc(PoolEnv)
+def test_specification_quotes_the_code_defaults() -> None:
+    doc = SPEC.read_text()
     low, high = DEFAULT_SPEED_RANGE
-    row = f"| ``speed_range[0]`` | ``speed_range[1]`` | {low} .. {high} m/s |"
+    row = f"| `speed_range[0]` | `speed_range[1]` | {low} .. {high} m/s |"
     assert row in doc
     table = Table()
     for name in ("mu_roll", "e_ball", "e_cushion"):
-        assert f"``{name} = {getattr(table, name)}``" in doc, name
+        assert f"`{name} = {getattr(table, name)}`" in doc, name
     description = doc.split("## Action Space")[0]
     assert "pockets with jaws" in description and "as capture circles" not in description
     assert table.jaws is not None and len(table.jaws) == 6
