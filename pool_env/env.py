@@ -19,6 +19,7 @@ from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TERMINATED, TRUNCATED
+from pool_env.game.sections import resolve
 from pool_env.game.state import GameState, new_state
 from pool_env.sim.result import ShotResult
 
@@ -91,7 +92,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             from pool_env.render import RENDER_FPS
 
             self.metadata = {**self.metadata, "render_fps": RENDER_FPS[render_mode]}
-        self.config: GameConfig = make_config(config, 1, **overrides)
+        self.config: GameConfig = make_config(resolve(config, overrides), 1)
         config = self.config
         n = config.n_balls
         self.observation_space = gym.spaces.Box(-1.0, 1.0, (config.observation_size,), np.float32)

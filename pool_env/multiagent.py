@@ -48,6 +48,7 @@ from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.kernels import wpa
 from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TRUNCATED
+from pool_env.game.sections import resolve
 from pool_env.game.state import GameState, new_state
 from pool_env.registration import ROLL_IDS
 
@@ -96,7 +97,7 @@ class PoolDuelEnv(AECEnv):
             raise ValueError(f"game must be 'nine' or 'eight', got {game!r}")
         registered, steps = _GAME_IDS[game]
         base = default_config(**registered, max_shots=steps) if config is None else config
-        self.config: GameConfig = make_config(base, 2, game=game, **overrides)
+        self.config: GameConfig = make_config(resolve(base, {**overrides, "game": game}), 2)
         self.possible_agents = list(AGENTS)
         n = self.config.n_balls
         self._action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)

@@ -27,6 +27,7 @@ from pool_env.game.checks import (
 from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import batch_info, potted_lookup
 from pool_env.game.rack import rack_dict
+from pool_env.game.sections import resolve
 from pool_env.game.state import GameState, new_state
 
 _OPTIONS = ("positions", "on_table", "reset_mask")
@@ -136,7 +137,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self.metadata = {**type(self).metadata, "autoreset_mode": self.autoreset_mode}
         self.parallel = parallel
         self.max_episode_steps = parse_count("max_episode_steps", max_episode_steps)
-        self.config: GameConfig = make_config(config, 1, **overrides).with_shot_limit(
+        self.config: GameConfig = make_config(resolve(config, overrides), 1).with_shot_limit(
             self.max_episode_steps
         )
         config = self.config

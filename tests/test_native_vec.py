@@ -84,9 +84,9 @@ def test_seed_attributes_methods_and_options() -> None:
     assert env.get_attr("np_random_seed") == [5, 6, 7]
     assert env.get_attr("shots", indices=[2]) == [0]
     assert env.env_is_wrapped(gym.Wrapper) == [False] * 3
-    assert env.has_attr("end_on_miss") and not env.has_attr("no_such_thing")
-    env.set_attr("end_on_miss", False)
-    assert env.get_attr("end_on_miss") == [False] * 3
+    assert env.has_attr("config") and not env.has_attr("no_such_thing")
+    env.set_attr("render_width", 640)
+    assert env.get_attr("render_width") == [640] * 3
     with pytest.raises(ValueError, match="share"):
         env.set_attr("end_on_miss", True, indices=[0])
     with pytest.raises(NotImplementedError):

@@ -21,6 +21,7 @@ from pool_env.game.config import make_config
 from pool_env.game.kernels import params as kp
 from pool_env.game.state import new_state
 from pool_env.sim.layouts import break_scene
+from tests.profiles import examples
 from tests.rules_harness import SCENES, rack_row
 from tests.wpa_reference import OPEN, SOLIDS, STRIPES, RackState
 
@@ -66,7 +67,7 @@ def rack_states(draw: st.DrawFn) -> RackState:
     )  # fmt: skip
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=examples(300), deadline=None)
 @given(rack_states())
 def test_constraints_read_the_rules_from_the_observation(state: RackState) -> None:
     config = CONFIGS[state.game]

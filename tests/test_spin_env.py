@@ -200,7 +200,7 @@ def test_bad_tip_actions_raise_and_change_nothing() -> None:
             env.step(np.array(bad))
     np.testing.assert_array_equal(env.unwrapped.positions, before)
     assert env.unwrapped.shots == 0
-    assert PoolEnv(scene="one_ball", noise=(0.1, 0.1, 0.0)).noise == (0.1, 0.1)  # zero: fine
+    assert PoolEnv(scene="one_ball", noise=(0.1, 0.1, 0.0)).config.noise == (0.1, 0.1)  # zero: fine
 
 
 @pytest.mark.parametrize("game", ["nine", "eight"])
@@ -237,5 +237,5 @@ def test_every_spin_id_is_its_roll_id_on_the_spin_table() -> None:
         assert kwargs == {**roll_kwargs, "model": "spin"} and steps == roll_steps
         spin = gym.make(spin_id(task)).unwrapped
         roll = PoolEnv(**roll_kwargs)
-        assert spin.table.model == "spin" and roll.table.model == "roll"
+        assert spin.config.table.model == "spin" and roll.config.table.model == "roll"
         assert spin.action_space.shape[0] == roll.action_space.shape[0] + 2

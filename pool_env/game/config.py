@@ -21,7 +21,7 @@ from pool_env.game.rules import CUE as RULES_CUE
 from pool_env.game.rulesets import RULESETS, Ruleset, ruleset_for
 from pool_env.game.rulesets.wpa import DEFAULT_BREAK_SPEED_RANGE
 from pool_env.game.scenes import ScenePlan, placement, plan_scene
-from pool_env.game.sections import DEFAULT_SPEED_RANGE, PoolConfig, default_config
+from pool_env.game.sections import DEFAULT_SPEED_RANGE, PoolConfig, default_config, resolve
 from pool_env.sim.table import Table
 
 __all__ = [
@@ -237,9 +237,7 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
         ValueError: Naming the first bad argument; a scene that cannot fit on the table is
             refused here, never at a reset.
     """
-    if config is not None and not isinstance(config, PoolConfig):
-        raise ValueError(f"config must be a pool_env.PoolConfig or None, got {config!r}")
-    source = (config or default_config()).override(**overrides)
+    source = resolve(config, overrides)
     task, rules = source.task, source.rules
     parsed_table = checks.parse_table(source.table.table, source.table.model)
     spin = parsed_table.has_spin

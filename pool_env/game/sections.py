@@ -121,7 +121,8 @@ class PoolConfig:
         """
         config = self
         if "game" in overrides or "rules" in overrides:  # the game first: it owns the rest
-            config = config._with_rules(overrides.pop("rules", None), overrides.pop("game", None))
+            game = overrides.pop("game", _UNSET)
+            config = config._with_rules(overrides.pop("rules", None), game)
         for name, value in overrides.items():
             config = config._with(name, value)
         return config
@@ -150,7 +151,7 @@ class PoolConfig:
             )
         section = KEYS[name]
         if section == "rules":
-            return self._with_rules({name: value}, None)
+            return self._with_rules({name: value}, _UNSET)
         if section == "noise":
             return replace(self, noise=NoiseSection(sigmas=value))
         return self._update(section, {name: value})
@@ -162,14 +163,14 @@ class PoolConfig:
     def _with_rules(self, rules: Any, game: Any) -> PoolConfig:
         values: dict[str, Any] = {}
         if isinstance(rules, RulesSection):
-            if game is not None and game != rules.game:
+            if game is not _UNSET and game != rules.game:
                 raise ValueError(f"game={game!r} but rules is {rules!r}: give one game")
             return replace(self, rules=rules)
         if isinstance(rules, Mapping):
             values = dict(rules)
         elif rules is not None:
             raise ValueError(f"rules must be a rules section or a mapping, got {rules!r}")
-        name = values.pop("game", game if game is not None else self.rules.game)
+        name = values.pop("game", self.rules.game if game is _UNSET else game)
         section_type = ruleset_for(name).section
         current = self.rules if type(self.rules) is section_type else section_type()
         for key in values:
@@ -182,6 +183,17 @@ class PoolConfig:
                     else f"unknown rules key {key!r}: use {sorted(_field_names(section_type))}"
                 )
         return replace(self, rules=replace(current, game=name, **values))
+
+
+def resolve(config: PoolConfig | None, overrides: dict[str, Any]) -> PoolConfig:
+    """``config`` (``None``: the default) with ``overrides``: what every front is given.
+
+    Raises:
+        ValueError: On a ``config`` that is no :class:`PoolConfig`, or a bad override.
+    """
+    if config is not None and not isinstance(config, PoolConfig):
+        raise ValueError(f"config must be a pool_env.PoolConfig or None, got {config!r}")
+    return (config or PoolConfig()).override(**overrides)
 
 
 def default_config(**overrides: Any) -> PoolConfig:
@@ -210,6 +222,8 @@ def _section(section_type: type, name: str, values: dict[str, Any], current: Any
         )
     return replace(current if current is not None else section_type(), **values)
 
+
+_UNSET = object()  # "game" not given (None is a value, refused by the ruleset lookup)
 
 #: The sections by name, in the order of :class:`PoolConfig`.
 SECTIONS: tuple[str, ...] = ("table", "task", "noise", "rules")
