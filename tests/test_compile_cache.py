@@ -181,9 +181,11 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
     assert not list(folder.rglob("*.tmp.*"))  # written through numba's atomic rename
 
 
-# The cache key: the folder's name hashes the sources of jit.KERNEL_MODULES, an explicit
-# list, so that an edit of any module with compiled code (or of constants compiled into it)
-# starts a fresh cache; a listed module missing from the key would let a stale kernel load.
+# The cache key: the folder's name hashes the sources of jit.KERNEL_MODULES, found in the
+# sources (jit.kernel_modules: kernels packages, modules compiling through jit, what they
+# import), so that an edit of any module with compiled code (or of constants compiled into it)
+# starts a fresh cache; a module missing from the key would let a stale kernel load. The
+# import graph (grimp) is the independent reading checked here.
 
 
 def test_every_compiled_module_is_in_the_cache_key() -> None:

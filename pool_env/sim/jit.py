@@ -1,9 +1,8 @@
 """One place for the numba options of every compiled kernel, and for where they are cached.
 
-The simulator's kernels (:mod:`pool_env.sim.kernels`) and the decision process's
-(:mod:`pool_env.game.kernels`, :mod:`pool_env.game.rules`) all compile through
-:func:`kernel`, :func:`inline_kernel` and :func:`parallel_kernel`, with the same options (no
-fastmath, for bit-for-bit determinism) and one cache folder.
+The simulator's kernels (:mod:`pool_env.sim.kernels`) and those of the layers above it all
+compile through :func:`kernel`, :func:`inline_kernel` and :func:`parallel_kernel`, with the
+same options (no fastmath, for bit-for-bit determinism) and one cache folder.
 
 Kernels are cached on disk so a fresh process (every ``SubprocVecEnv`` worker) loads machine
 code instead of compiling. numba keys a cached function on its own file's time stamp only,
@@ -12,9 +11,10 @@ event loop of ``loop.py`` would still hold the old impact code (and numba freeze
 constants a kernel reads from other modules, such as ``params.py``, into its machine code).
 So the cache lives in a folder named after a hash of the modules of :data:`KERNEL_MODULES`,
 every module whose code or constants are compiled: any change of one of them starts a fresh
-cache. The list is explicit; ``tests/test_compile_cache.py`` checks from the import graph
-that every module compiling through this one, every module in a ``kernels`` package and
-every module they import is on it.
+cache. The list is read from the sources (:func:`kernel_modules`), so this module names no
+layer above the simulator; ``tests/test_compile_cache.py`` checks it against the import
+graph: every module compiling through this one, every module in a ``kernels`` package and
+every module they import.
 
 The folder is the first writable of: ``$NUMBA_CACHE_DIR/pool_env-<hash>`` (if that variable
 is set), the package's ``__pycache__/numba-<hash>``, and ``~/.cache/pool_env/numba-<hash>``.
@@ -34,6 +34,7 @@ from __future__ import annotations
 import hashlib
 import inspect
 import os
+import re
 import sys
 import tempfile
 import warnings
@@ -55,62 +56,73 @@ _OPTIONS: dict[str, Any] = {"nogil": True, "error_model": "numpy", "fastmath": F
 
 _PACKAGE = Path(__file__).resolve().parents[1]
 
-#: Every module whose code or constants end up in compiled code, the simulator's and the
-#: decision process's, this one included (its options). A module added to a ``kernels``
-#: package, or compiling through this one, goes here: ``tests/test_compile_cache.py`` fails
-#: until it does.
-KERNEL_MODULES: tuple[str, ...] = (
-    "pool_env.sim.jit",
-    "pool_env.sim.compile_notice",  # imported by this one (no compiled code)
-    "pool_env.sim.kernels.batch",
-    "pool_env.sim.kernels.contact",
-    "pool_env.sim.kernels.entries",
-    "pool_env.sim.kernels.jaws",
-    "pool_env.sim.kernels.kinds",
-    "pool_env.sim.kernels.level",
-    "pool_env.sim.kernels.limits",
-    "pool_env.sim.kernels.loop",
-    "pool_env.sim.kernels.packing",
-    "pool_env.sim.kernels.params",
-    "pool_env.sim.kernels.record",
-    "pool_env.sim.kernels.roll.jaws",
-    "pool_env.sim.kernels.roll.level",
-    "pool_env.sim.kernels.roll.marker",
-    "pool_env.sim.kernels.roll.motion",
-    "pool_env.sim.kernels.roll.predict",
-    "pool_env.sim.kernels.roll.resolve",
-    "pool_env.sim.kernels.rollout",
-    "pool_env.sim.kernels.roots",
-    "pool_env.sim.kernels.sequence",
-    "pool_env.sim.kernels.spin.collide",
-    "pool_env.sim.kernels.spin.cushion",
-    "pool_env.sim.kernels.spin.jaws",
-    "pool_env.sim.kernels.spin.level",
-    "pool_env.sim.kernels.spin.marker",
-    "pool_env.sim.kernels.spin.params",
-    "pool_env.sim.kernels.spin.predict",
-    "pool_env.sim.kernels.spin.state",
-    "pool_env.sim.kernels.spin.strike",
-    "pool_env.sim.kernels.spin.timeline",
-    "pool_env.sim.kernels.spin.zeno",
-    "pool_env.sim.kernels.timeline",
-    "pool_env.sim.kernels.validation",
-    "pool_env.game.kernels.actions",
-    "pool_env.game.kernels.encode",
-    "pool_env.game.kernels.geometry",
-    "pool_env.game.kernels.layout",
-    "pool_env.game.kernels.observe",
-    "pool_env.game.kernels.params",
-    "pool_env.game.kernels.rng",
-    "pool_env.game.kernels.tips",
-    "pool_env.game.kernels.wpa",
-    "pool_env.game.rules",
-)
-
 
 def module_file(root: Path, module: str) -> Path:
     """The source file of ``module`` (a dotted name) under the folder ``root`` holding it."""
     return root.joinpath(*module.split(".")).with_suffix(".py")
+
+
+# ``from pool_env.x import a, b`` (parentheses and line breaks allowed) and ``import pool_env.x``.
+_FROM_IMPORT = re.compile(rb"^\s*from\s+(pool_env[\w.]*)\s+import\s+(\([^)]*\)|[^\n]*)", re.M)
+_IMPORT = re.compile(rb"^\s*import\s+(pool_env[\w.]*)", re.M)
+
+
+def _imports(source: bytes) -> set[str]:
+    """The ``pool_env`` names a module's source imports.
+
+    ``from a.b import c`` gives ``a.b`` and ``a.b.c``, a module or not: the caller keeps
+    those that are modules.
+    """
+    names = {m.decode() for m in _IMPORT.findall(source)}
+    for module, imported in _FROM_IMPORT.findall(source):
+        names.add(module.decode())
+        for line in imported.decode().splitlines():
+            for name in line.split("#")[0].strip("() ").split(","):
+                if name.strip():
+                    names.add(f"{module.decode()}.{name.split()[0]}")
+    return names
+
+
+def kernel_modules(root: Path) -> tuple[str, ...]:
+    """Every module whose code or constants end up in compiled code, read from the sources.
+
+    A module counts when it lies in a ``kernels`` package, when it compiles through this
+    one (imports ``pool_env.sim.jit``), or when a module that counts imports it; packages'
+    ``__init__`` files hold docstrings only and do not. The layers above the simulator are
+    found, not named: a kernels package added to any layer joins the key by itself. A
+    plain scan of the sources (a few ms at import), no parsing.
+
+    Args:
+        root: The folder holding the top-level package (``pool_env``'s parent).
+
+    Returns:
+        The dotted names, sorted.
+    """
+    sources: dict[str, bytes] = {}
+    for folder, subfolders, files in os.walk(root / "pool_env"):
+        subfolders[:] = [d for d in subfolders if d != "__pycache__"]  # numba's caches
+        base = Path(folder).relative_to(root).parts
+        for name in files:
+            if name.endswith(".py") and name != "__init__.py":
+                sources[".".join((*base, name[:-3]))] = (Path(folder) / name).read_bytes()
+    imports = {module: _imports(text) & set(sources) for module, text in sources.items()}
+    found = {
+        module
+        for module, imported in imports.items()
+        if "kernels" in module.split(".") or __name__ in imported
+    } | {__name__}
+    pending = list(found)
+    while pending:  # what they import, and so on
+        for module in imports[pending.pop()] - found:
+            found.add(module)
+            pending.append(module)
+    return tuple(sorted(found))
+
+
+#: Every module whose code or constants end up in compiled code, the simulator's and the
+#: layers' above it, this one included (its options): :func:`kernel_modules` of the sources.
+#: ``tests/test_compile_cache.py`` checks it against the import graph.
+KERNEL_MODULES: tuple[str, ...] = kernel_modules(_PACKAGE.parent)
 
 
 def source_hash(root: Path, modules: tuple[str, ...] = KERNEL_MODULES) -> str:
