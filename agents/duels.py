@@ -4,7 +4,7 @@ Usage::
 
     python -m agents.duels --agent models/rack_value.npz --opponent ghost --racks 400
 
-Rack ``k`` is :class:`pool_env.multiagent.PoolDuelEnv` reset with seed ``seed + k``; the
+Rack ``k`` is :class:`pool_env.envs.multiagent.PoolDuelEnv` reset with seed ``seed + k``; the
 agent breaks the even racks (``player_0``) and the opponent the odd ones, so each side
 breaks half of the same racks. Each agent is built as :func:`agents.evaluate.make_agent`
 builds it on the single-player id with the same settings (the planners read the table,
@@ -29,7 +29,7 @@ import numpy as np
 from agents.envs import make_env
 from agents.evaluate import make_agent, parse_noise
 from agents.metrics import wilson
-from pool_env.multiagent import AGENTS, PoolDuelEnv
+from pool_env.envs.multiagent import AGENTS, PoolDuelEnv
 
 ENV_ID = "pool_env/NineBallGame-v1"
 #: The evaluation's execution noise (aim rad, speed m/s, tip fraction of R).

@@ -1,7 +1,7 @@
 """A 9-ball player that looks one shot ahead on the true model and values what each shot leaves.
 
 :class:`LookaheadAgent` plays the spin 9-ball ids (``pool_env/NineBallGame-v1``) and the
-two-player front (:class:`pool_env.multiagent.PoolDuelEnv`) from the observation alone. On
+two-player front (:class:`pool_env.envs.multiagent.PoolDuelEnv`) from the observation alone. On
 every shot it:
 
 1. lists candidates: the spin planner's pots on the ball on (the ``pots`` best of

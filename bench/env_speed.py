@@ -24,7 +24,7 @@ import gymnasium as gym
 import numpy as np
 
 import pool_env  # noqa: F401  (registers the ids)
-from pool_env.registration import ENV_IDS
+from pool_env.envs.registration import ENV_IDS
 
 STEPS = {
     "pool_env/PoolRoll-v1": 20_000,

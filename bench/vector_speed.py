@@ -11,7 +11,7 @@ a warm-up, ``--repeats`` runs of about ``--seconds`` each give the median and th
 "Startup" is the child's time from its first line to the first step done: imports, the
 numba disk cache, and for the process-based kinds spawning the workers.
 
-Kinds: ``native`` (:class:`pool_env.vector.PoolVectorEnv`), ``native+sb3`` (the same
+Kinds: ``native`` (:class:`pool_env.envs.vector.PoolVectorEnv`), ``native+sb3`` (the same
 behind ``agents.vec.native_vec``'s SB3 adapter, per-table info dicts included), Gymnasium's
 ``SyncVectorEnv`` and ``AsyncVectorEnv``, SB3's ``DummyVecEnv`` and ``SubprocVecEnv``
 (``make_vec_env``, with its ``Monitor``). The PPO part trains the same budget with the

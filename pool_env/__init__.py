@@ -7,7 +7,7 @@ Layers, imports pointing down only: :mod:`pool_env.sim` (the simulator), :mod:`p
 Importing it loads the simulator only: the decision process and the fronts load (and with
 them Gymnasium) on first use of one of their names, so ``import pool_env.sim`` needs no
 Gymnasium. The ids are registered with Gymnasium all the same, whichever of the two is
-imported first (:func:`pool_env.registration.register_on_gymnasium_import`).
+imported first (:func:`pool_env.envs.registration.register_on_gymnasium_import`).
 """
 
 from __future__ import annotations
@@ -16,11 +16,12 @@ import importlib
 from typing import TYPE_CHECKING, Any
 
 from pool_env._version import __version__
-from pool_env.registration import ENV_IDS, register_envs, register_on_gymnasium_import
+from pool_env.envs.registration import ENV_IDS, register_envs, register_on_gymnasium_import
 from pool_env.sim import Event, ShotResult, Table, shoot, simulate
 
 if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
-    from pool_env.env import PoolEnv
+    from pool_env.envs.env import PoolEnv
+    from pool_env.envs.vector import PoolVectorEnv
     from pool_env.game.codec import (
         decode_action,
         decode_observations,
@@ -41,7 +42,6 @@ if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
     from pool_env.game.scenes import SCENES, check_layout, free_spot
     from pool_env.game.sections import PoolConfig, default_config
     from pool_env.game.shots import Shot, ShotConstraints
-    from pool_env.vector import PoolVectorEnv
 
 #: Public names of the game layer and the fronts -> the module defining each.
 _LAZY: dict[str, str] = {
@@ -50,8 +50,8 @@ _LAZY: dict[str, str] = {
     "DEFAULT_SPEED_RANGE": "pool_env.game.config",
     "GameConfig": "pool_env.game.config",
     "PoolConfig": "pool_env.game.sections",
-    "PoolEnv": "pool_env.env",
-    "PoolVectorEnv": "pool_env.vector",
+    "PoolEnv": "pool_env.envs.env",
+    "PoolVectorEnv": "pool_env.envs.vector",
     "SCENES": "pool_env.game.scenes",
     "Shot": "pool_env.game.shots",
     "ShotConstraints": "pool_env.game.shots",

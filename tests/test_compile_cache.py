@@ -228,7 +228,7 @@ def test_the_key_changes_with_every_listed_module_and_no_other(tmp_path: Path) -
         path.write_bytes(source)
     assert len(keys) == len(jit.KERNEL_MODULES) + 1
     assert jit.source_hash(tmp_path) == key
-    (tmp_path / "pool_env" / "env.py").write_text("# not compiled\n")
+    (tmp_path / "pool_env" / "envs" / "env.py").write_text("# not compiled\n")
     assert jit.source_hash(tmp_path) == key
     jit.module_file(tmp_path, jit.KERNEL_MODULES[-1]).unlink()
     with pytest.raises(RuntimeError, match="has no file"):

@@ -13,8 +13,8 @@ from hypothesis import strategies as st
 
 import pool_env
 from pool_env import PoolEnv, Table, check_layout
+from pool_env.envs.registration import ENV_IDS, GAME_IDS
 from pool_env.game.config import DEFAULT_SPEED_RANGE
-from pool_env.registration import ENV_IDS, GAME_IDS
 from pool_env.sim.layouts import head_spot
 from tests.profiles import examples
 

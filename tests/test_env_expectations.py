@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import pool_env  # noqa: F401  (registers the ids)
-from pool_env.env import PoolEnv
+from pool_env.envs.env import PoolEnv
 from tests.env_scenes import SHOTS, Shot
 
 OBS_ATOL = 1e-6  # float32 observations of positions known to ~1e-12 m

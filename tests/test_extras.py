@@ -30,10 +30,14 @@ CASES = {
         "from agents.train import main; main(['--backend', 'rllib'])",
         "rllib",
     ),
-    "two players without pettingzoo": ("pettingzoo", "import pool_env.multiagent", "multiagent"),
+    "two players without pettingzoo": (
+        "pettingzoo",
+        "import pool_env.envs.multiagent",
+        "multiagent",
+    ),
     "RecordShots without moviepy": (
         "moviepy",
-        "import gymnasium as gym, pool_env; from pool_env.record import RecordShots;"
+        "import gymnasium as gym, pool_env; from pool_env.envs.record import RecordShots;"
         "RecordShots(gym.make('pool_env/OneBall-v1', render_mode='rgb_array_list'), '/tmp')",
         "render",
     ),

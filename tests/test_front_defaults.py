@@ -1,10 +1,10 @@
 """Defaults in one place: every front plays by the game ids' defaults unless told otherwise.
 
-The ids' defaults are their registered arguments (``pool_env.registration.ENV_IDS``) over
+The ids' defaults are their registered arguments (``pool_env.envs.registration.ENV_IDS``) over
 :func:`pool_env.default_config`'s. Every front takes one sectioned config and keyword
 overrides (issue 31): no front spells the keys out in its signature, and none copies a
 config field onto itself; the
-two-player fronts of :mod:`pool_env.multiagent` take the game id's (issue 21 item 6: they
+two-player fronts of :mod:`pool_env.envs.multiagent` take the game id's (issue 21 item 6: they
 had drifted to absolute aim and 0.5-10 m/s where every id uses cut aim and 0.45-4.5 m/s).
 """
 
@@ -20,10 +20,10 @@ import numpy as np
 import pytest
 
 from pool_env import PoolEnv, PoolVectorEnv, default_config
+from pool_env.envs.registration import ENV_IDS, GAME_IDS
 from pool_env.game.config import DEFAULT_SPEED_RANGE, GameConfig, make_config
 from pool_env.game.kernels import params as kp
 from pool_env.game.sections import KEYS
-from pool_env.registration import ENV_IDS, GAME_IDS
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -86,7 +86,7 @@ def test_overrides_reach_their_sections_and_bad_keys_are_refused() -> None:
 @pytest.mark.parametrize("env_id", GAME_IDS)
 def test_the_two_player_fronts_default_to_the_game_ids(env_id: str) -> None:
     pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
-    from pool_env.multiagent import PoolDuelEnv, VersusPolicyEnv
+    from pool_env.envs.multiagent import PoolDuelEnv, VersusPolicyEnv
 
     kwargs, steps = ENV_IDS[env_id]
     single = gym.make(env_id).unwrapped.config
@@ -108,7 +108,7 @@ def test_the_two_player_fronts_default_to_the_game_ids(env_id: str) -> None:
 
 def test_an_argument_still_overrides_the_default() -> None:
     pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
-    from pool_env.multiagent import PoolDuelEnv
+    from pool_env.envs.multiagent import PoolDuelEnv
 
     duel = PoolDuelEnv("eight", aim="absolute", speed_range=(0.5, 10.0), max_shots=7)
     assert duel.config.aim == "absolute" and duel.config.speed_range == (0.5, 10.0)

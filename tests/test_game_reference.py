@@ -8,7 +8,7 @@ import pytest
 
 import pool_env  # noqa: F401  (registers the ids)
 from pool_env import ENV_IDS
-from pool_env.registration import GAME_IDS
+from pool_env.envs.registration import GAME_IDS
 from tests.game_reference import ReferenceEnv
 
 # The rules ids have their own reference (tests/wpa_reference.py, tests/test_games.py).

@@ -22,8 +22,8 @@ from hypothesis import strategies as st
 
 import pool_env  # noqa: F401  (registers the ids)
 from pool_env import free_spot
+from pool_env.envs.multiagent import PoolDuelEnv
 from pool_env.game.scenes import CLEARANCE
-from pool_env.multiagent import PoolDuelEnv
 from pool_env.sim.layouts import break_scene, foot_spot
 from tests.profiles import examples
 from tests.rules_harness import compiled_judge, same_verdict

@@ -45,7 +45,7 @@ PLANTED = {
     ),
     "game imports a front": (
         "pool_env/game/scenes.py",
-        "import pool_env.env",
+        "import pool_env.envs.env",
         "pool_env in layers",
     ),
     "pool_env imports agents": (

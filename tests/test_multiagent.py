@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from pettingzoo.test import api_test
 
-from pool_env.multiagent import PoolDuelEnv, VersusPolicyEnv
+from pool_env.envs.multiagent import PoolDuelEnv, VersusPolicyEnv
 
 TOWARD_CORNER = -3 * math.pi / 4
 # Tests that aim by direction (-pi .. pi from +x) pass aim="absolute": the default is the

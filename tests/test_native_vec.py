@@ -13,7 +13,7 @@ from stable_baselines3.common.vec_env import DummyVecEnv, VecMonitor, VecNormali
 
 import pool_env  # noqa: F401
 from agents.vec.native_vec import NativeVecEnv, make_native_vec_env
-from pool_env.vector import PoolVectorEnv
+from pool_env.envs.vector import PoolVectorEnv
 
 
 @pytest.mark.parametrize(

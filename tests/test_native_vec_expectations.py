@@ -15,7 +15,7 @@ import pytest
 pytest.importorskip("stable_baselines3")
 
 from agents.vec.native_vec import make_native_vec_env
-from pool_env.env import PoolEnv
+from pool_env.envs.env import PoolEnv
 from tests.env_scenes import SHOTS, Shot
 
 

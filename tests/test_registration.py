@@ -13,7 +13,7 @@ import pytest
 from gymnasium.utils.env_checker import check_env as gym_check_env
 
 import pool_env
-from pool_env.registration import ENV_IDS, LEGACY_IDS, TASKS, register_envs, roll_id, spin_id
+from pool_env.envs.registration import ENV_IDS, LEGACY_IDS, TASKS, register_envs, roll_id, spin_id
 
 IDS = list(ENV_IDS)
 ROOT = Path(__file__).resolve().parents[1]
@@ -30,7 +30,7 @@ def test_every_id_is_registered_with_its_time_limit() -> None:
         spec = gym.spec(env_id)
         assert spec.max_episode_steps == max_steps
         assert spec.kwargs == kwargs
-        assert spec.entry_point == "pool_env.env:PoolEnv"
+        assert spec.entry_point == "pool_env.envs.env:PoolEnv"
 
 
 def test_registration_is_idempotent() -> None:
@@ -151,7 +151,7 @@ def test_ids_are_registered_whichever_is_imported_first(imports: str) -> None:
     """
     code = (
         f"{imports}; import sys, importlib.machinery as m;"
-        "from pool_env.registration import ENV_IDS, _GymnasiumHook;"
+        "from pool_env.envs.registration import ENV_IDS, _GymnasiumHook;"
         "assert set(ENV_IDS) <= set(gym.registry), sorted(gym.registry);"
         "assert gym.make('pool_env/OneBallRoll-v1').observation_space.shape == (6,);"
         "assert type(gym.__loader__) is m.SourceFileLoader, gym.__loader__;"

@@ -260,7 +260,7 @@ def test_record_shots_records_every_frame_of_every_shot(tmp_path: object) -> Non
     pytest.importorskip("moviepy")
     import imageio_ffmpeg
 
-    from pool_env.record import RecordShots
+    from pool_env.envs.record import RecordShots
 
     folder = tmp_path / "videos"  # type: ignore[operator]
     env = RecordShots(_list_env(), str(folder), episode_trigger=lambda e: True)

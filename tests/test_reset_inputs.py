@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import pool_env  # noqa: F401  (registers the ids)
-from pool_env.multiagent import PoolDuelEnv
+from pool_env.envs.multiagent import PoolDuelEnv
 from tests.test_games import IDS, KWARGS, NINE_MISS, ON_EIGHT, layout, parked
 
 

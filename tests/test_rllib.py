@@ -26,7 +26,7 @@ from agents.integrations.rllib_train import (  # noqa: E402
     rllib_training_kwargs,
 )
 from agents.training import hyperparams  # noqa: E402
-from pool_env.vector import PoolVectorEnv  # noqa: E402
+from pool_env.envs.vector import PoolVectorEnv  # noqa: E402
 
 ONE = "pool_env/OneBallRoll-v1"
 

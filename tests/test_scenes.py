@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from pool_env import PoolEnv, Table, check_layout, free_spot
+from pool_env.envs.seeding import seed_table
 from pool_env.game import step as game
 from pool_env.game.config import make_config
 from pool_env.game.kernels.layout import sample_layouts
@@ -137,7 +138,7 @@ def test_when_random_placement_keeps_failing_the_plans_grid_layout_is_used() -> 
     params[TRIES] = params[RESTARTS] = 1  # one try, one attempt: 12 balls cannot succeed
     state = new_state(3, 12)
     for i in range(3):
-        state.seed(i, i)
+        seed_table(state, i, i)
     fell_back = sample_layouts(
         params, config.table.pockets, np.arange(3), state.positions, state.ptrs, plan.placed,
         plan.box, plan.fallback,

@@ -16,10 +16,10 @@ import pytest
 
 import pool_env
 from pool_env import PoolEnv, Table, shoot
+from pool_env.envs.registration import TASKS, roll_id, spin_id
 from pool_env.game.config import default_tip_limit, make_config
 from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, place_in_hand
 from pool_env.game.state import generator_addresses
-from pool_env.registration import TASKS, roll_id, spin_id
 
 LAYOUT = np.array([[0.8, 0.635], [1.1, 0.635]])  # a straight shot along +x, 0.3 m apart
 R = Table().ball_radius

@@ -10,7 +10,7 @@ import pytest
 from gymnasium.utils.env_checker import data_equivalence
 
 import pool_env  # noqa: F401
-from pool_env.vector import PoolVectorEnv
+from pool_env.envs.vector import PoolVectorEnv
 
 ONE = "pool_env/OneBall-v1"
 
@@ -85,7 +85,7 @@ def test_agents_make_env_and_factory_take_a_spin_id() -> None:
 @pytest.mark.parametrize("game", ["nine", "eight"])
 def test_two_players_on_the_spin_table(game: str) -> None:
     pytest.importorskip("pettingzoo")
-    from pool_env.multiagent import PoolDuelEnv, VersusPolicyEnv
+    from pool_env.envs.multiagent import PoolDuelEnv, VersusPolicyEnv
 
     duel = PoolDuelEnv(game, model="spin", noise=(0.003, 0.05, 0.02))
     assert duel.action_space("player_0").shape == (7,)

@@ -11,7 +11,7 @@ import yaml
 
 from agents.integrations.zoo import ZOO_ALGOS, ZOO_DIR, zoo_entry, zoo_file_text
 from agents.training import hyperparams
-from pool_env.registration import ENV_IDS
+from pool_env.envs.registration import ENV_IDS
 
 ROOT = Path(__file__).resolve().parents[1]
 

@@ -25,7 +25,7 @@ import pool_env  # noqa: F401  (registers the ids)
 from agents.duels import NOISE, play_rack
 from agents.evaluate import make_agent
 from agents.rack_play import FEATURES, RackAgent, load_rack_agent
-from pool_env.multiagent import PoolDuelEnv
+from pool_env.envs.multiagent import PoolDuelEnv
 
 SHOWN = ("p_now", "p_next", "planner_score", "strike_speed_over_top", "tip_side",
          "tip_vertical", "arrival_speed_m_s", "cut_over_90deg")  # fmt: skip

@@ -7,7 +7,7 @@ id with Ray's registry (shared by every worker of the cluster); RLlib then calls
 EnvRunner, where it imports the package (which registers the ids) before making the env.
 
 With ``gym_env_vectorize_mode="vector_entry_point"`` RLlib passes ``num_envs`` and
-:func:`make_env` returns one :class:`~pool_env.vector.PoolVectorEnv`: all the runner's
+:func:`make_env` returns one :class:`~pool_env.envs.vector.PoolVectorEnv`: all the runner's
 tables step in one compiled call.
 
 Autoreset: RLlib 2.60's ``SingleAgentEnvRunner`` implements only Gymnasium's next-step
@@ -47,7 +47,7 @@ def make_env(
         ValueError: Without ``env_id``, with a non-pool id, or with another autoreset mode.
     """
     import pool_env  # noqa: F401  (registers the ids in this worker process)
-    from pool_env.registration import ENV_IDS
+    from pool_env.envs.registration import ENV_IDS
 
     env_id = env_id or config.get("env_id")
     if env_id not in ENV_IDS:
@@ -75,7 +75,7 @@ def register(env_id: str) -> None:
     """
     from ray.tune.registry import register_env  # the rllib extra: only when registering
 
-    from pool_env.registration import ENV_IDS
+    from pool_env.envs.registration import ENV_IDS
 
     if env_id not in ENV_IDS:
         raise ValueError(f"{env_id!r} is not a pool_env id: use one of {list(ENV_IDS)}")

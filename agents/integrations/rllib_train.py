@@ -1,7 +1,7 @@
 """PPO on Ray RLlib (``python train.py --backend rllib``): the scale-out path.
 
 Sampling runs in ``env_runners`` EnvRunner actors, each stepping ``n_envs`` tables in one
-:class:`~pool_env.vector.PoolVectorEnv` (``gym_env_vectorize_mode="vector_entry_point"``);
+:class:`~pool_env.envs.vector.PoolVectorEnv` (``gym_env_vectorize_mode="vector_entry_point"``);
 the learner (one, in the driver) updates the policy on their batches. ``ray.init()`` starts
 a local Ray on this machine, or joins the cluster that ``RAY_ADDRESS`` (or ``--address``)
 names, so the same command trains on one machine or many: more EnvRunners sample in

@@ -22,7 +22,7 @@ from typing import Any
 import yaml
 
 from agents.training import hyperparams
-from pool_env.registration import ENV_IDS
+from pool_env.envs.registration import ENV_IDS
 
 #: Where the zoo files live.
 ZOO_DIR = Path(__file__).with_name("zoo")

@@ -5,7 +5,7 @@ Usage (from the repository root; ``fit`` is :mod:`agents.training.racks`' own)::
     python -m agents.training.duel_racks --racks 300 --seed 50000 --out runs/duel/d0.npz
     python -m agents.training.racks fit runs/duel/d0.npz --out models/rack_duel.npz
 
-Rack ``k`` is :class:`pool_env.multiagent.PoolDuelEnv` seeded ``seed + k`` (keep it away
+Rack ``k`` is :class:`pool_env.envs.multiagent.PoolDuelEnv` seeded ``seed + k`` (keep it away
 from the duels' evaluation racks, 20000..), played by :func:`agents.duels.play_rack`: the
 agent breaks the even racks with a uniformly random break arm, the ghost-ball agent
 (:class:`agents.baselines.game_agents.GameGhostBallAgent`, as the duels build it) the odd
@@ -36,7 +36,7 @@ from agents.envs import make_env
 from agents.evaluate import make_agent
 from agents.rack_play import BREAK_ARMS, FEATURES, RackAgent, load_rack_agent
 from agents.training.racks import ENV_ID
-from pool_env.multiagent import PoolDuelEnv
+from pool_env.envs.multiagent import PoolDuelEnv
 
 #: The rack's outcome for the agent by the winning side (``None``: drawn at the shot limit).
 OUTCOMES: dict[str | None, float] = {"agent": 1.0, "opponent": -1.0, None: 0.0}

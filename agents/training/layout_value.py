@@ -5,7 +5,7 @@ Usage (from the repository root)::
     python -m agents.training.layout_value collect --racks 600 --seed 70000 --out runs/layout/g0.npz
     python -m agents.training.layout_value fit runs/layout/g0.npz --out models/duel_value.npz
 
-``collect`` plays two-player racks on :class:`pool_env.multiagent.PoolDuelEnv` (9-ball, spin
+``collect`` plays two-player racks on :class:`pool_env.envs.multiagent.PoolDuelEnv` (9-ball, spin
 table, the duels' execution noise) through :func:`agents.duels.play_rack`, rack ``k``
 seeded ``seed + k`` (keep it away from the duels' evaluation racks, 20000..), the two
 sides alternating breaks, and records every shot but the breaks: the layout's features
@@ -44,9 +44,9 @@ from agents.layout_value import (
     observed_rack,
 )
 from agents.lookahead import PLAY_SETTINGS, LookaheadAgent
+from pool_env.envs.multiagent import PoolDuelEnv
 from pool_env.game.codec import decode_observations
 from pool_env.game.geometry import pocket_mouths
-from pool_env.multiagent import PoolDuelEnv
 
 #: The aim error (rad) the features' pot chances are taken at: the duels' aim noise.
 SIGMA = NOISE[0]

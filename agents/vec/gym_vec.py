@@ -48,7 +48,7 @@ def make_vec(
         **env_kwargs: ``gymnasium.make`` keyword arguments of the tables.
 
     Returns:
-        The :class:`~pool_env.vector.PoolVectorEnv`.
+        The :class:`~pool_env.envs.vector.PoolVectorEnv`.
     """
     return gym.make_vec(
         env_id,

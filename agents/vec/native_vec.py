@@ -25,9 +25,9 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvS
 
 import pool_env  # noqa: F401  (registers the ids and their vector entry point)
 from pool_env import ENV_IDS, PoolVectorEnv
+from pool_env.envs.registration import VECTOR_ENTRY_POINT
 from pool_env.game.info import INFO_KEYS as STEP_INFO_KEYS
 from pool_env.game.info import RULE_KEYS, TIP_KEY
-from pool_env.registration import VECTOR_ENTRY_POINT
 
 #: ``PoolEnv``'s step info keys, in its order: every id's, the spin ids' tip, then the
 #: rules ids' own.

@@ -190,34 +190,6 @@ def check_actions(
     return out
 
 
-def check_seeds(seed: object, n: int) -> list[int | None]:
-    """One seed per table, as ``SyncVectorEnv.reset``: ``None``, ``seed + i``, or a list.
-
-    Raises:
-        ValueError: Unless ``seed`` is ``None``, a non-negative integer, or ``n`` of them
-            (each ``None`` or a non-negative integer).
-    """
-    if seed is None:
-        return [None] * n
-    if _is_int(seed):
-        return [check_seed(seed) + i for i in range(n)]
-    seeds = list(seed) if isinstance(seed, list | tuple | np.ndarray) else None
-    if seeds is None or len(seeds) != n:
-        raise ValueError(f"seed must be None, an int or {n} seeds (one per table), got {seed!r}")
-    return [None if s is None else check_seed(s) for s in seeds]
-
-
-def _is_int(value: object) -> bool:
-    return isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
-
-
-def check_seed(value: object) -> int:
-    """A seed: a non-negative integer (``ValueError`` otherwise)."""
-    if not _is_int(value) or int(value) < 0:  # type: ignore[call-overload]
-        raise ValueError(f"a seed must be None or a non-negative integer, got {value!r}")
-    return int(value)  # type: ignore[call-overload]
-
-
 def check_options(options: object) -> dict[str, Any]:
     """Reset options: ``None`` or a mapping, as a new dict (``ValueError`` otherwise)."""
     if options is None:
@@ -225,22 +197,3 @@ def check_options(options: object) -> dict[str, Any]:
     if not isinstance(options, Mapping):
         raise ValueError(f"options must be a dict or None, got {options!r}")
     return dict(options)
-
-
-def check_reset_mask(mask: object, n: int) -> NDArray[np.intp]:
-    """The tables of ``options["reset_mask"]``, checked as ``SyncVectorEnv`` checks it."""
-    if not isinstance(mask, np.ndarray) or mask.dtype != np.bool_ or mask.shape != (n,):
-        raise ValueError(f"options['reset_mask'] must be a ({n},) numpy bool array, got {mask!r}")
-    if not mask.any():
-        raise ValueError("options['reset_mask'] must select at least one table")
-    return np.flatnonzero(mask)
-
-
-def check_render(render_mode: object, modes: list[str], width: object) -> int:
-    """The render mode (one of ``modes`` or ``None``) and the frame width (>= 64 px)."""
-    if render_mode is not None and render_mode not in modes:
-        raise ValueError(f"render_mode must be one of {modes} or None, got {render_mode!r}")
-    out = parse_count("render_width", width) or 800
-    if out < 64:
-        raise ValueError(f"render_width must be at least 64 pixels, got {width!r}")
-    return out

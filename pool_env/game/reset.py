@@ -73,9 +73,9 @@ def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> 
             scene.placed, scene.box, scene.fallback,
         )  # fmt: skip
     else:  # a callable scene: Python, one table at a time
-        generators = state.ensure_generators()
-        for b in tables.tolist():
-            layout = scene.spec(config.table, generators[b])  # type: ignore[operator]
+        generators = state.generators_of(tables)
+        for b, rng in zip(tables.tolist(), generators, strict=True):
+            layout = scene.spec(config.table, rng)  # type: ignore[operator]
             state.positions[b] = check_layout(config.table, layout, config.n_balls)
 
 

@@ -143,7 +143,7 @@ class PoolConfig:
         if name == "noise" and isinstance(value, Mapping):
             return replace(self, noise=_section(NoiseSection, "noise", dict(value)))
         if name == "players":  # the front's: PoolEnv has one agent, PoolDuelEnv two
-            raise ValueError("players is not an argument of PoolEnv: see pool_env.multiagent")
+            raise ValueError("players is not an argument of PoolEnv: see pool_env.envs.multiagent")
         if name not in KEYS:
             raise ValueError(
                 f"unknown config key {name!r}: use one of {sorted(KEYS)} or a section "

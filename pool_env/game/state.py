@@ -14,7 +14,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from gymnasium.utils import seeding
 from numpy.typing import NDArray
 
 from pool_env.game.kernels.wpa import N_RACK
@@ -50,22 +49,21 @@ class GameState:
         """B."""
         return int(self.positions.shape[0])
 
-    def seed(self, table: int, seed: int | None) -> None:
-        """Give ``table`` a new generator, as ``gymnasium.Env.reset(seed=seed)`` makes one."""
-        rng, used = seeding.np_random(seed)
-        self.use_generator(table, rng, used)
-
     def use_generator(self, table: int, rng: np.random.Generator, seed: int | None = None) -> None:
         """Let ``table`` draw from ``rng`` (held, not copied: its state advances)."""
         self.generators[table], self.seeds[table] = rng, seed
         self.ptrs[table] = generator_addresses(rng)
 
-    def ensure_generators(self) -> list[np.random.Generator]:
-        """Every table's generator, making random ones for tables never seeded."""
-        for i, rng in enumerate(self.generators):
-            if rng is None:
-                self.seed(i, None)
-        return self.generators  # type: ignore[return-value]
+    def generators_of(self, tables: NDArray[np.intp]) -> list[np.random.Generator]:
+        """The generators of ``tables``; a front seeds every table before its first reset.
+
+        Raises:
+            RuntimeError: For a table never given a generator.
+        """
+        out = [self.generators[b] for b in tables.tolist()]
+        if any(rng is None for rng in out):
+            raise RuntimeError("a table was never seeded: its front seeds it before a reset")
+        return out  # type: ignore[return-value]
 
     def snapshot(self) -> Callable[[], None]:
         """A function that puts the tables back as they are now, generators included.

@@ -106,11 +106,11 @@ MUTANTS: tuple[Mutant, ...] = (
         "the called-pocket bin rounded instead of floored: off by one in the upper half",
         "actions.executed_rule_shots: six equal bins over [-1, 1]",
     ),
-    # -- the two-player front (pool_env/multiagent.py) ---------------------------------
+    # -- the two-player front (pool_env/envs/multiagent.py) ---------------------------------
     Mutant(
         "duel-winner-reward-sign",
         "rewards",
-        "pool_env/multiagent.py",
+        "pool_env/envs/multiagent.py",
         "self.rewards[name] = 1.0 if k == winner else -1.0",
         "self.rewards[name] = 1.0 if k != winner else -1.0",
         DUEL,
@@ -120,7 +120,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "duel-turn-kept",
         "rules",
-        "pool_env/multiagent.py",
+        "pool_env/envs/multiagent.py",
         "        self.agent_selection = AGENTS[int(self._state.rack[0, wpa.SHOOTER])]\n"
         "        self._accumulate_rewards()",
         "        self._accumulate_rewards()",
@@ -131,7 +131,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "duel-truncate-only-the-shooter",
         "rules",
-        "pool_env/multiagent.py",
+        "pool_env/envs/multiagent.py",
         "self.truncations = {name: True for name in self.agents}",
         "self.truncations[agent] = True",
         DUEL,

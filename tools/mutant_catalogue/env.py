@@ -156,7 +156,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "vector-autoreset-truncated",
         "vector",
-        "pool_env/vector.py",
+        "pool_env/envs/vector.py",
         "done = terminated | truncated",
         "done = terminated.copy()",
         VECTOR,

@@ -31,7 +31,7 @@ from numba.np.random._constants import (
 
 from pool_env.sim.jit import kernel
 
-#: Columns of the per-table address rows built by :func:`pool_env.vector` callers.
+#: Columns of the per-table address rows built by :func:`pool_env.envs.vector` callers.
 STATE, NEXT_DOUBLE, NEXT_UINT64 = 0, 1, 2
 
 

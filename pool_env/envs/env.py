@@ -13,8 +13,9 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.envs.checks import check_render, check_seed
 from pool_env.game import step as game
-from pool_env.game.checks import check_actions, check_render, check_seed
+from pool_env.game.checks import check_actions
 from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.rack import rack_dict

@@ -15,15 +15,10 @@ from gymnasium.vector import AutoresetMode, VectorEnv
 from gymnasium.vector.utils import batch_space
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.envs.checks import check_render, check_reset_mask, check_seeds
+from pool_env.envs.seeding import seed_table, seeded_generators
 from pool_env.game import step as game
-from pool_env.game.checks import (
-    check_actions,
-    check_options,
-    check_render,
-    check_reset_mask,
-    check_seeds,
-    parse_count,
-)
+from pool_env.game.checks import check_actions, check_options, parse_count
 from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import batch_info, potted_lookup
 from pool_env.game.rack import rack_dict
@@ -34,7 +29,7 @@ _OPTIONS = ("positions", "on_table", "reset_mask")
 
 
 class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[Any]]):
-    r"""``num_envs`` independent pool tables, each a :class:`~pool_env.env.PoolEnv`, in one env.
+    r"""``num_envs`` independent pool tables, each a :class:`~pool_env.PoolEnv`, in one env.
 
     ## Description
 
@@ -163,12 +158,12 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     @property
     def np_random(self) -> tuple[np.random.Generator, ...]:  # type: ignore[override]
         """Each table's generator (layouts and noise), as ``PoolEnv.np_random``."""
-        return tuple(self._state.ensure_generators())
+        return tuple(seeded_generators(self._state))
 
     @property
     def np_random_seed(self) -> tuple[int, ...]:  # type: ignore[override]
         """Each table's seed (``-1`` where a generator was not made from an int seed)."""
-        self._state.ensure_generators()
+        seeded_generators(self._state)
         return tuple(int(s) if s is not None else -1 for s in self._state.seeds)
 
     # -- Gymnasium API --------------------------------------------------------------------
@@ -195,7 +190,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         state = self._state
         for i in tables.tolist():
             if seeds[i] is not None or state.generators[i] is None:
-                state.seed(i, seeds[i])
+                seed_table(state, i, seeds[i])
         self._reset_tables(tables, options)
         self._unset[tables] = False
         return self._observations(), {}

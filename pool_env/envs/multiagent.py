@@ -40,9 +40,12 @@ import numpy as np
 from gymnasium import spaces
 from numpy.typing import NDArray
 
+from pool_env.envs.checks import check_seed
+from pool_env.envs.registration import ROLL_IDS
+from pool_env.envs.seeding import seed_table
 from pool_env.extras import require
 from pool_env.game import step as game_step
-from pool_env.game.checks import check_actions, check_options, check_seed
+from pool_env.game.checks import check_actions, check_options
 from pool_env.game.config import GameConfig, PoolConfig, default_config, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.kernels import wpa
@@ -50,9 +53,8 @@ from pool_env.game.rack import rack_dict
 from pool_env.game.rules import TRUNCATED
 from pool_env.game.sections import resolve
 from pool_env.game.state import GameState, new_state
-from pool_env.registration import ROLL_IDS
 
-AECEnv = require("pettingzoo", "multiagent", "pool_env.multiagent").AECEnv
+AECEnv = require("pettingzoo", "multiagent", "pool_env.envs.multiagent").AECEnv
 AGENTS = ("player_0", "player_1")
 _ONE = np.zeros(1, dtype=np.intp)
 #: game -> the registered arguments (less ``game``) and ``max_episode_steps`` of its id.
@@ -103,7 +105,7 @@ class PoolDuelEnv(AECEnv):
         self._action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)
         self._observation_space = spaces.Box(-1.0, 1.0, (self.config.observation_size,), np.float32)
         self._state: GameState = new_state(1, n)
-        self._state.seed(0, None)
+        seed_table(self._state, 0, None)
         self._lut = potted_lookup(self.config.n_object_balls)
         game_step.reset(self.config, self._state, _ONE)
 
@@ -143,7 +145,7 @@ class PoolDuelEnv(AECEnv):
             ValueError: On a malformed or invalid layout (overlap, off the table, in a pocket).
         """
         if seed is not None:
-            self._state.seed(0, check_seed(seed))
+            seed_table(self._state, 0, check_seed(seed))
         known = {k: v for k, v in check_options(options).items() if k in _OPTIONS}
         game_step.reset(self.config, self._state, _ONE, known)
         self.agents = list(self.possible_agents)

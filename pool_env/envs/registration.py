@@ -14,11 +14,11 @@ import sys
 from types import ModuleType
 from typing import Any
 
-ENTRY_POINT = "pool_env.env:PoolEnv"
+ENTRY_POINT = "pool_env.envs.env:PoolEnv"
 
 #: ``gymnasium.make_vec(id, num_envs=n)`` builds this batched env (one compiled call per
 #: step for all tables); ``vectorization_mode="sync"`` / ``"async"`` still wrap PoolEnvs.
-VECTOR_ENTRY_POINT = "pool_env.vector:PoolVectorEnv"
+VECTOR_ENTRY_POINT = "pool_env.envs.vector:PoolVectorEnv"
 
 # How the ids are named, and why. Every task is played on two models of one table: the spin
 # table (``model="spin"``: sliding, draw, follow, english, throw, squirt; the action ends with
