@@ -36,8 +36,8 @@ import numpy as np
 
 from bench import fuzz_spin
 from pool_env import Table, simulate
+from pool_env.sim.constants import MAX_LENGTH, MIN_LENGTH
 from pool_env.sim.inputs import max_speed
-from pool_env.sim.kernels import limits
 from pool_env.sim.layouts import break_scene
 from pool_env.sim.result import ShotResult
 from pool_env.testing.invariants import check_shot
@@ -67,8 +67,8 @@ def random_table(rng: np.random.Generator, **spin: object) -> tuple[Table, float
     """
     scale = 1.0
     if rng.random() < 0.1:
-        low = np.log10(limits.MIN_LENGTH / DEFAULT.ball_radius)
-        high = np.log10(limits.MAX_LENGTH / DEFAULT.length)
+        low = np.log10(MIN_LENGTH / DEFAULT.ball_radius)
+        high = np.log10(MAX_LENGTH / DEFAULT.length)
         scale = float(10 ** rng.uniform(low, high))
     pockets = str(rng.choice(["jaws", "jaws", "circles", "none"]))
     if pockets == "jaws" and scale != 1.0:  # regulation jaws are sized in inches

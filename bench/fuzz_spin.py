@@ -40,8 +40,8 @@ from collections.abc import Callable
 import numpy as np
 
 from pool_env import Table, shoot, simulate
+from pool_env.sim.constants import MAX_SPEED
 from pool_env.sim.inputs import max_speed
-from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.result import ShotResult
 from pool_env.sim.spin_inputs import reachable_spin_speed, strike, tip_touches_ball
 

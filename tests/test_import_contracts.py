@@ -83,6 +83,16 @@ PLANTED = {
         "import agents.vec.native_vec",
         "agents in wings",
     ),
+    "an agent imports a game kernel": (
+        "agents/baselines/geometry.py",
+        "import pool_env.game.kernels.geometry",
+        "agents, benchmarks and tools use public names only",
+    ),
+    "a tool imports a simulator kernel": (
+        "tools/mutants.py",
+        "from pool_env.sim.kernels.spin import strike",
+        "agents, benchmarks and tools use public names only",
+    ),
     "a cycle inside agents": (
         "agents/episodes.py",
         "import agents.evaluate",
