@@ -79,23 +79,23 @@ PLANTED = {
         "agents in wings",
     ),
     "the features import the SB3 vector adapter": (
-        "agents/features.py",
+        "agents/learned/features.py",
         "import agents.vec.native_vec",
         "agents in wings",
     ),
     "an agent imports a game kernel": (
         "agents/baselines/geometry.py",
         "import pool_env.game.kernels.geometry",
-        "agents, benchmarks and tools use public names only",
+        "agents, bench and tools use public names only",
     ),
     "a tool imports a simulator kernel": (
         "tools/mutants.py",
         "from pool_env.sim.kernels.spin import strike",
-        "agents, benchmarks and tools use public names only",
+        "agents, bench and tools use public names only",
     ),
     "a cycle inside agents": (
-        "agents/episodes.py",
-        "import agents.evaluate",
+        "agents/evaluation/episodes.py",
+        "import agents.evaluation.evaluate",
         "no import cycle",
     ),
     "a cycle inside sim": (

@@ -3,7 +3,7 @@
 A planner must predict exactly what the decision process does with an action, so it uses
 the game's own code, not a copy. These are that code (compiled kernels, or a call of one
 with a config's numbers), named here so that nothing outside :mod:`pool_env` imports
-:mod:`pool_env.game.kernels` (the import contract "agents, benchmarks and tools use public
+:mod:`pool_env.game.kernels` (the import contract "agents, bench and tools use public
 names only" in ``pyproject.toml``):
 
 * :func:`decode_on_layout`: what the env executes for a batch of actions on one layout,

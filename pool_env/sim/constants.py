@@ -2,7 +2,7 @@
 
 Both are the kernels' own values (:mod:`pool_env.sim.kernels.limits`,
 :mod:`pool_env.sim.kernels.params`), named here so that nothing outside :mod:`pool_env`
-imports :mod:`pool_env.sim.kernels` (the import contract "agents, benchmarks and tools use
+imports :mod:`pool_env.sim.kernels` (the import contract "agents, bench and tools use
 public names only" in ``pyproject.toml``).
 
 * The limits every entry point enforces with a ``ValueError`` (why these values: the

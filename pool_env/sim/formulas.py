@@ -4,7 +4,7 @@ A player that plans with spin (``agents/baselines/cue_path.py``) and a compariso
 simulator's formulas (``bench/spin_kernels_pooltool.py``) reuse the simulator's own
 equations instead of re-deriving them. These are the compiled kernels themselves, named here
 so that nothing outside :mod:`pool_env` imports :mod:`pool_env.sim.kernels` (the import
-contract "agents, benchmarks and tools use public names only" in ``pyproject.toml``):
+contract "agents, bench and tools use public names only" in ``pyproject.toml``):
 
 * :func:`cue_strike`: the ball's velocity and spin right after the instantaneous-point cue
   strike (:mod:`pool_env.sim.kernels.spin.strike`);

@@ -12,7 +12,7 @@ planner can value hundreds of simulated outcomes per shot.
 model on :func:`design` (the features and the products that matter: a pot chance counts
 for more when the ball on is the 9, and with the cue ball in hand), fitted by
 :func:`fit_layout_value` on layouts from played racks labelled by who won
-(:mod:`agents.training.layout_value`).
+(:mod:`agents.training.fit_layout_value`).
 """
 
 from __future__ import annotations
