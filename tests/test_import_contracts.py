@@ -54,7 +54,7 @@ PLANTED = {
         "the repository in layers",
     ),
     "a benchmark imports the tests": (
-        "bench/chaos.py",
+        "bench/scenes.py",
         "import tests.helpers_sim",
         "the repository in layers",
     ),
