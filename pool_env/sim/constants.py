@@ -9,25 +9,16 @@ public names only" in ``pyproject.toml``).
   docstring of :mod:`pool_env.sim.kernels.limits`): lengths in
   ``[MIN_LENGTH, MAX_LENGTH]`` (m), speeds up to ``MAX_SPEED`` (m/s). The fuzz
   (``tools/fuzz.py``) draws scenes up to them.
-* The entries of ``Table.params``, the flat array the roll level's kernels read: the table's
-  length and width, the ball radius, the rolling deceleration, the restitutions of a
-  ball-ball impact, a cushion and a jaw, and the ball mass. A reference engine that reads
-  the same array (``bench/engines/fixed_step.py``) names them with these.
+* The entries of ``Table.params``, the flat array the roll level's kernels read, that a
+  reference engine reading the same array (``bench/engines/fixed_step.py``) needs: the
+  table's length and width, the ball radius, the rolling deceleration, the restitutions of
+  a ball-ball impact and of a cushion.
 """
 
 from __future__ import annotations
 
 from pool_env.sim.kernels.limits import MAX_LENGTH, MAX_SPEED, MIN_LENGTH
-from pool_env.sim.kernels.params import (
-    P_DECEL,
-    P_E_BALL,
-    P_E_CUSHION,
-    P_E_JAW,
-    P_LENGTH,
-    P_MASS,
-    P_RADIUS,
-    P_WIDTH,
-)
+from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_LENGTH, P_RADIUS, P_WIDTH
 
 __all__ = [
     "MAX_LENGTH",
@@ -36,9 +27,7 @@ __all__ = [
     "P_DECEL",
     "P_E_BALL",
     "P_E_CUSHION",
-    "P_E_JAW",
     "P_LENGTH",
-    "P_MASS",
     "P_RADIUS",
     "P_WIDTH",
 ]
