@@ -5,7 +5,7 @@ the console script ``pool-env-train`` wherever the package is installed (the hyp
 file ships with it). With no arguments it trains PPO on ``pool_env/OneBallRoll-v1`` with the
 hyperparameters of ``agents/training/hyperparams.yml`` (200k steps over the native vector
 env, acting by candidate shots: a ghost-ball feature row picked and refined,
-:mod:`agents.candidates`), then prints its pot rate next to random, the best constant
+:mod:`agents.learned.candidates`), then prints its pot rate next to random, the best constant
 action, the ghost-ball and the search baselines and row 0 played exactly, on the same
 layouts. Each run writes
 ``runs/<env>/<algo>_s<seed>_<steps>_<time>/``: config.yaml, command.txt, model.zip,
@@ -32,7 +32,7 @@ from typing import Any
 
 # Light imports only: the trainer (stable-baselines3, torch, Ray) loads after the first line
 # printed, which says what the command waits for.
-from agents.pretrained import ALGO_CLASSES
+from agents.learned.pretrained import ALGO_CLASSES
 from agents.training.hyperparams import VEC_KINDS
 from pool_env.extras import require
 

@@ -11,40 +11,18 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
-from bench.scenes import Scene
 from pool_env import ShotResult, Table
+from tools.shots import Outcome, Scene
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The 50-digit reference's package: its sources key the on-disk cache of its outcomes.
 REFERENCE_SOURCE = ROOT / "pool_env" / "testing" / "reference"
-
-
-@dataclass
-class Outcome:
-    """What every engine reports about one shot, in our frame and units.
-
-    Attributes:
-        positions: ``(N, 2)`` final centres; a potted ball keeps its capture point.
-        pocketed: ``(N,)`` pocket index per ball, -1 on the table.
-        obj_velocity: The object ball's velocity right after its first ball-ball impact
-            (NaN if it was never hit).
-        pairs: Pairs ``(i, j)``, ``i < j``, that collided at least once.
-        capped: The run hit its step or event cap.
-        error: Why there is no outcome (crash, hang), else None.
-    """
-
-    positions: NDArray[np.float64]
-    pocketed: NDArray[np.int64]
-    obj_velocity: NDArray[np.float64]
-    pairs: set[tuple[int, int]] = field(default_factory=set)
-    capped: bool = False
-    error: str | None = None
 
 
 def position_error(positions: NDArray[np.float64], reference: NDArray[np.float64]) -> float:

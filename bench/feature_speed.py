@@ -4,8 +4,8 @@ Run: ``python -m bench.feature_speed`` (about 30 s; hold ``/work``'s CPU lock or
 machine). Prints, best of three: steps per second of the native vector env (64 OneBallRoll-v1
 tables) behind ``GhostFeaturesVecEnv`` and behind ``GhostCandidatesVecEnv`` (200 steps of
 random actions drawn before timing), and the time of one
-:meth:`agents.features.GhostShotFeatures.of_observations` call on NineBallRoll-v1 observations
-in batches of 1, 64 and 256. ``results/feature_speed.md`` quotes it.
+:meth:`agents.learned.features.GhostShotFeatures.of_observations` call on NineBallRoll-v1
+observations in batches of 1, 64 and 256. ``results/feature_speed.md`` quotes it.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ import gymnasium as gym
 import numpy as np
 
 from agents.baselines.base import env_spec
-from agents.features import GhostShotFeatures
+from agents.learned.features import GhostShotFeatures
 from agents.training.train_lib import TrainConfig, make_vec
 
 N_ENVS, STEPS, REPEATS = 64, 200, 3

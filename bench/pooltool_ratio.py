@@ -21,8 +21,9 @@ import numpy as np
 
 from bench.engines.pooltool_engine import run_pooltool
 from bench.runners import worker_scene
-from bench.scenes import Scene, break_suite, shot_suite
+from bench.scenes import break_suite, shot_suite
 from pool_env import simulate
+from tools.shots import Scene
 
 
 def ours(scene: Scene, repeats: int) -> tuple[float, float]:

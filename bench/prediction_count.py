@@ -6,11 +6,12 @@ Run: ``python -m bench.prediction_count`` (about a minute; the kernels run inter
 
 The shot sets of :mod:`bench.rollout_speed` (two-ball shots at 2 m/s and 9-ball breaks at
 8 m/s on the default table, random tips on the spin level), played one by one through
-``shoot``. Counted per shot, by wrapping the solvers where the predictors call them:
+``shoot``. Counted per shot, by wrapping the solvers where the predictors call them
+(:func:`pool_env.testing.solver_counts.install`):
 
-* ``quartic``: :func:`~pool_env.sim.kernels.roots.first_contact` (a pair of balls, a
+* ``quartic``: ``first_contact`` of :mod:`pool_env.sim.kernels.roots` (a pair of balls, a
   capture circle or a jaw point on a curved path: the bracketed quartic), by caller;
-* ``quadratic``: :func:`~pool_env.sim.kernels.roots.equal_accel_contact` (a pair with
+* ``quadratic``: ``equal_accel_contact`` (a pair with
   equal accelerations);
 * ``found``: the solves that return a time inside their window (a candidate event);
 * ``events``: the shot's events of the kinds these solves predict (ball-ball impacts,
@@ -30,37 +31,13 @@ os.environ["NUMBA_DISABLE_JIT"] = "1"  # before numba is imported: the solvers a
 import argparse
 import time
 from collections import Counter
-from collections.abc import Callable
 from pathlib import Path
-from typing import Any
 
 from bench.rollout_speed import shot_set
 from pool_env import shoot
-from pool_env.sim.kernels import roots
-from pool_env.sim.kernels.roll import predict as roll_predict
-from pool_env.sim.kernels.spin import jaws as spin_jaws
-from pool_env.sim.kernels.spin import predict as spin_predict
+from pool_env.testing import solver_counts
 
 COUNTS: Counter[str] = Counter()
-
-
-def _counting(name: str, solver: Callable[..., float]) -> Callable[..., float]:
-    def wrapped(*args: Any) -> float:
-        tau = solver(*args)
-        COUNTS[name] += 1
-        COUNTS[name + " found"] += tau < roots.INF
-        return tau
-
-    return wrapped
-
-
-def install() -> None:
-    """Wrap the solvers in the namespaces of the predictors that call them."""
-    roll_predict.first_contact = _counting("quartic", roots.first_contact)
-    roll_predict.equal_accel_contact = _counting("quadratic", roots.equal_accel_contact)
-    spin_predict.first_contact = _counting("quartic", roots.first_contact)
-    spin_predict.equal_accel_contact = _counting("quadratic", roots.equal_accel_contact)
-    spin_jaws.first_contact = _counting("quartic", roots.first_contact)
 
 
 def count(model: str, scene: str, n: int, seed: int) -> dict[str, float]:
@@ -85,7 +62,7 @@ def main() -> None:
     parser.add_argument("--seed", type=int, default=3)
     parser.add_argument("--out", type=Path, default=Path("results/prediction_count.md"))
     args = parser.parse_args()
-    install()
+    solver_counts.install(COUNTS)
     lines = [
         "| level | shots | events/shot | ball, capture and point events/shot | quartic "
         "solves/shot | found a root | quadratic solves/shot | found a root |",

@@ -12,8 +12,9 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.errors import Outcome, direction_error_deg, outcome_agrees, position_error, summary
+from bench.errors import direction_error_deg, outcome_agrees, position_error, summary
 from bench.runners import Run
+from tools.shots import Outcome
 
 
 @dataclass

@@ -10,9 +10,9 @@ import numpy as np
 
 from bench.engines.fixed_step import simulate_fixed_step
 from bench.engines.pooltool_engine import run_pooltool, table_spec
-from bench.errors import Outcome, ours_outcome
-from bench.scenes import Scene
+from bench.errors import ours_outcome
 from pool_env import simulate
+from tools.shots import Outcome, Scene
 
 
 @dataclass

@@ -15,51 +15,17 @@ rule (the reference, not our simulator, is what every method is then compared wi
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
 from pool_env import Table, simulate
 from pool_env.sim.layouts import break_scene
+from tools.shots import Scene
 
 FAMILIES = ("straight", "cut", "bank", "combo", "cushion")
 SPEEDS = (0.3, 2.5)  # m/s, cue speed range of the non-chaotic suite
 MAX_COLLISIONS = 3
-
-
-@dataclass(frozen=True, eq=False)
-class Scene:
-    """One shot: a table, the initial state, and the ball whose direction is measured.
-
-    Attributes:
-        name: Unique label (family and index).
-        family: Suite family.
-        table: The table.
-        positions: ``(N, 2)`` centres.
-        velocities: ``(N, 2)`` initial velocities.
-        obj: Object ball: its direction after its first ball-ball impact is compared.
-        masses: ``(N,)`` masses, or None for the table's ball mass.
-    """
-
-    name: str
-    family: str
-    table: Table
-    positions: NDArray[np.float64]
-    velocities: NDArray[np.float64]
-    obj: int = 1
-    masses: NDArray[np.float64] | None = None
-
-    @property
-    def n_balls(self) -> int:
-        """Number of balls."""
-        return int(self.positions.shape[0])
-
-    def mass_array(self) -> NDArray[np.float64]:
-        """``(N,)`` masses (the table's ball mass if none were given)."""
-        if self.masses is None:
-            return np.full(self.n_balls, self.table.ball_mass)
-        return np.asarray(self.masses, dtype=np.float64)
 
 
 def _unit(angle: float) -> NDArray[np.float64]:

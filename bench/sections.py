@@ -8,15 +8,15 @@ from typing import Any
 
 import numpy as np
 
-from bench.chaos import Growth, ours_growth, reference_growth
 from bench.engines.fixed_step import simulate_fixed_step
-from bench.errors import Outcome, ReferenceCache, ours_outcome, position_error
-from bench.hard_cases import HardCase, check, hard_cases
+from bench.errors import ReferenceCache, ours_outcome, position_error
 from bench.report import Metrics, fmt_len, fmt_time
 from bench.runners import Run, fixed_outcome, pooltool_outcome, pymunk_outcome, worker_scene
-from bench.scenes import Scene
 from pool_env import simulate
 from pool_env.sim.layouts import break_scene
+from tools.chaos import Growth, ours_growth, reference_growth
+from tools.hard_cases import HardCase, check, hard_cases
+from tools.shots import Outcome, Scene
 
 
 def breaks_table(rows: list[Metrics], runs: list[Run], refs: list[Outcome]) -> list[str]:

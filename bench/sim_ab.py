@@ -1,6 +1,6 @@
 """Same-shot A/B of the simulator: every fuzz shot's events and final state, bit for bit.
 
-Records, for the first ``--shots`` shots of the fuzz (:func:`bench.fuzz.cases`, either
+Records, for the first ``--shots`` shots of the fuzz (:func:`tools.fuzz.cases`, either
 level), a digest of the shot's exact outcome: the event sequence (times, kinds, balls), the
 final positions, the pockets, the final angular velocities and motion states (spin), each
 as raw bytes. ``--save`` writes the digests of the code checked out now; ``--compare``
@@ -25,8 +25,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bench.fuzz import cases
 from pool_env.sim.result import ShotResult
+from tools.fuzz import cases
 
 #: Bytes of one shot's digest (``blake2b``).
 DIGEST = 16

@@ -10,8 +10,8 @@ On the two-ball shots of ``python -m bench.spin_vs_pooltool --time`` (the first 
 Five figures per shot, each a different cut of the same call:
 
 * ``shoot``: :func:`pool_env.shoot` end to end from Python;
-* ``kernel from Python``: the one compiled call ``spin.level.ENTRIES.packed_strike`` from
-  Python (what ``shoot`` makes after its argument checks);
+* ``kernel from Python``: the one compiled call ``LEVELS["spin"].kernels.packed_strike`` from
+  Python (:mod:`pool_env.sim.levels`) (what ``shoot`` makes after its argument checks);
 * ``result``: building the :class:`~pool_env.sim.result.SpinShotResult` from its return;
 * ``kernel compiled``: the same call from a compiled loop (no dispatcher, no boxing);
 * ``kernel, no events``: that with ``max_events=0`` (the strike, the validation, the
@@ -33,10 +33,10 @@ import numpy as np
 
 from bench.spin_scenes import spin_shots, spin_table
 from pool_env import shoot
-from pool_env.sim.kernels.spin.level import ENTRIES
+from pool_env.sim.levels import LEVELS
 from pool_env.sim.result import SpinShotResult
 
-_STRIKE = ENTRIES.packed_strike
+_STRIKE = LEVELS["spin"].kernels.packed_strike
 
 
 @numba.njit

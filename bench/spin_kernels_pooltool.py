@@ -117,10 +117,13 @@ def _ours(cases: dict) -> dict:
     from types import SimpleNamespace
 
     from pool_env.sim.cue import from_pooltool
-    from pool_env.sim.kernels.spin.collide import ball_ball_spin
-    from pool_env.sim.kernels.spin.cushion import cushion_han
-    from pool_env.sim.kernels.spin.params import ALCIATORE_FRICTION, POOLTOOL_FRICTION
-    from pool_env.sim.kernels.spin.strike import cue_strike
+    from pool_env.sim.formulas import (
+        ALCIATORE_FRICTION,
+        POOLTOOL_FRICTION,
+        ball_ball_spin,
+        cue_strike,
+        cushion_han,
+    )
 
     out: dict = {"ball_ball": [], "ball_ball_pt_mu": [], "cushion": [], "strike": []}
     buf = np.zeros(10)

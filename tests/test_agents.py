@@ -16,7 +16,7 @@ from agents import GhostBallAgent, RandomAgent, SearchAgent, run_episodes
 from agents.baselines.aiming import decode, shot_to_action
 from agents.baselines.base import decode_observation, env_spec
 from agents.baselines.random_agent import ConstantAgent
-from agents.features import PocketFeatures
+from agents.learned.features import PocketFeatures
 
 ONE = "pool_env/OneBallRoll-v1"
 

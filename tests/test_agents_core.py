@@ -13,7 +13,7 @@ import sys
 import textwrap
 from pathlib import Path
 
-from agents.evaluate import evaluate_agent, format_table
+from agents.evaluation.evaluate import evaluate_agent, format_table
 
 ROOT = Path(__file__).resolve().parents[1]
 #: The train extra's packages (and Ray): absent from a core install.

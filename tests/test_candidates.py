@@ -13,14 +13,14 @@ import numpy as np
 import pytest
 
 import pool_env  # noqa: F401  (registers the ids)
-from agents.candidates import (
+from agents.learned.candidates import (
     AIM_RESIDUAL,
     SPEED_RESIDUAL,
     FirstRowAgent,
     GhostCandidates,
     decode_candidates,
 )
-from agents.features import GhostBallFeatures, GhostShotFeatures
+from agents.learned.features import GhostBallFeatures, GhostShotFeatures
 from agents.training.runs import process_seconds
 
 ONE = "pool_env/OneBallRoll-v1"

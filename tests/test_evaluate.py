@@ -11,8 +11,8 @@ import pytest
 
 import pool_env  # noqa: F401
 from agents.baselines.random_agent import ConstantAgent
-from agents.evaluate import evaluate_agent, load_model, main, run_episodes
-from agents.metrics import mean_ci, ratio_ci, wilson
+from agents.evaluation.evaluate import evaluate_agent, load_model, main, run_episodes
+from agents.evaluation.metrics import mean_ci, ratio_ci, wilson
 
 ONE = "pool_env/OneBallRoll-v1"
 
@@ -110,7 +110,7 @@ def test_unknown_agent_is_a_clear_error() -> None:
 
 
 def test_best_constant_scan_keeps_the_best_of_the_grid() -> None:
-    from agents.baselines.constant_scan import scan_constant_actions
+    from agents.evaluation.constant_scan import scan_constant_actions
 
     env = gym.make(ONE)
     scan = scan_constant_actions(env, grid=3, episodes=40, seed=100)

@@ -48,7 +48,7 @@ CASES = {
     ),
     "a saved model without stable-baselines3": (
         "stable_baselines3",
-        "from agents.pretrained import algo_class; algo_class('ppo')",
+        "from agents.learned.pretrained import algo_class; algo_class('ppo')",
         "train",
     ),
 }

@@ -1,6 +1,6 @@
 """The ghost-ball features: the shots of the baselines' geometry exactly, in every form seen.
 
-The batched computation (:func:`agents.features.ghost_feature_batch`) is checked against the
+The batched computation (:func:`agents.learned.features.ghost_feature_batch`) is checked against the
 per-shot reference built from :func:`agents.baselines.geometry.ghost_shots`, :func:`cue_speed` and
 :func:`shot_to_action` on random layouts of both pocket models and every aim mode; the
 ghost-ball agent's own action must be one of the feature rows; and the native vector env's
@@ -20,7 +20,7 @@ from agents.baselines.aiming import shot_to_action
 from agents.baselines.base import env_spec
 from agents.baselines.geometry import cue_speed, ghost_shots
 from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
-from agents.features import GhostBallFeatures, GhostShotFeatures
+from agents.learned.features import GhostBallFeatures, GhostShotFeatures
 from agents.training.train_lib import TrainConfig, make_vec
 from pool_env import encode_observations, nearest_object_ball
 from pool_env.sim.table import standard_pockets

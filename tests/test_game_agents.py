@@ -11,7 +11,7 @@ import pytest
 import pool_env  # noqa: F401  (registers the ids)
 from agents.baselines.game_agents import GameGhostBallAgent
 from agents.baselines.ghost_ball import GhostBallAgent
-from agents.evaluate import format_table, make_agent, run_episodes
+from agents.evaluation.evaluate import format_table, make_agent, run_episodes
 from tests.test_games import KWARGS, layout, parked, straight_in
 
 CUT = {k: v for k, v in KWARGS.items() if k != "aim"}  # the default cut aim

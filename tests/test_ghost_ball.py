@@ -207,7 +207,7 @@ def test_bad_arrival_speed_is_a_clear_error() -> None:
 
 
 def test_ghost_ball_features_by_hand() -> None:
-    from agents.features import GhostBallFeatures
+    from agents.learned.features import GhostBallFeatures
 
     env = GhostBallFeatures(_one_ball_env(table=CIRCLES))  # hand values for capture circles
     positions = np.array([[L / 2, 1.2], [L / 2, 0.8]])  # straight in, side pocket 1

@@ -54,7 +54,7 @@ PLANTED = {
         "the repository in layers",
     ),
     "a benchmark imports the tests": (
-        "bench/chaos.py",
+        "bench/scenes.py",
         "import tests.helpers_sim",
         "the repository in layers",
     ),
@@ -79,13 +79,23 @@ PLANTED = {
         "agents in wings",
     ),
     "the features import the SB3 vector adapter": (
-        "agents/features.py",
+        "agents/learned/features.py",
         "import agents.vec.native_vec",
         "agents in wings",
     ),
+    "an agent imports a game kernel": (
+        "agents/baselines/geometry.py",
+        "import pool_env.game.kernels.geometry",
+        "agents, bench and tools use public names only",
+    ),
+    "a tool imports a simulator kernel": (
+        "tools/mutants.py",
+        "from pool_env.sim.kernels.spin import strike",
+        "agents, bench and tools use public names only",
+    ),
     "a cycle inside agents": (
-        "agents/episodes.py",
-        "import agents.evaluate",
+        "agents/evaluation/episodes.py",
+        "import agents.evaluation.evaluate",
         "no import cycle",
     ),
     "a cycle inside sim": (

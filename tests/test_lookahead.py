@@ -9,10 +9,10 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from agents.duels import shot_outcome
-from agents.evaluate import make_agent
-from agents.game_model import GameModel
-from agents.layout_value import (
+from agents.evaluation.duels import shot_outcome
+from agents.evaluation.evaluate import make_agent
+from agents.learned.game_model import GameModel
+from agents.learned.layout_value import (
     LAYOUT_FEATURES,
     PLACE_DISTANCE,
     LayoutValue,
@@ -21,9 +21,9 @@ from agents.layout_value import (
     fit_layout_value,
     layout_features,
 )
-from agents.lookahead import LookaheadAgent
-from agents.training.layout_value import main as layout_value_main
-from agents.training.layout_value import observation_features
+from agents.learned.lookahead import LookaheadAgent
+from agents.training.fit_layout_value import main as layout_value_main
+from agents.training.fit_layout_value import observation_features
 from pool_env.game.geometry import (
     AIM_X,
     AIM_Y,

@@ -11,8 +11,8 @@ import pytest
 pytest.importorskip("stable_baselines3")
 
 import agents
-from agents.candidates import GhostCandidates, decode_candidates
-from agents.evaluate import load_model, run_episodes
+from agents.evaluation.evaluate import load_model, run_episodes
+from agents.learned.candidates import GhostCandidates, decode_candidates
 
 ROOT = Path(__file__).resolve().parents[1]
 MODEL = ROOT / "models" / "ppo_oneball.zip"
@@ -29,7 +29,7 @@ def documented_rate() -> tuple[float, float, float]:
 
 
 @pytest.fixture(scope="module")
-def policy() -> agents.pretrained.PretrainedPolicy:
+def policy() -> agents.learned.pretrained.PretrainedPolicy:
     return agents.load(MODEL)
 
 

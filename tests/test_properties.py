@@ -1,6 +1,6 @@
 """Property tests over random scenes and shots (hypothesis): G, P, E, T and D everywhere.
 
-The CI sample of ``bench/fuzz.py``, including what issue 11 found: masses spread over
+The CI sample of ``tools/fuzz.py``, including what issue 11 found: masses spread over
 ratios up to 1e6, lumps of light balls driven into a rail, and scales at the numeric limits.
 """
 

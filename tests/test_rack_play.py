@@ -10,10 +10,10 @@ import numpy as np
 import pytest
 
 import pool_env
-from agents.duels import play_duels
-from agents.evaluate import main as evaluate_main
-from agents.evaluate import make_agent
-from agents.rack_play import BREAK_ARMS, FEATURES, RackAgent, ValueNet, load_rack_agent
+from agents.evaluation.duels import play_duels
+from agents.evaluation.evaluate import main as evaluate_main
+from agents.evaluation.evaluate import make_agent
+from agents.learned.rack_play import BREAK_ARMS, FEATURES, RackAgent, ValueNet, load_rack_agent
 from agents.training.racks import GAMMA, WIN_BONUS, fit, shot_reward
 
 MODEL = Path(__file__).resolve().parents[1] / "models" / "rack_value.npz"
@@ -183,8 +183,8 @@ def test_duels_alternate_the_break_and_count_every_rack() -> None:
 
 
 def test_the_curve_reads_back_the_evaluation_table(tmp_path) -> None:
-    from agents.evaluate import format_table
-    from agents.metrics import Estimate
+    from agents.evaluation.evaluate import format_table
+    from agents.evaluation.metrics import Estimate
     from agents.training.rack_curve import read_tables
 
     stats = {

@@ -17,7 +17,7 @@ import pytest
 import pool_env  # noqa: F401  (registers the ids)
 from agents import GhostBallAgent, SearchAgent, run_episodes
 from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
-from agents.evaluate import main, make_agent, parse_noise, rack_ends
+from agents.evaluation.evaluate import main, make_agent, parse_noise, rack_ends
 from pool_env.sim.kernels import loop
 
 ONE = "pool_env/OneBall-v1"

@@ -75,7 +75,7 @@ def test_the_rllib_creator_builds_spin_tables() -> None:
 
 
 def test_agents_make_env_and_factory_take_a_spin_id() -> None:
-    from agents.envs import EnvFactory, make_env
+    from agents.learned.envs import EnvFactory, make_env
 
     env = make_env(ONE, {"tip_limit": 0.5})
     assert env.unwrapped.config.tip_limit == 0.5 and env.action_space.shape == (4,)

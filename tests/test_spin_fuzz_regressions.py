@@ -1,4 +1,4 @@
-"""Regressions found by the spin fuzz (``python -m bench.fuzz --model spin``), one per cause."""
+"""Regressions found by the spin fuzz (``python -m tools.fuzz --model spin``), one per cause."""
 
 from __future__ import annotations
 

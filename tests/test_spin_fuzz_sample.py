@@ -1,11 +1,11 @@
-"""The CI sample of the spin fuzz (``python -m bench.fuzz --model spin``).
+"""The CI sample of the spin fuzz (``python -m tools.fuzz --model spin``).
 
 The fuzz's own scenes and checks on the spin level: spin tables with random parameters,
 every scene kind of the roll fuzz (touching layouts, breaks, lumps driven into rails, masses
 spread over a million to one, jaw, circle and pocketless tables, scaled tables), cue strikes
 with random tips and elevations and random initial spins; every invariant (G, P, E, T, O
 and M) on each shot, and the rerun is bit-identical. Every draw is a real shot: the fuzz
-scales a draw past the limits down to them (``bench.fuzz_spin.admitted``), so nothing is
+scales a draw past the limits down to them (``tools.fuzz_spin.admitted``), so nothing is
 refused.
 """
 
@@ -16,13 +16,13 @@ from itertools import islice
 import numpy as np
 import pytest
 
-from bench.fuzz import cases, shot_problems
-from bench.fuzz_spin import admitted
 from pool_env import Table
 from pool_env.sim.inputs import max_speed
 from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.spin_inputs import reachable_spin_speed
 from tests.profiles import examples
+from tools.fuzz import cases, shot_problems
+from tools.fuzz_spin import admitted
 
 SHOTS = examples(60)
 

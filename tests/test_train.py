@@ -11,7 +11,7 @@ import pytest
 import yaml
 
 import train
-from agents.evaluate import evaluate_agent, load_model
+from agents.evaluation.evaluate import evaluate_agent, load_model
 from agents.train import first_line
 from agents.training import hyperparams
 from agents.training.paired import paired_clean
@@ -134,7 +134,7 @@ def test_schedules_and_bad_values() -> None:
 )
 def test_default_recipe_trains_on_what_its_evaluation_sees(algo: str, wrapper: str) -> None:
     """The OneBall recipes on the native vector env see and act as their eval env does."""
-    from agents.envs import make_env
+    from agents.learned.envs import make_env
 
     config = resolve_config("pool_env/OneBallRoll-v1", algo, {"n_envs": 2})
     assert (config.vec, config.wrapper) == ("native", wrapper)

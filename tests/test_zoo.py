@@ -42,7 +42,7 @@ def test_a_wrapper_becomes_a_zoo_env_wrapper(tmp_path: Path) -> None:
     ppo = {"n_timesteps": 10, "wrapper": "pocket_features", "vec": "native"}
     path.write_text(yaml.safe_dump({"default": {"ppo": ppo}}))
     entry = zoo_entry("pool_env/OneBallRoll-v1", "ppo", path)
-    assert entry == {"n_timesteps": 10, "env_wrapper": "agents.features.PocketFeatures"}
+    assert entry == {"n_timesteps": 10, "env_wrapper": "agents.learned.features.PocketFeatures"}
     path.write_text(yaml.safe_dump({"default": {"ppo": {"wrapper": "mystery"}}}))
     with pytest.raises(ValueError, match="mystery"):
         zoo_entry("pool_env/OneBallRoll-v1", "ppo", path)

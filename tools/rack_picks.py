@@ -6,7 +6,7 @@ Usage (from the repository root)::
     python -m tools.rack_picks --model models/rack_duel.npz --racks 60 --seed 20000 --duel
 
 On evaluation racks (seeds ``--seed``..; run-out mode, the evaluation's noise; with
-``--duel`` two-player racks against the ghost-ball agent as :mod:`agents.duels` plays them,
+``--duel`` two-player racks against the ghost-ball agent as ``python -m agents.duels`` plays them,
 the model breaking the even racks) it plays the model and, at every planned shot after the
 break, compares its pick with the candidate the planner's own score ranks first: how often
 they are the same, the mean features of both where they differ, and how often the picks
@@ -22,9 +22,9 @@ import gymnasium as gym
 import numpy as np
 
 import pool_env  # noqa: F401  (registers the ids)
-from agents.duels import NOISE, play_rack
-from agents.evaluate import make_agent
-from agents.rack_play import FEATURES, RackAgent, load_rack_agent
+from agents.evaluation.duels import NOISE, play_rack
+from agents.evaluation.evaluate import make_agent
+from agents.learned.rack_play import FEATURES, RackAgent, load_rack_agent
 from pool_env.envs.multiagent import PoolDuelEnv
 
 SHOWN = ("p_now", "p_next", "planner_score", "strike_speed_over_top", "tip_side",

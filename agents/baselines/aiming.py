@@ -15,9 +15,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.base import EnvSpec
-from pool_env import decode_shots
 from pool_env.game.codec import encode_shots
-from pool_env.game.kernels import params as kp
+from pool_env.game.formulas import decode_on_layout
 
 
 def shot_to_action(
@@ -60,21 +59,7 @@ def decode(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """What the environment executes for ``(B, 2)`` actions on one layout: ``(angles, speeds)``.
 
-    The environment's own decoding (:func:`pool_env.decode_shots`), so that a planner
-    simulates exactly the shot its action will play (before execution noise).
+    The environment's own decoding (:func:`pool_env.game.formulas.decode_on_layout`), so
+    that a planner simulates exactly the shot its action will play (before execution noise).
     """
-    config = spec.config
-    acts = np.ascontiguousarray(actions, dtype=np.float32)
-    b = acts.shape[0]
-    pos = np.ascontiguousarray(np.broadcast_to(positions, (b, *positions.shape)))
-    on = np.ascontiguousarray(np.broadcast_to(on_table, (b, *on_table.shape)))
-    return decode_shots(
-        acts,
-        pos,
-        on,
-        0,
-        int(config.params[kp.AIM_MODE]),
-        float(config.params[kp.RADIUS]),
-        config.aim_range,  # tuples, as the env passes them: no new compiled signature
-        config.speed_range,
-    )
+    return decode_on_layout(spec.config, actions, positions, on_table)

@@ -7,7 +7,7 @@ What a player knows of spin, written as the equations of the spin level (docs/ph
 cloth contact slips at ``u = v - s``.
 
 - The strike (:func:`strike`): the instantaneous-point cue of the simulator
-  (:func:`pool_env.sim.kernels.spin.strike.cue_strike`, reused, not re-derived): the ball
+  (:func:`pool_env.sim.formulas.cue_strike`, reused, not re-derived): the ball
   leaves at the aim plus the squirt, ``s = (5/2) b' V`` along the cue (``b'`` the contact
   offset), ``wz`` from the side offset.
 - Sliding: ``v`` loses ``mu_s g t`` along the slip's direction ``u_hat`` and ``s`` gains
@@ -18,7 +18,7 @@ cloth contact slips at ``u = v - s``.
   against or along the line of centres). The path while sliding is the parabola
   ``r0 + v0 t - (1/2) mu_s g t^2 u_hat``; rolling is straight, ``|v|^2 / (2 mu_r g)`` long.
 - The contact (:func:`collide`): the simulator's frictional impact
-  (:func:`pool_env.sim.kernels.spin.collide.ball_ball_spin`, reused): the object ball takes
+  (:func:`pool_env.sim.formulas.ball_ball_spin`, reused): the object ball takes
   the normal exchange with ``e_ball`` plus a throw from the contact points' slip.
 - After contact (:func:`after_contact`): the slide as a polyline of its parabola, then the
   rolling legs off the cushions of :func:`agents.baselines.trace.roll_trace`, both checked
@@ -36,15 +36,16 @@ from numpy.typing import NDArray
 from agents.baselines.geometry import PocketMouths
 from agents.baselines.trace import TRACE_CUSHIONS, Trace, first_entry
 from pool_env import Table
-from pool_env.sim.kernels.spin.collide import ball_ball_spin
-from pool_env.sim.kernels.spin.cushion import cushion_han
-from pool_env.sim.kernels.spin.params import (
+from pool_env.sim.formulas import (
     ALCIATORE_FRICTION,
     CONSTANT_FRICTION,
     FRICTIONLESS,
     POOLTOOL_FRICTION,
+    ball_ball_spin,
+    cue_strike,
+    cushion_han,
+    squirt_angle,
 )
-from pool_env.sim.kernels.spin.strike import cue_strike, squirt_angle
 
 #: Points of the sliding parabola after contact where its polyline turns.
 SLIDE_POINTS = 8
@@ -240,7 +241,7 @@ def after_contact(
     Each phase in closed form: a slide (the parabola as a polyline of
     :data:`SLIDE_POINTS` legs) until the slip is gone, then a straight roll. A rail is
     resolved by the simulator's cushion law (Han 2005,
-    :func:`pool_env.sim.kernels.spin.cushion.cushion_han`): a rolling ball leaves it
+    :func:`pool_env.sim.formulas.cushion_han`): a rolling ball leaves it
     sliding and bends. Other balls and the jaws' facings are ignored (a path reaching a
     pocket's opening drops). Up to :data:`agents.baselines.trace.TRACE_CUSHIONS` cushions.
 

@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env import Table
+from pool_env.game import formulas
 from pool_env.game import geometry as geo
 from pool_env.game.geometry import (
     MAX_CUT,
@@ -23,7 +24,6 @@ from pool_env.game.geometry import (
     path_clear,
     pocket_mouths,
 )
-from pool_env.game.kernels import geometry as kg
 
 __all__ = [
     "MAX_CUT",
@@ -143,6 +143,6 @@ def cue_speed(table: Table, shot: GhostShot, arrival_speed: float) -> float:
     over the object ball's travel and the cue ball's distance, and the collision's
     ``(1 + e) / 2 cos(cut)`` between them.
     """
-    return kg.cue_speed(
+    return formulas.cue_speed(
         table.deceleration, table.e_ball, shot.travel, shot.cut, shot.cue_distance, arrival_speed
     )

@@ -59,7 +59,7 @@ from agents.baselines.spin_play import (
 )
 from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball, onto_tip_circle
-from pool_env.game.kernels.encode import to_unit
+from pool_env.game.formulas import to_unit
 
 #: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
 #: error of the deceleration model, soft enough that the cue ball stays out of the pockets.

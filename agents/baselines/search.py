@@ -44,7 +44,7 @@ from agents.baselines.geometry import (
 )
 from agents.baselines.spin_play import plan_contact
 from pool_env import ShotResult, onto_tip_circle, shoot
-from pool_env.game.kernels.tips import decode_tips
+from pool_env.game.formulas import decode_tips
 
 #: A planned candidate: ``(angle, speed, tip, difficulty, pocket)``.
 Planned = tuple[float, float, tuple[float, float], float, int]

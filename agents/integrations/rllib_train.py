@@ -27,7 +27,7 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
-from agents.evaluate import evaluate_agent, format_table, one_line
+from agents.evaluation.evaluate import evaluate_agent, format_table, one_line
 from agents.integrations.rllib_env import register
 from agents.training import hyperparams, runs
 
@@ -203,7 +203,7 @@ def build_config(run: RLlibRun) -> Any:
 
 
 class RLlibPolicy:
-    """A trained RLlib module with SB3's ``predict``, for :func:`agents.episodes.run_episodes`.
+    """A trained RLlib module with SB3's ``predict``, for :func:`agents.run_episodes`.
 
     The deterministic action is the mean of the Gaussian, clipped to the action box (what
     RLlib's module-to-env connector sends to the env).

@@ -35,9 +35,9 @@ ZOO_RUN_KEYS = ("n_timesteps", "n_envs", "policy", "env_kwargs")
 
 #: Observation wrappers (``wrapper:`` names) as zoo's ``env_wrapper`` class paths.
 ENV_WRAPPERS = {
-    "pocket_features": "agents.features.PocketFeatures",
-    "ghost_features": "agents.features.GhostBallFeatures",
-    "ghost_candidates": "agents.candidates.GhostCandidates",
+    "pocket_features": "agents.learned.features.PocketFeatures",
+    "ghost_features": "agents.learned.features.GhostBallFeatures",
+    "ghost_candidates": "agents.learned.candidates.GhostCandidates",
 }
 
 HEADER = """\

@@ -1,4 +1,4 @@
-"""Collect two-player racks for :class:`agents.rack_play.RackAgent` against the ghost-ball agent.
+"""Collect two-player racks for :class:`~agents.learned.rack_play.RackAgent` against ghost-ball.
 
 Usage (from the repository root; ``fit`` is :mod:`agents.training.racks`' own)::
 
@@ -6,7 +6,7 @@ Usage (from the repository root; ``fit`` is :mod:`agents.training.racks`' own)::
     python -m agents.training.racks fit runs/duel/d0.npz --out models/rack_duel.npz
 
 Rack ``k`` is :class:`pool_env.envs.multiagent.PoolDuelEnv` seeded ``seed + k`` (keep it away
-from the duels' evaluation racks, 20000..), played by :func:`agents.duels.play_rack`: the
+from the duels' evaluation racks, 20000..), played by :func:`agents.evaluation.duels.play_rack`: the
 agent breaks the even racks with a uniformly random break arm, the ghost-ball agent
 (:class:`agents.baselines.game_agents.GameGhostBallAgent`, as the duels build it) the odd
 ones. On each of its shots the agent plays a random candidate with chance ``--explore``,
@@ -31,10 +31,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.duels import NOISE, play_rack
-from agents.envs import make_env
-from agents.evaluate import make_agent
-from agents.rack_play import BREAK_ARMS, FEATURES, RackAgent, load_rack_agent
+from agents.evaluation.duels import NOISE, play_rack
+from agents.evaluation.evaluate import make_agent
+from agents.learned.envs import make_env
+from agents.learned.rack_play import BREAK_ARMS, FEATURES, RackAgent, load_rack_agent
 from agents.training.racks import ENV_ID
 from pool_env.envs.multiagent import PoolDuelEnv
 

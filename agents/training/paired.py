@@ -17,10 +17,10 @@ from typing import Any
 
 import numpy as np
 
-from agents.candidates import FirstRowAgent
-from agents.envs import make_env
-from agents.episodes import run_episodes
-from agents.pretrained import load
+from agents.evaluation.episodes import run_episodes
+from agents.learned.candidates import FirstRowAgent
+from agents.learned.envs import make_env
+from agents.learned.pretrained import load
 
 
 def paired_clean(model_path: str, episodes: int, seed: int) -> dict[str, Any]:

@@ -10,7 +10,7 @@ import matplotlib
 matplotlib.use("Agg")  # files only: no display on a training machine
 import matplotlib.pyplot as plt
 
-from agents.metrics import Estimate
+from agents.evaluation.metrics import Estimate
 
 
 def learning_curve(

@@ -6,7 +6,7 @@ Usage (run from the repository root; one line)::
         --points rack-planner=0 runs/racks/m1k.npz=1500 models/rack_value.npz=3000
         --baselines ghost random --out results/nineball_rack_learning.png
 
-It reads the tables :mod:`agents.evaluate` printed (``--out`` files or their logs, every
+It reads the tables :mod:`agents.evaluation.evaluate` printed (``--out`` files or their logs, every
 row with its 95% interval) for the same racks of ``pool_env/NineBallGame-v1`` in run-out
 mode, and draws each ``agent=racks`` point (a rack model, or ``rack-planner`` for the
 untrained candidates ranked by the planner's score) against the racks of training data
@@ -25,7 +25,7 @@ import matplotlib
 matplotlib.use("Agg")  # files only
 import matplotlib.pyplot as plt
 
-from agents.metrics import Estimate
+from agents.evaluation.metrics import Estimate
 
 #: The statistics drawn: (column of the evaluate table, label).
 PANELS = (("run-outs", "run-outs per rack"), ("pots/shot", "pots per shot"))
@@ -86,7 +86,7 @@ def plot(
 def main(argv: list[str] | None = None) -> int:
     """The command line (module doc)."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n", 1)[0])
-    parser.add_argument("tables", nargs="+", help="files holding agents.evaluate tables")
+    parser.add_argument("tables", nargs="+", help="files holding agents.evaluation.evaluate tables")
     parser.add_argument("--points", nargs="+", required=True, help="agent=racks pairs")
     parser.add_argument("--baselines", nargs="*", default=["ghost", "random"])
     parser.add_argument("--episodes", type=int, default=300, help="racks per evaluation")

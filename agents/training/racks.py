@@ -1,4 +1,4 @@
-"""Train :class:`agents.rack_play.RackAgent`: play racks, fit the candidates' value, pick a break.
+"""Train :class:`~agents.learned.rack_play.RackAgent`: play racks, fit the candidates' value.
 
 Two commands (run from the repository root):
 
@@ -10,7 +10,7 @@ for the same ``fit``: its rewards are the rack's outcome, its config says so.)
 
 ``collect`` plays 9-ball racks in run-out mode with the evaluation's execution noise (the
 racks' seeds from ``--seed``, kept apart from the evaluation's 10000..), a uniformly random
-break arm (:data:`~agents.rack_play.BREAK_ARMS`) per rack and, on every shot, a random
+break arm (:data:`~agents.learned.rack_play.BREAK_ARMS`) per rack and, on every shot, a random
 candidate with chance ``--explore``, else the best by ``--model`` (or the planner's score
 without one). It saves every shot's candidate features, the one played, the legal pots,
 whether the rack went on, and the break arms with their pots.
@@ -41,8 +41,8 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
-from agents.envs import make_env
-from agents.rack_play import BREAK_ARMS, FEATURES, RackAgent, ValueNet, load_rack_agent
+from agents.learned.envs import make_env
+from agents.learned.rack_play import BREAK_ARMS, FEATURES, RackAgent, ValueNet, load_rack_agent
 
 ENV_ID = "pool_env/NineBallGame-v1"
 #: The evaluation's run-out mode and execution noise (results/games.md, the spin ids).

@@ -33,13 +33,13 @@ from stable_baselines3.common.vec_env import (
     VecMonitor,
 )
 
-from agents.baselines.constant_scan import best_constant_agent
-from agents.candidates import FirstRowAgent
-from agents.envs import EnvFactory, make_env
-from agents.episodes import run_episodes
-from agents.evaluate import evaluate_agent, format_table, one_line
-from agents.metrics import Estimate
-from agents.pretrained import ALGO_CLASSES, algo_class
+from agents.evaluation.constant_scan import best_constant_agent
+from agents.evaluation.episodes import run_episodes
+from agents.evaluation.evaluate import evaluate_agent, format_table, one_line
+from agents.evaluation.metrics import Estimate
+from agents.learned.candidates import FirstRowAgent
+from agents.learned.envs import EnvFactory, make_env
+from agents.learned.pretrained import ALGO_CLASSES, algo_class
 from agents.training import hyperparams, runs
 from agents.training.hyperparams import VEC_KINDS
 from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
@@ -48,8 +48,8 @@ from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVec
 ALGOS: dict[str, type[BaseAlgorithm]] = {name: algo_class(name) for name in ALGO_CLASSES}
 
 #: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
-#: features as the ``gym.Env`` wrapper of that name (:data:`agents.envs.WRAPPERS`), which the
-#: evaluation envs use.
+#: features as the ``gym.Env`` wrapper of that name (:data:`agents.learned.envs.WRAPPERS`),
+#: which the evaluation envs use.
 NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {
     "ghost_features": GhostFeaturesVecEnv,
     "ghost_candidates": GhostCandidatesVecEnv,
@@ -60,7 +60,7 @@ NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {
 EVAL_SEED = 20_000
 FINAL_SEED = 10_000
 
-#: Baselines of the final evaluation, in the order printed (see :mod:`agents.evaluate`).
+#: Baselines of the final evaluation, in the order printed (see :mod:`agents.evaluation.evaluate`).
 FINAL_BASELINES = ("random", "best-const", "ghost", "search")
 
 
@@ -83,7 +83,7 @@ class TrainConfig:
         progress_bar: Show SB3's progress bar.
         policy: SB3 policy name.
         env_kwargs: ``gymnasium.make`` keyword arguments.
-        wrapper: Observation wrapper name (see :mod:`agents.envs`), or ``None``.
+        wrapper: Observation wrapper name (see :mod:`agents.learned.envs`), or ``None``.
         algo_kwargs: Algorithm keyword arguments in their data form (``hyperparams.yml``).
     """
 

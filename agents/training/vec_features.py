@@ -1,10 +1,10 @@
 """The ghost-ball features and candidate actions on an SB3 ``VecEnv`` (``--vec native``).
 
 The ``gym.Env`` wrappers of the same features and actions are
-:class:`agents.features.GhostBallFeatures` and :class:`agents.candidates.GhostCandidates`,
-which the evaluation envs use; both compute the features with
-:class:`agents.features.GhostShotFeatures` and decode with
-:func:`agents.candidates.decode_candidates`.
+:class:`agents.learned.features.GhostBallFeatures` and
+:class:`agents.learned.candidates.GhostCandidates`, which the evaluation envs use; both
+compute the features with :class:`agents.learned.features.GhostShotFeatures` and decode with
+:func:`agents.learned.candidates.decode_candidates`.
 """
 
 from __future__ import annotations
@@ -16,8 +16,8 @@ from stable_baselines3.common.vec_env import VecEnv, VecEnvWrapper
 from stable_baselines3.common.vec_env.base_vec_env import VecEnvStepReturn
 
 from agents.baselines.base import env_spec
-from agents.candidates import candidate_space, decode_candidates
-from agents.features import GhostShotFeatures
+from agents.learned.candidates import candidate_space, decode_candidates
+from agents.learned.features import GhostShotFeatures
 
 __all__ = ["GhostCandidatesVecEnv", "GhostFeaturesVecEnv"]
 
@@ -59,7 +59,7 @@ class GhostFeaturesVecEnv(VecEnvWrapper):
 
 
 class GhostCandidatesVecEnv(VecEnvWrapper):
-    """The SB3 ``VecEnv`` counterpart of :class:`agents.candidates.GhostCandidates`.
+    """The SB3 ``VecEnv`` counterpart of :class:`agents.learned.candidates.GhostCandidates`.
 
     Observations with their ghost-ball features (:class:`GhostFeaturesVecEnv`); actions are
     candidate actions, decoded on each table's last observation. After an episode ends the

@@ -18,8 +18,8 @@ from typing import Any
 import numpy as np
 
 from agents.baselines.random_agent import ConstantAgent
-from agents.episodes import run_episodes
-from agents.metrics import Estimate
+from agents.evaluation.episodes import run_episodes
+from agents.evaluation.metrics import Estimate
 
 #: First seed of the scan's episodes (evaluations use 10_000 and 20_000 onwards).
 SCAN_SEED = 30_000

@@ -1,6 +1,6 @@
 """Robustness fuzz: many random scenes and shots, every invariant checked on each.
 
-Run: ``python bench/fuzz.py --shots 100000`` (the long run; CI runs a small sample through
+Run: ``python -m tools.fuzz --shots 100000`` (the long run; CI runs a small sample through
 ``tests/test_properties.py``). Prints the violation count and writes
 ``results/fuzz.md``. Scenes mix: random layouts of 2-16 balls (some touching), 9- and 15-ball
 breaks with jittered aim, random speeds from 1e-6 to 15 m/s, random restitutions and
@@ -10,10 +10,10 @@ so that jaws are hit often; and what issue 11 found: masses spread over ratios u
 lumps of light balls pressed into a rail by a heavy one, and tables, radii and speeds
 scaled to the edges of the numeric limits.
 
-``python -m bench.fuzz --model spin`` (from the repository's root) runs the same scene
+``python -m tools.fuzz --model spin`` (from the repository's root) runs the same scene
 kinds on spin tables (``Table(model="spin")``) with random spin parameters, cue strikes
 with random tips and elevations, and random initial angular velocities
-(:mod:`bench.fuzz_spin`); every invariant then includes the spin (energy with the
+(:mod:`tools.fuzz_spin`); every invariant then includes the spin (energy with the
 rotational part, and M, the motion states and transitions).
 
 Every invariant is checked on every shot. The termination target is no event-cap hit on a
@@ -34,10 +34,9 @@ from pathlib import Path
 
 import numpy as np
 
-from bench import fuzz_spin
 from pool_env import Table, simulate
+from pool_env.sim.constants import MAX_LENGTH, MIN_LENGTH
 from pool_env.sim.inputs import max_speed
-from pool_env.sim.kernels import limits
 from pool_env.sim.layouts import break_scene
 from pool_env.sim.result import ShotResult
 from pool_env.testing.invariants import check_shot
@@ -47,6 +46,7 @@ from pool_env.testing.scenes_random import (
     random_layout,
     within_limits,
 )
+from tools import fuzz_spin
 
 DEFAULT = Table()
 MASS_RATIO = 1e6
@@ -67,8 +67,8 @@ def random_table(rng: np.random.Generator, **spin: object) -> tuple[Table, float
     """
     scale = 1.0
     if rng.random() < 0.1:
-        low = np.log10(limits.MIN_LENGTH / DEFAULT.ball_radius)
-        high = np.log10(limits.MAX_LENGTH / DEFAULT.length)
+        low = np.log10(MIN_LENGTH / DEFAULT.ball_radius)
+        high = np.log10(MAX_LENGTH / DEFAULT.length)
         scale = float(10 ** rng.uniform(low, high))
     pockets = str(rng.choice(["jaws", "jaws", "circles", "none"]))
     if pockets == "jaws" and scale != 1.0:  # regulation jaws are sized in inches
@@ -271,7 +271,7 @@ def main() -> None:
     report = [
         "# Fuzz: invariants over random scenes and shots",
         "",
-        f"Command: `python bench/fuzz.py --shots {args.shots} --seed {args.seed}"
+        f"Command: `python -m tools.fuzz --shots {args.shots} --seed {args.seed}"
         f"{' --model spin' if args.model == 'spin' else ''}`",
         "",
         f"- shots: {args.shots}; shots with any violation (G, P, E, T, O, M, D): {len(failures)}",

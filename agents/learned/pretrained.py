@@ -2,7 +2,7 @@
 
 A model trained by ``train.py`` saw the environment through a wrapper (``ghost_features``
 appends the ghost-ball shot into each pocket; the OneBall PPO default ``ghost_candidates``
-also acts by picking one of those shots and refining it, :mod:`agents.candidates`), so
+also acts by picking one of those shots and refining it, :mod:`agents.learned.candidates`), so
 SB3's ``PPO.load(path).predict(obs)`` on the environment's own observation fails on the
 shape, or returns a candidate action rather than the env's.
 :func:`load` reads the model's saved run config (``<stem>_config.yaml`` or ``config.yaml``
@@ -37,8 +37,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.base import batch_obs, decode_observation
-from agents.candidates import decode_candidates
-from agents.envs import make_env
+from agents.learned.candidates import decode_candidates
+from agents.learned.envs import make_env
 from pool_env.extras import require
 
 __all__ = ["ALGO_CLASSES", "PretrainedPolicy", "algo_class", "load", "load_model", "model_config"]
@@ -98,7 +98,7 @@ class PretrainedPolicy:
 
     ``predict`` takes the environment's own observations (``(D,)`` or ``(B, D)``; already
     wrapped ones, of the model's input size, pass through unchanged) and has SB3's
-    signature, so it works with ``evaluate_policy`` and :func:`agents.episodes.run_episodes`.
+    signature, so it works with ``evaluate_policy`` and :func:`agents.run_episodes`.
 
     Args:
         model: The loaded SB3 model.
@@ -171,7 +171,7 @@ class PretrainedPolicy:
 
         Returns:
             ``(actions, state)``: ``(2,)`` or ``(B, 2)`` env actions (a candidate-action
-            model's decoded, :mod:`agents.candidates`).
+            model's decoded, :mod:`agents.learned.candidates`).
         """
         obs, single = batch_obs(observation)
         inputs = self.features(obs)

@@ -2,24 +2,26 @@
 
 Usage (from the repository root)::
 
-    python -m agents.training.layout_value collect --racks 600 --seed 70000 --out runs/layout/g0.npz
-    python -m agents.training.layout_value fit runs/layout/g0.npz --out models/duel_value.npz
+    python -m agents.training.fit_layout_value collect --racks 600 --seed 70000 \
+        --out runs/layout/g0.npz
+    python -m agents.training.fit_layout_value fit runs/layout/g0.npz --out models/duel_value.npz
 
 ``collect`` plays two-player racks on :class:`pool_env.envs.multiagent.PoolDuelEnv` (9-ball, spin
-table, the duels' execution noise) through :func:`agents.duels.play_rack`, rack ``k``
+table, the duels' execution noise) through :func:`agents.evaluation.duels.play_rack`, rack ``k``
 seeded ``seed + k`` (keep it away from the duels' evaluation racks, 20000..), the two
 sides alternating breaks, and records every shot but the breaks: the layout's features
-from the shooter's side (:func:`agents.layout_value.layout_features`, read from the
+from the shooter's side (:func:`agents.learned.layout_value.layout_features`, read from the
 shooter's observation alone) and whether that shooter went on to win the rack (a draw at
 the shot limit counts as not won). With ``--runout`` it plays run-out mode on the
 single-player id instead (``end_on_foul``: the first miss or foul ends the rack) and the
 label is whether the rack was run out.
 
 ``fit`` is a logistic regression of the labels on the features
-(:func:`agents.layout_value.fit_layout_value`): the chance that the player to shoot wins
+(:func:`agents.learned.layout_value.fit_layout_value`): the chance that the player to shoot wins
 (or runs out) from such a layout, *under the policies that played the racks*. It writes
 the model and a ``<stem>_config.yaml`` that makes ``--agent models/<stem>.npz`` a
-:class:`agents.lookahead.LookaheadAgent` in :mod:`agents.evaluate` and :mod:`agents.duels`.
+:class:`agents.learned.lookahead.LookaheadAgent` in :mod:`agents.evaluation.evaluate` and
+:mod:`agents.evaluation.duels`.
 """
 
 from __future__ import annotations
@@ -34,16 +36,17 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
-from agents.duels import ENV_ID, NOISE, play_rack
-from agents.envs import make_env
-from agents.evaluate import make_agent
-from agents.layout_value import (
+from agents.evaluation.duels import ENV_ID, NOISE, play_rack
+from agents.evaluation.evaluate import make_agent
+from agents.learned.envs import make_env
+from agents.learned.layout_value import (
     LAYOUT_FEATURES,
     fit_layout_value,
     layout_features,
     observed_rack,
 )
-from agents.lookahead import PLAY_SETTINGS, LookaheadAgent
+from agents.learned.lookahead import PLAY_SETTINGS, LookaheadAgent
+from agents.policy import Policy
 from pool_env.envs.multiagent import PoolDuelEnv
 from pool_env.game.codec import decode_observations
 from pool_env.game.geometry import pocket_mouths
@@ -55,16 +58,23 @@ SIGMA = NOISE[0]
 class _Recorder:
     """Wraps a player: records the features of each observation it is asked to play."""
 
-    def __init__(self, player: Any, side: str, config: Any, rows: list[tuple[str, Any]]) -> None:
+    def __init__(self, player: Policy, side: str, config: Any, rows: list[tuple[str, Any]]) -> None:
         self.player, self.side, self.rows = player, side, rows
         self.table, self.n = config.table, config.n_balls
         self.mouths = pocket_mouths(config.table)
 
-    def predict(self, obs: NDArray[np.floating]) -> Any:
-        if not observed_rack(obs, self.n)[1]:  # not the break
-            features = observation_features(self.table, self.mouths, self.n, obs)
+    def predict(
+        self,
+        observation: NDArray[np.floating],
+        state: Any = None,
+        episode_start: Any = None,
+        deterministic: bool = True,
+    ) -> tuple[Any, Any]:
+        """The wrapped player's ``predict(observation)``, recording the layout first."""
+        if not observed_rack(observation, self.n)[1]:  # not the break
+            features = observation_features(self.table, self.mouths, self.n, observation)
             self.rows.append((self.side, features))
-        return self.player.predict(obs)
+        return self.player.predict(observation)
 
 
 def observation_features(

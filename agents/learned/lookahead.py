@@ -5,26 +5,26 @@ two-player front (:class:`pool_env.envs.multiagent.PoolDuelEnv`) from the observ
 every shot it:
 
 1. lists candidates: the spin planner's pots on the ball on (the ``pots`` best of
-   :meth:`agents.rack_play.RackAgent.candidates` by the planner's score), the ghost-ball
+   :meth:`agents.learned.rack_play.RackAgent.candidates` by the planner's score), the ghost-ball
    agent's own choice (so its set always holds the baseline's shot, banks included), and
    a *grid* of centre-ball hits on the ball on, :data:`GRID_OFFSETS` across its face at
    :data:`GRID_SPEEDS`: not aimed at any pocket, they are what the simulation makes of
    them, safeties that leave the opponent nothing, combinations into other balls (the 9
    too), kisses;
 2. plays each candidate ``samples`` times on the game's own step with the env's execution
-   noise (:class:`agents.game_model.GameModel`: the same decoding, physics and rules;
+   noise (:class:`agents.learned.game_model.GameModel`: the same decoding, physics and rules;
    common noise across candidates), then the ``finalists`` best ``final_samples`` times
    more;
 3. values each outcome by who shoots next and what they face: a won rack is 1, a lost one
-   0; a shot that keeps the table is worth :class:`agents.layout_value.LayoutValue` of the
+   0; a shot that keeps the table is worth :class:`agents.learned.layout_value.LayoutValue` of the
    layout it leaves (the chance that the shooter wins from there); a miss or a foul hands
    the table over and is worth one minus the opponent's chance from what it leaves (ball in
    hand after a foul); and plays the candidate of the highest mean.
 
 In run-out mode (``objective="runout"``: the first miss or foul ends the rack, nobody else
 shoots) a miss is worth 0 and a kept table the layout's value, a chance to run out.
-The layout value is learned (:mod:`agents.training.layout_value`), the rest is the model and
-the rules. The break and ball-in-hand placement are :class:`agents.rack_play.RackAgent`'s.
+The layout value is learned (:mod:`agents.training.fit_layout_value`), the rest is the model and
+the rules. The break and ball-in-hand placement are :class:`agents.learned.rack_play.RackAgent`'s.
 """
 
 from __future__ import annotations
@@ -37,9 +37,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.ghost_ball import MIN_SIGMA
-from agents.game_model import GameModel
-from agents.layout_value import LayoutValue, layout_features, observed_rack
-from agents.rack_play import FEATURES, RackAgent
+from agents.learned.game_model import GameModel
+from agents.learned.layout_value import LayoutValue, layout_features, observed_rack
+from agents.learned.rack_play import FEATURES, RackAgent
 from pool_env.game.codec import encode_shots
 from pool_env.game.geometry import pocket_mouths
 from pool_env.game.rack import rack_row
@@ -66,7 +66,7 @@ class LookaheadAgent(RackAgent):
         samples: Noisy plays of every candidate.
         finalists: Candidates played ``final_samples`` times more.
         final_samples: Their extra plays.
-        break_arm: The break (:data:`agents.rack_play.BREAK_ARMS`; ``None``: the planner's).
+        break_arm: The break (:data:`agents.learned.rack_play.BREAK_ARMS`; ``None``: the planner's).
         seed: Seed of the noise samples.
 
     Raises:

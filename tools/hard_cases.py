@@ -24,10 +24,9 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from bench.errors import Outcome
-from bench.scenes import Scene
 from pool_env import Table
 from pool_env.sim.layouts import break_scene
+from tools.shots import Outcome, Scene
 
 TOL = 1e-9  # m, the G invariant
 JAW_ZONE = 0.15  # m around a pocket centre where pooltool's jaws let a ball pass a rail line

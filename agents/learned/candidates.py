@@ -2,7 +2,7 @@
 
 PPO on the env's own action (aim, speed) must find an aim precise to ~0.01 of the action
 range by Gaussian exploration, and its aim's standard deviation collapses before the mean
-gets there (results/agents.md). The ghost-ball features (:mod:`agents.features`) already
+gets there (results/agents.md). The ghost-ball features (:mod:`agents.learned.features`) already
 hold, per pocket, the env action that plays the geometric shot. :class:`GhostCandidates`
 makes the policy's action a choice among those rows plus a small residual:
 
@@ -15,7 +15,7 @@ action encoding (computed from the env's aim mode and ranges, :class:`GhostShotF
 so decoding needs nothing but the observation's feature columns: the same function
 (:func:`decode_candidates`) serves the ``gym.Env`` wrapper, the native vector env
 (:class:`agents.training.vec_features.GhostCandidatesVecEnv`) and a loaded model
-(:mod:`agents.pretrained`). With no valid row (no direct shot), the base is ``(0, 0)``:
+(:mod:`agents.learned.pretrained`). With no valid row (no direct shot), the base is ``(0, 0)``:
 a full hit on the reference ball at the middle speed, refined the same way.
 """
 
@@ -27,7 +27,7 @@ import gymnasium as gym
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.features import GhostBallFeatures, GhostShotFeatures
+from agents.learned.features import GhostBallFeatures, GhostShotFeatures
 
 #: Scale of the aim residual, in action units (the aim action's range is 2). Row 0 played
 #: exactly pots 93%; the misses a residual can fix (collision throw, the deceleration

@@ -1,7 +1,7 @@
-"""The spin share of the robustness fuzz (``python -m bench.fuzz --model spin``).
+"""The spin share of the robustness fuzz (``python -m tools.fuzz --model spin``).
 
 Random spin parameters for a table and a random way to set a scene's balls spinning, drawn
-after the roll fuzz's scene (:func:`bench.fuzz.random_case`), so that the scene kinds are
+after the roll fuzz's scene (:func:`tools.fuzz.random_case`), so that the scene kinds are
 the roll fuzz's: touching layouts, breaks, lumps driven into rails, masses spread over a
 million to one, jaw, capture-circle and pocketless tables, tables scaled to the numeric
 limits. What the spin level refuses: batches (``simulate_batch``: spin tables are simulated
@@ -40,8 +40,8 @@ from collections.abc import Callable
 import numpy as np
 
 from pool_env import Table, shoot, simulate
+from pool_env.sim.constants import MAX_SPEED
 from pool_env.sim.inputs import max_speed
-from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.result import ShotResult
 from pool_env.sim.spin_inputs import reachable_spin_speed, strike, tip_touches_ball
 

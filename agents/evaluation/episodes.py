@@ -1,7 +1,7 @@
 """Play episodes and count: pots per shot, clean pots, scratches, turns, clears, reward.
 
-The loop every evaluation shares (:mod:`agents.evaluate`, the best-constant scan of
-:mod:`agents.baselines.constant_scan`, the training runs' periodic evaluations). It needs only
+The loop every evaluation shares (:mod:`agents.evaluation.evaluate`, the best-constant scan of
+:mod:`agents.evaluation.constant_scan`, the training runs' periodic evaluations). It needs only
 an agent with SB3's ``predict`` signature and a Gymnasium env, not SB3 itself.
 """
 
@@ -9,18 +9,19 @@ from __future__ import annotations
 
 from typing import Any
 
-from agents.metrics import EpisodeLog
+from agents.evaluation.metrics import EpisodeLog
+from agents.policy import Policy
 
 __all__ = ["run_episodes"]
 
 
 def run_episodes(
-    agent: Any, env: Any, episodes: int, seed: int, deterministic: bool = True
+    agent: Policy, env: Any, episodes: int, seed: int, deterministic: bool = True
 ) -> EpisodeLog:
     """Play ``episodes`` episodes (episode ``k`` reset with ``seed + k``) and count.
 
     Args:
-        agent: Anything with SB3's ``predict(obs, state, episode_start, deterministic)``.
+        agent: A :class:`~agents.policy.Policy` (SB3's ``predict``).
         env: A Gymnasium ``PoolEnv`` (wrapped or not).
         episodes: Number of episodes.
         seed: Seed of the first episode.

@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.game.config import GameConfig
-from pool_env.game.kernels import wpa
+from pool_env.game.formulas import IN_HAND
 from pool_env.game.state import GameState, new_state
 from pool_env.game.step import StepResult, step
 
@@ -74,7 +74,7 @@ class GameModel:
         acts = np.asarray(actions, dtype=np.float64)
         if acts.ndim != 2 or acts.shape[1] != self.config.action_size:
             raise ValueError(f"actions must be (C, {self.config.action_size}), got {acts.shape}")
-        if rack[wpa.IN_HAND]:
+        if rack[IN_HAND]:
             raise ValueError("place the cue ball first: the model plays from a placed cue ball")
         if samples < 1:
             raise ValueError(f"samples must be >= 1, got {samples}")

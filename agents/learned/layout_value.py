@@ -12,7 +12,7 @@ planner can value hundreds of simulated outcomes per shot.
 model on :func:`design` (the features and the products that matter: a pot chance counts
 for more when the ball on is the 9, and with the cue ball in hand), fitted by
 :func:`fit_layout_value` on layouts from played racks labelled by who won
-(:mod:`agents.training.layout_value`).
+(:mod:`agents.training.fit_layout_value`).
 """
 
 from __future__ import annotations
@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.formulas import RULE_FEATURES
 from pool_env.game.geometry import (
     AIM_X,
     AIM_Y,
@@ -34,7 +35,6 @@ from pool_env.game.geometry import (
     PocketMouths,
     ghost_shots,
 )
-from pool_env.game.kernels.observe import RULE_FEATURES
 from pool_env.sim import Table
 
 #: The columns of :func:`layout_features`.
@@ -55,7 +55,7 @@ def observed_rack(obs: NDArray[np.floating], n_balls: int) -> tuple[bool, bool, 
     """What a rule observation says of the rack: ``(in_hand, breaking, fouls)``.
 
     ``fouls`` are the viewer's and the opponent's successive fouls (0..2), which the
-    observation stores halved (:data:`pool_env.game.kernels.observe.RULE_FEATURES`, after
+    observation stores halved (:data:`pool_env.game.formulas.RULE_FEATURES`, after
     the ``3 N`` ball entries and the ``N - 1`` legal-ball flags).
     """
     base = 4 * n_balls - 1

@@ -17,8 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from bench.scenes import Scene
 from pool_env import simulate
+from tools.shots import Scene
 
 EPSILON = 1e-12  # m, sideways shift of the cue ball
 SATURATION = 1e-3  # m: past this the runs are different shots

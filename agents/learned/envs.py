@@ -13,11 +13,12 @@ from typing import Any
 import gymnasium as gym
 
 import pool_env  # noqa: F401  (registers the ids)
-from agents.candidates import GhostCandidates
-from agents.features import GhostBallFeatures, PocketFeatures
+from agents.learned.candidates import GhostCandidates
+from agents.learned.features import GhostBallFeatures, PocketFeatures
 
 #: Wrappers by name (``wrapper:`` in ``hyperparams.yml``): observation features, and
-#: ``ghost_candidates``, which also makes the action a candidate shot (:mod:`agents.candidates`).
+#: ``ghost_candidates``, which also makes the action a candidate shot
+#: (:mod:`agents.learned.candidates`).
 WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {
     "pocket_features": PocketFeatures,
     "ghost_features": GhostBallFeatures,

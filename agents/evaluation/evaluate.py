@@ -1,0 +1,324 @@
+"""Evaluate agents on a pool environment: pots per shot, clean pots, scratches, clears, reward.
+
+Usage::
+
+    python -m agents.evaluate --env pool_env/OneBallRoll-v1 --agent random best-const ghost search
+    python -m agents.evaluate --env pool_env/OneBallRoll-v1 --agent models/ppo_oneball.zip
+
+Episode ``k`` is reset with seed ``seed + k``, so every agent sees the same layouts. A model
+``.zip`` is loaded with the SB3 algorithm its name or saved config names; its environment
+settings (``env_kwargs``, ``wrapper``) come from a ``config.yaml`` next to it, or from a
+sidecar ``<name>_config.yaml``.
+
+Agents by name: ``random`` (uniform actions), ``const[:a0,a1,...]`` (one action, default
+the full hit ``0,1``, centre ball on a spin env), ``best-const`` (the best action of a grid
+scan, see :mod:`agents.evaluation.constant_scan`), ``ghost`` (the geometric ghost-ball
+heuristic, no simulation, :mod:`agents.baselines.ghost_ball`; on a spin env it plays
+position with the tip), ``ghost-centre`` (the same on a spin env with a centre-ball tip
+only: position by speed alone), ``search`` (candidate shots checked on the simulator:
+the oracle upper bound, :mod:`agents.baselines.search`) and, on the spin 9-ball id,
+``rack-planner`` (:class:`agents.learned.rack_play.RackAgent`'s candidates ranked by the planner's
+own score: the trivial policy of the learned rack agent's action space). A rack model
+``.npz`` (:mod:`agents.learned.rack_play`, with its ``<name>_config.yaml``) plays its learned value.
+
+Execution noise: ``--noise 0.003,0.05`` (aim rad, speed m/s) or ``--noise 0.003,0.05,0.05``
+(and the tip's offset, fractions of R, on a spin env): the env's ``noise`` keyword.
+``--ends`` also counts how the racks of a rules id end (:func:`rack_ends`).
+"""
+
+from __future__ import annotations
+
+import argparse
+from collections import Counter
+from pathlib import Path
+from typing import Any
+
+from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
+from agents.baselines.ghost_ball import GhostBallAgent
+from agents.baselines.random_agent import ConstantAgent, RandomAgent
+from agents.baselines.search import SearchAgent
+from agents.evaluation.constant_scan import best_constant_agent
+from agents.evaluation.episodes import run_episodes
+from agents.evaluation.metrics import Estimate
+from agents.learned.envs import make_env
+from agents.learned.lookahead import load_lookahead_agent
+from agents.learned.pretrained import load_model, model_config
+from agents.learned.rack_play import RackAgent, load_rack_agent, rack_model_config
+from agents.policy import Policy, last_plan
+from pool_env.extras import require
+
+__all__ = [
+    "BASELINES",
+    "evaluate_agent",
+    "format_table",
+    "load_model",
+    "main",
+    "make_agent",
+    "model_config",
+    "one_line",
+    "run_episodes",
+]
+
+#: The baselines by name (``const`` also takes ``const:a0,a1``).
+BASELINES = ("random", "const", "best-const", "ghost", "ghost-centre", "search", "rack-planner")
+
+#: Statistics printed, with their labels; rates are shown as percentages.
+COLUMNS: tuple[tuple[str, str, bool], ...] = (
+    ("pots_per_shot", "pots/shot", True),
+    ("clean_pot_rate", "clean pots/shot", True),
+    ("scratch_rate", "scratch/shot", True),
+    ("clear_rate", "clear rate", True),
+    ("run_out_rate", "run-out rate", True),
+    ("pots_per_turn", "pots/turn", False),
+    ("shots_per_episode", "shots/episode", False),
+    ("episode_reward", "episode reward", False),
+)
+
+#: The statistics of the game ids (rules): a won rack is a "clear", a run-out a rack won
+#: in the first turn (every shot legal and keeping the table).
+GAME_COLUMNS: tuple[tuple[str, str, bool], ...] = (
+    ("fouls_per_shot", "fouls/shot", True),
+    ("pots_per_shot", "pots/shot", False),
+    ("scratch_rate", "scratch/shot", True),
+    ("clear_rate", "racks won", True),
+    ("run_out_rate", "run-outs", True),
+    ("shots_per_episode", "shots/rack", False),
+    ("episode_reward", "rack reward", False),
+)
+
+
+def make_agent(name: str, env: Any, seed: int = 0) -> Policy:
+    """One of :data:`BASELINES` (``"const:a0,a1"`` too), an SB3 ``.zip`` or a 9-ball ``.npz`` model.
+
+    A ``.npz`` is a :class:`~agents.learned.rack_play.RackAgent` value, or a
+    :class:`~agents.learned.lookahead.LookaheadAgent` layout value when its config says
+    ``kind: lookahead``.
+    """
+    if name == "random":
+        return RandomAgent(env, seed=seed)
+    if name in ("ghost", "ghost-centre"):
+        spin = name == "ghost"
+        if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
+            return GameGhostBallAgent(env, spin=spin)
+        return GhostBallAgent(env, spin=spin)
+    if name == "search":
+        if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
+            return GameSearchAgent(env, seed=seed)
+        return SearchAgent(env, seed=seed)
+    if name == "best-const":
+        return best_constant_agent(env)
+    if name.startswith("const"):  # "const" (full hit, hardest) or "const:a0,a1[,...]"
+        _, _, values = name.partition(":")
+        width = int(env.action_space.shape[0])
+        default = (0.0, 1.0) + (0.0,) * (width - 2)  # a spin env: centre ball
+        action = tuple(float(v) for v in values.split(",")) if values else default
+        return ConstantAgent(env, action)
+    if name == "rack-planner":  # the rack agent's candidates ranked by the planner's score
+        return RackAgent(env)
+    if name.endswith(".zip"):
+        return load_model(name)
+    if name.endswith(".npz"):  # a learned rack value (learned.rack_play, learned.lookahead)
+        config = rack_model_config(name)
+        if config.get("kind") == "lookahead":
+            return load_lookahead_agent(name, env, config)
+        return load_rack_agent(name, env)
+    raise ValueError(
+        f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1', a model .zip "
+        "or a rack model .npz"
+    )
+
+
+def evaluate_agent(
+    name: str,
+    env_id: str,
+    episodes: int,
+    seed: int,
+    env_kwargs: dict[str, Any] | None = None,
+    wrapper: str | None = None,
+    agent: Policy | None = None,
+) -> dict[str, Estimate]:
+    """Evaluate one agent (by name, or ``agent`` given) and return its summary.
+
+    For a model path, ``env_kwargs`` and ``wrapper`` default to the model's saved config.
+
+    Examples:
+        >>> from agents import evaluate_agent
+        >>> summary = evaluate_agent("ghost", "pool_env/OneBallRoll-v1", episodes=20, seed=10000)
+        >>> print(summary["pots_per_shot"], summary["scratch_rate"])
+        1.000 [0.839, 1.000] 0.100 [0.028, 0.301]
+    """
+    if agent is None and name.endswith(".zip") and env_kwargs is None and wrapper is None:
+        config = model_config(name)
+        env_kwargs, wrapper = config.get("env_kwargs"), config.get("wrapper")
+    env = make_env(env_id, env_kwargs, wrapper)
+    try:
+        agent = agent if agent is not None else make_agent(name, env, seed)
+        return run_episodes(agent, env, episodes, seed).summary()
+    finally:
+        env.close()
+
+
+def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
+    """A markdown table: one row per agent, each statistic with its 95% interval."""
+    # Pots per shot is a rate only while no shot pots two balls (a break can pot several).
+    multi = any(stats["pots_per_shot"].high > 1.0 for stats in rows.values())
+    game = any("fouls_per_shot" in stats for stats in rows.values())
+    columns = GAME_COLUMNS if game else COLUMNS
+    head = "| agent | " + " | ".join(label for _, label, _ in columns) + " |"
+    lines = [head, "|" + "---|" * (len(columns) + 1)]
+    for agent, stats in rows.items():
+        cells = [
+            stats[key].as_percent()
+            if pct and not (multi and key == "pots_per_shot")
+            else str(stats[key])
+            for key, _, pct in columns
+        ]
+        lines.append(f"| {agent} | " + " | ".join(cells) + " |")
+    lines.append("")
+    if game:
+        lines.append(
+            f"{episodes} racks each, same seeds; 95% confidence intervals in brackets. Racks "
+            "won: the rack ended with the agent's win (the 9 or the 8 legally potted). "
+            "Run-out: won without a foul or a missed turn."
+        )
+    else:
+        lines.append(
+            f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets. Clean "
+            "pot: a shot that pots without scratching. Run-out: cleared in the first turn."
+        )
+    return "\n".join(lines)
+
+
+def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
+    """``pots per shot: ppo 74.0% (clean 65.6%, scratch 17.1%) | random ... | ...``."""
+    parts = [
+        f"{name.split(' ')[0]} {stats['pots_per_shot'].value:.1%} "
+        f"(clean {stats['clean_pot_rate'].value:.1%}, scratch {stats['scratch_rate'].value:.1%})"
+        for name, stats in rows.items()
+    ]
+    return "pots per shot: " + " | ".join(parts)
+
+
+def rack_ends(agent: Policy, env: Any, episodes: int, seed: int) -> Counter[tuple[str, str]]:
+    """How each rack of a rules id ends: ``(shot, outcome)`` counts.
+
+    ``shot`` is ``"break"``, ``"1st after break"``, ``"2nd after break"`` or ``"later"``;
+    the outcome is ``"won"``, the foul's name, or ``"missed"`` (a legal shot that potted
+    nothing). With a :class:`~agents.baselines.game_agents.GameGhostBallAgent`, a shot
+    it had no clear pot for is tagged ``"(fallback)"``: what limits a run-out.
+    """
+    names = ("break", "1st after break", "2nd after break")
+    ends: Counter[tuple[str, str]] = Counter()
+    for k in range(episodes):
+        obs, _ = env.reset(seed=seed + k)
+        for shot in range(10_000):
+            action, _ = agent.predict(obs)
+            obs, _, terminated, truncated, info = env.step(action)
+            if not (terminated or truncated):
+                continue
+            outcome = "won" if info.get("winner") == 0 else (info.get("foul") or "missed")
+            if last_plan(agent).get("kind") == "fallback":
+                outcome += " (fallback)"
+            ends[(names[shot] if shot < len(names) else "later", outcome)] += 1
+            break
+    return ends
+
+
+def parse_noise(text: str) -> tuple[float, ...]:
+    """``"0.003,0.05[,0.05]"`` as the env's noise tuple (aim, speed[, tip]).
+
+    Raises:
+        ValueError: Unless two or three finite sigmas >= 0.
+    """
+    try:
+        values = tuple(float(v) for v in text.split(","))
+    except ValueError:
+        raise ValueError(f"--noise takes 2 or 3 comma-separated numbers, got {text!r}") from None
+    if len(values) not in (2, 3) or not all(v >= 0.0 and v < float("inf") for v in values):
+        raise ValueError(f"--noise takes 2 or 3 finite sigmas >= 0, got {text!r}")
+    return values
+
+
+def _yaml_mapping(text: str) -> Any:
+    """``--env-kwargs`` parsed as YAML."""
+    # pyyaml: an extra (train), not the core install; needed for --env-kwargs only
+    yaml = require("yaml", "train", "--env-kwargs")
+
+    return yaml.safe_load(text)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """Command-line entry point."""
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--env", default="pool_env/OneBallRoll-v1", help="registered env id")
+    parser.add_argument(
+        "--agent",
+        nargs="+",
+        default=["random", "ghost"],
+        help="random, const[:a0,a1,...], best-const, ghost, ghost-centre, search, "
+        "rack-planner, a model .zip or a rack model .npz",
+    )
+    parser.add_argument("--episodes", type=int, default=1000)
+    parser.add_argument("--seed", type=int, default=10_000)
+    parser.add_argument("--aim", default=None, help="override the env's aim mode")
+    parser.add_argument(
+        "--env-kwargs",
+        default=None,
+        help='gymnasium.make kwargs as YAML, e.g. "{noise: [0.003, 0.05]}"',
+    )
+    parser.add_argument(
+        "--noise",
+        default=None,
+        help="execution noise sigmas: aim (rad), speed (m/s)[, tip (fraction of R)], e.g. "
+        "0.003,0.05,0.05 (the env's noise keyword)",
+    )
+    parser.add_argument(
+        "--scan-episodes",
+        type=int,
+        default=1000,
+        help="episodes per action of the best-const grid scan",
+    )
+    parser.add_argument(
+        "--ends",
+        action="store_true",
+        help="also count how the racks of a rules id end (rack_ends)",
+    )
+    parser.add_argument("--out", default=None, help="also write the table to this file")
+    args = parser.parse_args(argv)
+    if args.episodes < 1 or args.scan_episodes < 1:
+        parser.error("--episodes and --scan-episodes must be >= 1")
+    kwargs = _yaml_mapping(args.env_kwargs) if args.env_kwargs else {}
+    if not isinstance(kwargs, dict):
+        parser.error("--env-kwargs must be a YAML mapping")
+    if args.noise is not None:
+        try:
+            kwargs["noise"] = parse_noise(args.noise)
+        except ValueError as err:
+            parser.error(str(err))
+    if args.aim:
+        kwargs["aim"] = args.aim
+    rows = {}
+    for name in args.agent:
+        agent, label = None, name
+        if name == "best-const":  # scanned once, then labelled with the action it found
+            scan_env = make_env(args.env, kwargs or None)
+            agent = best_constant_agent(scan_env, episodes=args.scan_episodes)
+            scan_env.close()
+            label = "best-const (" + ", ".join(f"{a:+.2f}" for a in agent.action) + ")"
+        rows[label] = evaluate_agent(
+            name, args.env, args.episodes, args.seed, kwargs or None, agent=agent
+        )
+    table = format_table(rows, args.episodes)
+    print(f"{args.env} {kwargs or ''}, seeds {args.seed}..{args.seed + args.episodes - 1}")
+    print(table)
+    if args.ends:
+        for name in args.agent:
+            env = make_env(args.env, kwargs or None)
+            ends = rack_ends(make_agent(name, env), env, args.episodes, args.seed)
+            env.close()
+            print(f"\nHow the racks end, {name}:")
+            for (shot, outcome), count in sorted(ends.items(), key=lambda kv: -kv[1]):
+                print(f"- {shot}: {outcome}: {count}")
+    if args.out:
+        Path(args.out).write_text(f"# Evaluation on {args.env}\n\n{table}\n")
+    return 0
