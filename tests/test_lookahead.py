@@ -277,7 +277,7 @@ def test_features_read_from_an_observation_are_the_tables_own() -> None:
             config.table, mouths, u.positions[None], u.on_table[None],
             np.array([rack["ball_in_hand"]]), np.array([rack["fouls"]]), SIGMA,
         )[0]  # fmt: skip
-        seen = observation_features(config.table, mouths, config.n_balls, obs)
+        seen = observation_features(config, mouths, obs)
         np.testing.assert_allclose(seen, truth, atol=2e-3)
 
 

@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from agents.baselines.base import BaselineAgent
 from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
 from agents.baselines.search import SearchAgent, Shot
-from pool_env import ShotResult
+from pool_env import ShotResult, obs_layout, shot_constraints
 from pool_env.game.codec import encode_placement, encode_pocket
 from pool_env.game.geometry import points_free
 
@@ -67,23 +67,16 @@ class GameGhostBallAgent(BaselineAgent):
     def _next_legal(
         self, positions: NDArray[np.float64], after: NDArray[np.bool_], potted: int
     ) -> list[int]:
-        """The legal balls once ``potted`` drops (``after``: the balls left), by the rules.
+        """The legal balls once ``potted`` drops (``after``: the balls left).
 
-        9-ball: the lowest ball left. 8-ball: what is left of the potted ball's group
-        (which an open table then assigns), the 8 once that is empty, nothing after the 8.
+        The game's :meth:`~pool_env.game.rulesets.base.Ruleset.first_balls_after`.
         """
-        left = [j for j in range(1, after.shape[0]) if after[j]]
-        if self.config.game == "nine":
-            return left[:1]
-        if potted == 8:
-            return []
-        group = [j for j in left if (j < 8) == (potted < 8) and j != 8]
-        return group or [j for j in left if j == 8]
+        return list(self.config.ruleset.first_balls_after(after, potted))
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
         """The planned actions: ``(B, 5)``, or ``(B, 7)`` with the tip on a spin env."""
-        n = self.config.n_balls
-        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, : 3 * n]))
+        balls = obs_layout(self.config)["balls"]
+        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, balls]))
         pairs = zip(observations, layouts, strict=True)
         out = [self._plan(obs, pos, on) for obs, (pos, on) in pairs]
         return np.stack(out).astype(np.float32)
@@ -91,12 +84,12 @@ class GameGhostBallAgent(BaselineAgent):
     def _plan(
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
     ) -> NDArray[np.float32]:
-        n = self.config.n_balls
-        legal = obs[3 * n : 4 * n - 1] > 0.5
-        in_hand, behind, breaking = (bool(v > 0.5) for v in obs[4 * n - 1 : 4 * n + 2])
-        self._targets = [j for j in range(1, n) if legal[j - 1]]
-        reference = on.copy()
-        reference[1:] &= legal
+        rules = shot_constraints(self.config, obs)
+        in_hand, behind, breaking = rules.ball_in_hand, rules.behind_head_string, rules.breaking
+        self._targets = list(rules.first_balls)
+        reference = np.zeros_like(on)
+        reference[0] = on[0]
+        reference[self._targets] = on[self._targets]
         place = np.zeros(2)
         table = self.config.table
         if breaking:

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.formulas import RULE_FEATURES
+from pool_env import GameConfig, obs_layout, shot_constraints
 from pool_env.game.geometry import (
     AIM_X,
     AIM_Y,
@@ -51,17 +51,20 @@ LAYOUT_FEATURES = (
 PLACE_DISTANCE = 0.25
 
 
-def observed_rack(obs: NDArray[np.floating], n_balls: int) -> tuple[bool, bool, tuple[int, int]]:
+def observed_rack(
+    obs: NDArray[np.floating], config: GameConfig
+) -> tuple[bool, bool, tuple[int, int]]:
     """What a rule observation says of the rack: ``(in_hand, breaking, fouls)``.
 
-    ``fouls`` are the viewer's and the opponent's successive fouls (0..2), which the
-    observation stores halved (:data:`pool_env.game.formulas.RULE_FEATURES`, after
-    the ``3 N`` ball entries and the ``N - 1`` legal-ball flags).
+    Read through the game's public views (:func:`pool_env.shot_constraints`,
+    :func:`pool_env.obs_layout`); ``fouls`` are the viewer's and the opponent's successive
+    fouls (0..2), which the observation stores halved.
     """
-    base = 4 * n_balls - 1
-    rule = {name: float(obs[base + k]) for k, name in enumerate(RULE_FEATURES)}
-    fouls = (round(2 * rule["fouls"]), round(2 * rule["opponent_fouls"]))
-    return rule["ball_in_hand"] > 0.5, rule["break"] > 0.5, fouls
+    rules = shot_constraints(config, obs)
+    layout = obs_layout(config)
+    own, other = (float(obs[layout[name]][0]) for name in ("fouls", "opponent_fouls"))
+    fouls = (round(2 * own), round(2 * other))
+    return rules.ball_in_hand, rules.breaking, fouls
 
 
 def ball_on(on_table: NDArray[np.bool_]) -> NDArray[np.int64]:

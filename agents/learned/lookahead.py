@@ -107,7 +107,7 @@ class LookaheadAgent(RackAgent):
     def _plan(
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
     ) -> NDArray[np.float32]:
-        self._fouls = observed_rack(obs, self.config.n_balls)[2]
+        self._fouls = observed_rack(obs, self.config)[2]
         return super()._plan(obs, positions, on)
 
     def _choose(

@@ -48,7 +48,7 @@ from agents.learned.layout_value import (
 from agents.learned.lookahead import PLAY_SETTINGS, LookaheadAgent
 from agents.policy import Policy
 from pool_env.envs.multiagent import PoolDuelEnv
-from pool_env.game.codec import decode_observations
+from pool_env.game.codec import decode_observations, obs_layout
 from pool_env.game.geometry import pocket_mouths
 
 #: The aim error (rad) the features' pot chances are taken at: the duels' aim noise.
@@ -60,7 +60,7 @@ class _Recorder:
 
     def __init__(self, player: Policy, side: str, config: Any, rows: list[tuple[str, Any]]) -> None:
         self.player, self.side, self.rows = player, side, rows
-        self.table, self.n = config.table, config.n_balls
+        self.config = config
         self.mouths = pocket_mouths(config.table)
 
     def predict(
@@ -71,18 +71,20 @@ class _Recorder:
         deterministic: bool = True,
     ) -> tuple[Any, Any]:
         """The wrapped player's ``predict(observation)``, recording the layout first."""
-        if not observed_rack(observation, self.n)[1]:  # not the break
-            features = observation_features(self.table, self.mouths, self.n, observation)
+        if not observed_rack(observation, self.config)[1]:  # not the break
+            features = observation_features(self.config, self.mouths, observation)
             self.rows.append((self.side, features))
         return self.player.predict(observation)
 
 
 def observation_features(
-    table: Any, mouths: Any, n_balls: int, obs: NDArray[np.floating]
+    config: Any, mouths: Any, obs: NDArray[np.floating]
 ) -> NDArray[np.float64]:
     """:func:`layout_features` of one rule observation (``(F,)``), from its viewer's side."""
-    in_hand, _, fouls = observed_rack(obs, n_balls)
-    positions, on = decode_observations(table, np.asarray(obs)[None, : 3 * n_balls])
+    in_hand, _, fouls = observed_rack(obs, config)
+    table = config.table
+    balls = np.asarray(obs)[obs_layout(config)["balls"]]
+    positions, on = decode_observations(table, balls[None])
     hand, counts = np.array([in_hand]), np.array([fouls])
     return layout_features(table, mouths, positions, on, hand, counts, SIGMA)[0]
 
@@ -105,8 +107,8 @@ def collect(
             rows: list[NDArray[np.float64]] = []
             done, success = False, False
             while not done:
-                if not observed_rack(obs, config.n_balls)[1]:  # not the break
-                    rows.append(observation_features(config.table, mouths, config.n_balls, obs))
+                if not observed_rack(obs, config)[1]:  # not the break
+                    rows.append(observation_features(config, mouths, obs))
                 action, _ = player.predict(obs)
                 obs, _, terminated, truncated, info = env.step(action)
                 done = terminated or truncated

@@ -13,9 +13,8 @@ names only" in ``pyproject.toml``):
 * :func:`to_unit`: a value of a range as its action component in ``[-1, 1]``;
 * :func:`cue_speed`: the cue speed at which an object ball drops at a given speed
   (:func:`pool_env.game.geometry.cue_speeds` for one shot);
-* the names of the rule arrays: :data:`RULE_FEATURES`, the rule part of a rule
-  observation in order (after the ``3 N`` ball entries and the ``N - 1`` legal-ball
-  flags), and :data:`IN_HAND`, the rack state's ball-in-hand entry.
+* :data:`IN_HAND`, the rack state's ball-in-hand entry (a planner's own copy of the
+  rack state; the observation's parts are named by :func:`pool_env.obs_layout`).
 """
 
 from __future__ import annotations
@@ -28,13 +27,11 @@ from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.actions import decode_shots
 from pool_env.game.kernels.encode import to_unit
 from pool_env.game.kernels.geometry import cue_speed
-from pool_env.game.kernels.observe import RULE_FEATURES
 from pool_env.game.kernels.tips import decode_tips
 from pool_env.game.kernels.wpa import IN_HAND
 
 __all__ = [
     "IN_HAND",
-    "RULE_FEATURES",
     "cue_speed",
     "decode_on_layout",
     "decode_tips",

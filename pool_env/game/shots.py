@@ -43,6 +43,7 @@ class ShotConstraints:
             (solitaire: every object ball on the table; 9-ball: the ball on; 8-ball: the
             shooter's group, or the 8 once it is cleared; the break: as the rules say).
         ball_in_hand: The shooter places the cue ball (``Shot.cue``) before the shot.
+        behind_head_string: Ball in hand behind the head string only (the kitchen).
         placement: With the cue ball in hand, the box its centre may go in,
             ``((x_low, x_high), (y_low, y_high))`` in metres (behind the head string:
             ``x_high`` is the string); ``None`` without ball in hand.
@@ -56,6 +57,7 @@ class ShotConstraints:
     first_balls: tuple[int, ...]
     speed_range: tuple[float, float]
     ball_in_hand: bool = False
+    behind_head_string: bool = False
     placement: tuple[tuple[float, float], tuple[float, float]] | None = None
     breaking: bool = False
     call_pocket: bool = False

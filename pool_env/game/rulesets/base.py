@@ -157,6 +157,13 @@ class Ruleset:
         first = tuple(int(j) for j in np.flatnonzero(on[1:]) + 1)
         return ShotConstraints(first_balls=first, speed_range=config.speed_range)
 
+    def first_balls_after(self, on_after: NDArray[np.bool_], potted: int) -> tuple[int, ...]:
+        """The legal first balls of the next shot if the shooter keeps the table.
+
+        ``potted`` dropped and ``on_after`` are the balls left: here every object ball left.
+        """
+        return tuple(int(j) for j in np.flatnonzero(on_after[1:]) + 1)
+
     def aim_targets(self, state: GameState) -> NDArray[np.bool_]:
         """The balls of table 0 that relative and cut aim may refer to: those on the table."""
         return state.on_table[0].copy()

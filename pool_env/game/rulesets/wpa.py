@@ -156,10 +156,25 @@ class WpaGame(Ruleset):
             first_balls=first,
             speed_range=config.break_speed_range if breaking else config.speed_range,
             ball_in_hand=flag["ball_in_hand"],
+            behind_head_string=flag["ball_in_hand"] and flag["behind_head_string"],
             placement=box,
             breaking=breaking,
             call_pocket=self.code == wpa.EIGHT and not breaking and first == (8,),
         )
+
+    def first_balls_after(self, on_after: NDArray[np.bool_], potted: int) -> tuple[int, ...]:
+        """The legal first balls of the next shot if the shooter keeps the table.
+
+        9-ball: the lowest ball left. 8-ball: what is left of the potted ball's group (which
+        an open table then assigns), the 8 once that is empty, nothing after the 8.
+        """
+        left = [j for j in range(1, on_after.shape[0]) if on_after[j]]
+        if self.code == wpa.NINE:
+            return tuple(left[:1])
+        if potted == 8:
+            return ()
+        group = [j for j in left if (j < 8) == (potted < 8) and j != 8]
+        return tuple(group or [j for j in left if j == 8])
 
     def aim_targets(self, state: GameState) -> NDArray[np.bool_]:
         """The legal first balls of table 0's shooter (what the step's aim refers to)."""
