@@ -179,7 +179,7 @@ def main() -> None:
         "Real-table figures: Dr. Dave Alciatore, technical proofs TP 3.5 (side: ~3.35 in",
         "straight in, ~2 in at 35 degrees, none beyond ~68 degrees) and TP 3.6 (corner:",
         "narrowest straight in, wider towards 45 degrees); billiards.colostate.edu, as",
-        "quoted in research/REALISM.md. Geometric jaws give no speed-dependent rattle.",
+        "quoted in docs/sources.md ("Real tables"). Geometric jaws give no speed-dependent rattle.",
         "Near 45 degrees many corner paths lie behind the rail, so the corner's figure there",
         "counts only the paths that exist on the table.",
         "",

@@ -28,7 +28,7 @@ from pool_env.sim.batch import simulate_batch
 from pool_env.sim.layouts import break_scene
 from pool_env.testing.scenes_random import random_layout
 
-# pooltool 0.6.0 on this machine (../shared/research/PRIOR_ART.md; not measured here: see
+# pooltool 0.6.0 on this machine (docs/sources.md, "Other simulators"; not measured here: see
 # bench/speed_vs_error.py for a same-run comparison).
 POOLTOOL_MS = {"one-ball": 7.0, "two-ball": 7.0, "9-ball break": 80.0, "16-ball break": 150.0}
 TARGET_US = {"one-ball": 20.0, "two-ball": 20.0, "9-ball break": 250.0, "16-ball break": 1000.0}
@@ -197,7 +197,7 @@ def main() -> None:
         "",
         *batched,
         "",
-        "*pooltool figures measured earlier on this machine (PRIOR_ART.md: ~7 ms per one- or",
+        "*pooltool figures measured earlier on this machine (docs/sources.md: ~7 ms per one- or",
         "two-ball shot, ~80 ms per 9-ball break, ~150 ms per 16-ball break); its physics adds",
         "sliding and spin. `bench/speed_vs_error.py` compares the engines in one run.",
         "",

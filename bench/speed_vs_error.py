@@ -302,7 +302,7 @@ def _render(
         "",
         *chaos,
         "",
-        "## Hard cases (PHYSICS.md section 4) on every engine",
+        "## Hard cases (docs/physics.md) on every engine",
         "",
         "Tags: `crash` raised; `hang` hit the step/event cap or time limit; `escape` a ball "
         "not potted ended off the playing surface; `overlap` at rest two balls overlap or a "

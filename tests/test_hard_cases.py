@@ -1,4 +1,4 @@
-"""The hard cases of the design notes, each with its named invariants.
+"""The hard cases of docs/physics.md, each with its named invariants.
 
 G: no overlap beyond 1e-9 m and inside the rails; P: momentum per impact; E: energy never
 increases; T: terminates well under the cap; D: bit-identical reruns; C: closed form.

@@ -31,7 +31,7 @@ CORNER_CUT_SPEC = 142.0  # degrees, facing to rail
 SIDE_CUT_SPEC = 104.0
 CORNER_SHELF_SPEC = 0.5 * (1.625 + 1.875) * INCH
 SIDE_SHELF_SPEC = 0.5 * (0.0 + 0.375) * INCH
-L, W, R = 2.54, 1.27, 0.028575  # the 9-ft table of the spec (PHYSICS.md defaults)
+L, W, R = 2.54, 1.27, 0.028575  # the 9-ft table (docs/physics.md defaults)
 SIDES = (1, 4)
 
 TABLE = Table()

@@ -1,4 +1,4 @@
-"""Pocket jaws: the regulation geometry, closed forms and the hard cases of PHYSICS.md 4.
+"""Pocket jaws: the regulation geometry, closed forms and the hard cases of docs/physics.md.
 
 Expected values are derived here from the table's documented geometry (``Table.jaws``:
 points, rail ends, tip centres, facings, fall lines), offset by ``R`` in this file, never
@@ -173,7 +173,7 @@ def test_off_a_facing_at_a_known_angle(incidence_deg: float, e_jaw: float) -> No
         assert out == pytest.approx(phi, abs=1e-12)
 
 
-# -- hard cases (PHYSICS.md section 4, with jaws) ------------------------------------------
+# -- hard cases (docs/physics.md, with jaws) -----------------------------------------------
 
 
 def _graze_start(table: Table, k: int, side: int, normal_deg: float, offset: float):

@@ -1,4 +1,4 @@
-"""The mutation catalogue (tools/mutant_catalogue.py) stays anchored in the current tree.
+"""The mutation catalogue (tools/mutant_catalogue/) stays anchored in the current tree.
 
 The mutation runner itself is not part of CI (it takes minutes); this fast check makes sure
 that every planted bug still points at code that exists, exactly once, so that an edit which

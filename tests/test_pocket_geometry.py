@@ -24,7 +24,7 @@ INCH = 0.0254  # m, exactly
 CORNER_MOUTH_SPEC = 4.5 * INCH  # WPA: 4.5 - 4.625 in, narrow end
 SIDE_MOUTH_SPEC = 5.0 * INCH  # WPA: 5 - 5.125 in, narrow end
 TABLE = Table(pockets="circles")  # capture circles (the jaw geometry: tests/test_jaws.py)
-L, W, R = 2.54, 1.27, 0.028575  # the 9-ft table of the spec (PHYSICS.md defaults)
+L, W, R = 2.54, 1.27, 0.028575  # the 9-ft table (docs/physics.md defaults)
 
 
 def test_the_table_is_the_specified_one() -> None:

@@ -1,7 +1,7 @@
 """Self-checks of the 50-digit spin reference (pool_env/testing/spin_reference.py).
 
 The reference is the oracle for the spin level, so it is checked on its own: every expected
-value is derived here from the model's closed forms (SPIN.md), not read from the reference.
+value is derived here from the model's closed forms (docs/sources.md), not read from the reference.
 """
 
 from __future__ import annotations
@@ -66,7 +66,7 @@ def test_stun_slides_12v2_over_49mug_then_rolls_at_5_7(angle_deg: float, v0: flo
         end = res.positions[0]
         assert close(end[0], mpf(20) + dist * mpf(vel[0]) / v)
         assert close(end[1], mpf(20) + dist * mpf(vel[1]) / v)
-    # At 2 m/s the slide is 0.50 m long and lasts 0.29 s (SPIN.md's figures).
+    # At 2 m/s the slide is 0.50 m long and lasts 0.29 s (docs/sources.md, "Closed forms").
     if v0 == 2.0:
         assert abs(float(res.events[0][0]) - 0.2912) < 1e-4
 

@@ -1,4 +1,4 @@
-"""The Zeno and sticking rules, pinned by closed forms (README "Zeno rules", PHYSICS.md 3).
+"""The Zeno and sticking rules, pinned by closed forms (docs/physics.md, "Zeno rules").
 
 The rules: an impact that repeats within a microsecond at a normal approach speed below
 ``ZENO_SPEED`` is perfectly inelastic; an isolated slow impact keeps ``e``; an inelastic

@@ -1,4 +1,4 @@
-"""The hard cases of PHYSICS.md section 4, run on every engine that can set them up.
+"""The hard cases of docs/physics.md, run on every engine that can set them up.
 
 Each case names the contacts that must happen (a missed one is *tunnelling*) and those that
 must not (a reported one is a *phantom* hit). Every run is then checked for:
@@ -60,7 +60,7 @@ def _case(
 
 
 def hard_cases() -> list[HardCase]:
-    """The hard cases, in PHYSICS.md order."""
+    """The hard cases, in the order of docs/physics.md."""
     open_t = Table(pockets="none")
     elastic = Table(pockets="none", e_ball=1.0)
     std = Table(pockets="circles")  # the pocket model every engine here shares

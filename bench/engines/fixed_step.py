@@ -12,13 +12,13 @@ Per step, in this order:
 1. Motion (seed: "resistance between tablecloth and ball"): ``p += v dt``, then the speed
    drops by ``mu_roll g dt`` along ``-v/|v|``; a ball whose speed would reverse stops. The
    seed finds the direction with ``atan(vy / vx)``, which loses the quadrant; we use the
-   unit vector (PHYSICS.md section 1).
+   unit vector (``docs/physics.md``, "The model").
 2. Pockets: a ball whose centre is inside a capture circle is potted there.
 3. Rails (seed: "bumpers"), by overlap: a ball past a rail line and moving into it has its
    normal velocity multiplied by ``-e_cushion``. No position correction (the seed has none).
 4. Ball-ball (seed: "impact between two balls"), by overlap: every pair closer than ``2R``
    and approaching is resolved once, pairs in index order. The seed's printed formulas are
-   CORRECTED as PHYSICS.md says: its restitution term has the wrong sign (with ``e = 1`` and
+   CORRECTED as ``docs/physics.md`` ("Three mistakes in the classic formulas") says: its restitution term has the wrong sign (with ``e = 1`` and
    equal masses the balls would pass through each other), and its rotate-back step swaps
    ``sin(phi + 90)`` and ``cos(phi + 90)``. We use ``ua' = (ma ua + mb ub + mb e (ub - ua)) /
    (ma + mb)`` (and symmetrically ``ub'``) along the line of centres, keeping the tangential

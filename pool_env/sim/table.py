@@ -81,7 +81,7 @@ class Table:
     """A pool table: geometry, ball properties and the rolling/impact model parameters.
 
     All values are SI units. The defaults describe a regulation 9-ft table, each measured
-    figure from the sources in ``research/REALISM.md``:
+    figure from the sources in ``docs/sources.md`` ("Real tables"):
 
     * ``mu_roll = 0.01``: rolling resistance of a pool ball on cloth, 0.005-0.015 (Dr. Dave
       Alciatore's FAQ "physical properties"; pooltool 0.6 also uses 0.01).

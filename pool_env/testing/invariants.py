@@ -1,6 +1,6 @@
 """Invariant checks on a recorded shot, shared by the tests and the fuzz benchmark.
 
-The named invariants of the design notes:
+The named invariants of ``docs/physics.md`` ("The hard cases"):
 
 * **G** (geometry): no two balls on the table overlap by more than ``tol`` at any event, at
   rest, or at sampled instants between events; every ball on the table stays inside the
@@ -35,7 +35,7 @@ from pool_env.testing import spin_invariants
 GEOMETRY_TOL = 1e-9  # m
 MOMENTUM_RTOL = 1e-12
 
-# The documented rules' speeds (PHYSICS.md, README "Zeno rules"), written here rather than
+# The documented rules' speeds (``docs/physics.md``, "Zeno rules"), written here rather than
 # imported from the kernels: a check must not loosen when the code it checks is loosened.
 # A ball slower than REST_SPEED after an impact is at rest; a sticking lump gives up a
 # normal speed below ZENO_SPEED into a rail it touches.

@@ -2,7 +2,7 @@
 
 :mod:`pool_env.testing.invariants` dispatches here for a
 :class:`~pool_env.sim.result.SpinShotResult`. The kinematics are written out again from the
-equations of motion (``research/SPIN.md``, pooltool 0.6.0), not imported from the kernels: a
+equations of motion (``docs/sources.md``, pooltool 0.6.0), not imported from the kernels: a
 check must not follow the code it checks when that code changes.
 
 * Each segment row ``(x, y, vx, vy, wx, wy, wz, ax, ay)`` anchors a ball in one motion state.

@@ -4,7 +4,7 @@ Motion states (the one enumeration of the spin level; the resolution kernels and
 reference import it): ``STATIONARY``, ``SPINNING`` (in place, about the vertical axis),
 ``SLIDING``, ``ROLLING``, ``POTTED``.
 
-Frame and conventions (pooltool 0.6.0's equations of motion, ``research/SPIN.md``): z up,
+Frame and conventions (pooltool 0.6.0's equations of motion, ``docs/sources.md``): z up,
 angular velocity ``w = (wx, wy, wz)`` (rad/s), the cloth contact at ``-R z``, its slip
 velocity ``u = (vx - R wy, vy + R wx)``. Every state has a constant acceleration ``acc``, so
 each ball's position is quadratic in the time since its anchor ``tau = t - T0``::
