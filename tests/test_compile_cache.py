@@ -117,10 +117,10 @@ from pool_env import Table, shoot
 from pool_env.sim.kernels import timeline, validation
 from pool_env.sim.kernels.roll.level import ENTRIES
 from pool_env.sim.layouts import break_scene
-from pool_env.sim.simulate import check_layout
+from pool_env.sim.simulate import check_positions
 t = Table()
 r = shoot(t, break_scene(t, "nine"), 0.0, 8.0)
-check_layout(t, break_scene(t, "nine"))  # validation.validate, from Python (shoot: packed_strike)
+check_positions(t, break_scene(t, "nine"))  # validation.validate from Python (shoot: packed_strike)
 print(hashlib.sha256(r.positions.tobytes() + r.positions_at(0.1).tobytes()).hexdigest())
 for k in (ENTRIES.packed_strike, validation.validate, timeline.positions_at):
     print(k.__name__, sum(k.stats.cache_hits.values()), sum(k.stats.cache_misses.values()))

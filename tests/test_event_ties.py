@@ -1,6 +1,7 @@
 """Ties between event kinds: a ball touching a rail and another ball at the same instant.
 
-The event order is (time, kind, ids) with pocket < ball < cushion < stop (docs/physics.md, "Determinism").
+The event order is (time, kind, ids) with pocket < ball < cushion < stop (docs/physics.md,
+"Determinism").
 When a ball touches a rail and a ball at once, moving into both, with non-orthogonal
 normals, the order changes the outcome: the ball impact first, then the rail, is the
 documented rule. The scenes start at that instant (t = 0, positions exact), so the tie is

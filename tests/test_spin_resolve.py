@@ -97,7 +97,7 @@ def test_stun_throw_matches_the_closed_form(speed, cut_deg):
     [(0.2, 6.0, 35.7), (0.5, 5.2, 31.8), (1.0, 4.3, 27.3), (2.0, 3.3, 21.7), (4.0, 2.4, 16.1)],
 )
 def test_maximum_throw_against_speed_is_spin_md_curve(speed, spin_md, cut_deg):
-    """docs/sources.md's derived curve (max throw over the cut), to its 0.1 degree, and where it peaks.
+    """The derived curve of docs/sources.md (max throw over the cut), to 0.1 degree, and its peak.
 
     The peak is where friction stops sticking, ``mu(v sin) = 2 tan / (7 (1 + e))``.
     """

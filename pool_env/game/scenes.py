@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.layout import free_points, point_free
 from pool_env.sim.layouts import break_scene, head_spot
-from pool_env.sim.simulate import check_layout as check_simulator_layout
+from pool_env.sim.simulate import check_positions
 from pool_env.sim.table import Table
 
 #: Scene names and their number of object balls (``None``: set by ``n_balls``).
@@ -163,7 +163,7 @@ def check_layout(
         )
     if n_total is not None and pos.shape[0] != n_total:
         raise ValueError(f"the layout has {pos.shape[0]} balls, the environment {n_total}")
-    return check_simulator_layout(table, pos)
+    return check_positions(table, pos)
 
 
 def kitchen_box(table: Table) -> tuple[float, float, float, float]:

@@ -98,7 +98,7 @@ from pool_env.extras import require
 from pool_env.sim.cue import POOLTOOL_CUE_MASS, StrikeTable, from_pooltool
 from pool_env.sim.inputs import as_masses, as_points, check_cue, check_table
 from pool_env.sim.scalars import positive, real_number
-from pool_env.sim.simulate import check_layout, shoot
+from pool_env.sim.simulate import check_positions, shoot
 from pool_env.sim.spin_inputs import check_tip
 from pool_env.sim.table import Table
 
@@ -462,7 +462,7 @@ class Scene:
 
     def __post_init__(self) -> None:
         table = check_table(self.table)
-        positions = check_layout(table, self.positions)
+        positions = check_positions(table, self.positions)
         positions.setflags(write=False)
         object.__setattr__(self, "positions", positions)
         n = positions.shape[0]

@@ -9,7 +9,7 @@ from pool_env.sim.cue import from_pooltool
 from pool_env.sim.kernels.spin.state import STATE_NAMES
 from pool_env.sim.result import Event, ShotResult, SpinShotResult
 from pool_env.sim.rollout import rollout
-from pool_env.sim.simulate import check_layout, shoot, simulate
+from pool_env.sim.simulate import check_positions, shoot, simulate
 from pool_env.sim.table import Table
 
 __all__ = [
@@ -18,7 +18,7 @@ __all__ = [
     "ShotResult",
     "SpinShotResult",
     "Table",
-    "check_layout",
+    "check_positions",
     "from_pooltool",
     "rollout",
     "shoot",

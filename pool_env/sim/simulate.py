@@ -25,7 +25,7 @@ from pool_env.sim.result import ShotResult
 from pool_env.sim.spin_inputs import as_angular, check_tip
 from pool_env.sim.table import Table
 
-__all__ = ["DEFAULT_MAX_EVENTS", "check_layout", "shoot", "simulate", "simulate_checked_arrays"]
+__all__ = ["DEFAULT_MAX_EVENTS", "check_positions", "shoot", "simulate", "simulate_checked_arrays"]
 
 
 def simulate(
@@ -207,7 +207,7 @@ def shoot(
     return level.result(raw, n, table.deceleration, bool(record))
 
 
-def check_layout(table: Table, positions: ArrayLike) -> NDArray[np.float64]:
+def check_positions(table: Table, positions: ArrayLike) -> NDArray[np.float64]:
     """Check that balls at rest at ``positions`` are a state :func:`simulate` accepts.
 
     Args:
