@@ -32,7 +32,8 @@ ALCIATORE = (0.009951, 0.108, 1.088)
 def spin_table() -> Any:
     """The spin table: pool_env's ``Table(model="spin", pockets="none")`` once it exists.
 
-    Before the spin level is merged, a stand-in with the contract's defaults (``docs/sources.md``, "The spin model").
+    Before the spin level is merged, a stand-in with the contract's defaults
+    (``docs/sources.md``, "The spin model").
     """
     try:
         return Table(model="spin", pockets="none")  # type: ignore[call-arg]

@@ -18,7 +18,8 @@ Per step, in this order:
    normal velocity multiplied by ``-e_cushion``. No position correction (the seed has none).
 4. Ball-ball (seed: "impact between two balls"), by overlap: every pair closer than ``2R``
    and approaching is resolved once, pairs in index order. The seed's printed formulas are
-   CORRECTED as ``docs/physics.md`` ("Three mistakes in the classic formulas") says: its restitution term has the wrong sign (with ``e = 1`` and
+   CORRECTED as ``docs/physics.md`` ("Three mistakes in the classic formulas") says: its
+   restitution term has the wrong sign (with ``e = 1`` and
    equal masses the balls would pass through each other), and its rotate-back step swaps
    ``sin(phi + 90)`` and ``cos(phi + 90)``. We use ``ua' = (ma ua + mb ub + mb e (ub - ua)) /
    (ma + mb)`` (and symmetrically ``ub'``) along the line of centres, keeping the tangential
