@@ -136,7 +136,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "seed-offset",
         "seeding",
-        G + "checks.py",
+        "pool_env/envs/checks.py",
         "return [check_seed(seed) + i for i in range(n)]",
         "return [check_seed(seed) + i + 1 for i in range(n)]",
         (*VECTOR, *SB3),
