@@ -10,7 +10,7 @@
   ``<!-- skip: next "why not" -->`` and counts as skipped, with its reason.
 * Docstrings of ``pool_env`` and ``agents``: every ``>>>`` example runs as a doctest.
 
-``tests/test_docs.py`` checks that no other kind of block hides in the docs.
+``tests/repo/test_docs.py`` checks that no other kind of block hides in the docs.
 """
 
 from __future__ import annotations

@@ -12,4 +12,4 @@ python3 -m venv .ci-venv-rllib
 .ci-venv-rllib/bin/python -c "import gymnasium, ray; print('rllib venv: gymnasium', \
 gymnasium.__version__, 'ray', ray.__version__)"
 RAY_ENABLE_WINDOWS_OR_OSX_CLUSTER=0 .ci-venv-rllib/bin/python -m pytest -q -p no:cacheprovider \
-    tests/test_rllib.py tests/test_rllib_cluster.py
+    tests/agents/test_rllib.py tests/agents/test_rllib_cluster.py

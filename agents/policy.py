@@ -11,7 +11,7 @@ The planners (the ghost-ball and search baselines, the 9-ball players) are also
 :class:`Planner`\ s: after each ``predict`` their ``last_plan`` says what they chose (its
 ``"kind"``: ``"break"``, a pot, ``"fallback"`` when no clear pot was found, ...). The
 evaluation reads it through :func:`last_plan`, which gives ``{}`` for a policy that does not
-plan. ``tests/test_policy.py`` checks that every agent class of the package is a
+plan. ``tests/agents/test_policy.py`` checks that every agent class of the package is a
 :class:`Policy`, and that the planners are :class:`Planner`\ s.
 """
 

@@ -116,7 +116,7 @@ ball-cushion impact, pooltool moves the balls back along their velocities until 
    about distance / R (chaos), which gives the 1e-5 - 1e-4 m tail.
 3. *Continuity.* The shift is a jump in position at constant velocity and clock: no model
    of the physics has it (the reference's paths are continuous and its impacts conserve
-   momentum to 50 digits, `tests/test_spin_reference_selfcheck.py`), so the reference is
+   momentum to 50 digits, `tests/sim/test_spin_reference_selfcheck.py`), so the reference is
    the right one and pooltool's difference is a numerical artefact of 1e-6 m per collision.
 
 The issue's target (1e-6 m on 95% of the shots against pooltool) therefore cannot be met
@@ -137,7 +137,7 @@ Largest differences, pooltool as released (collisions in pooltool's order):
   throw, and none at all at e = 0, which no friction law gives. Coulomb's is right; the
   spin level (`pool_env/sim/kernels/spin/collide.py`) and the reference use it, the
   reference has pooltool's as `throw="pooltool"` (both pinned by
-  `tests/test_spin_reference_selfcheck.py`). It assumes equal masses (`(1 +- e) / 2`),
+  `tests/sim/test_spin_reference_selfcheck.py`). It assumes equal masses (`(1 +- e) / 2`),
   averages the two balls' `e_b`, and drops the vertical velocity the spin-induced
   friction gives, keeping the spin.
 - The relative surface speed in Alciatore's fit is 3D: the spins across the line of

@@ -3,7 +3,7 @@
 A cut shot on four object balls: ``shot.png`` is the frame with the paths the shot left,
 ``shot.gif`` the shot animated from its exact trajectories; ``break.png`` a 9-ball break
 with its paths. They are committed, so that the README and the docs pages show them on
-GitHub as on the site; ``tests/test_docs_links.py`` checks that the PNGs are what today's
+GitHub as on the site; ``tests/repo/test_docs_links.py`` checks that the PNGs are what today's
 renderer draws.
 
 Run: ``python docs/make_picture.py``.

@@ -8,7 +8,7 @@ and picture: ``../results/agents.md``, ``../models/ppo_oneball_eval.md``,
 This mkdocs hook (``hooks:`` in ``mkdocs.yml``) rewrites each such link, before the page is
 rendered, to the site's copy: a report to ``results/...`` or ``models/...``, a module or
 package to its reference page, ``CHANGELOG.md`` to ``changelog.md``. Links inside
-``docs/`` are left alone. ``tests/test_docs_links.py`` checks that every link and picture
+``docs/`` are left alone. ``tests/repo/test_docs_links.py`` checks that every link and picture
 resolves in the repository; the strict build checks the site's.
 """
 

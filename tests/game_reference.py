@@ -5,7 +5,7 @@ settling, rewards, episode ends, observations and info are written out here agai
 table, one ball at a time, in Python floats. What it does borrow is the physics
 (:func:`pool_env.shoot`, checked against its own 50-digit reference elsewhere) and the
 rare nearest-free-point search of a re-spot when the head spot is covered
-(:func:`pool_env.free_spot`, with its own tests). ``tests/test_game_reference.py`` plays
+(:func:`pool_env.free_spot`, with its own tests). ``tests/game/test_game_reference.py`` plays
 random episodes of every registered id on this and on ``gym.make(id)`` and compares them
 exactly. On a spin table (the spin ids) the action's last two components are the cue tip,
 decoded here again (clip, scale by the tip limit, back onto the miscue circle) and struck

@@ -3,7 +3,7 @@
 * ``ci`` (the default): derandomized, so the property tests check the same examples on
   every run and machine, and a failure reproduces.
 * ``nightly``: fresh random examples, ten times as many, to look further
-  (``HYPOTHESIS_PROFILE=nightly python -m pytest tests/test_properties.py``).
+  (``HYPOTHESIS_PROFILE=nightly python -m pytest tests/sim/test_properties.py``).
 
 A test that sets its own ``max_examples`` passes it through :func:`examples`, which scales
 it by the profile.

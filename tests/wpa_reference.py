@@ -1,7 +1,7 @@
 """A plain-Python reference of the 9-ball and 8-ball rules (WPA standardized): tests only.
 
 The product's one copy of the rules is compiled, :mod:`pool_env.game.kernels.wpa`; this
-file shares no code with it and is what ``tests/test_wpa.py`` and ``tests/test_games.py``
+file shares no code with it and is what ``tests/game/test_wpa.py`` and ``tests/game/test_games.py``
 check it against (on the rule-case table and on random outcomes).
 
 Ball ``k`` is numbered ``k``: row 0 is the cue ball, rows 1-9 (9-ball) or 1-15 (8-ball) the

@@ -1,7 +1,7 @@
 """Robustness fuzz: many random scenes and shots, every invariant checked on each.
 
 Run: ``python -m tools.fuzz --shots 100000`` (the long run; CI runs a small sample through
-``tests/test_properties.py``). Prints the violation count and writes
+``tests/sim/test_properties.py``). Prints the violation count and writes
 ``results/fuzz.md``. Scenes mix: random layouts of 2-16 balls (some touching), 9- and 15-ball
 breaks with jittered aim, random speeds from 1e-6 to 15 m/s, random restitutions and
 rolling resistances; jaw tables (half of them; random jaw restitution including 0),

@@ -3,7 +3,7 @@
 A pool episode is often one shot (``OneBallRoll-v1``: always). With Gymnasium's default
 next-step autoreset, the step after an episode ends is a reset that ignores its action: half
 of all vector steps are no-ops (0.5 episodes per table per step, measured in
-``tests/test_gym_vec.py``). Same-step autoreset resets a finished table inside the step that
+``tests/agents/test_gym_vec.py``). Same-step autoreset resets a finished table inside the step that
 ends it (its last observation goes to ``info["final_obs"]``): 1.0 episode per table per step.
 :func:`make_vec` builds the native vector env that way.
 

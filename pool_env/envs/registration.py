@@ -30,7 +30,7 @@ VECTOR_ENTRY_POINT = "pool_env.envs.vector:PoolVectorEnv"
 # warns on every make() of a lower version of a name, so the roll table can no longer be
 # ``<Task>-v0`` beside the spin table's ``<Task>-v1`` without a false "out of date" warning.
 # The old ``pool_env/<Task>-v0`` ids stay registered as aliases of ``<Task>Roll-v1`` (the
-# same arguments, the same episodes bit for bit: tests/test_registration.py), so old code
+# same arguments, the same episodes bit for bit: tests/envs/test_registration.py), so old code
 # and saved configs keep working; Gymnasium's warning on them is now true (a newer spelling
 # exists). ``model=`` stays an argument of every id: ``gym.make("pool_env/OneBall-v1",
 # model="roll")`` is ``pool_env/OneBallRoll-v1`` under the spin id's name.

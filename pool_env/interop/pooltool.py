@@ -12,7 +12,7 @@ balls' ids, the cue ball's row and the shot's ``angle, speed, tip, elevation``, 
 The mapping, as :mod:`bench.engines.pooltool_worker` and ``bench/spin_scenes.py`` use it
 for the equal-model comparisons (final positions within 1e-11 m of pooltool's,
 ``results/spin_vs_pooltool.md``; pooltool-native shots ported by :func:`from_system`, in
-``tests/test_interop_pooltool.py``, within 1e-9 m):
+``tests/sim/test_interop_pooltool.py``, within 1e-9 m):
 
 Frame. Both origins are a corner of the playing surface at the cushion noses, but
 pooltool's ``x`` runs across the width and its ``y`` along the length, this package's

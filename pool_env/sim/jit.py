@@ -12,7 +12,7 @@ constants a kernel reads from other modules, such as ``params.py``, into its mac
 So the cache lives in a folder named after a hash of the modules of :data:`KERNEL_MODULES`,
 every module whose code or constants are compiled: any change of one of them starts a fresh
 cache. The list is read from the sources (:func:`kernel_modules`), so this module names no
-layer above the simulator; ``tests/test_compile_cache.py`` checks it against the import
+layer above the simulator; ``tests/sim/test_compile_cache.py`` checks it against the import
 graph: every module compiling through this one, every module in a ``kernels`` package and
 every module they import.
 
@@ -121,7 +121,7 @@ def kernel_modules(root: Path) -> tuple[str, ...]:
 
 #: Every module whose code or constants end up in compiled code, the simulator's and the
 #: layers' above it, this one included (its options): :func:`kernel_modules` of the sources.
-#: ``tests/test_compile_cache.py`` checks it against the import graph.
+#: ``tests/sim/test_compile_cache.py`` checks it against the import graph.
 KERNEL_MODULES: tuple[str, ...] = kernel_modules(_PACKAGE.parent)
 
 

@@ -1,7 +1,7 @@
 """The catalogue of planted bugs for :mod:`tools.mutants`: data only, one module an area.
 
 Each entry is one realistic bug: the file, a short snippet of the current source that must
-occur exactly once in it (``tests/test_mutant_catalogue.py`` checks that, so the catalogue
+occur exactly once in it (``tests/repo/test_mutant_catalogue.py`` checks that, so the catalogue
 cannot rot silently), what replaces it, the focused test subset that should catch it, and
 the real mistake it models. Snippets are kept short and stable so that unrelated edits of
 the file do not move them.

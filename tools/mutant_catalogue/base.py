@@ -40,41 +40,45 @@ W = G + "kernels/wpa.py"
 
 # Focused subsets: each a few files that pin the physics or rules the mutant breaks.
 SIM = (
-    "tests/test_event_ties.py",
-    "tests/test_zeno_rules.py",
-    "tests/test_closed_forms.py",
-    "tests/test_hard_cases.py",
-    "tests/test_pinned_hard_cases.py",
+    "tests/sim/test_event_ties.py",
+    "tests/sim/test_zeno_rules.py",
+    "tests/sim/test_closed_forms.py",
+    "tests/sim/test_hard_cases.py",
+    "tests/sim/test_pinned_hard_cases.py",
 )
-SIM_AND_REFERENCE = (*SIM, "tests/test_reference_compare.py")
-SIM_AND_PROPERTIES = (*SIM, "tests/test_properties.py")
-OUTCOME = ("tests/test_shot_outcome.py", "tests/test_batch.py")
+SIM_AND_REFERENCE = (*SIM, "tests/sim/test_reference_compare.py")
+SIM_AND_PROPERTIES = (*SIM, "tests/sim/test_properties.py")
+OUTCOME = ("tests/game/test_shot_outcome.py", "tests/sim/test_batch.py")
 POCKETS = (
-    "tests/test_pocket_geometry.py",
-    "tests/test_closed_forms.py",
-    "tests/test_reference_compare.py",
+    "tests/sim/test_pocket_geometry.py",
+    "tests/sim/test_closed_forms.py",
+    "tests/sim/test_reference_compare.py",
 )
 # The most focused files come first: with -x a killed mutant stops at its first failure.
-DECISION = ("tests/test_env_expectations.py", "tests/test_game_actions.py", "tests/test_env.py")
-VECTOR = ("tests/test_env_expectations.py", "tests/test_vector.py")
-SB3 = ("tests/test_native_vec_expectations.py", "tests/test_native_vec.py")
-REFERENCE = ("tests/test_game_reference.py",)
+DECISION = (
+    "tests/envs/test_env_expectations.py",
+    "tests/game/test_game_actions.py",
+    "tests/envs/test_env.py",
+)
+VECTOR = ("tests/envs/test_env_expectations.py", "tests/envs/test_vector.py")
+SB3 = ("tests/agents/test_native_vec_expectations.py", "tests/agents/test_native_vec.py")
+REFERENCE = ("tests/game/test_game_reference.py",)
 # The product's compiled rules: the rule cases through the env first (each a shot and its
 # verdict, and the property test against the plain-Python reference), then the rule cases
-# shot by the physics (tests/test_rule_cases.py judges only the reference: no use here).
-GAMES = ("tests/test_games.py", "tests/test_wpa.py")
+# shot by the physics (tests/game/test_rule_cases.py judges only the reference: no use here).
+GAMES = ("tests/game/test_games.py", "tests/game/test_wpa.py")
 # The two-player front (PettingZoo), on the same compiled step as the env (so, like
-# tests/test_games.py, it needs the compiled random-number intrinsics: never interpreted).
-DUEL = ("tests/test_multiagent.py",)
+# tests/game/test_games.py, it needs the compiled random-number intrinsics: never interpreted).
+DUEL = ("tests/envs/test_multiagent.py",)
 # The first contact as the rules read it (issue 20): simultaneous hits and the kitchen,
 # through the env and against the reference reading the recorded trajectory.
-CONTACT = ("tests/test_first_contact_rules.py", "tests/test_games.py")
+CONTACT = ("tests/game/test_first_contact_rules.py", "tests/game/test_games.py")
 # Jaw tables: the regulation numbers and closed forms first, then the hard cases and the
 # reference scenes (facings, points and fall lines against the 50-digit reference).
 JAWS = (
-    "tests/test_jaw_closed_forms.py",
-    "tests/test_jaws.py",
-    "tests/test_reference_compare.py::test_jaw_scenes_match_reference",
+    "tests/sim/test_jaw_closed_forms.py",
+    "tests/sim/test_jaws.py",
+    "tests/sim/test_reference_compare.py::test_jaw_scenes_match_reference",
 )
 
 #: Test files that never reach the vector env's compiled random-number intrinsics, so they
@@ -83,17 +87,17 @@ JAWS = (
 INTERPRETABLE = frozenset(
     {
         *SIM,
-        "tests/test_reference_compare.py",
-        "tests/test_properties.py",
-        "tests/test_pocket_geometry.py",
-        "tests/test_batch.py",
-        "tests/test_shot_outcome.py",
-        "tests/test_jaws.py",
-        "tests/test_jaw_closed_forms.py",
-        "tests/test_wpa.py",
-        "tests/test_layout_rules.py",
-        "tests/test_spin_resolve.py",
-        "tests/test_spin_cushion.py",
-        "tests/test_spin_strike.py",
+        "tests/sim/test_reference_compare.py",
+        "tests/sim/test_properties.py",
+        "tests/sim/test_pocket_geometry.py",
+        "tests/sim/test_batch.py",
+        "tests/game/test_shot_outcome.py",
+        "tests/sim/test_jaws.py",
+        "tests/sim/test_jaw_closed_forms.py",
+        "tests/game/test_wpa.py",
+        "tests/game/test_layout_rules.py",
+        "tests/sim/test_spin_resolve.py",
+        "tests/sim/test_spin_cushion.py",
+        "tests/sim/test_spin_strike.py",
     }
 )

@@ -102,7 +102,7 @@ MUTANTS: tuple[Mutant, ...] = (
         G + "kernels/layout.py",
         "if dx * dx + dy * dy < min_d2:",
         "if dx * dx + dy * dy < 0.25 * min_d2:",
-        ("tests/test_layout_rules.py", *DECISION, *REFERENCE),
+        ("tests/game/test_layout_rules.py", *DECISION, *REFERENCE),
         "random layouts keep centres half the reach apart (balls overlap)",
     ),
     Mutant(
@@ -120,7 +120,7 @@ MUTANTS: tuple[Mutant, ...] = (
         G + "kernels/layout.py",
         "r = pockets[p, 2] + params[CLEARANCE]",
         "r = pockets[p, 2]",
-        ("tests/test_layout_rules.py", *DECISION, *REFERENCE),
+        ("tests/game/test_layout_rules.py", *DECISION, *REFERENCE),
         "drawn balls may touch a capture circle (no clearance)",
     ),
     Mutant(
@@ -148,7 +148,7 @@ MUTANTS: tuple[Mutant, ...] = (
         G + "rules.py",
         "truncated = limit > 0.0 and shots >= limit",
         "truncated = limit > 0.0 and shots > limit",
-        (*VECTOR, "tests/test_game_actions.py"),
+        (*VECTOR, "tests/game/test_game_actions.py"),
         "the shot limit off by one",
     ),
     # The end_on_miss rule now has one copy for both fronts (env-end-on-scratch); the

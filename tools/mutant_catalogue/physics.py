@@ -272,7 +272,7 @@ MUTANTS: tuple[Mutant, ...] = (
         K + "packing.py",
         "out.first_contact[b, 1] = index[first_j]",
         "out.first_contact[b, 1] = first_j",
-        ("tests/test_batch.py", "tests/test_env_expectations.py"),
+        ("tests/sim/test_batch.py", "tests/envs/test_env_expectations.py"),
         "the batch's first contact in active-ball rows, not ball numbers",
     ),
 )

@@ -220,7 +220,7 @@ MUTANTS: tuple[Mutant, ...] = (
         K + "jaws.py",
         "REACH_MARGIN = 1e-6",
         "REACH_MARGIN = -0.02",
-        ("tests/test_reach_culling.py",),
+        ("tests/sim/test_reach_culling.py",),
         "the spin level's reach test culls pockets a piece reaches (its box shrunk by 2 cm)",
     ),
 )

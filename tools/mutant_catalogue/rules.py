@@ -6,8 +6,8 @@ from tools.mutant_catalogue.base import DECISION, GAMES, REFERENCE, G, Mutant, W
 
 MUTANTS: tuple[Mutant, ...] = (
     # -- the 9/8-ball rules, compiled (game/kernels/wpa.py, the rule columns of rules.py) --
-    # Killed through the env's rule cases (tests/test_games.py) and the physics-shot cases
-    # of tests/test_wpa.py, both checked against the plain-Python reference
+    # Killed through the env's rule cases (tests/game/test_games.py) and the physics-shot cases
+    # of tests/game/test_wpa.py, both checked against the plain-Python reference
     # (tests/wpa_reference.py, never mutated: it is the test's oracle, not product code).
     Mutant(
         "rules-break-three-rails",

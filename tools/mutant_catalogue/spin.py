@@ -5,9 +5,9 @@ from __future__ import annotations
 from tools.mutant_catalogue.base import K, Mutant
 
 # The spin level's resolution kernels (issue 19): their closed-form and property tests.
-SPIN_RESOLVE = ("tests/test_spin_resolve.py",)
-SPIN_CUSHION = ("tests/test_spin_cushion.py",)
-SPIN_STRIKE = ("tests/test_spin_strike.py",)
+SPIN_RESOLVE = ("tests/sim/test_spin_resolve.py",)
+SPIN_CUSHION = ("tests/sim/test_spin_cushion.py",)
+SPIN_STRIKE = ("tests/sim/test_spin_strike.py",)
 _SC = K + "spin/collide.py"
 _SU = K + "spin/cushion.py"
 _SS = K + "spin/strike.py"
@@ -16,10 +16,10 @@ _SS = K + "spin/strike.py"
 # The spin level's motion, prediction and loop (issue 19): its closed forms, hard cases, the
 # 50-digit reference comparison and the check against the roll level's first events.
 SPIN_LOOP = (
-    "tests/test_spin_closed_forms.py",
-    "tests/test_spin_hard_cases.py",
-    "tests/test_spin_reference_compare.py",
-    "tests/test_spin_vs_roll.py",
+    "tests/sim/test_spin_closed_forms.py",
+    "tests/sim/test_spin_hard_cases.py",
+    "tests/sim/test_spin_reference_compare.py",
+    "tests/sim/test_spin_vs_roll.py",
 )
 _SST = K + "spin/state.py"
 _SPR = K + "spin/predict.py"
@@ -27,9 +27,9 @@ _SJ = K + "spin/jaws.py"
 
 # The spin level's Zeno rules: closed forms of a stuck lump and a pressed cushion, the jams.
 SPIN_ZENO = (
-    "tests/test_spin_zeno.py",
-    "tests/test_spin_jam.py",
-    "tests/test_spin_hard_cases.py",
+    "tests/sim/test_spin_zeno.py",
+    "tests/sim/test_spin_jam.py",
+    "tests/sim/test_spin_hard_cases.py",
 )
 _SZ = K + "spin/zeno.py"
 _SL = K + "spin/level.py"
@@ -241,7 +241,7 @@ MUTANTS: tuple[Mutant, ...] = (
         _SJ,
         "if throat_of(px, py, prm, pockets) != k:",
         "if throat_of(px, py, prm, pockets) < -1:",
-        ("tests/test_spin_vs_roll.py", "tests/test_spin_api.py"),
+        ("tests/sim/test_spin_vs_roll.py", "tests/sim/test_spin_api.py"),
         "a fall line counted outside its own pocket's throat (a ball potted in the wrong pocket)",
         "spin_jaws: the fall line",
     ),

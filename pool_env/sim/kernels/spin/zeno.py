@@ -114,7 +114,7 @@ def wedged_ball(x, y, vx, vy, repeats, prm, pockets):
     the rule its slip, turned by each facing's friction, drove it back in after every
     impact: the model's free slide re-hit the two facings in a sequence that shrank only
     geometrically, thousands of events at one instant, and ended at the event cap
-    (``tests/test_spin_hard_cases.py``). The caller stops it (velocity and rolling spin
+    (``tests/sim/test_spin_hard_cases.py``). The caller stops it (velocity and rolling spin
     to zero; the spin about the vertical, which presses nowhere, kept): energy only drops.
     """
     if pockets.shape[1] != JAW_COLS:

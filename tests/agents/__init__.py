@@ -1,0 +1,1 @@
+"""Tests of agents/: baselines, learned players, evaluation, training, integrations."""

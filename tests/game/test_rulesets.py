@@ -1,0 +1,154 @@
+"""The games as rulesets: each config value picks one strategy, and the step has one path.
+
+The behaviour of each game is pinned elsewhere (tests/game/test_games.py, tests/game/test_wpa.py,
+tests/game/test_game_reference.py); here: the registry agrees with the kernels' game codes,
+the spaces are each ruleset's closed forms, ball in hand is the WPA games' alone, and a
+new ruleset plugged in by its name alone is what the step, the reward and the ``info`` run.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+
+import pool_env  # noqa: F401  (registers the ids)
+from pool_env import PoolEnv
+from pool_env.game import rulesets
+from pool_env.game.config import GAMES, make_config
+from pool_env.game.info import INFO_KEYS, TIP_KEY
+from pool_env.game.kernels import params as kp
+from pool_env.game.kernels import wpa
+from pool_env.game.rulesets import RULESETS, Outcome, ruleset_for
+from pool_env.game.rulesets.base import Judged
+from pool_env.game.rulesets.solitaire import Solitaire
+from pool_env.game.state import GameState, new_state
+from pool_env.sim.table import Table
+
+# (id, object balls, observation size, action size): 3 N for solitaire; the WPA games add
+# N - 1 legal-ball flags and 7 rule features; actions 2 / 5, and 2 tip components on spin.
+SPACES = [
+    ("pool_env/OneBallRoll-v1", 1, 6, 2),
+    ("pool_env/EightBall-v1", 15, 48, 4),
+    ("pool_env/NineBallGameRoll-v1", 9, 30 + 9 + 7, 5),
+    ("pool_env/NineBallGame-v1", 9, 30 + 9 + 7, 7),
+    ("pool_env/EightBallGameRoll-v1", 15, 48 + 15 + 7, 5),
+]
+
+
+def test_the_registry_follows_the_kernels_game_codes() -> None:
+    assert GAMES == tuple(RULESETS) == ("solitaire", "nine", "eight")
+    codes = {"solitaire": wpa.SOLITAIRE, "nine": wpa.NINE, "eight": wpa.EIGHT}
+    for name, ruleset in RULESETS.items():
+        assert ruleset.name == name
+        assert ruleset.code == codes[name] == GAMES.index(name)
+        assert ruleset_for(name) is ruleset
+        assert ruleset.has_rack == (name != "solitaire")
+
+
+@pytest.mark.parametrize("game", ["ten", "", None, 1, "Solitaire"])
+def test_an_unknown_game_is_refused_naming_the_games(game: object) -> None:
+    with pytest.raises(ValueError, match=r"game must be one of \['solitaire', 'nine', 'eight'\]"):
+        make_config(game=game)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(("env_id", "n_objects", "obs", "act"), SPACES)
+def test_spaces_are_the_rulesets_closed_forms(
+    env_id: str, n_objects: int, obs: int, act: int
+) -> None:
+    env = gym.make(env_id).unwrapped
+    config = env.config
+    assert config.n_object_balls == n_objects
+    assert env.observation_space.shape == (obs,)
+    assert env.action_space.shape == (act,)
+    assert config.ruleset.observation_width(n_objects + 1) == obs
+    _, info = env.reset(seed=3)
+    _, _, _, _, info = env.step(env.action_space.sample())
+    spin = config.spin
+    assert set(info) == {*INFO_KEYS, *config.ruleset.info_keys, *([TIP_KEY] if spin else [])}
+    assert env.observation_space.contains(env.unwrapped._observation())
+
+
+def _one_table(n_balls: int, rack: NDArray[np.int64] | None = None) -> GameState:
+    state = new_state(1, n_balls)
+    table = Table()
+    # The object balls on the foot half, the cue ball past the head string.
+    state.positions[0] = np.linspace((0.6, 0.3), (0.9, 0.7), n_balls) * table.length
+    state.positions[0, 0] = (table.length * 0.5, table.width * 0.5)
+    state.on_table[0] = True
+    if rack is not None:
+        state.rack[0] = rack
+    return state
+
+
+@pytest.mark.parametrize("game", ["nine", "eight"])
+def test_ball_in_hand_is_placed_by_the_wpa_rulesets_alone(game: str) -> None:
+    scene = "nine_ball" if game == "nine" else "eight_ball"
+    config = make_config(scene=scene, game=game)
+    n = config.n_balls
+    rack = np.zeros(wpa.N_RACK, dtype=np.int64)
+    rack[wpa.IN_HAND], rack[wpa.BEHIND] = 1, 1
+    state = _one_table(n, rack)
+    # Placement (+1, 0): the head string's far end of the kitchen, mid-table.
+    action = np.array([[0.0, 0.0, 1.0, 0.0, 0.0]])
+    config.ruleset.place(config.table, config.params, state, np.zeros(1, np.intp), action)
+    p = config.params
+    x = p[kp.X_LOW] + 1.0 * (p[kp.HEAD_X] - p[kp.X_LOW])
+    y = p[kp.Y_LOW] + 0.5 * (p[kp.Y_HIGH] - p[kp.Y_LOW])
+    assert state.positions[0, 0].tolist() == [x, y]
+    assert x == pytest.approx(config.table.length / 4.0)
+    # Solitaire has no ball in hand: the same call leaves the table as it was.
+    solitaire = Solitaire()
+    state = _one_table(n, rack)
+    before = state.positions.copy()
+    solitaire.place(config.table, config.params, state, np.zeros(1, np.intp), action)
+    np.testing.assert_array_equal(state.positions, before)
+
+
+class _DoubleRewards(Solitaire):
+    """Solitaire paying twice its reward: a new game written as a ruleset subclass."""
+
+    name = "double"
+
+    def judge(self, *args: Any) -> Judged:
+        rewards, flags, hits = super().judge(*args)
+        return 2.0 * rewards, flags, hits
+
+
+class _Recorder(_DoubleRewards):
+    """And which records the outcomes it judged (the step hands the ruleset the shots)."""
+
+    name = "recorded"
+
+    def __init__(self) -> None:
+        self.seen: list[Outcome] = []
+
+    def judge(self, *args: Any) -> Judged:
+        self.seen.append(args[4])
+        return super().judge(*args)
+
+
+def test_a_new_ruleset_is_a_subclass_and_a_name(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setitem(rulesets.RULESETS, "double", _DoubleRewards())
+    recorder = _Recorder()
+    monkeypatch.setitem(rulesets.RULESETS, "recorded", recorder)
+    kwargs = {"scene": "nine_ball", "reward_pot": 1.0, "reward_scratch": -1.0}
+    envs = {g: PoolEnv(game=g, **kwargs) for g in ("solitaire", "double", "recorded")}
+    for env in envs.values():
+        env.reset(seed=5)
+    rng = np.random.default_rng(5)
+    rewards: dict[str, list[float]] = {g: [] for g in envs}
+    for _ in range(20):
+        action = rng.uniform(-1.0, 1.0, 2)
+        for game, env in envs.items():
+            _, reward, _, _, info = env.step(action)
+            rewards[game].append(reward)
+            assert set(info) == set(INFO_KEYS)
+    assert any(r != 0.0 for r in rewards["solitaire"])  # the test can tell double from single
+    assert rewards["double"] == [2.0 * r for r in rewards["solitaire"]]
+    assert rewards["recorded"] == rewards["double"]
+    assert len(recorder.seen) == 20
+    np.testing.assert_array_equal(envs["double"].positions, envs["solitaire"].positions)

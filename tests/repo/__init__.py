@@ -1,0 +1,1 @@
+"""Tests of the repository: docs, references, import contracts, mutants, benches' helpers."""
