@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Iterator
 
 import pytest
 
@@ -27,3 +28,22 @@ def table() -> Table:
 def carom() -> Table:
     """The default table without pockets."""
     return Table(pockets="none")
+
+
+@pytest.fixture(autouse=True)
+def _gymnasium_stays_unpatched() -> Iterator[None]:
+    """Fail the test that leaves Gymnasium's ``TimeLimit`` replaced for the rest of the run.
+
+    ``gym.make`` wraps every id in Gymnasium's ``TimeLimit``; a library that
+    swaps it on import (rl_zoo3 does) changes every later test's ``info``, so a test that
+    imports one must do so in a child process.
+    """
+    import gymnasium.envs.registration as registration
+    import gymnasium.wrappers as wrappers
+
+    def current() -> tuple[object, object]:
+        return wrappers.TimeLimit, getattr(registration, "TimeLimit", None)
+
+    before = current()
+    yield
+    assert current() == before, "a test replaced Gymnasium's TimeLimit"
