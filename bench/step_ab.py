@@ -104,7 +104,8 @@ def main() -> int:
     lines = [
         "# Environment step: same-run A/B of two trees",
         "",
-        f"`python -m bench.step_ab --a {args.a} --b {args.b} --repeats {args.repeats}`: "
+        f"`python -m bench.step_ab --a {args.a} --b {args.b} --repeats {args.repeats}"
+        f"{f' --scale {args.scale:g}' if args.scale != 1.0 else ''}`: "
         "microseconds per step (per vector step: all tables), the median of "
         f"{args.repeats} interleaved fresh processes per tree; ratio B / A (above 1: B slower).",
         "",
