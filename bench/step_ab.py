@@ -80,6 +80,14 @@ def time_tree(tree: Path, env_id: str, steps: int, vector: bool) -> float:
     return float(report["us_per_step"])
 
 
+def _commit(tree: Path) -> str:
+    """The short commit a tree has checked out (``?`` outside git)."""
+    out = subprocess.run(
+        ["git", "-C", str(tree), "rev-parse", "--short", "HEAD"], capture_output=True, text=True
+    )
+    return out.stdout.strip() or "?"
+
+
 def main() -> int:
     """Time both trees on every id and write the table."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -101,8 +109,12 @@ def main() -> int:
             front = f"PoolVectorEnv x{NUM_ENVS}" if vector else "PoolEnv"
             rows.append(f"| `{env_id}` | {front} | {steps} | {a:.1f} | {b:.1f} | {b / a:.3f} |")
             print(rows[-1], flush=True)
+    commits = {name: _commit(tree) for name, tree in (("A", args.a), ("B", args.b))}
     lines = [
         "# Environment step: same-run A/B of two trees",
+        "",
+        f"A: `{commits['A']}`, B: `{commits['B']}` (the trees' commits; B may hold changes "
+        "not yet committed).",
         "",
         f"`python -m bench.step_ab --a {args.a} --b {args.b} --repeats {args.repeats}"
         f"{f' --scale {args.scale:g}' if args.scale != 1.0 else ''}`: "
