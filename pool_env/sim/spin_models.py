@@ -40,7 +40,7 @@ def check_models(table: Any) -> dict[str, Any]:
 
     Raises:
         ValueError: An unknown model name; ``cushion_omega_ratio`` outside ``(1, 2)``; with
-            Stronge's model, ``e_cushion`` or ``e_jaw`` below ``1 / cushion_omega_ratio^2``
+            Stronge's model, ``e_cushion`` or ``e_jaw`` below ``1 / cushion_omega_ratio``
             (the model's range, :mod:`~pool_env.sim.kernels.spin.stronge`); or
             ``mathavan_steps`` not an integer in ``[1, MAX_MATHAVAN_STEPS]``.
     """
@@ -53,10 +53,10 @@ def check_models(table: Any) -> dict[str, Any]:
         raise ValueError(f"cushion_omega_ratio must lie in (1, 2), got {ratio!r}")
     if table.cushion_model == "stronge":
         for name in ("e_cushion", "e_jaw"):
-            if getattr(table, name) < 1.0 / ratio**2:
+            if getattr(table, name) < 1.0 / ratio:
                 raise ValueError(
-                    f"Stronge's cushion model needs {name} >= 1 / cushion_omega_ratio^2 = "
-                    f"{1.0 / ratio**2!r} (its regimes cover no lower restitution), got "
+                    f"Stronge's cushion model needs {name} >= 1 / cushion_omega_ratio = "
+                    f"{1.0 / ratio!r} (its closed forms hold from there up), got "
                     f"{getattr(table, name)!r}"
                 )
     steps = table.mathavan_steps

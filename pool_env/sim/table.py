@@ -146,7 +146,7 @@ class Table:
         cushion_omega_ratio: Stronge's ratio ``omega_t / omega_n`` of the contact's
             tangential and normal frequencies, in ``(1, 2)``; 1.8 (pooltool 0.6.0's default
             resolver). With Stronge's model ``e_cushion`` and ``e_jaw`` must be at least
-            ``1 / cushion_omega_ratio^2`` (0.309 at 1.8), the model's range.
+            ``1 / cushion_omega_ratio`` (0.556 at 1.8), the model's range.
         ball_model: ``"frictional"`` (default): the frictional inelastic impulse with throw
             (:mod:`~pool_env.sim.kernels.spin.collide`); ``"mathavan"``: Mathavan et al.
             2014, friction at the balls' and the table's contacts integrated over the

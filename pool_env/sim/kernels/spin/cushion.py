@@ -133,7 +133,7 @@ def cushion_spin(vx, vy, wx, wy, wz, nx, ny, R, h, e_c, f_c, model, omega, out):
         f_c: Friction between ball and cushion (>= 0).
         model: ``HAN_CUSHION`` or ``STRONGE_CUSHION`` (:mod:`~pool_env.sim.kernels.spin.params`).
         omega: Stronge's frequency ratio ``omega_t / omega_n`` in ``(1, 2)``, with
-            ``e_c >= 1 / omega^2`` (ignored by Han's model).
+            ``e_c >= 1 / omega`` (ignored by Han's model).
         out: float64 array; ``out[0:5]`` receives the new ``vx, vy, wx, wy, wz`` (the
             vertical velocity is dropped).
     """

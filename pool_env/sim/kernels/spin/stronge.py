@@ -60,10 +60,17 @@ bisection to the last bit (the impact's own definition, not a time step of the m
 pooltool finds the same root with ``scipy.optimize.toms748`` over ``[t_c, t_f]``
 (``bench/spin_kernels_pooltool.py``: equal to 3e-12 m/s on a grid of states).
 
-Range. The regimes tile ``rho >= 0`` only when ``mu eta^2 <= mu ((1 + e) beta_t - eta^2 / e)``,
-that is ``e >= eta^2 / beta_t = 1 / Omega^2`` (0.309 at ``Omega = 1.8``); below it every
-impact would be "gross slip" and a ball hitting the cushion head on without slip would leave
-with a tangential velocity it never had. ``Table`` refuses Stronge's model there.
+Range. These three regimes, one interval of stick at most, are the whole story only when
+``e >= 1 / Omega`` (0.556 at ``Omega = 1.8``; pooltool's ``e_c = 0.85`` and this package's
+0.65 are inside). The slip speed of the contact against the spring's own motion is
+``|v_n0| (rho - mu beta_t + (mu beta_t e - mu eta^2 / e) cos(phi))`` while it slides in
+restitution; with ``e^2 < eta^2 / beta_t = 1 / Omega^2`` it grows there instead of
+shrinking, the gross-slip bound above is no longer the least slip that slides throughout
+(that would be ``mu beta_t``), and below ``e = 1 / Omega`` a time-stepped integration of
+the same compliant contact sticks and slips in other sequences
+(``tests/sim/test_stronge.py`` integrates it: inside the range the closed forms agree with
+it to its step size; outside they are off by up to ``mu beta_t |v_n0|``). pooltool applies
+the formulas at any ``e``; ``Table`` refuses Stronge's model below ``e = 1 / Omega``.
 """
 
 from __future__ import annotations
@@ -125,7 +132,7 @@ def stronge_tangential(v_t0, v_n0, mu, e, omega):
         v_t0: Initial tangential contact velocity along the fixed tangent, ``<= 0`` (``-|s|``).
         v_n0: Initial normal contact velocity, ``< 0`` (approaching).
         mu: Coulomb friction between ball and cushion (>= 0).
-        e: Restitution, in ``[1 / omega^2, 1]``.
+        e: Restitution, in ``[1 / omega, 1]`` (the model's range).
         omega: The frequency ratio ``omega_t / omega_n``, in ``(1, 2)``.
 
     Returns:
