@@ -62,7 +62,8 @@ __all__ = ["CORNER_MOUTH", "SIDE_MOUTH", "JawSpec", "PocketJaws", "Table", "stan
 MODELS = ("roll", "spin")
 #: The model levels whose balls carry spin (angular velocities, a cue tip, elevation).
 SPIN_MODELS = ("spin",)
-#: pooltool 0.6.0's ``u_sp / R`` (its spin-deceleration default ``u_sp = 0.444 R``).
+#: ``u_sp / R`` of the default spin deceleration, 0.444: pooltool 0.6.0's ``4/9`` to three
+#: digits (its code has ``10 * 2 / 5 / 9``; ``Table.preset("pooltool-0.6")`` takes that).
 SPIN_FRICTION_RATIO = 0.444
 #: Cushion nose height as a fraction of the ball diameter (WPA equipment specifications:
 #: 63.5% of the ball's height, 62.5-64.5%); pooltool 0.6.0 uses 0.64 x 2R.
@@ -89,6 +90,9 @@ class Table:
 
     All values are SI units. The defaults describe a regulation 9-ft table, each measured
     figure from the sources in ``research/REALISM.md``:
+
+    Every parameter as pooltool 0.6.0 ships it, models included: ``Table.preset(
+    "pooltool-0.6")`` (:mod:`pool_env.sim.presets`).
 
     * ``mu_roll = 0.01``: rolling resistance of a pool ball on cloth, 0.005-0.015 (Dr. Dave
       Alciatore's FAQ "physical properties"; pooltool 0.6 also uses 0.01).
@@ -123,8 +127,11 @@ class Table:
             0.15-0.4, typical 0.2; pooltool 0.6.0's default). A sliding ball decelerates at
             ``mu_slide * g`` against its contact point's slip.
         spin_decel: Deceleration of the vertical-axis spin (rad/s^2); ``None`` (default)
-            takes pooltool 0.6.0's ``(5 / 2) * 0.444 * g`` (its ``u_sp = 0.444 R``), about
-            10.9 rad/s^2 (Alciatore's table: 5-15 rad/s^2).
+            takes ``(5 / 2) * 0.444 * g`` = 10.8891 rad/s^2 (Alciatore's table: 5-15
+            rad/s^2). Not pooltool's to the last digit: pooltool 0.6.0's
+            ``u_sp = (4/9) R`` gives 10.9; the default keeps 0.444 so that the figures
+            measured with it stay reproducible, and ``Table.preset("pooltool-0.6")`` has
+            10.9.
         ball_friction: Ball-ball friction: ``"alciatore"`` (default) for Alciatore's fit
             to Marlow's data ``0.00995 + 0.108 exp(-1.088 v_rel)`` (pooltool 0.6.0's
             default), ``"pooltool"`` for the same fit with pooltool 0.6.0's friction impulse
