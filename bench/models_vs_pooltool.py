@@ -152,22 +152,35 @@ def compare(name: str, n: int) -> tuple[str, list[tuple[float, str, str, str]]]:
 
 
 def time_mode(n: int, repeats: int) -> list[str]:
-    """Median per-shot time of each model against the default spin level, same shots."""
-    base = Table(model="spin", pockets="none")
-    shots = spin_shots(n, table=base)
+    """Median per-shot time of each model against the default spin level, same shots.
+
+    Stronge and Mathavan on the shots of :mod:`bench.spin_scenes`; the preset on its own
+    shots (pooltool's 7-ft table), against ``Table(model="spin", pockets="none")`` of the
+    preset's size (the default models: Han, the frictional impulse with Coulomb's rule).
+    """
     load = os.getloadavg()[0]
-    t_base = np.array([w for w, _, _ in time_ours(base, shots, repeats)])
     stamp = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
     lines = [
-        f"load {load:.2f}; {stamp}; {n} shots, median of {repeats} calls each",
-        "| table | median per shot | ratio to default (median of per-shot ratios) |",
-        "|---|---:|---:|",
-        f"| default spin level | {np.median(t_base) * 1e6:.1f} us | 1.00 |",
+        f"load {load:.2f}; {stamp}; {n} shots per set, median of {repeats} calls each",
+        "| table | shots | default level, median | this table, median | ratio: median of "
+        "per-shot | ratio of totals | shots with the model's impact | their median ratio |",
+        "|---|---|---:|---:|---:|---:|---:|---:|",
     ]
+    kind = {"stronge": "cushion", "mathavan": "ball", "preset": "cushion"}
     for name in ("stronge", "mathavan", "preset"):
-        table = model_table(name)
+        table, shots, _ = shots_and_scenes(name, n)
+        base = Table(model="spin", pockets="none", length=table.length, width=table.width)
+        t_base = np.array([w for w, _, _ in time_ours(base, shots, repeats)])
         t = np.array([w for w, _, _ in time_ours(table, shots, repeats)])
-        lines.append(f"| {name} | {np.median(t) * 1e6:.1f} us | {np.median(t / t_base):.2f} |")
+        hit = np.array([any(e.kind == kind[name] for e in ours(table, s).events) for s in shots])
+        ratio = t / t_base
+        lines.append(
+            f"| {name} | {'preset' if name == 'preset' else 'spin_scenes'} | "
+            f"{np.median(t_base) * 1e6:.1f} us | {np.median(t) * 1e6:.1f} us | "
+            f"{np.median(ratio):.2f} | {t.sum() / t_base.sum():.2f} | {hit.sum()} "
+            f"({kind[name]}) | {np.median(ratio[hit]):.2f} |"
+        )
+    lines.append(f"load after: {os.getloadavg()[0]:.2f}")
     return lines
 
 
