@@ -14,6 +14,7 @@ import pytest
 
 from bench.engines.pooltool_engine import pooltool_python
 from pool_env import Table
+from pool_env.interop.pooltool import POOLTOOL_MODELS
 
 POOLTOOL = {  # the literals of pooltool 0.6.0's source
     "length": 1.9812,
@@ -42,6 +43,15 @@ def test_the_preset_holds_pooltools_values_and_models():
     assert table.spin_decel == pytest.approx(10.9, abs=2e-15)  # not 10.889 (0.444 rounded)
     assert (table.model, table.cushion_model, table.ball_model) == ("spin", "stronge", "frictional")
     assert table.ball_friction == "pooltool"  # its FrictionalInelastic impulse, Alciatore's fit
+
+
+def test_interops_models_are_the_presets():
+    """``POOLTOOL_MODELS`` (for ``from_system``) turns a table's models into pooltool's."""
+    table = Table(model="spin", **POOLTOOL_MODELS)
+    preset = Table.preset("pooltool-0.6")
+    for name in ("ball_friction", "cushion_model", "cushion_omega_ratio", "ball_model"):
+        assert getattr(table, name) == getattr(preset, name), name
+    assert Table(model="spin").cushion_model == "han"  # the package's own default differs
 
 
 def test_overrides_and_unknown_names():
