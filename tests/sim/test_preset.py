@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import subprocess
 
+import numpy as np
 import pytest
 
 from bench.engines.pooltool_engine import pooltool_python
@@ -106,3 +107,31 @@ def test_the_preset_against_pooltool_itself(tmp_path):
     table = Table.preset("pooltool-0.6")
     for name, value in theirs.items():
         assert getattr(table, name) == value, name
+
+
+def test_a_pooltool_shot_at_its_defaults_plays_the_same_through_the_preset(monkeypatch):
+    """A System at pooltool's defaults, ported with ``POOLTOOL_MODELS``, plays the same.
+
+    pooltool's default engine on a cut with english that meets the cushions; ``from_system``
+    gives the preset's table, and the final positions agree.
+    """
+    pt = pytest.importorskip("pooltool", reason="pooltool 0.6.0 is not installed here")
+    from pooltool.physics.engine import PhysicsEngine
+    from pooltool.physics.resolve.resolver import default_resolver
+
+    from pool_env.interop.pooltool import from_system, xy_from_pooltool
+
+    specs = pt.objects.BilliardTableSpecs(l=1.9812, w=0.9906, cushion_height=0.64 * 2 * 0.028575)
+    balls = {b: pt.Ball.create(b, xy=xy) for b, xy in (("cue", (0.5, 0.6)), ("1", (0.62, 1.3)))}
+    cue = pt.Cue(cue_ball_id="cue", V0=2.5, phi=78.0, a=-0.2, b=0.3)
+    system = pt.System(cue=cue, table=pt.Table.from_table_specs(specs), balls=balls)
+    scene = from_system(system, pockets="none", table_options=POOLTOOL_MODELS)
+    preset = Table.preset("pooltool-0.6", pockets="none")
+    for name in (*POOLTOOL, "cushion_model", "ball_friction", "ball_model"):
+        assert getattr(scene.table, name) == getattr(preset, name), name
+    ours = scene.shoot()
+    monkeypatch.setattr(pt.constants, "MIN_DIST", 1e-12)  # the spacer, shrunk as the bench does
+    pt.simulate(system, engine=PhysicsEngine(resolver=default_resolver()), inplace=True)
+    final = np.array([system.balls[i].state.rvw[0][:2] for i in scene.ids])
+    assert sum(e.kind == "cushion" for e in ours.events) >= 2
+    assert np.abs(ours.positions - xy_from_pooltool(final, scene.table.width)).max() < 1e-9
