@@ -5,6 +5,7 @@ Run (pooltool from ``bash bench/setup_pooltool.sh``)::
     python -m bench.models_vs_pooltool             # 200 shots each -> results/models_vs_pooltool.md
     python -m bench.models_vs_pooltool --shots 20  # smoke run (prints, writes nothing)
     python -m bench.models_vs_pooltool --time      # cost per shot against the default level
+    python -m bench.models_vs_pooltool --differences  # how far each model moves a shot
 
 Three comparisons, pooltool in its own virtualenv (:mod:`bench.engines.pooltool_worker`) with
 its collision spacer ``MIN_DIST`` shrunk to 1e-12 m (as :mod:`bench.spin_vs_pooltool`):
@@ -184,17 +185,37 @@ def time_mode(n: int, repeats: int) -> list[str]:
     return lines
 
 
+def model_differences(n: int) -> list[str]:
+    """How far each new model moves the final positions from the default's (no pooltool)."""
+    base = Table(model="spin", pockets="none")
+    shots = spin_shots(n, table=base)
+    finals = [ours(base, s).positions for s in shots]
+    lines = ["| against the default | median | 95th pct | max |", "|---|---:|---:|---:|"]
+    for name in ("stronge", "mathavan"):
+        table = model_table(name)
+        pairs = zip(shots, finals, strict=True)
+        d = np.array([final_distance(ours(table, s).positions, f) for s, f in pairs])
+        lines.append(
+            f"| {name} | {np.median(d):.3g} m | {np.percentile(d, 95):.3g} m | {d.max():.3g} m |"
+        )
+    return lines
+
+
 def main() -> None:
     """Entry point."""
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--shots", type=int, default=200)
     ap.add_argument("--only", choices=("stronge", "mathavan", "preset"), default=None)
     ap.add_argument("--time", action="store_true")
+    ap.add_argument("--differences", action="store_true")
     ap.add_argument("--repeats", type=int, default=7)
     ap.add_argument("--out", type=Path, default=ROOT / "results" / "models_vs_pooltool.md")
     args = ap.parse_args()
     if args.time:
         print("\n".join(time_mode(args.shots, args.repeats)))
+        return
+    if args.differences:
+        print("\n".join(model_differences(args.shots)))
         return
     lines = ["| comparison | shots | median | 95th pct | max | within 1e-6 m |",
              "|---|---:|---:|---:|---:|---:|"]  # fmt: skip
