@@ -6,15 +6,16 @@ ch. 5: "collinear" impact with a compliant contact, tangential compliance and Co
 friction). Derived here; :mod:`~pool_env.sim.kernels.spin.cushion` applies its result with
 the contact geometry, the normal impulse and the spin change it shares with Han 2005.
 
-Contact velocities. At the cushion's contact point (the same point as Han's, at the nose
-height ``h``) the ball's surface velocity relative to the rigid cushion has a normal part
-``v_n`` along the contact normal (pointing into the ball; ``v_n < 0`` approaching) and a
-tangential part, the slip ``s``. An impulse per unit mass along the normal changes ``v_n``
-by ``beta_n = 1`` times itself; one along the tangent changes the slip by ``beta_t = 7/2``
-times itself (``1/m + R^2/I`` for a solid ball, ``I = (2/5) m R^2``), without coupling to
-``v_n``. The tangential impulse is along the initial slip direction ``t = -s / |s|``
-throughout (the impact is collinear: nothing turns the slip), so everything reduces to the
-scalars ``v_n(t)`` and ``v_t(t)`` with ``v_t(0) = -|s| <= 0``; ``rho = v_t0 / v_n0 >= 0``.
+Contact velocities. At the cushion's contact point (its angle above the equator:
+:mod:`~pool_env.sim.kernels.spin.cushion`) the ball's surface velocity relative to the
+rigid cushion has a normal part ``v_n`` along the contact normal (pointing into the ball;
+``v_n < 0`` approaching) and a tangential part, the slip ``s``. An impulse per unit mass
+along the normal changes ``v_n`` by ``beta_n = 1`` times itself; one along the tangent
+changes the slip by ``beta_t = 7/2`` times itself (``1/m + R^2/I`` for a solid ball,
+``I = (2/5) m R^2``), without coupling to ``v_n``. The tangential impulse is along the
+initial slip direction ``t = -s / |s|`` throughout (the impact is collinear: nothing turns
+the slip), so everything reduces to the scalars ``v_n(t)`` and ``v_t(t)`` with
+``v_t(0) = -|s| <= 0``; ``rho = v_t0 / v_n0 >= 0``.
 
 Compliance. The contact is a normal spring ``k_n`` and a tangential spring ``k_t =
 k_n / eta^2``. Normal motion is a half-cycle of ``omega_n = sqrt(beta_n k_n / m)``:
@@ -30,7 +31,7 @@ default resolver), so ``eta^2 = beta_t / (beta_n Omega^2)``. Only ``Omega`` matt
 times in units of ``1 / omega_n`` (below ``omega_n = 1``, ``t_c = pi/2``) the outcome is
 independent of ``k_n`` and ``m``.
 
-Three regimes, by ``rho`` (Stronge's section 5.3):
+Three regimes, by ``rho`` (as pooltool's ``stronge_compliant.py`` has them):
 
 * Gross slip, ``rho > mu ((1 + e) beta_t - eta^2 / e)``: the contact slides throughout and
   Coulomb's law gives ``v_t_f = v_t0 - mu beta_t (1 + e) v_n0``, Han's sliding result.
@@ -57,10 +58,9 @@ Three regimes, by ``rho`` (Stronge's section 5.3):
 Each regime is a closed form but for the re-slip time ``t_s``, the root of a sum of sines
 of incommensurate frequencies: found by a scan of 16 steps for the first sign change and
 Illinois false position to the last bits (the impact's own definition, not a time step of
-the motion).
-pooltool finds the same root with ``scipy.optimize.toms748`` over ``[t_c, t_f]``;
-``bench/spin_kernels_pooltool.py`` runs both cushion impacts on 200 seeded states: equal to
-8.4e-14 m/s.
+the motion). pooltool finds the same root with ``scipy.optimize.toms748`` over
+``[t_c, t_f]``; ``bench/spin_kernels_pooltool.py`` runs both cushion impacts on 200 seeded
+states: equal to 8.4e-14 m/s.
 
 Range. These three regimes, one interval of stick at most, are the whole story only when
 ``e >= 1 / Omega`` (0.556 at ``Omega = 1.8``; pooltool's ``e_c = 0.85`` and this package's
@@ -71,7 +71,8 @@ shrinking, the gross-slip bound above is no longer the least slip that slides th
 (that would be ``mu beta_t``), and below ``e = 1 / Omega`` a time-stepped integration of
 the same compliant contact sticks and slips in other sequences
 (``tests/sim/test_stronge.py`` integrates it: inside the range the closed forms agree with
-it to its step size; outside they are off by up to ``mu beta_t |v_n0|``). pooltool applies
+it to its step size; outside, on a grid with ``mu`` up to 0.5, they are off by up to
+``1.2 |v_n0|``). pooltool applies
 the formulas at any ``e``; ``Table`` refuses Stronge's model below ``e = 1 / Omega``.
 """
 
