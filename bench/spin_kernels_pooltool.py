@@ -1,7 +1,9 @@
 """The spin level's resolution kernels beside pooltool 0.6.0's own, on seeded random inputs.
 
 Compares, impact by impact (no simulation): ``ball_ball_spin`` with pooltool's
-``FrictionalInelastic`` (Alciatore friction), ``cushion_han`` with its ``han2005`` and
+``FrictionalInelastic`` (Alciatore friction), ``ball_ball_mathavan`` with its
+``FrictionalMathavan``, ``cushion_han`` with its ``han2005``, ``cushion_spin`` in Stronge's
+mode with its ``StrongeCompliantLinear`` (``omega_ratio`` 1.8, ``e_c`` 0.85) and
 ``cue_strike`` (through :func:`pool_env.sim.cue.from_pooltool`) with its
 ``InstantaneousPoint``. pooltool runs in its own virtualenv (``bash bench/setup_pooltool.sh``)
 as a subprocess of this script, which writes the inputs and reads its outputs as JSON.
@@ -15,7 +17,7 @@ line "friction mode 3" runs this kernel with pooltool's impulse, to show that th
 only difference).
 
 Measured (seed 19, n 200): ball-ball at ``e_b = 1`` 4.0e-15 m/s, at 0.95 5.0e-3 m/s (3.4e-15
-in mode 3), cushion 2.7e-15, strike 5.7e-15.
+in mode 3), cushion 2.7e-15, strike 5.7e-15; Mathavan 5.4e-14, Stronge 8.4e-14.
 """
 
 from __future__ import annotations
@@ -40,25 +42,41 @@ def _pooltool_side(cases: dict) -> dict:
     """Run pooltool's resolvers on ``cases`` (executed inside pooltool's venv)."""
     import pooltool as pt
     from pooltool.objects.ball.datatypes import Ball, BallState
+    from pooltool.objects.table.components import LinearCushionSegment
     from pooltool.physics.resolve.ball_ball.frictional_inelastic import FrictionalInelastic
+    from pooltool.physics.resolve.ball_ball.frictional_mathavan import FrictionalMathavan
     from pooltool.physics.resolve.ball_cushion.han_2005.model import han2005
+    from pooltool.physics.resolve.ball_cushion.stronge_compliant.model import (
+        StrongeCompliantLinear,
+    )
     from pooltool.physics.resolve.stick_ball.instantaneous_point import InstantaneousPoint
 
-    out: dict = {"ball_ball": [], "cushion": [], "strike": []}
-    model = FrictionalInelastic()
-    for v1, w1, v2, w2, n, e in cases["ball_ball"]:
-        b1 = Ball.create("1", xy=(0.5, 0.5))
-        b2 = Ball.create("2", xy=(0.5 + 2 * R * n[0], 0.5 + 2 * R * n[1]))
-        for ball, v, w in ((b1, v1, w1), (b2, v2, w2)):
-            ball.params = ball.params.__class__(e_b=e)
-            rvw = ball.state.rvw.copy()
-            rvw[1] = [v[0], v[1], 0.0]
-            rvw[2] = w
-            ball.state = BallState(rvw, pt.constants.sliding)
-        b1, b2 = model.solve(b1, b2)
-        out["ball_ball"].append(
-            [*b1.state.rvw[1, :2], *b1.state.rvw[2], *b2.state.rvw[1, :2], *b2.state.rvw[2]]
-        )
+    out: dict = {"ball_ball": [], "mathavan": [], "cushion": [], "stronge": [], "strike": []}
+    for key, model in (("ball_ball", FrictionalInelastic()), ("mathavan", FrictionalMathavan())):
+        for v1, w1, v2, w2, n, e in cases["ball_ball"]:
+            b1 = Ball.create("1", xy=(0.5, 0.5))
+            b2 = Ball.create("2", xy=(0.5 + 2 * R * n[0], 0.5 + 2 * R * n[1]))
+            for ball, v, w in ((b1, v1, w1), (b2, v2, w2)):
+                ball.params = ball.params.__class__(e_b=e)
+                rvw = ball.state.rvw.copy()
+                rvw[1] = [v[0], v[1], 0.0]
+                rvw[2] = w
+                ball.state = BallState(rvw, pt.constants.sliding)
+            b1, b2 = model.solve(b1, b2)
+            out[key].append(
+                [*b1.state.rvw[1, :2], *b1.state.rvw[2], *b2.state.rvw[1, :2], *b2.state.rvw[2]]
+            )
+    stronge = StrongeCompliantLinear(omega_ratio=1.8)
+    for v, w, n, h, e, f in cases["cushion"]:
+        ball = Ball.create("1", xy=(0.5, 0.5))
+        ball.params = ball.params.__class__(e_c=e, f_c=max(f, 1e-300))  # pooltool: f_c > 0
+        ball.state = BallState(np.array([[0.5, 0.5, R], [v[0], v[1], 0.0], w]), 1)
+        # the nose line R from the centre, across n, at the height h
+        c = np.array([0.5 - R * n[0], 0.5 - R * n[1], h])
+        along = np.array([-n[1], n[0], 0.0])
+        segment = LinearCushionSegment("c", p1=c - along, p2=c + along)
+        ball, _ = stronge.solve(ball, segment)
+        out["stronge"].append([*ball.state.rvw[1, :2], *ball.state.rvw[2]])
     for v, w, n, h, e, f in cases["cushion"]:
         rvw = np.array([[0.5, 0.5, R], [v[0], v[1], 0.0], w], dtype=float)
         into = np.array([-n[0], -n[1], 0.0])  # pooltool's normal points along the velocity
@@ -120,21 +138,31 @@ def _ours(cases: dict) -> dict:
     from pool_env.sim.formulas import (
         ALCIATORE_FRICTION,
         POOLTOOL_FRICTION,
+        STRONGE_CUSHION,
+        ball_ball_mathavan,
         ball_ball_spin,
         cue_strike,
         cushion_han,
+        cushion_spin,
     )
 
-    out: dict = {"ball_ball": [], "ball_ball_pt_mu": [], "cushion": [], "strike": []}
+    out: dict = {"ball_ball": [], "ball_ball_pt_mu": [], "mathavan": [], "cushion": []}
+    out |= {"stronge": [], "strike": []}
     buf = np.zeros(10)
     for v1, w1, v2, w2, n, e in cases["ball_ball"]:
         ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, ALCIATORE_FRICTION, 0.0, buf)
         out["ball_ball"].append(buf.tolist())
         ball_ball_spin(*v1, *w1, *v2, *w2, *n, M, M, R, e, POOLTOOL_FRICTION, 0.0, buf)
         out["ball_ball_pt_mu"].append(buf.tolist())
+        # pooltool's BallParams.u_s = 0.2 is Mathavan's table friction; 1000 steps
+        ball_ball_mathavan(*v1, *w1, *v2, *w2, *n, M, M, R, e, ALCIATORE_FRICTION, 0.0, 0.2,
+                           1000, buf)  # fmt: skip
+        out["mathavan"].append(buf.tolist())
     for v, w, n, h, e, f in cases["cushion"]:
         cushion_han(*v, *w, *n, R, h, e, f, buf)
         out["cushion"].append(buf[:5].tolist())
+        cushion_spin(*v, *w, *n, R, h, e, f, STRONGE_CUSHION, 1.8, buf)
+        out["stronge"].append(buf[:5].tolist())
     table = SimpleNamespace(ball_radius=R, ball_mass=M, cue_tip_radius=TIP)
     for shot in cases["strike"]:
         angle, speed, tip, elevation = from_pooltool(*shot, table=table)
@@ -189,7 +217,9 @@ def main() -> None:
     _report("ball-ball, e_b = 0.95", bb_o[~elastic], bb_t[~elastic], 10)
     bb_p = np.array(ours["ball_ball_pt_mu"])
     _report("  friction mode 3", bb_p[~elastic], bb_t[~elastic], 10)
+    _report("ball-ball, Mathavan", ours["mathavan"], theirs["mathavan"], 10)
     _report("cushion (Han 2005)", ours["cushion"], theirs["cushion"], 5)
+    _report("cushion (Stronge)", ours["stronge"], theirs["stronge"], 5)
     _report("strike (from_pooltool)", ours["strike"], theirs["strike"], 5)
 
 

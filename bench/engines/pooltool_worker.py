@@ -20,6 +20,12 @@ pocketless ``BilliardTableSpecs`` table with a ``Resolver`` of Han 2005 cushions
 frictional inelastic ball-ball model and the instantaneous-point strike; the balls start in
 the motion state their velocities and spins give, and the result adds the final
 velocities, angular velocities and the event list (``[time, type, [ball indices]]``).
+Options of a spin table: ``"cushion_model": "stronge"`` (with ``"cushion_omega_ratio"``)
+for Stronge's compliant cushions, ``"ball_model": "mathavan"`` (with ``"mathavan_steps"``)
+for ``FrictionalMathavan``. A spin table with ``"defaults": "pocketless"`` runs pooltool at
+its own defaults but for the pockets: its default resolver (``default_resolver()``, not the
+user's YAML), default ``BallParams`` and ``CueSpecs``, on a ``BilliardTableSpecs`` table
+of the given size and cushion height (the strike's ``M`` and ``end_mass`` are ignored).
 A spin scene whose table has ``"defaults": true`` runs pooltool as it ships instead: its
 default pocket table (``PocketTableSpecs`` of the given size), its default physics engine
 and its default ball parameters (the speed comparison "each simulator at its defaults").
@@ -69,6 +75,12 @@ def _from_pt(px: float, py: float, width: float) -> tuple[float, float]:
 
 
 def _table(spec: dict) -> pt.Table:
+    if spec.get("defaults") == "pocketless":
+        return pt.Table.from_table_specs(
+            pt.objects.BilliardTableSpecs(
+                l=spec["length"], w=spec["width"], cushion_height=spec["cushion_height"]
+            )
+        )
     if spec.get("defaults"):
         return pt.Table.from_table_specs(
             pt.objects.PocketTableSpecs(l=spec["length"], w=spec["width"])
@@ -86,14 +98,23 @@ def _table(spec: dict) -> pt.Table:
 
 def _engine(spec: dict) -> Any:
     """The pooltool physics engine configured to the spin level's models (or its default)."""
+    from pooltool.physics.engine import PhysicsEngine
+    from pooltool.physics.resolve.resolver import default_resolver
+
+    if spec.get("defaults") == "pocketless":
+        return PhysicsEngine(resolver=default_resolver())
     if spec.get("model") != "spin" or spec.get("defaults"):
         return None
-    from pooltool.physics.engine import PhysicsEngine
     from pooltool.physics.resolve.ball_ball.friction import AlciatoreBallBallFriction
     from pooltool.physics.resolve.ball_ball.frictional_inelastic import FrictionalInelastic
+    from pooltool.physics.resolve.ball_ball.frictional_mathavan import FrictionalMathavan
     from pooltool.physics.resolve.ball_cushion.han_2005.model import (
         Han2005Circular,
         Han2005Linear,
+    )
+    from pooltool.physics.resolve.ball_cushion.stronge_compliant.model import (
+        StrongeCompliantCircular,
+        StrongeCompliantLinear,
     )
     from pooltool.physics.resolve.resolver import Resolver
 
@@ -103,10 +124,18 @@ def _engine(spec: dict) -> Any:
     a, b, c = spec["alciatore"] if spec["ball_friction"] == "alciatore" else (
         float(spec["ball_friction"]), 0.0, 0.0)  # fmt: skip
     friction = AlciatoreBallBallFriction(a=a, b=b, c=c)
+    ball_ball: Any = FrictionalInelastic(friction=friction)
+    if spec.get("ball_model") == "mathavan":
+        ball_ball = FrictionalMathavan(friction=friction, num_iterations=spec["mathavan_steps"])
+    linear: Any = Han2005Linear()
+    circular: Any = Han2005Circular()
+    if spec.get("cushion_model") == "stronge":
+        linear = StrongeCompliantLinear(omega_ratio=spec["cushion_omega_ratio"])
+        circular = StrongeCompliantCircular(omega_ratio=spec["cushion_omega_ratio"])
     resolver = Resolver(
-        ball_ball=FrictionalInelastic(friction=friction),
-        ball_linear_cushion=Han2005Linear(),
-        ball_circular_cushion=Han2005Circular(),
+        ball_ball=ball_ball,
+        ball_linear_cushion=linear,
+        ball_circular_cushion=circular,
         ball_pocket=default.ball_pocket,
         stick_ball=default.stick_ball,  # InstantaneousPoint (with squirt)
         transition=default.transition,
@@ -167,6 +196,11 @@ def _system(scene: dict) -> pt.System:
         strike = scene.get("strike")
         if strike is None:
             cue = pt.Cue(cue_ball_id="cue", V0=0.0)
+        elif spec.get("defaults") == "pocketless":  # pooltool's own CueSpecs
+            cue = pt.Cue(
+                cue_ball_id="cue", V0=strike["V0"], phi=strike["phi"], theta=strike["theta"],
+                a=strike["a"], b=strike["b"],
+            )  # fmt: skip
         else:
             specs = pt.objects.CueSpecs(M=strike["M"], end_mass=strike["end_mass"])
             cue = pt.Cue(

@@ -62,9 +62,10 @@ and radius)::
     (Scene.cue_mass)                         CueSpecs.M
 
 Not carried by a ``System``, so not ported: pooltool's physics engine (its default
-resolver uses Stronge's compliant cushions, which this package does not model, and the
-frictional inelastic ball-ball model with Alciatore's friction fit, which is
-``Table(ball_friction="pooltool")``; pass such choices in ``table_options``), its
+resolver uses Stronge's compliant cushions, ``Table(cushion_model="stronge")``, and the
+frictional inelastic ball-ball model with Alciatore's friction fit,
+``Table(ball_friction="pooltool")``: pass ``table_options=POOLTOOL_MODELS`` to play its
+default engine), its
 ``BallParams.u_b`` (read only by its ``AverageBallBallFriction``, not a default), and its
 pocket geometry: a pooltool table with pockets becomes this package's regulation jaw table
 (``pockets="jaws"``), one without a carom table (``"none"``), and :func:`to_system` builds
@@ -97,6 +98,7 @@ from numpy.typing import ArrayLike, NDArray
 from pool_env.extras import require
 from pool_env.sim.cue import POOLTOOL_CUE_MASS, StrikeTable, from_pooltool
 from pool_env.sim.inputs import as_masses, as_points, check_cue, check_table
+from pool_env.sim.presets import PRESETS
 from pool_env.sim.scalars import positive, real_number
 from pool_env.sim.simulate import check_positions, shoot
 from pool_env.sim.spin_inputs import check_tip
@@ -109,6 +111,7 @@ __all__ = [
     "BALL_FIELDS",
     "INSTALL",
     "POOLTOOL_CUE_MASS",
+    "POOLTOOL_MODELS",
     "PORTED_BALL_PARAMS",
     "CueParams",
     "Scene",
@@ -124,6 +127,15 @@ __all__ = [
     "xy_from_pooltool",
     "xy_to_pooltool",
 ]
+
+#: The ``Table`` keywords of pooltool 0.6.0's default physics engine (its default resolver:
+#: Stronge's cushions at ``omega_ratio`` 1.8, the frictional inelastic ball-ball impulse with
+#: its friction rule), which a ``System`` does not carry: ``from_system(system,
+#: table_options=POOLTOOL_MODELS)``. The models of ``Table.preset("pooltool-0.6")``.
+POOLTOOL_MODELS: dict[str, Any] = {
+    name: PRESETS["pooltool-0.6"][name]
+    for name in ("ball_friction", "cushion_model", "cushion_omega_ratio", "ball_model")
+}
 
 #: How to install pooltool 0.6.0 beside this package. Not an extra: on Linux
 #: pooltool-billiards 0.6.0 pins an unpublished panda3d build, so a plain pip install falls

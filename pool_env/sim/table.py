@@ -29,11 +29,16 @@ from pool_env.sim.kernels.spin.params import (
     FRICTIONLESS,
     N_SPIN_PARAMS,
     POOLTOOL_FRICTION,
+    S_BALL_MODEL,
     S_CUSHION_FRICTION,
     S_CUSHION_HEIGHT,
+    S_CUSHION_MODEL,
     S_END_MASS,
     S_FRICTION_MODE,
+    S_MATHAVAN_STEPS,
     S_MU_BALL,
+    S_MU_SLIDE,
+    S_OMEGA_RATIO,
     S_SLIDE_DECEL,
     S_SPIN_DECEL,
     S_TIP_RADIUS,
@@ -47,7 +52,9 @@ from pool_env.sim.pockets import (
     kernel_rows,
     rail_segments,
 )
+from pool_env.sim.presets import PRESETS
 from pool_env.sim.scalars import positive, real_number, within
+from pool_env.sim.spin_models import BALL_MODELS, CUSHION_MODELS, check_models
 
 __all__ = ["CORNER_MOUTH", "SIDE_MOUTH", "JawSpec", "PocketJaws", "Table", "standard_pockets"]
 
@@ -55,7 +62,8 @@ __all__ = ["CORNER_MOUTH", "SIDE_MOUTH", "JawSpec", "PocketJaws", "Table", "stan
 MODELS = ("roll", "spin")
 #: The model levels whose balls carry spin (angular velocities, a cue tip, elevation).
 SPIN_MODELS = ("spin",)
-#: pooltool 0.6.0's ``u_sp / R`` (its spin-deceleration default ``u_sp = 0.444 R``).
+#: ``u_sp / R`` of the default spin deceleration, 0.444: pooltool 0.6.0's ``4/9`` to three
+#: digits (its code has ``10 * 2 / 5 / 9``; ``Table.preset("pooltool-0.6")`` takes that).
 SPIN_FRICTION_RATIO = 0.444
 #: Cushion nose height as a fraction of the ball diameter (WPA equipment specifications:
 #: 63.5% of the ball's height, 62.5-64.5%); pooltool 0.6.0 uses 0.64 x 2R.
@@ -82,6 +90,9 @@ class Table:
 
     All values are SI units. The defaults describe a regulation 9-ft table, each measured
     figure from the sources in ``docs/sources.md`` ("Real tables"):
+
+    Every parameter as pooltool 0.6.0 ships it, models included: ``Table.preset(
+    "pooltool-0.6")`` (:mod:`pool_env.sim.presets`).
 
     * ``mu_roll = 0.01``: rolling resistance of a pool ball on cloth, 0.005-0.015 (Dr. Dave
       Alciatore's FAQ "physical properties"; pooltool 0.6 also uses 0.01).
@@ -116,8 +127,11 @@ class Table:
             0.15-0.4, typical 0.2; pooltool 0.6.0's default). A sliding ball decelerates at
             ``mu_slide * g`` against its contact point's slip.
         spin_decel: Deceleration of the vertical-axis spin (rad/s^2); ``None`` (default)
-            takes pooltool 0.6.0's ``(5 / 2) * 0.444 * g`` (its ``u_sp = 0.444 R``), about
-            10.9 rad/s^2 (Alciatore's table: 5-15 rad/s^2).
+            takes ``(5 / 2) * 0.444 * g`` = 10.8891 rad/s^2 (Alciatore's table: 5-15
+            rad/s^2). Not pooltool's to the last digit: pooltool 0.6.0's
+            ``u_sp = (4/9) R`` gives 10.9; the default keeps 0.444 so that the figures
+            measured with it stay reproducible, and ``Table.preset("pooltool-0.6")`` has
+            10.9.
         ball_friction: Ball-ball friction: ``"alciatore"`` (default) for Alciatore's fit
             to Marlow's data ``0.00995 + 0.108 exp(-1.088 v_rel)`` (pooltool 0.6.0's
             default), ``"pooltool"`` for the same fit with pooltool 0.6.0's friction impulse
@@ -132,6 +146,20 @@ class Table:
             dome is flatter than its width suggests).
         cue_end_mass: The cue's effective end mass for squirt (kg); ``None`` (default)
             takes ``ball_mass / 30`` (pooltool 0.6.0, after Alciatore's TP A-31).
+        cushion_model: ``"han"`` (default): Han 2005's rigid impulse
+            (:mod:`~pool_env.sim.kernels.spin.cushion`); ``"stronge"``: Stronge's compliant
+            model, pooltool 0.6.0's default (:mod:`~pool_env.sim.kernels.spin.stronge`),
+            for rails, jaw facings and jaw points alike.
+        cushion_omega_ratio: Stronge's ratio ``omega_t / omega_n`` of the contact's
+            tangential and normal frequencies, in ``(1, 2)``; 1.8 (pooltool 0.6.0's default
+            resolver). With Stronge's model ``e_cushion`` and ``e_jaw`` must be at least
+            ``1 / cushion_omega_ratio`` (0.556 at 1.8), the model's range.
+        ball_model: ``"frictional"`` (default): the frictional inelastic impulse with throw
+            (:mod:`~pool_env.sim.kernels.spin.collide`); ``"mathavan"``: Mathavan et al.
+            2014, friction at the balls' and the table's contacts integrated over the
+            impact (:mod:`~pool_env.sim.kernels.spin.mathavan`).
+        mathavan_steps: Mathavan's ``N``, the impulse steps of one impact, 1000 (pooltool's
+            ``num_iterations``), an integer in ``[1, 1e6]``.
 
     Attributes:
         pockets: ``(K, 3)`` the pockets as ``(x, y, radius)`` capture circles. With
@@ -154,7 +182,9 @@ class Table:
             pocket specification; an unknown ``model``; a spin parameter that is not a
             finite real number in its range (``mu_slide``, ``spin_decel``, ``cue_tip_radius``
             and ``cue_end_mass`` positive, ``ball_friction`` and ``cushion_friction``
-            non-negative, ``cushion_height`` in ``[R, 2R)``).
+            non-negative, ``cushion_height`` in ``[R, 2R)``); an unknown ``cushion_model``
+            or ``ball_model``, ``cushion_omega_ratio`` outside ``(1, 2)``, a restitution
+            below Stronge's range, or ``mathavan_steps`` not an integer in range.
 
     Examples:
         >>> from pool_env import Table
@@ -187,6 +217,10 @@ class Table:
     cushion_height: float | None = None
     cue_tip_radius: float = 0.0106
     cue_end_mass: float | None = None
+    cushion_model: str = "han"
+    cushion_omega_ratio: float = 1.8
+    ball_model: str = "frictional"
+    mathavan_steps: int = 1000
     params: NDArray[np.float64] = field(init=False, repr=False)
     pocket_model: str = field(init=False, repr=False)
     jaws: tuple[PocketJaws, ...] = field(init=False, repr=False)
@@ -279,6 +313,8 @@ class Table:
             "cue_end_mass",
             within("cue_end_mass", end_mass, limits.MIN_MASS, limits.MAX_MASS, "kg"),
         )
+        for name, value in check_models(self).items():
+            setter(self, name, value)
         spin = np.empty(N_SPIN_PARAMS, dtype=np.float64)
         spin[: params.shape[0]] = params
         spin[S_SLIDE_DECEL] = self.mu_slide * g
@@ -289,8 +325,33 @@ class Table:
         spin[S_CUSHION_HEIGHT] = self.cushion_height
         spin[S_TIP_RADIUS] = self.cue_tip_radius
         spin[S_END_MASS] = self.cue_end_mass
+        spin[S_CUSHION_MODEL] = CUSHION_MODELS[self.cushion_model]
+        spin[S_OMEGA_RATIO] = self.cushion_omega_ratio
+        spin[S_BALL_MODEL] = BALL_MODELS[self.ball_model]
+        spin[S_MATHAVAN_STEPS] = self.mathavan_steps
+        spin[S_MU_SLIDE] = self.mu_slide
         spin.setflags(write=False)
         setter(self, "spin_params", spin)
+
+    @classmethod
+    def preset(cls, name: str, **overrides: object) -> Table:
+        """A table with a named preset's parameters (:data:`pool_env.sim.presets.PRESETS`).
+
+        ``Table.preset("pooltool-0.6")`` is pooltool 0.6.0 as it ships: its 7-ft table,
+        ball, cushion, cue and friction parameters and its default models (Stronge's
+        cushions, the frictional inelastic ball-ball impulse with its friction rule), on
+        the spin level (see :mod:`pool_env.sim.presets` for each value and its source).
+
+        Args:
+            name: The preset's name.
+            **overrides: ``Table`` keywords over the preset's (e.g. ``pockets="none"``).
+
+        Raises:
+            ValueError: An unknown preset, or a value ``Table`` refuses.
+        """
+        if name not in PRESETS:
+            raise ValueError(f"unknown preset {name!r}; the presets are {sorted(PRESETS)}")
+        return cls(**{**PRESETS[name], **overrides})  # type: ignore[arg-type]
 
     @property
     def deceleration(self) -> float:
@@ -319,7 +380,8 @@ class Table:
         if not self.has_spin:
             return ""
         names = ("mu_slide", "spin_decel", "ball_friction", "cushion_friction")
-        names += ("cushion_height", "cue_tip_radius", "cue_end_mass")
+        names += ("cushion_height", "cue_tip_radius", "cue_end_mass", "cushion_model")
+        names += ("cushion_omega_ratio", "ball_model", "mathavan_steps")
         return ", model='spin', " + ", ".join(f"{n}={getattr(self, n)!r}" for n in names)
 
     def __repr__(self) -> str:

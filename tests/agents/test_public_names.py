@@ -20,13 +20,13 @@ from pool_env.game.kernels import encode, geometry, observe, tips, wpa
 from pool_env.sim import constants
 from pool_env.sim import formulas as sim_formulas
 from pool_env.sim.kernels import limits, params
-from pool_env.sim.kernels.spin import collide, cushion, strike
+from pool_env.sim.kernels.spin import collide, cushion, mathavan, strike
 from pool_env.sim.kernels.spin import params as spin_params
 
 ROOT = Path(__file__).resolve().parents[2]
 
 OWNERS = {
-    sim_formulas: (collide, cushion, strike, spin_params),
+    sim_formulas: (collide, cushion, mathavan, strike, spin_params),
     constants: (limits, params),
     game_formulas: (encode, geometry, observe, tips, wpa),
 }

@@ -42,6 +42,7 @@ NOT_HERE = {
     "a/b": "docs/site_links.py's docstring example",
     # other projects' files
     "ball_cushion/": "pooltool's source",
+    "stronge_compliant/": "pooltool's source",
     "physics/resolve/": "pooltool's source",
     "cleanrl/": "CleanRL's source",
 }

@@ -1,4 +1,4 @@
-"""Ball-cushion impact with spin (compiled): Han 2005 with the cushion's contact height.
+"""Ball-cushion impact with spin (compiled): Han 2005 or Stronge, with the contact height.
 
 Derived here from rigid-body impulses (I. Han, "Dynamics in carom and three cushion
 billiards", J. Mech. Sci. Tech. 19, 2005; the model of pooltool 0.6.0's ``Han2005Linear``,
@@ -77,6 +77,23 @@ sin(theta)``, as with ``Table``'s defaults (``e_c = 0.65``, ``f_c = 0.2``, ``h =
 
 Energy never increases: the normal part loses ``(1 - e_c^2) m c^2 / 2``, friction removes
 ``|P_t| (|s| + |s'|) / 2`` of slip energy, and dropping a vertical velocity only removes.
+
+Stronge's compliant model (pooltool 0.6.0's default cushion, ``Table(cushion_model=
+"stronge")``) shares all of the above but the tangential impulse: the same contact, normal
+impulse, spin change, dropped vertical velocity and the slide along the cushion. Its
+tangential law (:mod:`~pool_env.sim.kernels.spin.stronge`) takes the normal contact velocity
+``v_n0 = -c`` and ``v_t0 = -|s|`` and returns ``v_t_f``, so ``P_t = -((v_t_f + |s|) /
+(7/2)) m s / |s|``: Han's sliding impulse in its gross-slip regime, and in place of Han's
+sticking (``v_t_f = 0``) a compliant contact that can leave the slip reversed. pooltool's
+own code (``stronge_compliant/model.py``) keeps no more of the 3D impulse than this: it sets
+the vertical velocity to zero after the impact, as here.
+
+One geometric difference between pooltool's two models, kept here for equal models: Han's
+contact angle is ``sin(theta) = h / R - 1`` (a ball touching the nose), while pooltool's
+Stronge takes the normal from the nose line to the ball's centre where its event loop
+meets the cushion, ``R`` away in the plane: ``tan(theta) = h / R - 1`` (15.1 degrees at
+``h = 1.27 R`` against Han's 15.7). At jaw points this package uses the same angle (pooltool,
+whose pockets differ, takes its round cushion's centre).
 """
 
 from __future__ import annotations
@@ -84,11 +101,23 @@ from __future__ import annotations
 import math
 
 from pool_env.sim.jit import kernel
+from pool_env.sim.kernels.spin.params import HAN_CUSHION, STRONGE_CUSHION
+from pool_env.sim.kernels.spin.stronge import BETA, stronge_tangential
 
 
 @kernel
 def cushion_han(vx, vy, wx, wy, wz, nx, ny, R, h, e_c, f_c, out):
     """Resolve a ball meeting a cushion with Han's 2005 model (see the module docstring).
+
+    :func:`cushion_spin` with ``model = HAN_CUSHION`` (the same arguments, less ``model``
+    and ``omega``).
+    """
+    cushion_spin(vx, vy, wx, wy, wz, nx, ny, R, h, e_c, f_c, HAN_CUSHION, 0.0, out)
+
+
+@kernel
+def cushion_spin(vx, vy, wx, wy, wz, nx, ny, R, h, e_c, f_c, model, omega, out):
+    """Resolve a ball meeting a cushion with Han's or Stronge's model (module docstring).
 
     Used for rails, jaw facings and jaw points alike (for a round jaw point, ``n`` is the
     direction from the point's axis to the ball's centre).
@@ -102,12 +131,19 @@ def cushion_han(vx, vy, wx, wy, wz, nx, ny, R, h, e_c, f_c, out):
             (at ``2R`` the contact is on top of the ball and stops nothing).
         e_c: Restitution along the contact normal, in [0, 1].
         f_c: Friction between ball and cushion (>= 0).
+        model: ``HAN_CUSHION`` or ``STRONGE_CUSHION`` (:mod:`~pool_env.sim.kernels.spin.params`).
+        omega: Stronge's frequency ratio ``omega_t / omega_n`` in ``(1, 2)``, with
+            ``e_c >= 1 / omega`` (ignored by Han's model).
         out: float64 array; ``out[0:5]`` receives the new ``vx, vy, wx, wy, wz`` (the
             vertical velocity is dropped).
     """
     out[0], out[1], out[2], out[3], out[4] = vx, vy, wx, wy, wz
     sin_t = h / R - 1.0
     cos_t = math.sqrt(max(0.0, 1.0 - sin_t * sin_t))
+    if model == STRONGE_CUSHION:  # normal from the nose line to the centre, R away across
+        lift = h - R
+        span = math.sqrt(R * R + lift * lift)
+        sin_t, cos_t = lift / span, R / span
     approach = -cos_t * (vx * nx + vy * ny)  # c = v . r / R
     if not approach > 0.0:
         return
@@ -121,7 +157,10 @@ def cushion_han(vx, vy, wx, wy, wz, nx, ny, R, h, e_c, f_c, out):
     pn = (1.0 + e_c) * approach  # normal impulse per unit mass, along -r / R
     tx = ty = tz = 0.0
     if slip > 0.0:
-        pt = min(f_c * pn, (2.0 / 7.0) * slip)
+        if model == STRONGE_CUSHION:  # its v_t_f from v_t0 = -|s|, v_n0 = -c
+            pt = (stronge_tangential(-slip, -approach, f_c, e_c, omega) + slip) / BETA
+        else:
+            pt = min(f_c * pn, (2.0 / 7.0) * slip)
         tx, ty, tz = -pt * sx / slip, -pt * sy / slip, -pt * sz / slip
     vx_new = vx - pn * ex + tx
     vy_new = vy - pn * ey + ty

@@ -8,9 +8,11 @@ It implements every function of :mod:`pool_env.sim.kernels.level` for the marker
 * the transitions as events at closed-form times: ``SLIDE_ROLL``, ``STOP`` (a rolling ball
   comes to rest), ``ROLL_SPIN`` (it comes to rest spinning in place), ``SPIN_STOP``
   (:mod:`~pool_env.sim.kernels.spin.predict`), ordered after the roll level's kinds;
-* the closed-form resolution kernels of the spin level: ball-ball with throw
-  (:mod:`~pool_env.sim.kernels.spin.collide`), Han 2005 cushions
-  (:mod:`~pool_env.sim.kernels.spin.cushion`) for rails, jaw facings and jaw points (a
+* the resolution kernels of the spin level, chosen by the table's parameters: ball-ball
+  with throw (:mod:`~pool_env.sim.kernels.spin.collide`, closed form) or Mathavan's model
+  (:mod:`~pool_env.sim.kernels.spin.mathavan`, its impulse integration), Han 2005 or
+  Stronge's compliant cushions (:mod:`~pool_env.sim.kernels.spin.cushion`,
+  :mod:`~pool_env.sim.kernels.spin.stronge`) for rails, jaw facings and jaw points (a
   point's normal runs from its tip's centre to the ball's), with ``e_jaw`` at the jaws.
 
 The Zeno rules and the pressed-cushion rule: :mod:`~pool_env.sim.kernels.spin.zeno`. Every
@@ -35,14 +37,21 @@ from pool_env.sim.kernels.params import P_DECEL, P_E_BALL, P_E_CUSHION, P_E_JAW,
 from pool_env.sim.kernels.record import log_anchor, new_segment_log
 from pool_env.sim.kernels.spin import predict  # noqa: F401 (registers its predictors)
 from pool_env.sim.kernels.spin.collide import ball_ball_spin
-from pool_env.sim.kernels.spin.cushion import cushion_han
+from pool_env.sim.kernels.spin.cushion import cushion_spin
 from pool_env.sim.kernels.spin.marker import SPIN, SpinLevel  # noqa: F401 (SPIN: importing it from here registers the level)
+from pool_env.sim.kernels.spin.mathavan import ball_ball_mathavan
 from pool_env.sim.kernels.spin.params import (
+    MATHAVAN_BALLS,
+    S_BALL_MODEL,
     S_CUSHION_FRICTION,
     S_CUSHION_HEIGHT,
+    S_CUSHION_MODEL,
     S_END_MASS,
     S_FRICTION_MODE,
+    S_MATHAVAN_STEPS,
     S_MU_BALL,
+    S_MU_SLIDE,
+    S_OMEGA_RATIO,
     S_TIP_RADIUS,
 )
 from pool_env.sim.kernels.spin.state import (
@@ -88,10 +97,17 @@ def _impact(st, ms, masses, i, j, now, prm, repeats, out):
     approach = (vxi - vxj) * nx + (vyi - vyj) * ny
     e = prm[P_E_BALL]
     e_eff = e if approach >= V_ZENO or (approach > 0.0 and repeats < 2) else 0.0
-    ball_ball_spin(
-        vxi, vyi, wxi, wyi, wzi, vxj, vyj, wxj, wyj, wzj, nx, ny, masses[i], masses[j],
-        prm[P_RADIUS], e_eff, int(prm[S_FRICTION_MODE]), prm[S_MU_BALL], out,
-    )  # fmt: skip
+    if int(prm[S_BALL_MODEL]) == MATHAVAN_BALLS:
+        ball_ball_mathavan(
+            vxi, vyi, wxi, wyi, wzi, vxj, vyj, wxj, wyj, wzj, nx, ny, masses[i], masses[j],
+            prm[P_RADIUS], e_eff, int(prm[S_FRICTION_MODE]), prm[S_MU_BALL], prm[S_MU_SLIDE],
+            prm[S_MATHAVAN_STEPS], out,
+        )  # fmt: skip
+    else:
+        ball_ball_spin(
+            vxi, vyi, wxi, wyi, wzi, vxj, vyj, wxj, wyj, wzj, nx, ny, masses[i], masses[j],
+            prm[P_RADIUS], e_eff, int(prm[S_FRICTION_MODE]), prm[S_MU_BALL], out,
+        )  # fmt: skip
     set_anchor(st, ms, i, now, xi, yi, out[0], out[1], out[2], out[3], out[4], prm, CLASSIFY)
     set_anchor(st, ms, j, now, xj, yj, out[5], out[6], out[7], out[8], out[9], prm, CLASSIFY)
     return repeats >= ZENO_REPEATS
@@ -162,9 +178,9 @@ def _cushion(level, st, ms, kind, i, j, now, repeats, prm, pockets, out):
     if wedged_ball(x, y, vx, vy, repeats, prm, pockets):
         set_anchor(st, ms, i, now, x, y, 0.0, 0.0, 0.0, 0.0, wz, prm, CLASSIFY)
         return
-    cushion_han(
+    cushion_spin(
         vx, vy, wx, wy, wz, nx, ny, prm[P_RADIUS], prm[S_CUSHION_HEIGHT], e,
-        prm[S_CUSHION_FRICTION], out,
+        prm[S_CUSHION_FRICTION], int(prm[S_CUSHION_MODEL]), prm[S_OMEGA_RATIO], out,
     )  # fmt: skip
     mode = FORCE_ROLL if pressed_roll(out, nx, ny, prm[P_RADIUS]) else CLASSIFY
     set_anchor(st, ms, i, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
