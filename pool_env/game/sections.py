@@ -127,18 +127,10 @@ class PoolConfig:
             config = config._with(name, value)
         return config
 
-    def keys(self) -> dict[str, Any]:
-        """Every keyword and its value in this config (the flat view)."""
-        out: dict[str, Any] = {}
-        for section in (self.table, self.task, self.rules):
-            out.update((f.name, getattr(section, f.name)) for f in fields(section))
-        out["noise"] = self.noise.sigmas
-        return out
-
     def _with(self, name: str, value: Any) -> PoolConfig:
         if name in _WHOLE and isinstance(value, _WHOLE[name]):
             return replace(self, **{name: value})
-        if name in ("task",) and isinstance(value, Mapping):
+        if name == "task" and isinstance(value, Mapping):
             return self._update("task", dict(value))
         if name == "noise" and isinstance(value, Mapping):
             return replace(self, noise=_section(NoiseSection, "noise", dict(value)))
