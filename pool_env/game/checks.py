@@ -1,7 +1,9 @@
-"""Checks of every argument at every entry point: each error is a ``ValueError`` naming it.
+"""Checks of what the decision process takes: each error is a ``ValueError`` naming it.
 
-One module for both fronts (:class:`pool_env.PoolEnv`, :class:`pool_env.PoolVectorEnv`), so
-that the same bad input gets the same message from either.
+The config's values (tables, ranges, noise, counts), actions and reset options, checked
+here for every front, so that the same bad input gets the same message from each; what
+only a Gymnasium front takes (seeds, reset masks, render modes) is checked in
+:mod:`pool_env.envs.checks`.
 """
 
 from __future__ import annotations

@@ -105,10 +105,12 @@ class GameConfig:
         reward_weights: ``(pot, scratch, no contact, shaping)``.
         game: The rule: ``"solitaire"``, ``"nine"`` or ``"eight"``.
         players: 1 (one agent shoots every shot) or 2 (the turn passes by the rules).
-        end_on_foul: Rules only: a foul, or a shot that does not keep the table, ends the
-            episode (run-out mode).
-        break_speed_range: Rules only: speeds (m/s) of action[1] = -1 and +1 on a break.
-        rule_rewards: Rules only: ``(foul, win)`` (a lost rack gives ``-win``).
+        end_on_foul: Rules only (solitaire: False): a foul, or a shot that does not keep
+            the table, ends the episode (run-out mode).
+        break_speed_range: Rules only (solitaire, which has no break: ``(0, 0)``): speeds
+            (m/s) of action[1] = -1 and +1 on a break.
+        rule_rewards: Rules only (solitaire: ``(0, 0)``): ``(foul, win)`` (a lost rack
+            gives ``-win``). The game's :meth:`~pool_env.game.rulesets.base.Ruleset.parse_rules`.
         tip_limit: Spin tables only (else ``None``): the largest axis offset of the cue
             tip (fraction of ``R``), the radius of the miscue circle the two tip action
             components map onto (:func:`default_tip_limit` by default).
