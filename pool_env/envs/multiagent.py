@@ -3,20 +3,24 @@
 Both are thin fronts over the decision process (:func:`pool_env.game.step.step` with
 ``GameConfig.players == 2``): the rules, ball in hand, the break and the turns are
 :mod:`pool_env.game.kernels.wpa`'s, the action and observation those of the game ids
-(:class:`pool_env.PoolEnv` with ``game="nine"`` / ``"eight"``), seen from each agent's seat.
+(:class:`pool_env.PoolEnv` with ``game="nine"``, ``"ten"`` or ``"eight"``), seen from each
+agent's seat.
 
-``PoolDuelEnv(game="nine" | "eight")``: ``player_0`` breaks (the cue ball in hand behind the
-head string); the players alternate as the rules decide (a player keeps the table after a
-legal shot that pots, the opponent comes to the table after a miss or a foul, with ball in
-hand after a foul). The rack ends with a win (+1 to the winner, -1 to the loser) or is
-truncated after ``max_shots`` shots (0 to both).
+``PoolDuelEnv(game="nine" | "ten" | "eight")``: ``player_0`` breaks (the cue ball in hand
+behind the head string); the players alternate as the rules decide (a player keeps the
+table after a legal shot that pots, the opponent comes to the table after a miss or a foul,
+with ball in hand after a foul). In 9-ball and 10-ball the shot after a legal break may be
+a push-out, and the opponent then has the option: the next agent selected is the one who
+decides, with its action's option component, whether to shoot or hand the table back
+(then the pusher is selected again). The rack ends with a win (+1 to the winner, -1 to
+the loser) or is truncated after ``max_shots`` steps (0 to both).
 
-Action (``Box(-1, 1, (5,))``): aim, speed, cue ball x and y (used only with the cue ball in
-hand), called pocket (used only when shooting at the 8); see :class:`pool_env.PoolEnv`.
-``model="spin"`` plays the spin ids' table (``pool_env/NineBallGame-v1``, ...): the action is
-then ``Box(7)``, the cue tip's side and vertical offsets at its end.
-Every default is the game's roll id's (``pool_env/NineBallGameRoll-v1``,
-``pool_env/EightBallGameRoll-v1``):
+Action (the game id's): aim, speed, cue ball x and y (used only with the cue ball in
+hand), called pocket (used when shooting at the 8 and on every 10-ball shot), 10-ball's
+called ball, 9-ball and 10-ball's option; see :class:`pool_env.PoolEnv`. ``model="spin"``
+plays the spin ids' table (``pool_env/NineBallGame-v1``, ...): the cue tip's side and
+vertical offsets end the action.
+Every default is the game's roll id's (``pool_env/NineBallGameRoll-v1``, ...):
 its registered arguments, :func:`pool_env.game.config.make_config`'s defaults for the rest
 (``"cut"`` aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as
 the shot limit of the rack (both players' shots).
@@ -24,8 +28,10 @@ the shot limit of the rack (both players' shots).
 Observation of each agent: the game ids' observation
 (:func:`pool_env.game.kernels.observe.encode_rule_observations`) from that agent's seat:
 the balls, the balls that agent may hit first, ball in hand, behind the head string, the
-break, the open table, the agent's and the opponent's successive fouls, and whether the
-agent shoots next. ``info``: the game ids' step info, ``winner`` as the agent's name (or
+break, the open table, the agent's and the opponent's successive fouls, whether the
+agent shoots next (9-ball and 10-ball: may push out, has the option).
+
+``info``: the game ids' step info, ``winner`` as the agent's name (or
 None while the rack is undecided).
 """
 
@@ -67,10 +73,10 @@ _OPTIONS = ("positions", "on_table", "rules")
 
 
 class PoolDuelEnv(AECEnv):
-    """Two agents play one rack of 9-ball or 8-ball (see the module docstring).
+    """Two agents play one rack of 9-ball, 10-ball or 8-ball (see the module docstring).
 
     Args:
-        game: ``"nine"`` or ``"eight"``.
+        game: ``"nine"``, ``"ten"`` or ``"eight"``.
         config: The sectioned config (:class:`pool_env.PoolConfig`); ``None``: the game
             id's (its scene and model), truncated after the id's ``max_episode_steps``
             shots of both players.
@@ -96,7 +102,7 @@ class PoolDuelEnv(AECEnv):
     ) -> None:
         super().__init__()
         if game not in _GAME_IDS:
-            raise ValueError(f"game must be 'nine' or 'eight', got {game!r}")
+            raise ValueError(f"game must be one of {sorted(_GAME_IDS)}, got {game!r}")
         registered, steps = _GAME_IDS[game]
         base = default_config(**registered, max_shots=steps) if config is None else config
         self.config: GameConfig = make_config(resolve(base, {**overrides, "game": game}), 2)

@@ -46,10 +46,11 @@ TASKS: dict[str, tuple[dict[str, Any], int]] = {
     "NineBall": ({"scene": "nine_ball"}, 50),
     "EightBall": ({"scene": "eight_ball"}, 80),
     # The games under their rules (pool_env.game.kernels.wpa), one agent at the table:
-    # fouls, ball in hand (Box(5) actions, Box(7) with the tip), a break at break speed; the
-    # episode ends when the rack is won or lost (end_on_foul=True: at the first foul or
-    # missed turn).
+    # fouls, ball in hand, called pockets (10-ball: and balls), the push-out (9-ball and
+    # 10-ball), a break at break speed; the episode ends when the rack is won or lost
+    # (end_on_foul=True: at the first foul or missed turn).
     "NineBallGame": ({"scene": "nine_ball", "game": "nine"}, 100),
+    "TenBallGame": ({"scene": "ten_ball", "game": "ten"}, 110),
     "EightBallGame": ({"scene": "eight_ball", "game": "eight"}, 150),
 }
 
@@ -98,8 +99,9 @@ def register_envs() -> None:
             )
 
 
-#: The ids played under the 9-ball or 8-ball rules (``Box(7)`` actions on the spin table,
-#: ``Box(5)`` on the roll table); the others are solitaire (``Box(4)``, ``Box(2)``).
+#: The ids played under the 9-ball, 10-ball or 8-ball rules (``Box(8)``, ``Box(9)``,
+#: ``Box(7)`` actions on the spin table, two fewer on the roll table); the others are
+#: solitaire (``Box(4)``, ``Box(2)``).
 GAME_IDS: tuple[str, ...] = tuple(k for k, (kw, _) in ENV_IDS.items() if "game" in kw)
 
 

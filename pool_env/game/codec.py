@@ -24,7 +24,13 @@ from pool_env.game.components import unit_component
 from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
-from pool_env.game.kernels.actions import nearest_object_ball
+from pool_env.game.kernels.actions import (
+    CALL_BALL,
+    CALL_HAND_BACK,
+    CALL_POCKET,
+    CALL_PUSH_OUT,
+    nearest_object_ball,
+)
 from pool_env.game.kernels.encode import (
     AIM_AWAY,
     AIM_NO_REFERENCE,
@@ -113,7 +119,9 @@ def decode_action(
 
     Returns:
         The :class:`Shot`; under rules with the cue ball in hand, ``cue`` is where the
-        step places it (the free point nearest the requested one, if that is covered).
+        step places it (the free point nearest the requested one, if that is covered);
+        ``push_out`` and ``pass_back`` only where the rack offers them (else the step
+        plays a shot); ``pass_back``: the angle and speed are 0, no shot is played.
 
     Raises:
         ValueError: On a malformed action (or NaN), layout or rack.
@@ -123,11 +131,17 @@ def decode_action(
     params, ruleset = _quiet(config), config.ruleset
     ruleset.place(config.table, params, state, _ONE, actions)
     cue = ruleset.placed_cue(state)
-    shots, _, called = ruleset.execute(params, config.table.pockets, state, _ONE, actions)
-    pocket = 0 if called is None else int(called[0])
+    shots, _, calls = ruleset.execute(params, config.table.pockets, state, _ONE, actions)
     row = shots[0].tolist()
     tip = (row[2], row[3]) if config.spin else (0.0, 0.0)
-    return Shot(angle=row[0], speed=row[1], tip=tip, cue=cue, pocket=pocket)
+    if calls is None:
+        return Shot(angle=row[0], speed=row[1], tip=tip, cue=cue)
+    call = calls[0]
+    return Shot(
+        angle=row[0], speed=row[1], tip=tip, cue=cue, pocket=int(call[CALL_POCKET]),
+        ball=int(call[CALL_BALL]) if call[CALL_BALL] > 0 else None,
+        push_out=bool(call[CALL_PUSH_OUT]), pass_back=bool(call[CALL_HAND_BACK]),
+    )  # fmt: skip
 
 
 def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> float:

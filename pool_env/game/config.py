@@ -103,7 +103,7 @@ class GameConfig:
         shot_limit: Shots after which an episode is truncated (0: never): ``max_shots``,
             or the vector env's smaller of it and ``max_episode_steps``.
         reward_weights: ``(pot, scratch, no contact, shaping)``.
-        game: The rule: ``"solitaire"``, ``"nine"`` or ``"eight"``.
+        game: The rule: ``"solitaire"``, ``"nine"``, ``"ten"`` or ``"eight"``.
         players: 1 (one agent shoots every shot) or 2 (the turn passes by the rules).
         end_on_foul: Rules only (solitaire: False): a foul, or a shot that does not keep
             the table, ends the episode (run-out mode).
@@ -170,9 +170,10 @@ class GameConfig:
 
     @property
     def action_size(self) -> int:
-        """Action components: 2 (aim, speed), 5 under rules (and placement, pocket).
+        """Action components: the game's, then a spin table's two tip components.
 
-        A spin table adds the tip's two at the end: 4, or 7 under rules.
+        2 (aim, speed) in solitaire; under rules 5 (and placement, pocket) in 8-ball, 6 in
+        9-ball (and the option), 7 in 10-ball (and the called ball before it).
         """
         return self.ruleset.action_width + (2 if self.spin else 0)
 
@@ -222,6 +223,7 @@ def kernel_params(
     params[[kp.W_POT, kp.W_SCRATCH, kp.W_NO_CONTACT, kp.W_SHAPING]] = weights
     params[kp.END_ON_MISS] = float(end_on_miss)
     params[kp.SHOT_LIMIT] = shot_limit
+    params[[kp.BALL_COLUMN, kp.OPTION_COLUMN, kp.TIP_COLUMN]] = (-1.0, -1.0, 2.0)  # rules: theirs
     params.setflags(write=False)
     return params
 

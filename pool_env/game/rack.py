@@ -21,7 +21,10 @@ from pool_env.game.kernels import wpa
 GROUP_NAMES = ("open", "solids", "stripes")
 
 #: The keys of ``options["rules"]``.
-RULE_KEYS = ("break", "ball_in_hand", "behind_head_string", "groups", "fouls", "shooter")
+RULE_KEYS = (
+    "break", "ball_in_hand", "behind_head_string", "groups", "fouls", "shooter", "push_out",
+    "option",
+)  # fmt: skip
 
 
 def _is_int(value: object) -> bool:
@@ -37,8 +40,10 @@ def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.
     lies, an open table and no fouls. ``options["rules"]`` (a dict) sets any of ``break``
     (bool), ``ball_in_hand`` (bool), ``behind_head_string`` (bool), ``groups`` (two of
     ``"open"``, ``"solids"``, ``"stripes"``, players 0 and 1), ``fouls`` (each player's
-    successive fouls, integers 0-2; Python or numpy integers, not bools) and, with two
-    players, ``shooter`` (0 or 1). The row is checked against the balls by
+    successive fouls, integers 0-2; Python or numpy integers, not bools), with two
+    players ``shooter`` (0 or 1), and in 9-ball and 10-ball ``push_out`` (bool: the shot
+    may be a push-out, as right after a legal break) and, with two players, ``option``
+    (bool: the shooter may hand the table back). The row is checked against the balls by
     :func:`check_rack`.
 
     Raises:
@@ -55,7 +60,8 @@ def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.
     if unknown:
         raise ValueError(f"unknown options['rules'] keys {sorted(unknown)}: use {list(RULE_KEYS)}")
     for key, column in (("break", wpa.BREAKING), ("ball_in_hand", wpa.IN_HAND),
-                        ("behind_head_string", wpa.BEHIND)):  # fmt: skip
+                        ("behind_head_string", wpa.BEHIND), ("push_out", wpa.PUSH_OUT),
+                        ("option", wpa.OPTION)):  # fmt: skip
         if key in given:
             if not isinstance(given[key], bool | np.bool_):
                 raise ValueError(f"options['rules'][{key!r}] must be a bool, got {given[key]!r}")
@@ -92,13 +98,40 @@ def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.
         row[wpa.SHOOTER] = int(shooter)
     if row[wpa.BEHIND] and not row[wpa.IN_HAND]:
         raise ValueError("options['rules']: behind_head_string needs ball_in_hand")
+    check_option(config, row)
     return row
+
+
+def check_option(config: GameConfig, row: NDArray[np.int64]) -> None:
+    """Refuse a push-out or an option the game or the rack cannot have.
+
+    Both need a game with them (9-ball, 10-ball); the push-out is the shot right after a
+    legal break (no break pending, no ball in hand, no option); the option needs two
+    players and no ball in hand.
+
+    Raises:
+        ValueError: Naming the key.
+    """
+    if not (row[wpa.PUSH_OUT] or row[wpa.OPTION]):
+        return
+    key = "push_out" if row[wpa.PUSH_OUT] else "option"
+    if not getattr(config.ruleset, "has_option", False):
+        raise ValueError(f"options['rules'][{key!r}]: game={config.game!r} has no push-out")
+    if row[wpa.PUSH_OUT] and (row[wpa.BREAKING] or row[wpa.IN_HAND] or row[wpa.OPTION]):
+        raise ValueError(
+            "options['rules']['push_out'] is the shot right after a legal break: no break, "
+            "ball in hand or option with it"
+        )
+    if row[wpa.OPTION] and (config.players != 2 or row[wpa.BREAKING] or row[wpa.IN_HAND]):
+        raise ValueError(
+            "options['rules']['option'] needs two players, and no break or ball in hand"
+        )
 
 
 def check_rack(config: GameConfig, row: NDArray[np.int64], on_table: NDArray[np.bool_]) -> None:
     """Refuse a rack state the rules could never finish on these balls.
 
-    * 9-ball without the 9 on the table: no shot can win the rack.
+    * 9-ball without the 9 on the table (10-ball: the 10): no shot can win the rack.
     * 8-ball without the 8: no shot can win it either (every shot at the 8 is a foul).
     * 8-ball on an open table with no object ball but the 8: every first contact is a
       foul (the 8 is never a legal first ball on an open table) and 8-ball has no
@@ -122,13 +155,13 @@ def check_rack(config: GameConfig, row: NDArray[np.int64], on_table: NDArray[np.
     groups = (row[wpa.GROUP_0], row[wpa.GROUP_1])
     if row[wpa.BREAKING] and groups != (wpa.OPEN, wpa.OPEN):
         raise ValueError("options['rules']: groups are assigned after the break, not on it")
-    key = 9 if config.game == "nine" else 8
+    key = config.ruleset.money_ball  # type: ignore[attr-defined]
     for k in range(on_table.shape[0]):
         on = on_table[k]
         where = "" if on_table.shape[0] == 1 else f"table {k}: "
         if not on[key]:
             raise ValueError(
-                f"{where}the {key} must be on the table in {config.game}-ball: without it "
+                f"{where}the {key} must be on the table in game={config.game!r}: without it "
                 "no shot can win the rack (options['on_table'])"
             )
         if (
@@ -149,7 +182,7 @@ def rack_dict(config: GameConfig, row: NDArray[np.int64]) -> dict[str, Any]:
     ``winner`` is -1 while the rack is undecided; ``groups`` are names (8-ball).
     """
     if not config.rules:
-        raise ValueError("the rack state exists under rules only (game='nine' or 'eight')")
+        raise ValueError("the rack state exists under rules only (game='nine', 'ten', 'eight')")
     return {
         "shooter": int(row[wpa.SHOOTER]),
         "break": bool(row[wpa.BREAKING]),
@@ -157,6 +190,8 @@ def rack_dict(config: GameConfig, row: NDArray[np.int64]) -> dict[str, Any]:
         "behind_head_string": bool(row[wpa.BEHIND]),
         "groups": (GROUP_NAMES[row[wpa.GROUP_0]], GROUP_NAMES[row[wpa.GROUP_1]]),
         "fouls": (int(row[wpa.FOULS_0]), int(row[wpa.FOULS_1])),
+        "push_out": bool(row[wpa.PUSH_OUT]),
+        "option": bool(row[wpa.OPTION]),
         "winner": int(row[wpa.WINNER]),
     }
 
@@ -178,4 +213,6 @@ def rack_row(rack: dict[str, Any]) -> NDArray[np.int64]:
     row[wpa.GROUP_0], row[wpa.GROUP_1] = (GROUP_NAMES.index(g) for g in groups)
     row[wpa.FOULS_0], row[wpa.FOULS_1] = (int(f) for f in rack.get("fouls", (0, 0)))
     row[wpa.WINNER] = int(rack.get("winner", row[wpa.WINNER]))
+    row[wpa.PUSH_OUT] = int(bool(rack.get("push_out", False)))
+    row[wpa.OPTION] = int(bool(rack.get("option", False)))
     return row

@@ -19,14 +19,17 @@ order and any pocket.
 * The episode terminates when the table is cleared, and with ``end_on_miss`` after a shot
   that pots nothing or scratches; it is truncated after ``shot_limit`` shots.
 
-The rules of 9-ball and 8-ball (``GameConfig.game`` ``"nine"`` / ``"eight"``) are
-:func:`judge_rules`: the same outcome plus what the rules read (the cushions each ball
-touched after the first contact, the order the balls dropped, the called pocket), judged
+The rules of 9-ball, 10-ball and 8-ball (``GameConfig.game`` ``"nine"``, ``"ten"``,
+``"eight"``) are :func:`judge_rules`: the same outcome plus what the rules read (the
+cushions each ball touched after the first contact, the order the balls dropped, the
+calls: pocket, ball, push-out, handing the table back), judged
 by :func:`pool_env.game.kernels.wpa.judge_rack` (the one copy of those rules, whose
 docstring lists them and every simplification) on the rack state each table keeps in
 ``GameState.rack``. Practice reward: ``reward_pot`` per object ball potted on a legal shot
-(a re-spotted ball and the 8 of 8-ball not counted), ``reward_foul`` for a foul,
-``reward_win`` for winning the rack and minus it for losing it.
+that counts its pots (not a push-out; in 10-ball, the break or a call made; a re-spotted
+ball and the 8 of 8-ball not counted), ``reward_foul`` for a foul, ``reward_win`` for
+winning the rack and minus it for losing it. A step that hands the table back plays no
+shot and gives 0.
 """
 
 from __future__ import annotations
@@ -34,6 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env.game.kernels import wpa
+from pool_env.game.kernels.actions import CALL_BALL, CALL_HAND_BACK, CALL_POCKET, CALL_PUSH_OUT
 from pool_env.game.kernels.layout import point_free
 from pool_env.game.kernels.observe import potential
 from pool_env.game.kernels.params import (
@@ -65,8 +69,9 @@ TERMINATED, TRUNCATED, CLEARED, SCRATCH, SPOT_TAKEN, RESPOT_TAKEN = range(6)
 
 #: Columns of :func:`judge`'s integer results (:func:`judge_rules` adds the rest): the
 #: foul code, the ball on before the shot, the winner (-1: undecided), why the rack was
-#: lost, the re-spotted ball (-1: none) and whether the shooter's turn goes on.
-POTTED_BITS, FIRST_BALL, FOUL, BALL_ON, WINNER, LOSS, RESPOT, KEEPS = range(8)
+#: lost, the re-spotted ball (-1: none), whether the shooter's turn goes on, and how the
+#: step was played (:data:`pool_env.game.kernels.wpa.SHOT`, ``PUSHED_OUT``, ``HANDED_BACK``).
+POTTED_BITS, FIRST_BALL, FOUL, BALL_ON, WINNER, LOSS, RESPOT, KEEPS, PLAY = range(9)
 
 
 @kernel
@@ -225,8 +230,8 @@ def _spot(positions, on_table, ball, x, y, params, pockets, others):
 
 @kernel
 def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack, final,
-                pocketed, first, cushions, order, called, crossed):  # fmt: skip
-    """Apply a batch of simulated shots to the tables by the 9-ball or 8-ball rules.
+                pocketed, first, cushions, order, calls, crossed):  # fmt: skip
+    """Apply a batch of simulated shots to the tables by the 9-ball, 10-ball or 8-ball rules.
 
     Args:
         params: The config's numbers; ``params[GAME]`` selects the game.
@@ -242,7 +247,8 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
         first: ``(K, 2)`` result columns of the first ball-ball impact, -1 for none.
         cushions: ``(K, M)`` each ball's cushion impacts after the first contact.
         order: ``(K, M)`` the order the balls dropped (0 first), -1 if they did not.
-        called: ``(K,)`` the pocket called for the 8.
+        calls: ``(K, N_CALLS)`` the calls (``executed_rule_shots``): the pocket (the 8's,
+            10-ball's), the ball (10-ball), a push-out, handing the table back.
         crossed: ``(K,)`` the cue ball's centre passed the head string before its first
             contact (read only when the cue ball was in hand behind the head string and
             its first ball lies behind it: :func:`pool_env.game.contact.read_first`).
@@ -250,7 +256,7 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
     Returns:
         ``(rewards, flags, hits)``: ``(K,)``; ``(K, 6)`` booleans (:data:`TERMINATED` ..
         :data:`RESPOT_TAKEN`: the foot spot is covered, the re-spotted ball is on the table
-        but not yet placed); ``(K, 8)`` integers (:data:`POTTED_BITS` .. :data:`KEEPS`).
+        but not yet placed); ``(K, 9)`` integers (:data:`POTTED_BITS` .. :data:`PLAY`).
         ``CLEARED`` is set when the shooter won the rack with the shot.
     """
     n_shots, n_cols = pocketed.shape
@@ -258,12 +264,23 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
     game, players = int(params[GAME]), int(params[PLAYERS])
     rewards = np.empty(n_shots)
     flags = np.zeros((n_shots, 6), dtype=np.bool_)
-    hits = np.zeros((n_shots, 8), dtype=np.int64)
+    hits = np.zeros((n_shots, 9), dtype=np.int64)
     others = np.empty((n_balls, 2))
     before = np.empty(n_balls, dtype=np.bool_)
     potted = np.zeros(n_balls, dtype=np.bool_)
+    limit = params[SHOT_LIMIT]
     for k in range(n_shots):
         b = tables[k]
+        shooter = rack[b, wpa.SHOOTER]
+        if calls[k, CALL_HAND_BACK] != 0 and wpa.hand_back(players, rack[b]):
+            shots[b] += 1  # a decision of its own, counted as a step; nothing moved
+            rewards[k] = 0.0
+            flags[k, TERMINATED] = params[END_ON_FOUL] != 0.0
+            flags[k, TRUNCATED] = limit > 0.0 and shots[b] >= limit
+            hits[k, FIRST_BALL], hits[k, WINNER], hits[k, RESPOT] = -1, -1, -1
+            hits[k, BALL_ON] = wpa.ball_on(game, rack[b], on_table[b], shooter)
+            hits[k, PLAY] = wpa.HANDED_BACK
+            continue
         before[:] = on_table[b]
         first_ball = _first_ball(balls, first, k)
         first_x = positions[b, first_ball, 0] if first_ball >= 0 else 0.0  # still at rest
@@ -271,6 +288,8 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
         _, bits, scratch = _settle(positions, on_table, b, balls, final, pocketed, k, potted)
         rail, to_rail = False, 0
         first_dropped, first_order, eight_pocket = -1, n_cols + 1, -1
+        called_ball = calls[k, CALL_BALL] if game == wpa.TEN else -1
+        call_made = False
         for c in range(n_cols):  # what the rules read besides: rails, the order of drops
             j = balls[c]
             if cushions[k, c] > 0:
@@ -278,19 +297,22 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
                 if j != CUE:
                     to_rail += 1
             if j != CUE and potted[j]:
+                if j == called_ball and pocketed[k, c] == calls[k, CALL_POCKET]:
+                    call_made = True
                 if j == 8 and game == wpa.EIGHT:
                     eight_pocket = pocketed[k, c]
                 elif order[k, c] < first_order:
                     first_order, first_dropped = order[k, c], j
         shots[b] += 1
-        shooter = rack[b, wpa.SHOOTER]
-        foul, on, respot, loss, keeps = wpa.judge_rack(
+        pushed = calls[k, CALL_PUSH_OUT] != 0 and rack[b, wpa.PUSH_OUT] != 0
+        foul, on, respot, loss, keeps, counts = wpa.judge_rack(
             game, players, rack[b], before, first_ball, scratch, potted, first_dropped,
-            eight_pocket, called[k], rail, to_rail, kitchen,
+            eight_pocket, calls[k, CALL_POCKET], rail, to_rail, kitchen, pushed, called_ball,
+            call_made,
         )  # fmt: skip
         winner = rack[b, wpa.WINNER]
         legal_pots = 0  # the 8 of 8-ball is no pot: it wins or loses the rack
-        if foul == wpa.NO_FOUL:
+        if counts:
             for j in range(1, n_balls):
                 if potted[j] and j != respot and not (j == 8 and game == wpa.EIGHT):
                     legal_pots += 1
@@ -311,7 +333,6 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
                 pockets, others,
             )  # fmt: skip
         turn_over = foul != wpa.NO_FOUL or not keeps
-        limit = params[SHOT_LIMIT]
         flags[k, TERMINATED] = winner >= 0 or (params[END_ON_FOUL] != 0.0 and turn_over)
         flags[k, TRUNCATED] = limit > 0.0 and shots[b] >= limit
         flags[k, CLEARED] = winner >= 0 and winner == shooter
@@ -319,4 +340,5 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
         hits[k, POTTED_BITS], hits[k, FIRST_BALL], hits[k, FOUL] = bits, first_ball, foul
         hits[k, BALL_ON], hits[k, WINNER], hits[k, LOSS] = on, winner, loss
         hits[k, RESPOT], hits[k, KEEPS] = respot, 1 if keeps else 0
+        hits[k, PLAY] = wpa.PUSHED_OUT if pushed else wpa.SHOT
     return rewards, flags, hits

@@ -11,6 +11,7 @@ name       object balls    starting state
 one_ball   1               cue and object ball uniformly at random on the table
 random     ``n_balls``     cue and ``n_balls`` object balls uniformly at random (default 3)
 nine_ball  9               the 9-ball diamond on the foot spot; cue in the kitchen (break)
+ten_ball   10              the 10-ball triangle on the foot spot; cue in the kitchen (break)
 eight_ball 15              the 15-ball triangle on the foot spot; cue in the kitchen (break)
 ========== =============== ==================================================================
 
@@ -39,7 +40,9 @@ from pool_env.sim.simulate import check_positions
 from pool_env.sim.table import Table
 
 #: Scene names and their number of object balls (``None``: set by ``n_balls``).
-SCENES: dict[str, int | None] = {"one_ball": 1, "random": None, "nine_ball": 9, "eight_ball": 15}
+SCENES: dict[str, int | None] = {
+    "one_ball": 1, "random": None, "nine_ball": 9, "ten_ball": 10, "eight_ball": 15,
+}  # fmt: skip
 
 #: Object balls of the ``"random"`` scene when ``n_balls`` is not given.
 DEFAULT_RANDOM_BALLS = 3
@@ -225,7 +228,7 @@ def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan
         if scene in ("one_ball", "random"):
             n_new, placed, box = n + 1, empty, full_table
         else:
-            rack = break_scene(table, "nine" if scene == "nine_ball" else "eight")
+            rack = break_scene(table, scene.removesuffix("_ball"))
             n_new, placed, box = 1, np.ascontiguousarray(rack[1:]), np.array(kitchen_box(table))
         fallback = grid_layout(table, n_new, box, placed)
         if fallback is None:

@@ -24,7 +24,15 @@ class Shot:
         tip: The cue tip's axis offset ``(side, vertical)`` in fractions of R (spin
             tables; ``(0.0, 0.0)`` on a roll table).
         cue: Rules, cue ball in hand: where it is placed (m); ``None`` otherwise.
-        pocket: Rules: the pocket called for the 8 (index into ``table.pockets``).
+        pocket: Rules: the called pocket (index into ``table.pockets``): the 8's in 8-ball,
+            the called ball's in 10-ball.
+        ball: 10-ball: the called ball (``None`` when encoding: the ball on); ``None`` in
+            the other games.
+        push_out: 9-ball and 10-ball: the shot is declared a push-out (only on the shot
+            right after a legal break: :attr:`ShotConstraints.push_out`).
+        pass_back: 9-ball and 10-ball: the incoming player uses the option to hand the
+            table back instead of shooting (:attr:`ShotConstraints.option`); the other
+            parts are then ignored, no shot is played.
     """
 
     angle: float
@@ -32,6 +40,9 @@ class Shot:
     tip: tuple[float, float] = (0.0, 0.0)
     cue: tuple[float, float] | None = None
     pocket: int = 0
+    ball: int | None = None
+    push_out: bool = False
+    pass_back: bool = False
 
 
 @dataclass(frozen=True)
@@ -50,8 +61,14 @@ class ShotConstraints:
         breaking: The shot is a break (its speed range is the break's).
         speed_range: The cue speeds (m/s) that the action's speed component spans for
             this shot.
-        call_pocket: The called pocket (``Shot.pocket``) decides the rack: 8-ball's 8.
-        push_out: The shooter may declare a push-out (no rule offers one yet).
+        call_pocket: The called pocket (``Shot.pocket``) counts: 8-ball's 8, every 10-ball
+            shot after the break.
+        push_out: The shooter may declare a push-out (``Shot.push_out``): 9-ball and
+            10-ball, the shot right after a legal break.
+        call_ball: The shot calls a ball (``Shot.ball``): 10-ball after the break.
+        option: The shooter may hand the table back instead of shooting
+            (``Shot.pass_back``): after the opponent's push-out, or a 10-ball shot that
+            potted a ball without its call.
     """
 
     first_balls: tuple[int, ...]
@@ -62,3 +79,5 @@ class ShotConstraints:
     breaking: bool = False
     call_pocket: bool = False
     push_out: bool = False
+    call_ball: bool = False
+    option: bool = False

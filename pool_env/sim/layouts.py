@@ -1,4 +1,4 @@
-"""Standard ball layouts: spots, the 9-ball diamond and the 8-ball triangle.
+"""Standard ball layouts: spots, the 9-ball diamond, the 10-ball and 8-ball triangles.
 
 Touching balls: rack neighbours are placed ``2R + gap`` apart (``gap = 0`` by default, so a
 rack touches as a real, tightly racked one does, up to rounding of the last bit). The
@@ -84,24 +84,43 @@ def rack_eight_ball(table: Table, gap: float = 0.0) -> NDArray[np.float64]:
     return pts[order]
 
 
+def rack_ten_ball(table: Table, gap: float = 0.0) -> NDArray[np.float64]:
+    """The 10-ball triangle (rows 1-2-3-4), apex on the foot spot (WPA 10-ball rule 2).
+
+    Args:
+        table: The table.
+        gap: Extra distance between neighbouring balls (m), 0 for a touching rack.
+
+    Returns:
+        ``(10, 2)`` centres for balls 1..10: the 1 at the apex, the 10 in the middle of the
+        third row, the others in row order (2, 3 on the second row; 4, 5 flanking the 10;
+        6-9 at the back).
+    """
+    pts = _triangle_rows(table, (1, 2, 3, 4), gap)
+    # Row-major index 4 is the middle of the third row: it takes ball 10 (index 9).
+    order = [0, 1, 2, 3, 5, 6, 7, 8, 9, 4]
+    return pts[order]
+
+
+#: The racks of :func:`break_scene`, by name.
+RACKS = {"nine": rack_nine_ball, "ten": rack_ten_ball, "eight": rack_eight_ball}
+
+
 def break_scene(table: Table, rack: str = "nine", gap: float = 0.0) -> NDArray[np.float64]:
     """A break: the cue ball (row 0) on the head spot, then the rack's balls.
 
     Args:
         table: The table.
-        rack: ``"nine"`` (9-ball diamond) or ``"eight"`` (15-ball triangle).
+        rack: ``"nine"`` (9-ball diamond), ``"ten"`` (10-ball triangle) or ``"eight"``
+            (15-ball triangle).
         gap: Extra distance between neighbouring rack balls (m).
 
     Returns:
-        ``(10, 2)`` or ``(16, 2)`` centres.
+        ``(10, 2)``, ``(11, 2)`` or ``(16, 2)`` centres.
 
     Raises:
         ValueError: On an unknown rack name or a rack that does not fit.
     """
-    if rack == "nine":
-        balls = rack_nine_ball(table, gap)
-    elif rack == "eight":
-        balls = rack_eight_ball(table, gap)
-    else:
-        raise ValueError(f"unknown rack {rack!r}: use 'nine' or 'eight'")
-    return np.vstack([head_spot(table)[None, :], balls])
+    if rack not in RACKS:
+        raise ValueError(f"unknown rack {rack!r}: use one of {list(RACKS)}")
+    return np.vstack([head_spot(table)[None, :], RACKS[rack](table, gap)])

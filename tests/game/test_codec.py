@@ -62,11 +62,14 @@ def test_encode_inverts_decode(env_id: str, aim: str) -> None:
         assert twice.speed == pytest.approx(shot.speed, abs=1e-12)
         np.testing.assert_allclose(twice.tip, shot.tip, atol=1e-15)
         assert twice.pocket == shot.pocket and (twice.cue is None) == (shot.cue is None)
+        calls = (shot.ball, shot.push_out, shot.pass_back)
+        assert (twice.ball, twice.push_out, twice.pass_back) == calls
         if shot.cue is not None:
             np.testing.assert_allclose(twice.cue, shot.cue, rtol=0, atol=1e-12)
         keep = np.ones(action.shape, dtype=bool)
         if config.rules:
-            keep[4] = False  # a pocket's bin, encoded as its middle
+            # a pocket's and a ball's bins, encoded as their middles; the option's sign
+            keep[4 : config.ruleset.action_width] = False
             keep[2:4] = False  # a covered point moves to a free one: compared as shot.cue
         np.testing.assert_allclose(again[keep], action[keep], atol=1e-9)
 

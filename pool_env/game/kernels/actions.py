@@ -22,6 +22,7 @@ from pool_env.game.kernels.params import (
     AIM_HIGH,
     AIM_LOW,
     AIM_MODE,
+    BALL_COLUMN,
     BALL_MASS,
     BREAK_HIGH,
     BREAK_LOW,
@@ -30,6 +31,7 @@ from pool_env.game.kernels.params import (
     GAME,
     HEAD_X,
     NOISE,
+    OPTION_COLUMN,
     RADIUS,
     REACH,
     SIGMA_ANGLE,
@@ -38,6 +40,7 @@ from pool_env.game.kernels.params import (
     SPEED_HIGH,
     SPEED_LOW,
     SPIN,
+    TIP_COLUMN,
     TIP_LIMIT,
     X_HIGH,
     X_LOW,
@@ -46,9 +49,22 @@ from pool_env.game.kernels.params import (
 )
 from pool_env.game.kernels.rng import standard_normal
 from pool_env.game.kernels.tips import decode_tips, onto_tip_circle
-from pool_env.game.kernels.wpa import BEHIND, BREAKING, IN_HAND, SHOOTER, legal_targets
+from pool_env.game.kernels.wpa import (
+    BEHIND,
+    BREAKING,
+    IN_HAND,
+    OPTION,
+    PUSH_OUT,
+    SHOOTER,
+    legal_targets,
+)
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.spin.strike import cue_strike
+
+#: Columns of the calls :func:`executed_rule_shots` returns: the called pocket, the called
+#: ball (10-ball; -1 none), a push-out declared where the rules allow one, the option used
+#: to hand the table back (no shot is played).
+CALL_POCKET, CALL_BALL, CALL_PUSH_OUT, CALL_HAND_BACK, N_CALLS = range(5)
 
 
 @kernel
@@ -313,20 +329,27 @@ def place_in_hand(params, pockets, actions, tables, positions, on_table, rack):
 
 @kernel
 def executed_rule_shots(params, pockets, actions, tables, positions, on_table, ptrs, rack):
-    """The shots of the rules' ``Box(5)`` actions, the cue ball placed: call, aim, strike.
+    """The shots of the rules' actions, the cue ball placed: the calls, aim, strike.
 
-    On a spin table the actions are ``Box(7)``: the tip is ``actions[:, 5:7]``.
+    The action is ``(aim, speed, cue x, cue y, pocket)``, then the game's own columns
+    (``params[BALL_COLUMN]``: the called ball of 10-ball; ``params[OPTION_COLUMN]``: 9-ball
+    and 10-ball's option), then on a spin table the tip (from ``params[TIP_COLUMN]``).
 
     ``actions[:, 4]`` calls pocket ``min(floor(P (a + 1) / 2), P - 1)`` (``P = 6``: six
-    equal bins over ``[-1, 1]``, in ``table.pockets`` order; read by the rules only when
-    the shooter is on the 8). The speed maps onto the break range on a break. Relative and
-    cut aim refer to the nearest ball the shooter may hit first
-    (:func:`pool_env.game.kernels.wpa.legal_targets`), not to the nearest ball.
+    equal bins over ``[-1, 1]``, in ``table.pockets`` order; read by the rules when the
+    shooter is on the 8, and on every 10-ball shot after the break); the ball column calls
+    ball ``1 + min(floor(n (a + 1) / 2), n - 1)`` of the ``n`` object balls the same way.
+    The option column, ``> 0``, declares a push-out on the shot right after a legal break
+    (``rack[PUSH_OUT]``), and when the shooter has the option (``rack[OPTION]``) hands the
+    table back instead of shooting: that row plays no shot (zero speed, no noise drawn).
+    The speed maps onto the break range on a break. Relative and cut aim refer to the
+    nearest ball the shooter may hit first (:func:`pool_env.game.kernels.wpa.legal_targets`),
+    not to the nearest ball.
 
     Args:
         params: The config's numbers.
         pockets: ``(P, 3)`` capture circles.
-        actions: ``(K, 5)`` actions.
+        actions: ``(K, A)`` actions.
         tables: ``(K,)`` the tables that shoot.
         positions: ``(B, N, 2)`` ball centres.
         on_table: ``(B, N)`` which balls are on each table.
@@ -334,22 +357,33 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
         rack: ``(B, N_RACK)`` rack states.
 
     Returns:
-        ``(shots, velocities, called)``: as :func:`executed_shots`, and the called pockets.
+        ``(shots, velocities, calls)``: as :func:`executed_shots`, and ``(K, N_CALLS)``
+        int64 calls (columns :data:`CALL_POCKET` ...).
     """
     n_shots, n_balls = tables.shape[0], on_table.shape[1]
     game = int(params[GAME])
     aims, speeds = decode_actions(
         actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
     )
-    tips = _tips(params, actions, 5)
+    tips = _tips(params, actions, int(params[TIP_COLUMN]))
     shots, velocities = _shot_arrays(params, n_shots, n_balls)
-    called = np.empty(n_shots, dtype=np.int64)
+    calls = np.full((n_shots, N_CALLS), -1, dtype=np.int64)
     targets = np.empty(n_balls, dtype=np.bool_)
-    n_pockets = pockets.shape[0]
+    n_pockets, n_objects = pockets.shape[0], n_balls - 1
+    ball_column, option_column = int(params[BALL_COLUMN]), int(params[OPTION_COLUMN])
     for k in range(n_shots):
         b = tables[k]
         row = rack[b]
-        called[k] = min(int(_unit(actions[k, 4]) * n_pockets), n_pockets - 1)
+        calls[k, CALL_POCKET] = min(int(_unit(actions[k, 4]) * n_pockets), n_pockets - 1)
+        if ball_column >= 0:
+            calls[k, CALL_BALL] = 1 + min(int(_unit(actions[k, ball_column]) * n_objects),
+                                          n_objects - 1)  # fmt: skip
+        declared = option_column >= 0 and actions[k, option_column] > 0.0
+        calls[k, CALL_PUSH_OUT] = 1 if declared and row[PUSH_OUT] != 0 else 0
+        calls[k, CALL_HAND_BACK] = 1 if declared and row[OPTION] != 0 else 0
+        if calls[k, CALL_HAND_BACK] != 0:  # the table goes back: nothing is struck
+            shots[k, :] = 0.0
+            continue
         speed = speeds[k]
         if row[BREAKING] != 0:
             speed = params[BREAK_LOW] + _unit(actions[k, 1]) * (
@@ -358,4 +392,4 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
         legal_targets(game, row, on_table[b], row[SHOOTER], targets)
         _strike(params, aims[k], speed, tips[k], positions[b], targets, ptrs[b], shots[k],
                 velocities[k])  # fmt: skip
-    return shots, velocities, called
+    return shots, velocities, calls

@@ -15,8 +15,11 @@ from pool_env.game.kernels.wpa import (
     GROUP_0,
     IN_HAND,
     OPEN,
+    OPTION,
+    PUSH_OUT,
     SHOOTER,
     legal_targets,
+    rotation,
 )
 from pool_env.sim.jit import kernel
 
@@ -98,6 +101,16 @@ RULE_FEATURES: tuple[str, ...] = (
 )  # fmt: skip
 N_RULE_FEATURES = 7
 
+#: The rotation games' features after :data:`RULE_FEATURES` (9-ball, 10-ball): the viewer
+#: may push out on this shot, the viewer may hand the table back instead of shooting.
+OPTION_FEATURES: tuple[str, ...] = ("push_out", "option")
+
+
+@kernel
+def n_rule_features(game):
+    """The rule features of ``game``: :data:`RULE_FEATURES`, and the rotation games' options."""
+    return N_RULE_FEATURES + (len(OPTION_FEATURES) if rotation(game) else 0)
+
 
 @kernel
 def encode_rule_observations(params, positions, on_table, rack, viewers, length, width):
@@ -109,7 +122,9 @@ def encode_rule_observations(params, positions, on_table, rack, viewers, length,
     cleared, any ball on the break); then :data:`RULE_FEATURES`: the cue ball in hand,
     only behind the head string, the next shot is a break, the 8-ball table is open, the
     viewer's and the opponent's successive fouls / 2 (at most 1), and whether the viewer
-    shoots next (always 1 with one player).
+    shoots next (always 1 with one player); in 9-ball and 10-ball also
+    :data:`OPTION_FEATURES`: the viewer shoots next and may push out, or may hand the
+    table back.
 
     Args:
         params: The config's numbers (``params[GAME]``).
@@ -121,14 +136,13 @@ def encode_rule_observations(params, positions, on_table, rack, viewers, length,
         width: Table width (m).
 
     Returns:
-        ``(B, 3 N + N - 1 + 7)`` float32.
+        ``(B, 3 N + N - 1 + F)`` float32, ``F`` the game's :func:`n_rule_features`.
     """
     b, n = on_table.shape
     balls = encode_observations(positions, on_table, length, width)
-    n_rules = N_RULE_FEATURES
-    out = np.zeros((b, 3 * n + n - 1 + n_rules), dtype=np.float32)
-    out[:, : 3 * n] = balls
     game = int(params[GAME])
+    out = np.zeros((b, 3 * n + n - 1 + n_rule_features(game)), dtype=np.float32)
+    out[:, : 3 * n] = balls
     legal = np.empty(n, dtype=np.bool_)
     for k in range(b):
         viewer = viewers[k]
@@ -144,4 +158,8 @@ def encode_rule_observations(params, positions, on_table, rack, viewers, length,
         out[k, base + 4] = min(row[FOULS_0 + viewer], 2) * 0.5
         out[k, base + 5] = min(row[FOULS_0 + 1 - viewer], 2) * 0.5
         out[k, base + 6] = 1.0 if row[SHOOTER] == viewer else 0.0
+        if rotation(game):
+            to_shoot = row[SHOOTER] == viewer
+            out[k, base + 7] = 1.0 if to_shoot and row[PUSH_OUT] != 0 else 0.0
+            out[k, base + 8] = 1.0 if to_shoot and row[OPTION] != 0 else 0.0
     return out

@@ -34,7 +34,7 @@ from __future__ import annotations
     DIAGONAL,  # the table's diagonal (m), the shaping potential's scale
     TRIES,  # failed random draws in a row that end an attempt at a layout
     RESTARTS,  # attempts at a random layout before the scene's fallback layout
-    GAME,  # the rule: 0 solitaire, 1 9-ball, 2 8-ball (pool_env.game.kernels.wpa)
+    GAME,  # the rule: 0 solitaire, 1 9-ball, 2 8-ball, 3 10-ball (pool_env.game.kernels.wpa)
     PLAYERS,  # 1: one agent shoots every shot (practice), 2: the turn passes
     END_ON_FOUL,  # 1.0: a foul or a shot that pots nothing legally ends the episode
     BREAK_LOW,  # speed (m/s) of action[1] = -1 on a break
@@ -50,5 +50,8 @@ from __future__ import annotations
     BALL_MASS,  # the cue ball's mass (kg), for the strike
     CUE_END_MASS,  # the cue's effective end mass (kg), for squirt
     CUE_TIP_RADIUS,  # the cue tip's radius (m), for the contact offset
+    BALL_COLUMN,  # rules: the action column calling a ball (10-ball), -1 for none
+    OPTION_COLUMN,  # rules: the column declaring a push-out or handing back, -1 for none
+    TIP_COLUMN,  # the first of a spin table's two tip columns
     N_PARAMS,
-) = range(43)
+) = range(46)

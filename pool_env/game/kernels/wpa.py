@@ -1,10 +1,11 @@
-"""9-ball and 8-ball (WPA world standardized rules), compiled: one table's shot judged.
+"""9-ball, 10-ball and 8-ball (WPA world standardized rules), compiled: one shot judged.
 
 The rules read a shot's outcome by ball number (ball ``k`` is numbered ``k``, the cue ball
 0, as in :func:`pool_env.sim.layouts.break_scene`) and the table's *rack state*, one int64
 row of :data:`N_RACK` columns (``GameState.rack``): who shoots, ball in hand (behind the
 head string or anywhere), the break pending, each player's 8-ball group and successive
-fouls, and the winner. :func:`judge_rack` updates that row in place.
+fouls, the winner, whether the next shot may be a push-out and whether the shooter may
+hand the table back. :func:`judge_rack` updates that row in place.
 
 9-ball (WPA rules 1-2): the cue ball must first contact the lowest-numbered ball on the
 table; then a ball must be potted or some ball (the cue ball included) must touch a
@@ -13,6 +14,23 @@ and a ball potted or at least four object balls driven to a cushion. The 9 potte
 legal shot wins (the break and combinations included); potted on a foul it is re-spotted.
 A player who fouls on three successive shots loses the rack. After a foul the incoming
 player has the cue ball in hand anywhere on the table.
+
+The push-out (9-ball and 10-ball, WPA 9-ball rule 1.7, 10-ball rule 4): on the shot right
+after a legal break, whoever shoots it may declare a push-out. The wrong-ball-first,
+no-rail and no-contact fouls do not apply to it (a scratch still fouls); balls it pots stay
+down and do not count, except the money ball (9 or 10), which is re-spotted. After a
+legal push-out the opponent chooses: take the table as it lies, or hand it back to the
+player who pushed (:data:`OPTION`: the incoming shooter's action says which).
+
+10-ball (WPA 10-ball rules): the rack of ten, played as 9-ball (the lowest ball first, a
+ball potted or a rail after contact, the 1 first and four balls to a rail on the break,
+three fouls lose) with called shots: each shot after the break calls a ball and a pocket.
+A legal shot that pots the called ball in the called pocket keeps the table (other balls
+it pots stay down too); the 10 wins only when it is that called ball. A legal shot that
+misses its call passes the turn: balls it potted stay down (the 10 re-spotted) and, if it
+potted any, the incoming player has the option to shoot or hand the table back. The 10
+potted on the break, on a foul, on a push-out or without its call is re-spotted; a legal
+break that pots a ball keeps the table.
 
 Both games: with the cue ball in hand behind the head string (the break, and after a
 scratch on an 8-ball break), the cue ball may not first contact a ball whose base lies
@@ -38,8 +56,9 @@ but the 8; the break: any ball, the 8 included, which is re-spotted).
 
 Simplifications, all deliberate:
 
-* No push-out (9-ball rule 1.7), no called shots other than the 8's pocket (so "pot a
-  ball" means any object ball), no safeties called, no warning before the third foul, no
+* No push-out in 8-ball (WPA has none), no called shots in 9-ball and none in 8-ball but
+  the 8's pocket (so "pot a ball" means any object ball there), no safeties called (a
+  10-ball shot that misses its call is one), no warning before the third foul, no
   jump, masse or "bad cue ball" fouls (the simulator has none of them), no stalemate rule,
   no three-foul rule in 8-ball (WPA has none either).
 * An illegal break is a foul (``illegal_break``): the incoming player takes ball in hand on
@@ -60,7 +79,12 @@ Simplifications, all deliberate:
   kitchen_ball_first, then illegal_break).
 * With one player (practice), the shooter never changes: after a foul the agent itself is
   the incoming player, with ball in hand; a lost rack (three fouls, the 8 lost) is a
-  win of the absent opponent, player 1.
+  win of the absent opponent, player 1. The agent may push out, and then shoots on: the
+  opponent's option needs an opponent, so one player never has it.
+* The option is decided by the incoming player's next action, in its option component
+  (``> 0``: hand the table back); the push-out is declared in the same component of the
+  shot right after a legal break. Either declaration where the rules offer none is
+  ignored (the shot is played as a shot).
 """
 
 from __future__ import annotations
@@ -71,12 +95,20 @@ from pool_env.game.kernels.params import GAME, HEAD_X, RADIUS
 from pool_env.sim.jit import kernel
 
 #: Rule codes of ``params[GAME]``.
-SOLITAIRE, NINE, EIGHT = 0, 1, 2
+SOLITAIRE, NINE, EIGHT, TEN = 0, 1, 2, 3
 
 #: Columns of a rack-state row: the shooter (0 or 1), ball in hand, ... behind the head
 #: string, the next shot is a break, each player's group (:data:`OPEN`, :data:`SOLIDS`,
-#: :data:`STRIPES`), each player's successive fouls, the winner (-1 while undecided).
-SHOOTER, IN_HAND, BEHIND, BREAKING, GROUP_0, GROUP_1, FOULS_0, FOULS_1, WINNER, N_RACK = range(10)
+#: :data:`STRIPES`), each player's successive fouls, the winner (-1 while undecided), the
+#: next shot may be a push-out, the shooter may hand the table back instead of shooting.
+(
+    SHOOTER, IN_HAND, BEHIND, BREAKING, GROUP_0, GROUP_1, FOULS_0, FOULS_1, WINNER, PUSH_OUT,
+    OPTION, N_RACK,
+) = range(12)  # fmt: skip
+
+#: How a step was played (the rules' ``PLAY`` result column): a shot, a declared
+#: push-out, or the option used to hand the table back (no shot played).
+SHOT, PUSHED_OUT, HANDED_BACK = 0, 1, 2
 
 #: 8-ball groups.
 OPEN, SOLIDS, STRIPES = 0, 1, 2
@@ -99,7 +131,23 @@ LOSS_NAMES: tuple[str | None, ...] = (
 BREAK_RAILS = 4
 
 #: Balls of each game, the cue ball included.
-GAME_BALLS = {NINE: 10, EIGHT: 16}
+GAME_BALLS = {NINE: 10, EIGHT: 16, TEN: 11}
+
+
+@kernel
+def rotation(game):
+    """Whether ``game`` is played in rotation (the lowest ball first): 9-ball and 10-ball."""
+    return game in (NINE, TEN)
+
+
+@kernel
+def money_ball(game):
+    """The ball that wins the rack: 9, 10 or the 8."""
+    if game == NINE:
+        return 9
+    if game == TEN:
+        return 10
+    return 8
 
 
 @kernel
@@ -116,11 +164,11 @@ def group_of(ball):
 def ball_on(game, rack, on_table, player):
     """The one ball ``player`` must hit first, or -1 when it is not a single one.
 
-    9-ball: the lowest-numbered ball on the table; 8-ball: the 8 once the player's group
-    is cleared, else -1 (any ball of the group, or of either on an open table).
+    9-ball and 10-ball: the lowest-numbered ball on the table; 8-ball: the 8 once the
+    player's group is cleared, else -1 (any ball of the group, or of either on an open table).
     """
     n = on_table.shape[0]
-    if game == NINE:
+    if rotation(game):
         for j in range(1, n):
             if on_table[j]:
                 return j
@@ -139,7 +187,7 @@ def legal_first(game, rack, on_table, player, on, j):
     """Whether ``player`` may hit ball ``j`` first (``on`` is :func:`ball_on`'s answer)."""
     if j < 1 or j >= on_table.shape[0] or not on_table[j]:
         return False
-    if game == NINE:
+    if rotation(game):
         return j == on
     if rack[BREAKING] != 0:
         return True
@@ -160,11 +208,11 @@ def legal_targets(game, rack, on_table, player, out):
 
 
 @kernel
-def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitchen):
+def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitchen, push_out):
     """The first foul that applies to a shot (:data:`NO_FOUL` for a legal one).
 
     Args:
-        game: :data:`NINE` or :data:`EIGHT`.
+        game: :data:`NINE`, :data:`EIGHT` or :data:`TEN`.
         rack: The rack-state row before the shot.
         on_table: ``(N,)`` the balls on the table before the shot.
         first: The ball the cue ball hit first, -1 for none.
@@ -174,6 +222,8 @@ def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitch
         to_rail: Object balls that touched a cushion after the first contact.
         kitchen: The cue ball, in hand behind the head string, first met a ball whose base
             lies behind it without crossing it first (:func:`kitchen_foul`).
+        push_out: The shot is a push-out the rules allow: only the scratch (and the
+            kitchen) fouls apply.
     """
     if scratch:
         return FOUL_SCRATCH
@@ -183,6 +233,8 @@ def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitch
         first_ok = first >= 0 and (game == EIGHT or first == 1)
         spread = n_potted > 0 or to_rail >= BREAK_RAILS
         return NO_FOUL if first_ok and spread else FOUL_BREAK
+    if push_out:
+        return NO_FOUL
     if first < 0:
         return FOUL_NO_CONTACT
     player = rack[SHOOTER]
@@ -262,11 +314,12 @@ def needs_replay(params, tables, balls, positions, on_table, rack, first):
 
 @kernel
 def judge_rack(game, players, rack, on_table, first, scratch, potted, first_dropped,
-               eight_pocket, called, rail, to_rail, kitchen):  # fmt: skip
+               eight_pocket, called, rail, to_rail, kitchen, push_out, called_ball,
+               call_made):  # fmt: skip
     """Judge one shot and move the rack state on (``rack`` is updated in place).
 
     Args:
-        game: :data:`NINE` or :data:`EIGHT`.
+        game: :data:`NINE`, :data:`EIGHT` or :data:`TEN`.
         players: 1 (the shooter never changes) or 2.
         rack: The table's rack-state row, updated in place.
         on_table: ``(N,)`` balls on the table *before* the shot (not changed).
@@ -274,18 +327,22 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
         scratch: The cue ball dropped.
         potted: ``(N,)`` booleans: the object balls the shot potted (index 0 ignored).
         first_dropped: The first object ball other than the 8 to drop, -1 for none.
-        eight_pocket: The pocket the 8 dropped in, -1 if it did not (or 9-ball).
+        eight_pocket: The pocket the 8 dropped in, -1 if it did not (or not 8-ball).
         called: The pocket called for the 8 (-1: none).
         rail: Some ball touched a cushion after the first contact.
         to_rail: Object balls that touched a cushion after the first contact.
         kitchen: The first contact breaks the kitchen rule (:func:`kitchen_foul`).
+        push_out: The shot was declared a push-out (read only where ``rack[PUSH_OUT]``).
+        called_ball: 10-ball: the ball called (-1: none).
+        call_made: 10-ball: the called ball dropped in the called pocket.
 
     Returns:
-        ``(foul, ball_on, respot, loss, keeps)``: the foul code, the ball on before the
-        shot (-1: none single), the ball to re-spot (-1: none), why the shooter lost
-        (:data:`NO_LOSS`...), and whether the shooter's turn goes on (a legal shot that
-        pots a ball that keeps the table, counted as if two players played). The winner
-        is ``rack[WINNER]`` (-1 while undecided).
+        ``(foul, ball_on, respot, loss, keeps, counts)``: the foul code, the ball on before
+        the shot (-1: none single), the ball to re-spot (-1: none), why the shooter lost
+        (:data:`NO_LOSS`...), whether the shooter's turn goes on (a legal shot that pots a
+        ball that keeps the table, counted as if two players played), and whether the
+        balls it potted count as pots (a legal shot, not a push-out, a 10-ball call made).
+        The winner is ``rack[WINNER]`` (-1 while undecided).
     """
     shooter = rack[SHOOTER]
     other = 1 - shooter
@@ -294,21 +351,34 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
     for j in range(1, n):
         if potted[j]:
             n_potted += 1
+    pushed = push_out and rack[PUSH_OUT] != 0
     on = ball_on(game, rack, on_table, shooter)
-    foul = foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitchen)
+    foul = foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitchen,
+                   pushed)  # fmt: skip
     breaking = rack[BREAKING] != 0
     respot, loss, winner = -1, NO_LOSS, -1
-    if game == NINE:
-        nine = n > 9 and potted[9]
-        if nine:
-            if foul != NO_FOUL:
-                respot = 9
-            else:
+    option = False  # the incoming player may hand the table back
+    if rotation(game):
+        money = money_ball(game)
+        # Counted pots: a legal shot, not a push-out; in 10-ball the break or a call made.
+        counts = foul == NO_FOUL and not pushed
+        if game == TEN and not breaking:
+            counts = counts and call_made
+        if n > money and potted[money]:
+            # 9-ball: the 9 wins on any counted shot; 10-ball: only the called 10 (the
+            # break's is re-spotted).
+            if counts and (game == NINE or (called_ball == money and not breaking)):
                 winner = shooter
+            else:
+                respot = money
         if foul != NO_FOUL and rack[FOULS_0 + shooter] + 1 >= 3:
             winner, loss = other, THREE_FOULS
         keeps = foul == NO_FOUL and n_potted > 0
+        if pushed or (game == TEN and not breaking):
+            keeps = counts and not pushed
+        option = foul == NO_FOUL and (pushed or (game == TEN and not counts and n_potted > 0))
     else:
+        counts = foul == NO_FOUL
         if eight_pocket >= 0:
             if breaking:
                 respot = 8
@@ -341,11 +411,27 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
     rack[FOULS_0 + shooter] = rack[FOULS_0 + shooter] + 1 if foul != NO_FOUL else 0
     rack[BEHIND] = 1 if foul == FOUL_SCRATCH and breaking and game == EIGHT else 0
     rack[IN_HAND] = 1 if foul != NO_FOUL else 0
+    rack[PUSH_OUT] = 1 if breaking and foul == NO_FOUL and rotation(game) else 0
     rack[BREAKING] = 0
     rack[WINNER] = winner
+    rack[OPTION] = 1 if option and players == 2 and winner < 0 else 0
     if players == 2 and not keeps:
         rack[SHOOTER] = other
-    return foul, on, respot, loss, keeps
+    return foul, on, respot, loss, keeps, counts
+
+
+@kernel
+def hand_back(players, rack):
+    """The incoming player uses the option: the table goes back, as it lies, to the other.
+
+    Returns:
+        Whether the rack had the option (else nothing changes and a shot is played).
+    """
+    if rack[OPTION] == 0 or players != 2:
+        return False
+    rack[OPTION] = 0
+    rack[SHOOTER] = 1 - rack[SHOOTER]
+    return True
 
 
 @kernel

@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from pool_env.game.rulesets.base import Ruleset
 from pool_env.game.rulesets.solitaire import Solitaire
-from pool_env.game.rulesets.wpa import EIGHT, NINE
+from pool_env.game.rulesets.wpa import EIGHT, NINE, TEN
 
 #: Every game by its config value (``gym.make(..., game=...)``), in the order of the
 #: kernels' game codes (``params[GAME]``).
-RULESETS: dict[str, Ruleset] = {r.name: r for r in (Solitaire(), NINE, EIGHT)}
+RULESETS: dict[str, Ruleset] = {r.name: r for r in (Solitaire(), NINE, EIGHT, TEN)}
 
 
 def ruleset_for(game: object) -> Ruleset:

@@ -1,15 +1,17 @@
-"""WPA 9-ball and 8-ball: one ruleset for the family, the game as its parameter.
+"""WPA 9-ball, 10-ball and 8-ball: one ruleset for the family, the game as its parameter.
 
-Both games run the same compiled kernels, which branch on the game code themselves
+The games run the same compiled kernels, which branch on the game code themselves
 (:func:`pool_env.game.kernels.wpa.judge_rack` and
 :func:`~pool_env.game.kernels.wpa.legal_targets` read ``params[GAME]``): the cue ball in
-hand (:func:`pool_env.game.kernels.actions.place_in_hand`), the ``Box(5)`` shot with a
-called pocket (:func:`~pool_env.game.kernels.actions.executed_rule_shots`), the first
+hand (:func:`pool_env.game.kernels.actions.place_in_hand`), the shot with its calls
+(:func:`~pool_env.game.kernels.actions.executed_rule_shots`), the first
 contact as the rules read it (:func:`pool_env.game.contact.read_first`), the rules
 (:func:`pool_env.game.rules.judge_rules`) and the rule observation
 (:func:`pool_env.game.kernels.observe.encode_rule_observations`). What differs in Python
-is a name, a code and the number of object balls, so the two games are two instances of
-:class:`WpaGame` (:data:`NINE`, :data:`EIGHT`), not two files that would repeat each other.
+is a name, a code, the number of object balls, the money ball and the action's own
+columns (10-ball's called ball; 9-ball and 10-ball's option: push-out or hand back), so the
+games are instances of :class:`WpaGame` (:data:`NINE`, :data:`TEN`, :data:`EIGHT`), not
+files that would repeat each other.
 """
 
 from __future__ import annotations
@@ -27,9 +29,10 @@ from pool_env.game.kernels import params as kp
 from pool_env.game.kernels import wpa
 from pool_env.game.kernels.actions import executed_rule_shots, place_in_hand
 from pool_env.game.kernels.observe import (
-    N_RULE_FEATURES,
+    OPTION_FEATURES,
     RULE_FEATURES,
     encode_rule_observations,
+    n_rule_features,
 )
 from pool_env.game.kernels.wpa import FOUL_NAMES, LOSS_NAMES
 from pool_env.game.rules import (
@@ -38,6 +41,7 @@ from pool_env.game.rules import (
     FOUL,
     KEEPS,
     LOSS,
+    PLAY,
     RESPOT,
     RESPOT_TAKEN,
     WINNER,
@@ -73,6 +77,11 @@ RULE_COLUMNS: dict[str, tuple[str, int, type]] = {
 #: :data:`RULE_COLUMNS`.
 RULE_KEYS: tuple[str, ...] = ("foul", "legal", "loss", "turn_over", *RULE_COLUMNS)
 
+#: The keys 9-ball and 10-ball add (they have the option): ``push_out`` (the shot was
+#: played as a push-out) and ``handed_back`` (the step used the option to hand the table
+#: back: no shot was played).
+OPTION_KEYS: tuple[str, ...] = ("push_out", "handed_back")
+
 #: Default break speed range (m/s) of the rules' break shot: a pro breaks at 11-13 m/s,
 #: amateurs lower (Dr. Dave's "typical speeds" FAQ; ``docs/physics.md``).
 DEFAULT_BREAK_SPEED_RANGE = (8.0, 12.0)
@@ -85,7 +94,7 @@ class WpaRules(RulesSection):
     """The rules section of 9-ball and 8-ball.
 
     Attributes:
-        game: ``"nine"`` or ``"eight"``.
+        game: ``"nine"``, ``"ten"`` or ``"eight"``.
         end_on_foul: A foul, or a legal shot that does not keep the table, ends the
             episode (run-out mode); else play goes on (practice mode).
         break_speed_range: Speeds (m/s) of ``action[1] = -1`` and ``+1`` on a break.
@@ -104,44 +113,63 @@ _LOSSES = np.array(LOSS_NAMES, dtype=object)
 
 
 class WpaGame(Ruleset):
-    """A WPA game: 9-ball (``game="nine"``) or 8-ball (``game="eight"``).
+    """A WPA game: 9-ball (``game="nine"``), 10-ball (``"ten"``) or 8-ball (``"eight"``).
+
+    The action is ``(aim, speed, cue x, cue y, pocket)``, then 10-ball's called ball, then
+    the option (9-ball and 10-ball: ``> 0`` declares a push-out, or hands the table back),
+    then a spin table's tip.
 
     Args:
         name: The config value.
-        code: The kernels' game code (:data:`pool_env.game.kernels.wpa.NINE`, ``EIGHT``).
+        code: The kernels' game code (:data:`pool_env.game.kernels.wpa.NINE`, ...).
         n_objects: The object balls of the game's rack, numbered as the game's.
+        calls_ball: Each shot calls a ball (10-ball): the action has a ball column.
+        has_option: The push-out and the opponent's option: the action has an option column.
     """
 
     has_rack = True
-    action_width = 5
-    info_keys = RULE_KEYS
     section = WpaRules
 
-    def __init__(self, name: str, code: int, n_objects: int) -> None:
+    def __init__(
+        self, name: str, code: int, n_objects: int, calls_ball: bool, has_option: bool
+    ) -> None:
         self.name, self.code, self.n_objects = name, code, n_objects
+        self.calls_ball, self.has_option = calls_ball, has_option
+        self.money_ball = int(wpa.money_ball(code))
+        self.ball_column = 5 if calls_ball else -1
+        self.option_column = 5 + int(calls_ball) if has_option else -1
+        self.action_width = 5 + int(calls_ball) + int(has_option)
+        self.info_keys = RULE_KEYS + (OPTION_KEYS if has_option else ())
+        self.features = RULE_FEATURES + (OPTION_FEATURES if has_option else ())
+        assert len(self.features) == n_rule_features(code)
 
     def observation_width(self, n_balls: int) -> int:
         """``3 N`` ball entries, ``N - 1`` legal-ball flags and the rule features."""
-        return 3 * n_balls + n_balls - 1 + N_RULE_FEATURES
+        return 3 * n_balls + n_balls - 1 + len(self.features)
 
     def obs_layout(self, n_balls: int) -> dict[str, slice]:
         """The balls, the legal-ball flags, then one part per rule feature.
 
         ``"legal"`` holds balls ``1..N-1`` (may the viewer hit it first), and each name of
-        :data:`~pool_env.game.kernels.observe.RULE_FEATURES` its own entry.
+        :data:`~pool_env.game.kernels.observe.RULE_FEATURES` (9-ball and 10-ball: and of
+        ``OPTION_FEATURES``) its own entry.
         """
         layout = super().obs_layout(n_balls)
         base = 4 * n_balls - 1
         layout["legal"] = slice(3 * n_balls, base)
-        for k, name in enumerate(RULE_FEATURES):
+        for k, name in enumerate(self.features):
             layout[name] = slice(base + k, base + k + 1)
         return layout
 
     def constraints(self, config: ConfigView, observation: NDArray[Any]) -> ShotConstraints:
-        """The viewer's legal first balls, ball in hand and its box, the break, the 8's call."""
+        """The viewer's legal first balls, ball in hand and its box, the break, the calls.
+
+        And in 9-ball and 10-ball whether the viewer may push out, or hand the table back.
+        """
         obs = np.asarray(observation)
         layout = self.obs_layout(config.n_balls)
-        flag = {name: bool(obs[layout[name]][0] > 0.5) for name in RULE_FEATURES[:4]}
+        names = RULE_FEATURES[:4] + (OPTION_FEATURES if self.has_option else ())
+        flag = {name: bool(obs[layout[name]][0] > 0.5) for name in names}
         first = tuple(int(j) for j in np.flatnonzero(obs[layout["legal"]] > 0.5) + 1)
         params = config.params
         box = None
@@ -159,17 +187,22 @@ class WpaGame(Ruleset):
             behind_head_string=flag["ball_in_hand"] and flag["behind_head_string"],
             placement=box,
             breaking=breaking,
-            call_pocket=self.code == wpa.EIGHT and not breaking and first == (8,),
-        )
+            call_pocket=not breaking and (self.calls_ball or (self.code == wpa.EIGHT
+                                                             and first == (8,))),
+            push_out=flag.get("push_out", False),
+            call_ball=self.calls_ball and not breaking,
+            option=flag.get("option", False),
+        )  # fmt: skip
 
     def first_balls_after(self, on_after: NDArray[np.bool_], potted: int) -> tuple[int, ...]:
         """The legal first balls of the next shot if the shooter keeps the table.
 
-        9-ball: the lowest ball left. 8-ball: what is left of the potted ball's group (which
-        an open table then assigns), the 8 once that is empty, nothing after the 8.
+        9-ball and 10-ball: the lowest ball left. 8-ball: what is left of the potted ball's
+        group (which an open table then assigns), the 8 once that is empty, nothing after
+        the 8.
         """
         left = [j for j in range(1, on_after.shape[0]) if on_after[j]]
-        if self.code == wpa.NINE:
+        if self.code != wpa.EIGHT:
             return tuple(left[:1])
         if potted == 8:
             return ()
@@ -197,12 +230,32 @@ class WpaGame(Ruleset):
         out: NDArray[np.float64],
         clip: bool,
     ) -> tuple[float, float]:
-        """The placement (cue ball in hand), the called pocket; the break's speed range."""
+        """The placement (cue ball in hand), the calls, the option; the shot's speed range.
+
+        Raises:
+            ValueError: On a call the game has not (a ball outside 10-ball), a ball that is
+                not one of the game's, or a push-out or hand-back the rack does not offer.
+        """
         row = state.rack[0]
         if row[wpa.IN_HAND] and shot.cue is not None:
             out[2], out[3] = self.encode_placement(config, shot.cue, bool(row[wpa.BEHIND]), clip)
             state.positions[0, CUE] = shot.cue  # the aim refers from where the cue ball will be
         out[4] = encode_pocket(config.table, shot.pocket)
+        if self.calls_ball:
+            ball = shot.ball
+            if ball is None:  # the ball on: the lowest on the table
+                on = np.flatnonzero(state.on_table[0, 1:]) + 1
+                ball = int(on[0]) if on.size else 1
+            out[self.ball_column] = encode_ball(self.n_objects, ball)
+        elif shot.ball is not None:
+            raise ValueError(f"game={self.name!r} calls no ball: Shot.ball must be None")
+        declared = {"push_out": (shot.push_out, wpa.PUSH_OUT),
+                    "pass_back": (shot.pass_back, wpa.OPTION)}  # fmt: skip
+        for name, (wanted, column) in declared.items():
+            if wanted and (not self.has_option or not row[column]):
+                raise ValueError(f"Shot.{name}: the rules offer none on this shot")
+        if self.has_option:
+            out[self.option_column] = 1.0 if shot.push_out or shot.pass_back else -1.0
         return config.break_speed_range if row[wpa.BREAKING] else config.speed_range
 
     def encode_placement(
@@ -261,6 +314,8 @@ class WpaGame(Ruleset):
         out[kp.END_ON_FOUL] = float(end_on_foul)
         out[[kp.BREAK_LOW, kp.BREAK_HIGH]] = break_speed_range
         out[[kp.W_FOUL, kp.W_WIN]] = rule_rewards
+        out[[kp.BALL_COLUMN, kp.OPTION_COLUMN]] = self.ball_column, self.option_column
+        out[kp.TIP_COLUMN] = self.action_width
         out[kp.HEAD_X] = table.length / 4.0
         out[[kp.FOOT_X, kp.FOOT_Y]] = foot_spot(table)
         out.setflags(write=False)
@@ -296,7 +351,7 @@ class WpaGame(Ruleset):
         tables: NDArray[np.intp],
         actions: NDArray[np.float64],
     ) -> Executed:
-        """:func:`~pool_env.game.kernels.actions.executed_rule_shots`; extra: the called pockets."""
+        """:func:`~pool_env.game.kernels.actions.executed_rule_shots`; extra: the calls."""
         return executed_rule_shots(
             params, pockets, actions, tables, state.positions, state.on_table, state.ptrs,
             state.rack,
@@ -364,6 +419,9 @@ class WpaGame(Ruleset):
         info["turn_over"] = hits[FOUL] != 0 or hits[KEEPS] == 0
         for key, (_, column, _) in RULE_COLUMNS.items():
             info[key] = hits[column]
+        if self.has_option:
+            info["push_out"] = hits[PLAY] == wpa.PUSHED_OUT
+            info["handed_back"] = hits[PLAY] == wpa.HANDED_BACK
 
     def batch_info(
         self,
@@ -392,6 +450,11 @@ class WpaGame(Ruleset):
             values = np.zeros(n_envs, dtype=dtype)
             values[tables] = hits[:, column]
             info[key], info[f"_{key}"] = values, present.copy()
+        if self.has_option:
+            for key, play in (("push_out", wpa.PUSHED_OUT), ("handed_back", wpa.HANDED_BACK)):
+                flags = np.zeros(n_envs, dtype=np.bool_)
+                flags[tables] = hits[:, PLAY] == play
+                info[key], info[f"_{key}"] = flags, present.copy()
 
 
 def encode_pocket(table: Table, pocket: int) -> float:
@@ -406,8 +469,26 @@ def encode_pocket(table: Table, pocket: int) -> float:
     return (2.0 * pocket + 1.0) / n_pockets - 1.0
 
 
-#: 9-ball: nine object balls, the 9 wins.
-NINE = WpaGame("nine", wpa.NINE, 9)
+def encode_ball(n_objects: int, ball: int) -> float:
+    """The action component that calls object ball ``ball`` (10-ball): the middle of its bin.
+
+    Raises:
+        ValueError: If ``ball`` is not one of the ``n_objects`` object balls.
+    """
+    if (
+        isinstance(ball, bool)
+        or not isinstance(ball, int | np.integer)
+        or not (1 <= ball <= n_objects)
+    ):
+        raise ValueError(f"the called ball must be in 1..{n_objects}, got {ball!r}")
+    return (2.0 * (ball - 1) + 1.0) / n_objects - 1.0
+
+
+#: 9-ball: nine object balls, the 9 wins; the push-out.
+NINE = WpaGame("nine", wpa.NINE, 9, calls_ball=False, has_option=True)
+
+#: 10-ball: ten object balls, called shots (ball and pocket), the 10 wins; the push-out.
+TEN = WpaGame("ten", wpa.TEN, 10, calls_ball=True, has_option=True)
 
 #: 8-ball: fifteen object balls, solids and stripes, the 8 wins.
-EIGHT = WpaGame("eight", wpa.EIGHT, 15)
+EIGHT = WpaGame("eight", wpa.EIGHT, 15, calls_ball=False, has_option=False)
