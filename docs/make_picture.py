@@ -51,7 +51,7 @@ def break_env(width: int = 480) -> PoolEnv:
     env = PoolEnv(scene="nine_ball", game="nine", render_mode="rgb_array", render_width=width)
     env.reset(seed=0)
     # Cue ball on the head spot (x = L/4, y = W/2), a full hit at the middle of 8-12 m/s.
-    env.step(np.array([0.0, 0.0, 1.0, 0.0, 0.0], dtype=np.float32))
+    env.step(np.array([0.0, 0.0, 1.0, 0.0, 0.0, -1.0], dtype=np.float32))  # no push-out
     return env
 
 

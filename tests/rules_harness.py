@@ -16,12 +16,20 @@ from numpy.typing import ArrayLike
 from pool_env.game.config import GameConfig, make_config
 from pool_env.game.contact import shooters_benefit
 from pool_env.game.kernels import wpa as cw
+from pool_env.game.kernels.actions import (
+    CALL_BALL,
+    CALL_HAND_BACK,
+    CALL_POCKET,
+    CALL_PUSH_OUT,
+    N_CALLS,
+)
 from pool_env.game.kernels.params import GAME as GAME_CODE
 from pool_env.game.rules import (
     BALL_ON,
     FOUL,
     KEEPS,
     LOSS,
+    PLAY,
     RESPOT,
     WINNER,
     judge_rules,
@@ -29,7 +37,7 @@ from pool_env.game.rules import (
 from pool_env.sim.table import Table
 from tests.wpa_reference import RackState
 
-SCENES = {"nine": "nine_ball", "eight": "eight_ball"}
+SCENES = {"nine": "nine_ball", "ten": "ten_ball", "eight": "eight_ball"}
 
 
 @cache
@@ -50,6 +58,7 @@ def rack_row(state: RackState) -> np.ndarray:
     row[cw.GROUP_0], row[cw.GROUP_1] = state.groups
     row[cw.FOULS_0], row[cw.FOULS_1] = state.fouls
     row[cw.WINNER] = -1 if state.winner is None else state.winner
+    row[cw.PUSH_OUT], row[cw.OPTION] = state.push_out, state.option
     return row
 
 
@@ -65,6 +74,8 @@ def rules_option(state: RackState) -> dict[str, Any]:
     }
     if state.game == "eight":
         out["groups"] = tuple(names[g] for g in state.groups)
+    if state.push_out or state.option:
+        out["push_out"], out["option"] = state.push_out, state.option
     return out
 
 
@@ -82,6 +93,9 @@ def compiled_judge(
     simultaneous: tuple[int, ...] = (),
     crossed: bool = True,
     start: ArrayLike | None = None,
+    called_ball: int | None = None,
+    push_out: bool = False,
+    hand_back: bool = False,
 ) -> tuple[dict[str, Any], RackState]:
     """Judge a shot with the compiled rules from a reference state.
 
@@ -102,6 +116,9 @@ def compiled_judge(
         crossed: The cue ball crossed the head string before its first contact.
         start: ``(M, 2)`` positions before the shot (default: ``positions``); the kitchen
             rule reads the first ball's.
+        called_ball: 10-ball: the called ball (None: none).
+        push_out: A push-out declared (the rules read it only where the rack offers one).
+        hand_back: The option used (the rules read it only where the rack offers it).
 
     Returns:
         The verdict as a dict (``foul``, ``legal``, ``ball_on`` (None for -1), ``respot``
@@ -124,7 +141,7 @@ def compiled_judge(
         config.params, table.pockets, np.zeros(1, np.intp), balls, pos, on,
         np.zeros(1, np.int64), rack, final, np.array([pocketed], np.int64), first,
         np.array([cushions], np.int64), np.array([order], np.int64),
-        np.array([-1 if called is None else called], np.int64), np.array([crossed]),
+        _calls(called, called_ball, push_out, hand_back), np.array([crossed]),
     )  # fmt: skip
     h = hits[0]
     verdict = {
@@ -135,6 +152,8 @@ def compiled_judge(
         "winner": None if h[WINNER] < 0 else int(h[WINNER]),
         "loss": cw.LOSS_NAMES[h[LOSS]],
         "keeps": bool(h[KEEPS]),
+        "push_out": h[PLAY] == cw.PUSHED_OUT,
+        "handed_back": h[PLAY] == cw.HANDED_BACK,
     }
     row = rack[0]
     after = RackState(
@@ -147,8 +166,19 @@ def compiled_judge(
         ball_in_hand=bool(row[cw.IN_HAND]),
         behind_head_string=bool(row[cw.BEHIND]),
         winner=None if row[cw.WINNER] < 0 else int(row[cw.WINNER]),
+        push_out=bool(row[cw.PUSH_OUT]),
+        option=bool(row[cw.OPTION]),
     )
     return verdict, after
+
+
+def _calls(pocket: int | None, ball: int | None, push_out: bool, hand_back: bool) -> np.ndarray:
+    """The calls row the rules read, as the action's decoding leaves it (raw declarations)."""
+    calls = np.full((1, N_CALLS), -1, dtype=np.int64)
+    calls[0, CALL_POCKET] = -1 if pocket is None else pocket
+    calls[0, CALL_BALL] = -1 if ball is None else ball
+    calls[0, CALL_PUSH_OUT], calls[0, CALL_HAND_BACK] = push_out, hand_back
+    return calls
 
 
 def same_verdict(ref: Any, ref_after: RackState, got: dict[str, Any], after: RackState) -> None:
@@ -156,6 +186,7 @@ def same_verdict(ref: Any, ref_after: RackState, got: dict[str, Any], after: Rac
     want = {
         "foul": ref.foul, "legal": ref.legal, "ball_on": ref.ball_on, "respot": ref.respot,
         "winner": ref.winner, "loss": ref.loss, "continues": ref.shooter_continues,
+        "push_out": ref.push_out, "handed_back": ref.handed_back,
     }  # fmt: skip
     have = {**got, "continues": got["keeps"] and got["winner"] is None}
     assert {k: have[k] for k in want} == want, (have, want)

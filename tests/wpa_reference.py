@@ -1,12 +1,13 @@
-"""A plain-Python reference of the 9-ball and 8-ball rules (WPA standardized): tests only.
+"""A plain-Python reference of the 9-ball, 10-ball and 8-ball rules (WPA): tests only.
 
 The product's one copy of the rules is compiled, :mod:`pool_env.game.kernels.wpa`; this
 file shares no code with it and is what ``tests/game/test_wpa.py`` and ``tests/game/test_games.py``
 check it against (on the rule-case table and on random outcomes).
 
-Ball ``k`` is numbered ``k``: row 0 is the cue ball, rows 1-9 (9-ball) or 1-15 (8-ball) the
-object balls, as in :func:`pool_env.sim.layouts.break_scene`. Players are 0 and 1 (a
-single-agent env plays both seats, or lets its own next shot be the "incoming player").
+Ball ``k`` is numbered ``k``: row 0 is the cue ball, rows 1-9 (9-ball), 1-10 (10-ball) or
+1-15 (8-ball) the object balls, as in :func:`pool_env.sim.layouts.break_scene`. Players are
+0 and 1 (a single-agent env plays both seats, or lets its own next shot be the "incoming
+player").
 
 :func:`judge` takes the rack's :class:`RackState` before a shot and the shot's
 :class:`ShotOutcome` (built from a :class:`~pool_env.ShotResult` by :func:`outcome_of`,
@@ -23,6 +24,19 @@ loses the rack. After a foul the incoming player has the
 cue ball in hand anywhere on the table. (Re-spotting and ball-in-hand placement are
 :func:`pool_env.game.scenes.free_spot`'s, not this file's.)
 
+The push-out (WPA 9-ball 1.7, 10-ball 4): if the break was legal, the shot after it may be
+declared a push-out by whoever plays it. Wrong ball first, no rail and no contact are then
+no fouls (a scratch is); potted balls stay down and count for nothing, but the 9 (10) is
+spotted. After a legal push-out the other player may take the table as it lies or give it
+back to the one who pushed.
+
+10-ball (WPA 10-ball rules): 9-ball's rotation, break and three-foul rule on ten balls,
+with every shot after the break called (a ball and a pocket). The shot continues the inning
+only if it is legal and the called ball drops in the called pocket; the 10 wins when it is
+that called ball, and is spotted whenever else it drops (the break included). A legal
+shot that misses its call ends the inning, and if it potted any ball the other player may
+take the table or hand it back. Balls potted stay down but the 10.
+
 8-ball (WPA rules 1, 3): the break is legal if a ball is potted or at least four object
 balls touch a cushion. The table is open after the break; the first legal shot after the
 break that pots an object ball other than the 8 assigns its group (solids 1-7 or stripes
@@ -37,10 +51,11 @@ their group (open table: any ball but the 8; the break: any ball, the re-spotted
 
 Simplifications, all deliberate:
 
-* No push-out (9-ball rule 1.7), no called shots other than the 8's pocket (so "pot a
-  ball" means any object ball; on an open table the group goes to the ball that dropped
-  first), no safeties called, no warning before the third foul, no jump, masse or
-  "bad cue ball" fouls (the simulator has none of them), and no stalemate rule.
+* No called shots in 9-ball, none in 8-ball but the 8's pocket (so "pot a ball" means any
+  object ball; on an open table the group goes to the ball that dropped first), no
+  safeties called (a 10-ball shot that misses its call is one), no warning before the
+  third foul, no jump, masse or "bad cue ball" fouls (the simulator has none of them), and
+  no stalemate rule.
 * An illegal break is a foul ("illegal_break"): the incoming player takes ball in hand on
   the table as it lies, rather than choosing to re-rack or to have the breaker break again.
   On an 8-ball break a scratch is reported as "scratch" (ball in hand behind the head
@@ -76,7 +91,7 @@ from numpy.typing import ArrayLike
 from pool_env.sim.batch import BatchResult
 from pool_env.sim.result import ShotResult
 
-Game = Literal["nine", "eight"]
+Game = Literal["nine", "ten", "eight"]
 FoulReason = Literal[
     "scratch", "wrong_ball_first", "no_rail", "no_contact", "illegal_break", "kitchen_ball_first"
 ]
@@ -84,7 +99,9 @@ FoulReason = Literal[
 #: Group codes of 8-ball: the table is open, solids (1-7), stripes (9-15).
 OPEN, SOLIDS, STRIPES = 0, 1, 2
 #: Balls per game, cue ball included.
-N_BALLS: dict[str, int] = {"nine": 10, "eight": 16}
+N_BALLS: dict[str, int] = {"nine": 10, "ten": 11, "eight": 16}
+#: The games with the push-out and the option, and the ball each is won with.
+ROTATION: dict[str, int] = {"nine": 9, "ten": 10}
 #: Object balls driven to a cushion that make a break legal without a pot.
 BREAK_RAILS = 4
 #: Impacts of the cue ball this close in time (s) to its first are simultaneous (the
@@ -241,6 +258,8 @@ class RackState:
         behind_head_string: ... and only behind the head string (after an 8-ball break
             scratch).
         winner: The player who won the rack, or None while it is being played.
+        push_out: The shot may be declared a push-out (the one right after a legal break).
+        option: The shooter may give the table back instead of shooting.
     """
 
     game: Game
@@ -252,10 +271,17 @@ class RackState:
     ball_in_hand: bool = False
     behind_head_string: bool = False
     winner: int | None = None
+    push_out: bool = False
+    option: bool = False
 
     def __post_init__(self) -> None:
         if self.game not in N_BALLS:
-            raise ValueError(f"game must be 'nine' or 'eight', got {self.game!r}")
+            raise ValueError(f"game must be one of {list(N_BALLS)}, got {self.game!r}")
+        if (self.push_out or self.option) and (
+            self.game not in ROTATION or self.breaking or self.ball_in_hand
+            or (self.push_out and self.option)
+        ):  # fmt: skip
+            raise ValueError("a push-out or an option comes in 9-ball or 10-ball, after the break")
         if len(self.on_table) != N_BALLS[self.game] or not self.on_table[0]:
             raise ValueError(
                 f"on_table must have {N_BALLS[self.game]} flags for {self.game} (cue ball True)"
@@ -274,10 +300,11 @@ class RackState:
     def ball_on(self) -> int | None:
         """The ball the shooter must hit first, if it is a single one.
 
-        9-ball: the lowest-numbered ball on the table; 8-ball: the 8 once the shooter's
-        group is cleared, else None (any ball of the group, or of either on an open table).
+        9-ball and 10-ball: the lowest-numbered ball on the table; 8-ball: the 8 once the
+        shooter's group is cleared, else None (any ball of the group, or of either on an
+        open table).
         """
-        if self.game == "nine":
+        if self.game in ROTATION:
             return next((b for b in range(1, len(self.on_table)) if self.on_table[b]), None)
         group = self.groups[self.shooter]
         if group != OPEN and not any(self.on_table[b] for b in _members(group)):
@@ -287,7 +314,7 @@ class RackState:
     def legal_first_balls(self) -> tuple[int, ...]:
         """The balls the cue ball may touch first on the next shot."""
         on = self.ball_on
-        if self.game == "nine" or on == 8:
+        if self.game in ROTATION or on == 8:
             return () if on is None else (on,)
         group = self.groups[self.shooter]
         if group == OPEN:
@@ -313,6 +340,8 @@ class Verdict:
         loss: Why the shooter lost, if they did: ``"eight_early"``,
             ``"eight_wrong_pocket"``, ``"eight_on_foul"``, ``"three_fouls"``.
         shooter_continues: Whether the same player shoots next.
+        push_out: The shot was played as a push-out.
+        handed_back: The shooter used the option to give the table back (no shot).
     """
 
     foul: FoulReason | None
@@ -322,6 +351,8 @@ class Verdict:
     winner: int | None
     loss: str | None
     shooter_continues: bool
+    push_out: bool = False
+    handed_back: bool = False
 
 
 def _may_hit_first(state: RackState, ball: int) -> bool:
@@ -341,8 +372,12 @@ def first_read(state: RackState, shot: ShotOutcome) -> int:
     return next((b for b in met if _may_hit_first(state, b)), shot.first_hit)
 
 
-def _foul(state: RackState, shot: ShotOutcome) -> FoulReason | None:
-    """The first foul reason that applies to ``shot`` from ``state``, or None."""
+def _foul(state: RackState, shot: ShotOutcome, pushed: bool = False) -> FoulReason | None:
+    """The first foul reason that applies to ``shot`` from ``state``, or None.
+
+    A push-out (``pushed``) fouls only by the scratch (and the kitchen rule, which a
+    push-out never meets: the cue ball is not in hand).
+    """
     if shot.scratch:
         return "scratch"
     first = first_read(state, shot)
@@ -353,6 +388,8 @@ def _foul(state: RackState, shot: ShotOutcome) -> FoulReason | None:
         spread = bool(shot.potted) or shot.object_balls_to_rail >= BREAK_RAILS
         ok = first >= 0 and _may_hit_first(state, first) and spread
         return None if ok else "illegal_break"
+    if pushed:
+        return None
     if first < 0:
         return "no_contact"
     if first not in state.legal_first_balls():
@@ -363,15 +400,25 @@ def _foul(state: RackState, shot: ShotOutcome) -> FoulReason | None:
 
 
 def judge(
-    state: RackState, shot: ShotOutcome, called_pocket: int | None = None
+    state: RackState,
+    shot: ShotOutcome,
+    called_pocket: int | None = None,
+    called_ball: int | None = None,
+    push_out: bool = False,
+    hand_back: bool = False,
 ) -> tuple[Verdict, RackState]:
-    """Judge one shot and move the rack on.
+    """Judge one shot (or the option used) and move the rack on.
 
     Args:
         state: The rack before the shot (not finished: ``state.winner is None``).
-        shot: What happened.
-        called_pocket: The pocket called for the 8 (read only when the shooter is on the 8;
-            None there means no call, and the 8 then drops in an uncalled pocket).
+        shot: What happened (read only when a shot is played).
+        called_pocket: The called pocket: the 8's (read only when the shooter is on the 8;
+            None there means no call, and the 8 then drops in an uncalled pocket), and the
+            called ball's in 10-ball.
+        called_ball: 10-ball: the called ball (None: no call, so no call is made).
+        push_out: The shooter declares a push-out (it is one only if ``state.push_out``).
+        hand_back: The shooter gives the table back (only if ``state.option``; else the
+            shot is played).
 
     Returns:
         The :class:`Verdict` and the rack after the shot (re-spotted balls back on; the
@@ -383,16 +430,23 @@ def judge(
     """
     if state.winner is not None:
         raise ValueError(f"the rack is over: player {state.winner} won it")
+    if hand_back and state.option:
+        verdict = Verdict(None, True, state.ball_on, (), None, None, False, handed_back=True)
+        return verdict, replace(state, shooter=1 - state.shooter, option=False)
     for ball in shot.potted:
         if not (0 < ball < len(state.on_table) and state.on_table[ball]):
             raise ValueError(f"ball {ball} was potted but is not on the table")
-    if state.game == "nine":
-        return _judge_nine(state, shot)
+    if state.game in ROTATION:
+        return _judge_rotation(state, shot, called_pocket, called_ball, push_out and state.push_out)
     return _judge_eight(state, shot, called_pocket)
 
 
 def _next_turn(state: RackState, foul: FoulReason | None, keeps: bool, **changes) -> RackState:
-    """The state after a shot: who shoots, with the cue ball in hand or not."""
+    """The state after a shot: who shoots, with the cue ball in hand or not.
+
+    The push-out is offered after a legal break of a rotation game; the option lapses
+    unless ``changes`` grants it.
+    """
     shooter = state.shooter if keeps else 1 - state.shooter
     fouls = list(state.fouls)
     fouls[state.shooter] = fouls[state.shooter] + 1 if foul else 0
@@ -404,6 +458,8 @@ def _next_turn(state: RackState, foul: FoulReason | None, keeps: bool, **changes
         fouls=(fouls[0], fouls[1]),
         ball_in_hand=foul is not None,
         behind_head_string=behind,
+        push_out=state.breaking and foul is None and state.game in ROTATION,
+        option=changes.pop("option", False),
         **changes,
     )
 
@@ -415,20 +471,46 @@ def _off(
     return tuple(on and b not in down for b, on in enumerate(on_table))
 
 
-def _judge_nine(state: RackState, shot: ShotOutcome) -> tuple[Verdict, RackState]:
-    ball_on = state.ball_on
-    foul = _foul(state, shot)
-    respot = (9,) if foul and 9 in shot.potted else ()
-    winner = state.shooter if foul is None and 9 in shot.potted else None
+def _judge_rotation(
+    state: RackState,
+    shot: ShotOutcome,
+    called_pocket: int | None,
+    called_ball: int | None,
+    pushed: bool,
+) -> tuple[Verdict, RackState]:
+    """9-ball and 10-ball: the push-out, 10-ball's calls, the money ball, three fouls."""
+    money = ROTATION[state.game]
+    foul = _foul(state, shot, pushed)
+    made = (
+        called_ball in shot.potted
+        and called_pocket is not None
+        and shot.pockets[shot.potted.index(called_ball)] == called_pocket
+    )
+    called_game = state.game == "ten" and not state.breaking
+    # The shot's pots count (the inning goes on, the money ball can win) when it is legal,
+    # not a push-out and, in 10-ball after the break, its call was made.
+    counted = foul is None and not pushed and (made or not called_game)
+    wins = money in shot.potted and counted and (not called_game or called_ball == money)
+    if state.game == "ten" and state.breaking:
+        wins = False  # the 10 on the break is spotted
+    winner = state.shooter if wins else None
+    respot = (money,) if money in shot.potted and not wins else ()
     loss = None
     if foul and state.fouls[state.shooter] + 1 >= 3:
         winner, loss = 1 - state.shooter, "three_fouls"
-    keeps = foul is None and bool(shot.potted)
+    keeps = counted and bool(shot.potted)
+    option = (
+        foul is None
+        and winner is None
+        and (pushed or (called_game and not made and bool(shot.potted)))
+    )
     on_table = _off(state.on_table, shot.potted, respot)
-    after = _next_turn(state, foul, keeps, on_table=on_table, winner=winner)
-    return Verdict(
-        foul, foul is None, ball_on, respot, winner, loss, keeps and winner is None
-    ), after
+    after = _next_turn(state, foul, keeps, on_table=on_table, winner=winner, option=option)
+    verdict = Verdict(
+        foul, foul is None, state.ball_on, respot, winner, loss, keeps and winner is None,
+        push_out=pushed,
+    )  # fmt: skip
+    return verdict, after
 
 
 def _judge_eight(

@@ -18,7 +18,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
-from pool_env.game.rulesets.wpa import RULE_KEYS as RULE_KEYS  # the WPA games' keys
+from pool_env.game.rulesets.wpa import OPTION_KEYS
+from pool_env.game.rulesets.wpa import RULE_KEYS as WPA_KEYS
 
 if TYPE_CHECKING:
     from pool_env.game.step import StepResult
@@ -35,6 +36,9 @@ COLUMNS: dict[str, tuple[str, int | None, type]] = {
     "speed": ("shots", 1, np.float64),
     "is_success": ("flags", CLEARED, np.bool_),
 }
+
+#: The keys the WPA games add, in their order: every one's, then 9-ball and 10-ball's.
+RULE_KEYS: tuple[str, ...] = (*WPA_KEYS, *OPTION_KEYS)
 
 #: Every key of a step's ``info``.
 INFO_KEYS: tuple[str, ...] = ("potted", *COLUMNS)

@@ -32,7 +32,7 @@ def _rollout(seed: int, shots: int = 12) -> list:
     trace = []
     for agent in env.agent_iter():
         obs, reward, term, trunc, info = env.last()
-        action = None if term or trunc else rng.uniform(-1, 1, 5).astype(np.float32)
+        action = None if term or trunc else rng.uniform(-1, 1, 6).astype(np.float32)
         trace.append((agent, obs.tobytes(), reward, info.get("foul")))
         env.step(action)
     return trace
@@ -52,7 +52,7 @@ def test_a_break_that_touches_nothing_gives_the_opponent_ball_in_hand() -> None:
     # Cue ball placed in the kitchen, shot softly into the head rail: it never reaches the rack.
     r = env.config.table.ball_radius
     ax = 2 * (0.3 - r) / (env.config.table.length / 4 - r) - 1  # the break's placement: the kitchen
-    env.step(np.array([-1.0, -1.0, ax, 0.0, 0.0], np.float32))
+    env.step(np.array([-1.0, -1.0, ax, 0.0, 0.0, 0.0], np.float32))
     assert env.infos["player_1"]["foul"] == "illegal_break"
     assert env.agent_selection == "player_1"
     obs = env.observe("player_1")
@@ -69,7 +69,7 @@ def test_the_nine_straight_in_wins_the_rack() -> None:
     pos[0] = (0.45 / math.sqrt(2),) * 2
     pos[9] = (0.25 / math.sqrt(2),) * 2
     env.reset(seed=0, options={"positions": pos, "on_table": on})
-    env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0], np.float32))
+    env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0, 0.0], np.float32))
     assert env.infos["player_0"]["winner"] == "player_0"
     assert env.rewards == {"player_0": 1.0, "player_1": -1.0}
     assert all(env.terminations.values())
@@ -98,13 +98,13 @@ def test_versus_policy_rack_ends_with_the_opponents_win_or_the_agents() -> None:
     env.reset(seed=1)
     total, done, rng = 0.0, False, np.random.default_rng(1)
     while not done:
-        _, reward, term, trunc, _ = env.step(rng.uniform(-1, 1, 5).astype(np.float32))
+        _, reward, term, trunc, _ = env.step(rng.uniform(-1, 1, 6).astype(np.float32))
         total += reward
         done = term or trunc
     winner = env.duel.rack["winner"]
     assert total == (0.0 if winner < 0 else (1.0 if winner == 0 else -1.0))
     with pytest.raises(ValueError, match="rack is over"):
-        env.step(np.zeros(5, np.float32))
+        env.step(np.zeros(6, np.float32))
 
 
 # --- issue 20: an opponent's failure, the shot limit, and the two-player front's edges ----
@@ -128,7 +128,7 @@ def _miss_then(policy):
         calls["n"] += 1
         if calls["n"] == 1:
             return policy(obs)
-        return np.zeros(5, np.float32)
+        return np.zeros(6, np.float32)
 
     return opponent
 
@@ -141,7 +141,7 @@ def _boom(obs: np.ndarray):
     ("policy", "match"),
     [
         (_boom, r"opponent policy raised RuntimeError\('boom'\)"),
-        (lambda obs: np.full(5, np.nan, np.float32), r"opponent policy returned an invalid.*NaN"),
+        (lambda obs: np.full(6, np.nan, np.float32), r"opponent policy returned an invalid.*NaN"),
         (lambda obs: np.zeros(3, np.float32), r"opponent policy returned an invalid.*shape"),
         (lambda obs: "aim left", r"opponent policy returned an invalid.*dtype"),
         (lambda obs: None, r"opponent policy returned an invalid"),
@@ -156,7 +156,7 @@ def test_an_opponent_failure_takes_the_agents_shot_back(policy, match: str) -> N
     env.reset(seed=0)
     r = env.duel.config.table.ball_radius
     ax = 2 * (0.3 - r) / (env.duel.config.table.length / 4 - r) - 1
-    soft = np.array([-1.0, -1.0, ax, 0.0, 0.0], np.float32)  # into the head rail
+    soft = np.array([-1.0, -1.0, ax, 0.0, 0.0, 0.0], np.float32)  # into the head rail
     before = _state_of(env)
     with pytest.raises(ValueError, match=match):
         env.step(soft)
@@ -203,7 +203,7 @@ def test_the_shot_limit_truncates_both_players(limit: int) -> None:
     # once, whoever shot, and the AEC loop then only removes them: no shot past the limit.
     env = PoolDuelEnv("nine", max_shots=limit, aim="absolute")
     _straight_nine(env)
-    away = np.array([0.25, -0.9, 0.0, 0.0, 0.0], np.float32)  # +pi/4: off the 9's line
+    away = np.array([0.25, -0.9, 0.0, 0.0, 0.0, 0.0], np.float32)  # +pi/4: off the 9's line
     shooters = []
     for agent in env.agent_iter(max_iter=50):
         _, _, term, trunc, _ = env.last()
@@ -222,7 +222,7 @@ def test_the_shot_limit_truncates_both_players(limit: int) -> None:
 def test_a_win_on_the_last_allowed_shot_terminates_rather_than_truncates() -> None:
     env = PoolDuelEnv("nine", max_shots=1, aim="absolute")
     _straight_nine(env)
-    env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0], np.float32))
+    env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0, 0.0], np.float32))
     assert env.terminations == {"player_0": True, "player_1": True}
     assert env.truncations == {"player_0": False, "player_1": False}
     assert env.rewards == {"player_0": 1.0, "player_1": -1.0}
@@ -233,7 +233,7 @@ def test_the_loser_sees_its_minus_one_and_the_rewards_sum_to_zero() -> None:
     env = PoolDuelEnv("nine", aim="absolute")
     _straight_nine(env, shooter=1)
     assert env.agent_selection == "player_1"
-    env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0], np.float32))
+    env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0, 0.0], np.float32))
     assert env.infos["player_0"]["winner"] == "player_1"
     seen = {}
     for agent in env.agent_iter(max_iter=4):
@@ -247,17 +247,17 @@ def test_the_loser_sees_its_minus_one_and_the_rewards_sum_to_zero() -> None:
 def test_versus_policy_truncates_at_the_shot_limit_inside_the_opponents_turn() -> None:
     # The agent's soft break fouls; a passive opponent then runs into the limit: the
     # agent's step reports the truncation, and a further step is refused.
-    env = VersusPolicyEnv(opponent=lambda obs: np.array([0.5, -1, 0, 0, 0], np.float32),
+    env = VersusPolicyEnv(opponent=lambda obs: np.array([0.5, -1, 0, 0, 0, 0.0], np.float32),
                           game="nine", max_shots=2, aim="absolute",
                           break_speed_range=(0.5, 10.0))  # fmt: skip
     env.reset(seed=0)
     r = env.duel.config.table.ball_radius
     ax = 2 * (0.3 - r) / (env.duel.config.table.length / 4 - r) - 1
-    _, reward, term, trunc, info = env.step(np.array([-1.0, -1.0, ax, 0, 0], np.float32))
+    _, reward, term, trunc, info = env.step(np.array([-1.0, -1.0, ax, 0, 0, 0.0], np.float32))
     assert info["opponent_shots"] == 1 and env.duel.shots == 2
     assert trunc and not term and reward == 0.0
     with pytest.raises(ValueError, match="rack is over"):
-        env.step(np.zeros(5, np.float32))
+        env.step(np.zeros(6, np.float32))
 
 
 def test_observations_and_infos_are_never_shared() -> None:
@@ -266,7 +266,7 @@ def test_observations_and_infos_are_never_shared() -> None:
     a, b = env.observe("player_0"), env.observe("player_0")
     a[:] = 0.5
     assert not np.array_equal(a, b) and np.array_equal(b, env.observe("player_0"))
-    env.step(np.zeros(5, np.float32))
+    env.step(np.zeros(6, np.float32))
     env.infos["player_0"]["foul"] = "changed"
     assert env.infos["player_1"]["foul"] != "changed"
 
@@ -277,11 +277,11 @@ def test_numpy_integer_seeds_play_as_python_ints(seed) -> None:
     for s in (seed, 5):
         env = VersusPolicyEnv(game="nine")
         obs, _ = env.reset(seed=s)
-        out = env.step(np.array([0.0, 0.5, 0.0, 0.0, 0.0], np.float32))
+        out = env.step(np.array([0.0, 0.5, 0.0, 0.0, 0.0, 0.0], np.float32))
         runs.append((obs.tobytes(), out[0].tobytes(), out[4]["opponent_shots"]))
         duel = PoolDuelEnv("nine", noise=(0.01, 0.05))
         duel.reset(seed=s)
-        duel.step(np.zeros(5, np.float32))
+        duel.step(np.zeros(6, np.float32))
         runs.append(duel.positions.tobytes())
     assert runs[0] == runs[2] and runs[1] == runs[3]
 
@@ -295,7 +295,7 @@ def test_the_opponent_winning_in_its_turn_gives_the_agent_minus_one() -> None:
         x = y = 0.45 / math.sqrt(2)
         u = 2 * (x - r) / (table.length - 2 * r) - 1
         v = 2 * (y - r) / (table.width - 2 * r) - 1
-        return np.array([TOWARD_CORNER / math.pi, speed, u, v, 0.0], np.float32)
+        return np.array([TOWARD_CORNER / math.pi, speed, u, v, 0.0, 0.0], np.float32)
 
     env = VersusPolicyEnv(opponent=potter, game="nine", aim="absolute")
     speed = _speed_action(env.duel, 1.5)
@@ -305,7 +305,7 @@ def test_the_opponent_winning_in_its_turn_gives_the_agent_minus_one() -> None:
     pos[0], pos[9] = (1.0, 1.0), (0.25 / math.sqrt(2),) * 2
     env.reset(seed=0, options={"positions": pos, "on_table": on})
     _, reward, term, trunc, info = env.step(
-        np.array([0.5, _speed_action(env.duel, 0.3), 0, 0, 0], np.float32)  # up the table
+        np.array([0.5, _speed_action(env.duel, 0.3), 0, 0, 0, 0.0], np.float32)  # up the table
     )
     assert info["foul"] == "no_contact" and info["opponent_shots"] == 1
     assert reward == -1.0 and term and not trunc

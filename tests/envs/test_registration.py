@@ -44,7 +44,7 @@ def test_registration_is_idempotent() -> None:
 
 def test_each_task_has_a_spin_id_and_a_roll_id_and_nothing_else() -> None:
     assert set(IDS) == {spin_id(t) for t in TASKS} | {roll_id(t) for t in TASKS}
-    assert len(IDS) == 2 * len(TASKS) == 12
+    assert len(IDS) == 2 * len(TASKS) == 14
     for task in TASKS:
         assert gym.spec(spin_id(task)).kwargs["model"] == "spin"
         assert gym.spec(roll_id(task)).kwargs.get("model", "roll") == "roll"

@@ -195,7 +195,8 @@ def test_bad_tip_actions_raise_and_change_nothing() -> None:
     env = gym.make("pool_env/NineBallGame-v1")
     env.reset(seed=0)
     before = env.unwrapped.positions
-    for bad in ([0, 0, 0, 0, 0, np.nan, 0], [0, 0, 0, 0, 0, 0, np.nan], [0.0] * 5, [0.0] * 8):
+    for bad in ([0, 0, 0, 0, 0, 0, np.nan, 0], [0, 0, 0, 0, 0, 0, 0, np.nan], [0.0] * 7,
+                [0.0] * 9):  # fmt: skip
         with pytest.raises(ValueError, match=r"NaN|shape"):
             env.step(np.array(bad))
     np.testing.assert_array_equal(env.unwrapped.positions, before)
@@ -203,31 +204,31 @@ def test_bad_tip_actions_raise_and_change_nothing() -> None:
     assert PoolEnv(scene="one_ball", noise=(0.1, 0.1, 0.0)).config.noise == (0.1, 0.1)  # zero: fine
 
 
-@pytest.mark.parametrize("game", ["nine", "eight"])
-def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str) -> None:
+@pytest.mark.parametrize(("game", "width"), [("nine", 6), ("ten", 7), ("eight", 5)])
+def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str, width: int) -> None:
     scene = f"{game}_ball"
     roll, spin = PoolEnv(scene=scene, game=game), PoolEnv(scene=scene, game=game, model="spin")
-    assert roll.action_space.shape == (5,) and spin.action_space.shape == (7,)
-    assert spin.config.tip_columns == (5, 6)
+    assert roll.action_space.shape == (width,) and spin.action_space.shape == (width + 2,)
+    assert spin.config.tip_columns == (width, width + 1)
     roll.reset(seed=4)
     spin.reset(seed=4)
     rng = np.random.default_rng(4)
-    actions = rng.uniform(-1.1, 1.1, (200, 7))
+    actions = rng.uniform(-1.1, 1.1, (200, width + 2))
     out = []
-    for env, width in ((roll, 5), (spin, 7)):
+    for env, size in ((roll, width), (spin, width + 2)):
         state = env._state
         positions = np.repeat(state.positions, 200, axis=0)  # one table per action
         on, rack = (np.repeat(a, 200, axis=0) for a in (state.on_table, state.rack))
         ptrs = np.zeros((200, 3), dtype=np.uintp)
         rows = np.arange(200)
         params, pockets = env.config.params, env.config.table.pockets
-        unplaced = place_in_hand(params, pockets, actions[:, :width], rows, positions, on, rack)
-        shots = executed_rule_shots(params, pockets, actions[:, :width], rows, positions, on,
+        unplaced = place_in_hand(params, pockets, actions[:, :size], rows, positions, on, rack)
+        shots = executed_rule_shots(params, pockets, actions[:, :size], rows, positions, on,
                                     ptrs, rack)  # fmt: skip
         out.append((positions, unplaced, shots[0][:, :2], shots[2]))
     for got, want in zip(out[1], out[0], strict=True):
-        np.testing.assert_array_equal(got, want)  # placement, aim, speed, called pocket
-    assert len(set(out[1][3].tolist())) == 6  # every pocket was called
+        np.testing.assert_array_equal(got, want)  # placement, aim, speed, the calls
+    assert len(set(out[1][3][:, 0].tolist())) == 6  # every pocket was called
 
 
 def test_every_spin_id_is_its_roll_id_on_the_spin_table() -> None:

@@ -34,7 +34,9 @@ def test_the_sb3_adapter_plays_a_dummy_vec_env_bit_for_bit(env_id: str, kwargs: 
     dummy = DummyVecEnv([lambda: gym.make(env_id, **kwargs) for _ in range(n)])
     dummy.seed(3)
     assert native.action_space == dummy.action_space
-    assert native.action_space.shape == ((4,) if env_id == ONE else (7,))
+    assert native.action_space.shape == {ONE: (4,), "pool_env/EightBallGame-v1": (7,)}.get(
+        env_id, (8,)
+    )
     assert data_equivalence(native.reset(), dummy.reset(), exact=True)
     rng = np.random.default_rng(3)
     dones = 0
@@ -79,22 +81,23 @@ def test_agents_make_env_and_factory_take_a_spin_id() -> None:
 
     env = make_env(ONE, {"tip_limit": 0.5})
     assert env.unwrapped.config.tip_limit == 0.5 and env.action_space.shape == (4,)
-    assert EnvFactory("pool_env/NineBallGame-v1")().action_space.shape == (7,)
+    assert EnvFactory("pool_env/NineBallGame-v1")().action_space.shape == (8,)
+    assert EnvFactory("pool_env/TenBallGame-v1")().action_space.shape == (9,)
 
 
-@pytest.mark.parametrize("game", ["nine", "eight"])
-def test_two_players_on_the_spin_table(game: str) -> None:
+@pytest.mark.parametrize(("game", "width"), [("nine", 8), ("ten", 9), ("eight", 7)])
+def test_two_players_on_the_spin_table(game: str, width: int) -> None:
     pytest.importorskip("pettingzoo")
     from pool_env.envs.multiagent import PoolDuelEnv, VersusPolicyEnv
 
     duel = PoolDuelEnv(game, model="spin", noise=(0.003, 0.05, 0.02))
-    assert duel.action_space("player_0").shape == (7,)
+    assert duel.action_space("player_0").shape == (width,)
     duel.reset(seed=0)
     rng = np.random.default_rng(0)
     for _ in range(6):
         if any(duel.terminations.values()) or any(duel.truncations.values()):
             break
-        duel.step(rng.uniform(-1, 1, 7).astype(np.float32))
+        duel.step(rng.uniform(-1, 1, width).astype(np.float32))
         info = duel.infos[duel.agent_selection]
         assert len(info["tip"]) == 2
     versus = VersusPolicyEnv(game=game, model="spin")

@@ -22,7 +22,7 @@ import pytest
 
 from pool_env import shoot
 from pool_env.game.contact import SIMULTANEOUS
-from tests.game.test_games import IDS, KWARGS, MID, action, layout, make
+from tests.game.test_games import IDS, KWARGS, MID, action, fit, layout, make
 from tests.game.test_wpa import TABLE, R, parked
 from tests.rules_harness import compiled_judge, same_verdict
 from tests.wpa_reference import N_BALLS, OPEN, SOLIDS, STRIPES, RackState, judge, outcome_of
@@ -50,7 +50,7 @@ def test_a_simultaneous_first_contact_gives_the_shooter_the_benefit(groups, low,
     balls = _tie(low, high)
     env = make("eight")
     env.reset(seed=0, options={**layout("eight", balls), "rules": {"groups": groups}})
-    *_, info = env.step(action(0.0, 2.0))
+    *_, info = env.step(fit(env, action(0.0, 2.0)))
     assert info["foul"] is None and info["legal"]
     mine = 3 if groups[0] == "solids" else 11
     assert info["first_contact"] == mine  # the ball the rules read
@@ -69,7 +69,7 @@ def test_a_simultaneous_contact_with_no_legal_ball_is_a_foul() -> None:
     env = make("eight")
     env.reset(seed=0, options={**layout("eight", balls),
                                "rules": {"groups": ("stripes", "solids")}})  # fmt: skip
-    *_, info = env.step(action(0.0, 2.0))
+    *_, info = env.step(fit(env, action(0.0, 2.0)))
     assert info["foul"] == "wrong_ball_first"
 
 
@@ -108,7 +108,7 @@ def test_the_kitchen_rule(case: tuple) -> None:
         if behind
         else ((cue[0] - R) / (L - 2 * R) * 2 - 1, (cue[1] - R) / (TABLE.width - 2 * R) * 2 - 1)
     )
-    *_, info = env.step(action(angle, speed, place))
+    *_, info = env.step(fit(env, action(angle, speed, place)))
     assert info["first_contact"] == 3
     assert info["foul"] == foul
     # the reference, from the recorded trajectory, on its own

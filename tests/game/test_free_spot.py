@@ -24,7 +24,7 @@ from pool_env import free_spot
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.layout import free_points
 from pool_env.game.scenes import CLEARANCE, placement
-from tests.game.test_games import KWARGS, action, layout, parked
+from tests.game.test_games import KWARGS, action, fit, layout, parked
 from tests.game.test_wpa import TABLE, R
 from tests.profiles import examples
 
@@ -61,7 +61,7 @@ def test_ball_in_hand_next_to_a_ball_on_the_rail_stays_by_it_from_a_normal_step(
     balls = {0: (0.3, 0.3), 1: (1.0, R + 0.01), 9: parked(1)}
     env.reset(seed=0, options={**layout("nine", balls), "rules": {"ball_in_hand": True}})
     u = (1.0 - R) / (L - 2 * R) * 2 - 1
-    env.step(action(0.0, 0.0, (u, -1.0)))  # placement (1.0, R); speed 0: it stays there
+    env.step(fit(env, action(0.0, 0.0, (u, -1.0))))  # placement (1.0, R); speed 0: it stays there
     got = env.unwrapped.positions[0]
     want_x = 1.0 - math.sqrt(REACH**2 - 0.01**2)  # the nearer of the two crossings
     np.testing.assert_allclose(got, [want_x, R], rtol=0, atol=1e-12)

@@ -1,4 +1,4 @@
-"""The game ids under the 9-ball and 8-ball rules, through the environment.
+"""The game ids under the 9-ball, 10-ball and 8-ball rules, through the environment.
 
 A table of rule cases plays each constructed layout through ``gym.make(id)``:
 ``reset(options={"positions", "on_table", "rules"})`` then one ``step``, and checks the
@@ -21,7 +21,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import pool_env  # noqa: F401  (registers the ids)
-from pool_env import free_spot
+from pool_env import decode_action, free_spot, shot_constraints
 from pool_env.envs.multiagent import PoolDuelEnv
 from pool_env.game.scenes import CLEARANCE
 from pool_env.sim.layouts import break_scene, foot_spot
@@ -38,7 +38,11 @@ from tests.profiles import examples
 from tests.rules_harness import compiled_judge, same_verdict
 from tests.wpa_reference import N_BALLS, OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
 
-IDS = {"nine": "pool_env/NineBallGameRoll-v1", "eight": "pool_env/EightBallGameRoll-v1"}
+IDS = {
+    "nine": "pool_env/NineBallGameRoll-v1",
+    "ten": "pool_env/TenBallGameRoll-v1",
+    "eight": "pool_env/EightBallGameRoll-v1",
+}
 W = TABLE.width
 MID = W / 2
 # Absolute aim and 0-10 m/s for every shot, the break included: action = (angle / pi,
@@ -56,7 +60,18 @@ def make(game: str, **kwargs: Any) -> gym.Env:
 
 
 def action(angle: float, speed: float, place=(0.0, 0.0), pocket: float = -1.0) -> np.ndarray:
+    """The rules' first five components; :func:`fit` adds a game's own (option off)."""
     return np.array([angle / math.pi, speed / 5.0 - 1.0, *place, pocket], dtype=np.float64)
+
+
+def fit(env: Any, act: np.ndarray) -> np.ndarray:
+    """``act`` (rows of five components) padded to the env's action with -1.
+
+    The option off (no push-out, no hand-back), 10-ball's ball 1 called.
+    """
+    width = env.unwrapped.config.action_size
+    pad = np.full((*act.shape[:-1], width - act.shape[-1]), -1.0)
+    return np.concatenate([act, pad], axis=-1)
 
 
 def layout(game: str, balls: dict[int, tuple[float, float]]) -> dict[str, Any]:
@@ -72,7 +87,9 @@ def play(game: str, balls: dict, angle: float, speed: float, rules: dict | None 
          pocket: float = -1.0, place=(0.0, 0.0), **kwargs: Any):  # fmt: skip
     env = make(game, **kwargs)
     env.reset(seed=0, options={**layout(game, balls), "rules": rules or {}})
-    obs, reward, terminated, truncated, info = env.step(action(angle, speed, place, pocket))
+    obs, reward, terminated, truncated, info = env.step(
+        fit(env, action(angle, speed, place, pocket))
+    )
     return env, obs, reward, terminated, truncated, info
 
 
@@ -164,6 +181,13 @@ CASES: list[tuple] = [
      {"loss": "eight_wrong_pocket", "winner": 1}, -1.0, True),
     ("eight-with-scratch-loses", "eight", FOUL_EIGHT, TOWARD_CORNER, 6.0, SOLID_STRIPE, -1.0,
      {"foul": "scratch", "loss": "eight_on_foul", "winner": 1}, -2.0, True),
+    # 10-ball: fit() calls ball 1; pocket -1.0 calls pocket 0 (the corner it drops in).
+    ("ten-call-made", "ten", {**straight_in(1), 2: parked(0), 10: parked(1)}, TOWARD_CORNER,
+     1.5, None, -1.0, {"foul": None, "turn_over": False, "potted": (1,)}, 1.0, False),
+    ("ten-wrong-pocket", "ten", {**straight_in(1), 2: parked(0), 10: parked(1)}, TOWARD_CORNER,
+     1.5, None, 1.0, {"foul": None, "turn_over": True, "potted": (1,)}, 0.0, False),
+    ("ten-wrong-ball-first", "ten", {**straight_in(2), 1: parked(0), 10: parked(1)},
+     TOWARD_CORNER, 1.5, None, -1.0, {"foul": "wrong_ball_first", "potted": (2,)}, -1.0, False),
     ("eight-group-cleared", "eight", {**straight_in(7), 8: parked(0), 11: parked(1)},
      TOWARD_CORNER, 1.5, SOLID_STRIPE, -1.0, {"foul": None, "ball_on": -1, "potted": (7,)},
      1.0, False),
@@ -218,7 +242,7 @@ def test_a_foul_gives_ball_in_hand_placed_by_the_action() -> None:
     x, y = 0.6, 0.4
     u = (x - R) / (TABLE.length - 2 * R) * 2 - 1
     v = (y - R) / (W - 2 * R) * 2 - 1
-    *_, info = env.step(action(0.0, 0.0, (u, v)))  # speed 0: the cue ball stays put
+    *_, info = env.step(fit(env, action(0.0, 0.0, (u, v))))  # speed 0: the cue ball stays put
     np.testing.assert_allclose(env.unwrapped.positions[0], [x, y], rtol=0, atol=1e-12)
     assert info["foul"] == "no_contact"
 
@@ -230,7 +254,7 @@ def test_ball_in_hand_on_an_occupied_spot_goes_to_the_nearest_free_point() -> No
     target = np.array([1.0 + 0.01, 0.6])  # just right of the 1
     u = (target[0] - R) / (TABLE.length - 2 * R) * 2 - 1
     v = (target[1] - R) / (W - 2 * R) * 2 - 1
-    env.step(action(0.0, 0.0, (u, v)))
+    env.step(fit(env, action(0.0, 0.0, (u, v))))
     got = env.unwrapped.positions[0]
     # the 1's circle of radius 2R + clearance, on the line from its centre to the target
     np.testing.assert_allclose(got, [1.0 + 2 * R + CLEARANCE, 0.6], rtol=0, atol=1e-9)
@@ -251,7 +275,7 @@ def test_an_eight_ball_break_scratch_puts_the_ball_in_hand_behind_the_head_strin
     assert rack["ball_in_hand"] and rack["behind_head_string"]
     assert obs[4 * 16 - 1 : 4 * 16 + 1].tolist() == [1.0, 1.0]
     # the placement maps onto the kitchen: +1 is the head string
-    env.step(action(0.0, 0.0, (1.0, 0.0)))
+    env.step(fit(env, action(0.0, 0.0, (1.0, 0.0))))
     np.testing.assert_allclose(env.unwrapped.positions[0], [TABLE.length / 4, MID], atol=1e-12)
 
 
@@ -272,7 +296,7 @@ def test_the_eight_on_a_legal_break_is_respotted_and_the_breaker_continues() -> 
     duel = PoolDuelEnv("eight", aim="absolute", speed_range=(0.0, 10.0),
                        break_speed_range=(0.0, 10.0), table=KWARGS["table"])  # fmt: skip
     duel.reset(seed=0, options={**layout("eight", EIGHT_ON_BREAK), "rules": {"break": True}})
-    duel.step(action(TOWARD_CORNER, 1.5).astype(np.float32))
+    duel.step(fit(duel, action(TOWARD_CORNER, 1.5)).astype(np.float32))
     assert duel.infos["player_0"]["potted"] == (8,) and duel.agent_selection == "player_0"
 
 
@@ -290,9 +314,9 @@ def test_the_break_of_a_racked_episode_uses_the_break_speed_range() -> None:
     env = gym.make(IDS["nine"])
     env.reset(seed=3)
     assert env.unwrapped.rack["break"] and env.unwrapped.rack["behind_head_string"]
-    *_, info = env.step(np.array([0.0, -1.0, 0.0, 0.0, 0.0]))
+    *_, info = env.step(fit(env, np.array([0.0, -1.0, 0.0, 0.0, 0.0])))
     assert info["speed"] == 8.0  # break_speed_range (8, 12), action -1
-    *_, info = env.step(np.array([0.0, -1.0, 0.0, 0.0, 0.0]))
+    *_, info = env.step(fit(env, np.array([0.0, -1.0, 0.0, 0.0, 0.0])))
     assert info["speed"] == 0.45  # after the break: speed_range
 
 
@@ -304,7 +328,9 @@ def test_bad_rule_options_and_arguments_raise() -> None:
         ({"fouls": (3, 0)}, "fouls"),
         ({"shooter": 1}, "shooter"),
         ({"behind_head_string": True}, "needs ball_in_hand"),
-        ({"push_out": True}, "unknown"),
+        ({"push_out": True}, "game='eight' has no push-out"),
+        ({"option": True}, "game='eight' has no push-out"),
+        ({"jump": True}, "unknown"),
         ({"break": 1}, "bool"),
     ]:
         with pytest.raises(ValueError, match=match):
@@ -319,7 +345,7 @@ def test_bad_rule_options_and_arguments_raise() -> None:
         gym.make_vec(IDS["nine"], 2, vectorization_mode="vector_entry_point", players=2)
     env = make("nine")
     env.reset(seed=0)
-    with pytest.raises(ValueError, match=r"shape \(5,\)"):
+    with pytest.raises(ValueError, match=r"shape \(6,\)"):
         env.step(np.zeros(2))
 
 
@@ -328,7 +354,7 @@ def test_bad_rule_options_and_arguments_raise() -> None:
 
 @st.composite
 def outcomes(draw: st.DrawFn) -> tuple:
-    game = draw(st.sampled_from(["nine", "eight"]))
+    game = draw(st.sampled_from(["nine", "ten", "eight"]))
     n = N_BALLS[game]
     on = [True] + [draw(st.booleans()) for _ in range(1, n)]
     if not any(on[1:]):
@@ -336,13 +362,19 @@ def outcomes(draw: st.DrawFn) -> tuple:
     numbers = [b for b in range(n) if on[b]]
     m = len(numbers)
     groups = draw(st.sampled_from([(OPEN, OPEN), (SOLIDS, STRIPES), (STRIPES, SOLIDS)]))
-    if game == "nine":
+    if game != "eight":
         groups = (OPEN, OPEN)
     in_hand = draw(st.booleans())
+    breaking = draw(st.booleans())
+    # The push-out and the option (9-ball, 10-ball): the shot after the break, no ball in hand.
+    offer = "none"
+    if game != "eight" and not breaking and not in_hand:
+        offer = draw(st.sampled_from(["none", "push_out", "option"]))
     state = RackState(
         game=game, on_table=tuple(on), shooter=draw(st.integers(0, 1)),
-        breaking=draw(st.booleans()), fouls=(draw(st.integers(0, 2)), draw(st.integers(0, 2))),
+        breaking=breaking, fouls=(draw(st.integers(0, 2)), draw(st.integers(0, 2))),
         groups=groups, ball_in_hand=in_hand, behind_head_string=in_hand and draw(st.booleans()),
+        push_out=offer == "push_out", option=offer == "option",
     )  # fmt: skip
     first_row = draw(st.integers(-1, m - 1))
     first = None if first_row <= 0 else (0, first_row)
@@ -362,13 +394,24 @@ def outcomes(draw: st.DrawFn) -> tuple:
     if first is None:
         cushions = [0] * m  # nothing counts before the first contact
     called = draw(st.none() | st.integers(0, 5))
-    return state, numbers, first, cushions, pocketed, order, called, simultaneous, crossed
+    # 10-ball's call: often a ball that dropped, so that calls are made as often as missed.
+    potted_balls = [numbers[r] for r in dropped if numbers[r] != 0]
+    ball_choices = st.integers(1, n - 1) | st.none()
+    if potted_balls:
+        ball_choices = ball_choices | st.sampled_from(potted_balls)
+    called_ball = draw(ball_choices) if game == "ten" else None
+    if called_ball is not None and called_ball in potted_balls and draw(st.booleans()):
+        called = pocketed[numbers.index(called_ball)]  # the called pocket, made
+    declared = draw(st.booleans())  # a push-out or the option, where offered (else ignored)
+    calls = {"called_ball": called_ball, "push_out": declared, "hand_back": declared}
+    return (state, numbers, first, cushions, pocketed, order, called, simultaneous, crossed,
+            calls)  # fmt: skip
 
 
-@settings(max_examples=examples(400), deadline=None)
+@settings(max_examples=examples(600), deadline=None)
 @given(outcomes())
 def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> None:
-    state, numbers, first, cushions, pocketed, order, called, simultaneous, crossed = case
+    state, numbers, first, cushions, pocketed, order, called, simultaneous, crossed, calls = case
     nb = np.array(numbers)
     hit = np.full(len(numbers), -1)
     if first is not None:
@@ -378,12 +421,14 @@ def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> N
     met = () if first is None else (numbers[first[1]], *simultaneous)
     kitchen = tuple(b for b in met if positions[numbers.index(b)][0] < TABLE.length / 4)
     shot = replace(shot, simultaneous=simultaneous, kitchen=kitchen, crossed_head_string=crossed)
-    verdict, after = judge(state, shot, called)
-    extra = {"simultaneous": simultaneous, "crossed": crossed}
+    verdict, after = judge(state, shot, called, **calls)
+    extra = {"simultaneous": simultaneous, "crossed": crossed, **calls}
     got, got_after = compiled_judge(
         TABLE, state, positions, numbers, first, cushions, pocketed, order, called, **extra
     )
     same_verdict(verdict, after, got, got_after)
+    if state.option:
+        return  # one player never has the option (the reference plays two)
     one, one_after = compiled_judge(
         TABLE,
         state,
@@ -396,11 +441,11 @@ def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> N
         called,
         players=1,
         **extra,
-    )  # one player: the same verdict, the shooter kept
-    assert {k: one[k] for k in ("foul", "winner", "loss")} == {
-        k: got[k] for k in ("foul", "winner", "loss")
+    )  # one player: the same verdict, the shooter kept, never the option
+    assert {k: one[k] for k in ("foul", "winner", "loss", "push_out")} == {
+        k: got[k] for k in ("foul", "winner", "loss", "push_out")
     }
-    assert one_after.shooter == state.shooter
+    assert one_after.shooter == state.shooter and not one_after.option
 
 
 def _eight_state(on: set[int], groups: tuple[int, int]) -> RackState:
@@ -502,14 +547,14 @@ def test_the_vector_env_plays_the_rules_alike_threaded_and_with_rule_options() -
     rng = np.random.default_rng(4)
     out = [env.reset(seed=7) for env in envs]
     for _ in range(25):
-        actions = rng.uniform(-1, 1, (4, 5))
+        actions = rng.uniform(-1, 1, (4, 6))  # the option's column too
         out = [env.step(actions) for env in envs]
         assert data_equivalence(out[0], out[1], exact=True)
     # options["rules"] reaches every table reset; the rack state is per table
     env = gym.make_vec(IDS["nine"], 4, vectorization_mode="vector_entry_point", **KWARGS)
     env.reset(options={**layout("nine", NINE_MISS), "rules": {"fouls": (2, 0)}})
     assert [r["fouls"] for r in env.unwrapped.rack] == [(2, 0)] * 4
-    *_, terminated, _, info = env.step(np.tile(action(math.pi / 2, 0.3), (4, 1)))
+    *_, terminated, _, info = env.step(fit(env, np.tile(action(math.pi / 2, 0.3), (4, 1))))
     assert terminated.all() and (info["winner"] == 1).all()
     assert list(info["foul"]) == ["no_contact"] * 4
     assert list(info["loss"]) == ["three_fouls"] * 4
@@ -551,7 +596,7 @@ def test_ball_in_hand_behind_the_head_string_on_a_covered_point_stays_behind_it(
     env = make("eight")
     rules = {"ball_in_hand": True, "behind_head_string": True, **SOLID_STRIPE}
     env.reset(seed=0, options={**layout("eight", balls), "rules": rules})
-    env.step(action(0.0, 0.0, (1.0, 0.0)))  # speed 0: the cue ball stays where it is put
+    env.step(fit(env, action(0.0, 0.0, (1.0, 0.0))))  # speed 0: the cue ball stays where it is put
     cue = env.unwrapped.positions[0]
     assert cue[0] <= head
     assert math.dist(cue, (head - gap, MID)) >= 2 * R
@@ -560,7 +605,7 @@ def test_ball_in_hand_behind_the_head_string_on_a_covered_point_stays_behind_it(
 def test_ball_in_hand_that_is_not_a_break_uses_the_shot_speed_range() -> None:
     env = make("nine", break_speed_range=(8.0, 12.0))
     env.reset(seed=0, options={**layout("nine", NINE_MISS), "rules": {"ball_in_hand": True}})
-    *_, info = env.step(action(math.pi / 2, 0.3))
+    *_, info = env.step(fit(env, action(math.pi / 2, 0.3)))
     assert info["speed"] == pytest.approx(0.3, abs=1e-12)  # speed_range (0, 10), not (8, 12)
     assert info["foul"] == "no_contact"
 
@@ -577,3 +622,61 @@ def test_the_eight_potted_without_a_call_loses_the_rack() -> None:
         got, after = compiled_judge(TABLE, state, *args, [-1, 0, -1], [-1, 0, -1], called)
         assert got["foul"] is None and got["ball_on"] == 8
         assert (got["loss"], got["winner"], after.winner) == (loss, winner, winner)
+
+
+# --- the push-out, the option and 10-ball's called ball: the action's own columns ------------
+
+
+def test_a_push_out_through_the_env_needs_no_contact_and_passes_the_turn() -> None:
+    env = make("nine", end_on_foul=True)
+    env.reset(seed=0, options={**layout("nine", NINE_MISS), "rules": {"push_out": True}})
+    push = fit(env, action(math.pi / 2, 0.3))
+    push[env.unwrapped.config.ruleset.option_column] = 1.0  # declared
+    _, reward, terminated, _, info = env.step(push)
+    assert info["push_out"] and info["legal"] and info["foul"] is None and info["turn_over"]
+    assert reward == 0.0 and terminated  # run-out mode: the turn is over
+    # One player: no option; the same shot, not declared, is the no-contact foul.
+    assert not env.unwrapped.rack["option"] and not env.unwrapped.rack["push_out"]
+    env.reset(seed=0, options={**layout("nine", NINE_MISS), "rules": {"push_out": True}})
+    *_, info = env.step(fit(env, action(math.pi / 2, 0.3)))
+    assert info["foul"] == "no_contact" and not info["push_out"]
+
+
+@pytest.mark.parametrize("game", ["nine", "ten"])
+def test_the_duel_opponent_hands_the_table_back_after_a_push_out(game: str) -> None:
+    duel = PoolDuelEnv(game, **KWARGS)
+    balls = {**NINE_MISS, 10: parked(2)} if game == "ten" else NINE_MISS
+    duel.reset(seed=0, options={**layout(game, balls), "rules": {"push_out": True}})
+    option = duel.config.ruleset.option_column
+    push = fit(duel, action(math.pi / 2, 0.3))
+    push[option] = 1.0
+    duel.step(push.astype(np.float32))
+    info = duel.infos["player_0"]
+    assert info["push_out"] and duel.agent_selection == "player_1"
+    assert duel.rack["option"] and duel.rack["shooter"] == 1
+    assert shot_constraints(duel.config, duel.observe("player_1")).option
+    assert not shot_constraints(duel.config, duel.observe("player_0")).option
+    before, shots = duel.positions, duel.shots
+    back = np.zeros(duel.config.action_size, np.float32)
+    back[option] = 1.0
+    duel.step(back)
+    info = duel.infos["player_1"]
+    assert info["handed_back"] and not info["push_out"] and info["foul"] is None
+    assert duel.agent_selection == "player_0" and not duel.rack["option"]
+    np.testing.assert_array_equal(duel.positions, before)  # nothing was struck
+    assert duel.shots == shots + 1
+    # The pusher must shoot now: the option column is ignored and a shot is played.
+    duel.step(back)
+    assert not duel.infos["player_0"]["handed_back"]
+    assert duel.infos["player_0"]["foul"] == "no_contact"
+
+
+@pytest.mark.parametrize("ball", range(1, 11))
+def test_the_called_ball_is_one_of_ten_equal_bins_of_its_column(ball: int) -> None:
+    config = make("ten").unwrapped.config
+    pos = break_scene(config.table, "ten")
+    column = config.ruleset.ball_column
+    for edge in (-1.0 + 0.2 * (ball - 1) + 1e-9, -1.0 + 0.2 * ball - 1e-9):
+        act = np.zeros(config.action_size)
+        act[column] = edge
+        assert decode_action(config, act, pos).ball == ball

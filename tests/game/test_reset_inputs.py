@@ -145,7 +145,7 @@ def test_a_seed_beyond_64_bits_plays_alike_in_the_single_and_the_vector_env() ->
     obs_v, _ = vec.reset(seed=seed)
     assert np.array_equal(obs_s, obs_v[0])
     assert vec.unwrapped.np_random_seed == (seed, seed + 1)
-    action = np.array([0.1, 0.3, 0.0, 0.0, 0.0], np.float32)
+    action = np.array([0.1, 0.3, 0.0, 0.0, 0.0, 0.0], np.float32)
     out_s = single.step(action)
     out_v = vec.step(np.stack([action, action]))
     assert np.array_equal(out_s[0], out_v[0][0]) and out_s[1] == out_v[1][0]

@@ -299,3 +299,135 @@ def test_the_cue_ball_is_not_an_object_ball_driven_to_a_rail() -> None:
     assert out.object_balls_to_rail == 3 and out.rail_after_contact
     verdict, _ = judge(RackState.new_rack("nine"), out)
     assert verdict.foul == "illegal_break"  # three object balls, not four
+
+
+# --- the push-out and the option (WPA 9-ball 1.7, 10-ball 4) ---------------------------------
+
+
+def ten(off: tuple[int, ...] = (), **kw) -> RackState:
+    """A 10-ball rack in play, the balls ``off`` already potted."""
+    on = tuple(b not in off for b in range(11))
+    return replace(RackState(game="ten", on_table=on, breaking=False), **kw)
+
+
+ROTATION_GAMES = {"nine": nine, "ten": ten}
+
+
+@pytest.mark.parametrize(("game", "offered"), [("nine", True), ("ten", True), ("eight", False)])
+def test_a_legal_break_offers_the_push_out_in_the_rotation_games(game: str, offered: bool) -> None:
+    _, after = judge(RackState.new_rack(game), shot(first=1, potted=(2,), to_rail=4))
+    assert after.push_out == offered and after.shooter == 0  # the breaker may push out
+    _, after = judge(RackState.new_rack(game), shot(first=1, to_rail=3))  # illegal break
+    assert not after.push_out and after.ball_in_hand and after.shooter == 1
+
+
+@pytest.mark.parametrize("game", ["nine", "ten"])
+@pytest.mark.parametrize(
+    "outcome",
+    [shot(first=-1, rail=False), shot(first=5, rail=False), shot(first=3, to_rail=1)],
+    ids=["no-contact", "wrong-ball-no-rail", "wrong-ball"],
+)
+def test_a_push_out_fouls_only_by_a_scratch_and_gives_the_opponent_the_option(
+    game: str, outcome: ShotOutcome
+) -> None:
+    state = ROTATION_GAMES[game](push_out=True, fouls=(2, 0))
+    verdict, after = judge(state, outcome, push_out=True)
+    assert verdict.legal and verdict.push_out and not verdict.shooter_continues
+    assert after.shooter == 1 and after.option and not after.push_out
+    assert after.fouls == (0, 0) and not after.ball_in_hand  # a legal shot: the count resets
+    # Declared where no push-out is offered, the same shot is a foul.
+    verdict, _ = judge(replace(state, push_out=False), outcome, push_out=True)
+    assert not verdict.legal and not verdict.push_out
+
+
+@pytest.mark.parametrize("game", ["nine", "ten"])
+def test_a_push_out_scratch_is_a_foul_with_ball_in_hand_and_no_option(game: str) -> None:
+    state = ROTATION_GAMES[game](push_out=True, fouls=(2, 0))
+    verdict, after = judge(state, shot(first=-1, scratch=True), push_out=True)
+    assert verdict.foul == "scratch" and verdict.loss == "three_fouls" and verdict.winner == 1
+    verdict, after = judge(replace(state, fouls=(0, 0)), shot(first=-1, scratch=True),
+                           push_out=True)  # fmt: skip
+    assert verdict.foul == "scratch" and after.ball_in_hand and not after.option
+
+
+@pytest.mark.parametrize(("game", "money"), [("nine", 9), ("ten", 10)])
+def test_the_money_ball_potted_on_a_push_out_is_spotted_and_the_rest_stay_down(
+    game: str, money: int
+) -> None:
+    state = ROTATION_GAMES[game](push_out=True)
+    verdict, after = judge(state, shot(first=1, potted=(4, money)), push_out=True)
+    assert verdict.winner is None and verdict.respot == (money,)
+    assert not verdict.shooter_continues and after.option and after.shooter == 1
+    assert after.on_table[money] and not after.on_table[4]
+
+
+@pytest.mark.parametrize("game", ["nine", "ten"])
+def test_the_option_hands_the_table_back_as_it_lies(game: str) -> None:
+    state = ROTATION_GAMES[game](off=(1,), option=True, shooter=1)
+    verdict, after = judge(state, shot(first=5, scratch=True), hand_back=True)  # no shot read
+    assert verdict.handed_back and verdict.legal and verdict.foul is None
+    assert after == replace(state, shooter=0, option=False)
+    # Taking the table instead: the shot is played, the option lapses.
+    verdict, after = judge(state, shot(first=2, potted=(2,)), called_pocket=0, called_ball=2)
+    assert not verdict.handed_back and verdict.legal and after.shooter == 1
+    assert not after.option and not after.push_out
+
+
+# --- 10-ball: the rack of ten, called shots (WPA 10-ball rules) ------------------------------
+
+
+def test_the_ten_on_the_break_is_spotted_and_the_breaker_continues() -> None:
+    verdict, after = judge(RackState.new_rack("ten"), shot(first=1, potted=(10, 3)),
+                           called_pocket=0, called_ball=10)  # fmt: skip
+    assert verdict.legal and verdict.winner is None and verdict.respot == (10,)
+    assert verdict.shooter_continues and after.on_table[10] and not after.on_table[3]
+
+
+@pytest.mark.parametrize(
+    ("called_ball", "called_pocket", "continues"),
+    [(3, 2, True), (3, 1, False), (1, 2, False), (None, 2, False), (3, None, False)],
+    ids=["made", "wrong-pocket", "other-ball", "no-ball", "no-pocket"],
+)
+def test_ten_ball_keeps_the_table_only_when_the_call_is_made(
+    called_ball: int | None, called_pocket: int | None, continues: bool
+) -> None:
+    state = ten(off=(1, 2))
+    verdict, after = judge(state, shot(first=3, potted=(3, 5), pockets=(2, 4)), called_pocket,
+                           called_ball)  # fmt: skip
+    assert verdict.legal and verdict.shooter_continues == continues
+    assert not after.on_table[3] and not after.on_table[5]  # pots stay down either way
+    assert after.option == (not continues) and after.shooter == (0 if continues else 1)
+
+
+def test_ten_ball_a_missed_call_that_pots_nothing_gives_no_option() -> None:
+    verdict, after = judge(ten(), shot(first=1), called_pocket=0, called_ball=1)
+    assert verdict.legal and not verdict.shooter_continues
+    assert after.shooter == 1 and not after.option and not after.ball_in_hand
+
+
+def test_ten_ball_the_called_ten_on_a_combination_wins() -> None:
+    verdict, _ = judge(ten(), shot(first=1, potted=(10,), pockets=(5,)), called_pocket=5,
+                       called_ball=10)  # fmt: skip
+    assert verdict.winner == 0 and verdict.respot == ()
+
+
+@pytest.mark.parametrize(
+    ("called_ball", "called_pocket", "continues"),
+    [(1, 0, True), (1, 3, False), (10, 3, False)],
+    ids=["beside-a-made-call", "call-missed", "ten-called-wrong-pocket"],
+)
+def test_ten_ball_an_uncalled_ten_is_spotted(
+    called_ball: int, called_pocket: int, continues: bool
+) -> None:
+    verdict, after = judge(ten(), shot(first=1, potted=(1, 10), pockets=(0, 0)), called_pocket,
+                           called_ball)  # fmt: skip
+    assert verdict.winner is None and verdict.respot == (10,) and after.on_table[10]
+    assert verdict.shooter_continues == continues and after.option == (not continues)
+
+
+def test_ten_ball_fouls_are_nine_balls_and_pots_on_a_foul_give_no_option() -> None:
+    verdict, after = judge(ten(), shot(first=2, potted=(2, 10)), called_pocket=0, called_ball=2)
+    assert verdict.foul == "wrong_ball_first" and verdict.respot == (10,)
+    assert after.ball_in_hand and not after.option and not after.on_table[2]
+    verdict, _ = judge(ten(fouls=(2, 0)), shot(first=1, rail=False), 0, 1)
+    assert verdict.foul == "no_rail" and verdict.winner == 1 and verdict.loss == "three_fouls"

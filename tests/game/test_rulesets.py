@@ -33,15 +33,17 @@ from pool_env.sim.table import Table
 SPACES = [
     ("pool_env/OneBallRoll-v1", 1, 6, 2),
     ("pool_env/EightBall-v1", 15, 48, 4),
-    ("pool_env/NineBallGameRoll-v1", 9, 30 + 9 + 7, 5),
-    ("pool_env/NineBallGame-v1", 9, 30 + 9 + 7, 7),
+    ("pool_env/NineBallGameRoll-v1", 9, 30 + 9 + 9, 6),
+    ("pool_env/NineBallGame-v1", 9, 30 + 9 + 9, 8),
+    ("pool_env/TenBallGameRoll-v1", 10, 33 + 10 + 9, 7),
+    ("pool_env/TenBallGame-v1", 10, 33 + 10 + 9, 9),
     ("pool_env/EightBallGameRoll-v1", 15, 48 + 15 + 7, 5),
 ]
 
 
 def test_the_registry_follows_the_kernels_game_codes() -> None:
-    assert GAMES == tuple(RULESETS) == ("solitaire", "nine", "eight")
-    codes = {"solitaire": wpa.SOLITAIRE, "nine": wpa.NINE, "eight": wpa.EIGHT}
+    assert GAMES == tuple(RULESETS) == ("solitaire", "nine", "eight", "ten")
+    codes = {"solitaire": wpa.SOLITAIRE, "nine": wpa.NINE, "eight": wpa.EIGHT, "ten": wpa.TEN}
     for name, ruleset in RULESETS.items():
         assert ruleset.name == name
         assert ruleset.code == codes[name] == GAMES.index(name)
@@ -49,9 +51,10 @@ def test_the_registry_follows_the_kernels_game_codes() -> None:
         assert ruleset.has_rack == (name != "solitaire")
 
 
-@pytest.mark.parametrize("game", ["ten", "", None, 1, "Solitaire"])
+@pytest.mark.parametrize("game", ["ten_ball", "", None, 1, "Solitaire"])
 def test_an_unknown_game_is_refused_naming_the_games(game: object) -> None:
-    with pytest.raises(ValueError, match=r"game must be one of \['solitaire', 'nine', 'eight'\]"):
+    names = r"\['solitaire', 'nine', 'eight', 'ten'\]"
+    with pytest.raises(ValueError, match=rf"game must be one of {names}"):
         make_config(game=game)  # type: ignore[arg-type]
 
 
