@@ -4,6 +4,9 @@
   every run and machine, and a failure reproduces.
 * ``nightly``: fresh random examples, ten times as many, to look further
   (``HYPOTHESIS_PROFILE=nightly python -m pytest tests/sim/test_properties.py``).
+* ``deep``: fresh random examples, two hundred times as many: a one-off search (the rules
+  against their reference on 120,000 random shots: ``HYPOTHESIS_PROFILE=deep python -m
+  pytest tests/game/test_games.py -k random_outcomes``).
 
 A test that sets its own ``max_examples`` passes it through :func:`examples`, which scales
 it by the profile.
@@ -29,6 +32,13 @@ settings.register_profile(
     "nightly",
     derandomize=False,
     max_examples=10 * CI_EXAMPLES,
+    deadline=None,
+    suppress_health_check=[HealthCheck.too_slow],
+)
+settings.register_profile(
+    "deep",
+    derandomize=False,
+    max_examples=200 * CI_EXAMPLES,
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow],
 )

@@ -293,7 +293,7 @@ class RackState:
     def new_rack(cls, game: Game, shooter: int = 0) -> RackState:
         """A racked table: every ball on, ``shooter`` to break."""
         if game not in N_BALLS:
-            raise ValueError(f"game must be 'nine' or 'eight', got {game!r}")
+            raise ValueError(f"game must be one of {list(N_BALLS)}, got {game!r}")
         return cls(game=game, on_table=(True,) * N_BALLS[game], shooter=shooter)
 
     @property

@@ -31,8 +31,9 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     """Pool: pot the object balls, a shot per step, on an exact event-based table simulator.
 
     One step is one shot: the action (aim, speed; on a spin table also the cue tip; under
-    rules also the cue ball's placement and a called pocket, each in ``[-1, 1]``) is played
-    by the simulator to rest. The observation is each ball's ``(x, y, on_table)`` scaled
+    rules also the cue ball's placement and a called pocket, in 10-ball a called ball, in
+    9-ball and 10-ball the option (push out, or hand the table back), each in ``[-1, 1]``)
+    is played by the simulator to rest. The observation is each ball's ``(x, y, on_table)`` scaled
     to ``[-1, 1]`` (under rules, then the legal first balls and the rack state:
     :func:`pool_env.obs_layout` names each part). The reward counts pots (and under rules
     fouls and the rack's result). The whole specification, with every ``info`` key, is
@@ -52,8 +53,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
               fraction of R), ``end_on_miss``, ``max_shots``, ``reward_pot``,
               ``reward_scratch``, ``reward_no_contact``, ``reward_shaping``;
             * noise: ``noise`` (sigmas: rad, m/s and on a spin table the tip's, in R);
-            * rules: ``game`` (``"solitaire"``, ``"nine"``, ``"eight"``); 9-ball and
-              8-ball add ``end_on_foul``, ``break_speed_range``, ``reward_foul``,
+            * rules: ``game`` (``"solitaire"``, ``"nine"``, ``"ten"``, ``"eight"``); the
+              WPA games add ``end_on_foul``, ``break_speed_range``, ``reward_foul``,
               ``reward_win``.
 
             A section's name (``task``, ``rules``, ...) takes the section or a mapping of

@@ -77,7 +77,7 @@ def _table(
     if config.ruleset.has_rack:  # the input's parsing; the encoding asks the ruleset
         state.rack[0] = _rack_row(config, rack)
     elif rack is not None:
-        raise ValueError("rack is for the rules ids (game='nine' or 'eight')")
+        raise ValueError("rack is for the rules ids (game='nine', 'ten' or 'eight')")
     return state
 
 

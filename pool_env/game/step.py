@@ -55,7 +55,7 @@ class StepResult:
         flags: ``(K, 5)`` booleans, columns named in :mod:`pool_env.game.rules` (the WPA
             games: ``(K, 6)``).
         hits: ``(K, 2)`` integers: potted bits and the first ball hit (the WPA games:
-            ``(K, 8)``, and the foul, the ball on, ...).
+            ``(K, 9)``, and the foul, the ball on, ...).
         shots: ``(K, 2)`` the executed ``(angle, speed)``; ``(K, 4)`` on a spin table:
             and the executed tip ``(a, b)``.
         pocketed: ``(K, M)`` the simulator's pocket per ball (-1: none), columns ``balls``.

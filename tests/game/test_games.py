@@ -385,6 +385,9 @@ def outcomes(draw: st.DrawFn) -> tuple:
     simultaneous = () if first is None else tuple(numbers[r] for r in rows)
     crossed = draw(st.booleans())
     dropped = draw(st.lists(st.integers(0, m - 1), unique=True, max_size=m))
+    money = {"nine": 9, "ten": 10, "eight": 8}[game]
+    if on[money] and numbers.index(money) not in dropped and draw(st.booleans()):
+        dropped.append(numbers.index(money))  # the ball that decides the rack, more often
     pocketed = [-1] * m
     order = [-1] * m
     for k, row in enumerate(dropped):
@@ -535,6 +538,53 @@ def test_rare_outcomes_have_their_verdicts(
     assert (ref.foul, ref.winner, ref.loss) == (verdict["foul"], verdict["winner"], verdict["loss"])
     if groups_after is not None:
         assert after.groups == ref_after.groups == groups_after
+
+
+# Rotation outcomes at the push-out's and 10-ball's edges, each judged by the compiled rules
+# and the reference alike (the random property test reaches them rarely): (name, state,
+# potted balls with their pockets, first ball, calls, expected verdict).
+ROTATION_EDGES: list[tuple] = [
+    ("nine: the 9 on a push-out is spotted", RackState("nine", (True,) * 10, push_out=True,
+     breaking=False), {3: 0, 9: 1}, 5, {"push_out": True},
+     {"winner": None, "respot": (9,), "continues": False, "push_out": True}),
+    ("ten: the 10 on a push-out is spotted", RackState("ten", (True,) * 11, push_out=True,
+     breaking=False), {10: 1}, 1, {"push_out": True, "called_ball": 10, "called": 1},
+     {"winner": None, "respot": (10,), "continues": False, "push_out": True}),
+    ("ten: the 10 beside a made call is spotted", RackState("ten", (True,) * 11,
+     breaking=False), {1: 0, 10: 2}, 1, {"called_ball": 1, "called": 0},
+     {"winner": None, "respot": (10,), "continues": True}),
+    ("ten: the called 10 made wins", RackState("ten", (True,) * 11, breaking=False),
+     {10: 2}, 1, {"called_ball": 10, "called": 2},
+     {"winner": 0, "respot": (), "continues": False}),
+    ("ten: the called 10 on the break is spotted", RackState.new_rack("ten"), {10: 2, 4: 3},
+     1, {"called_ball": 10, "called": 2}, {"winner": None, "respot": (10,), "continues": True}),
+    ("ten: the called 10 in another pocket is spotted", RackState("ten", (True,) * 11,
+     breaking=False), {10: 2}, 1, {"called_ball": 10, "called": 4},
+     {"winner": None, "respot": (10,), "continues": False}),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("case", ROTATION_EDGES, ids=[c[0] for c in ROTATION_EDGES])
+def test_rotation_edges_have_their_verdicts(case: tuple) -> None:
+    _, state, drops, first, calls, want = case
+    numbers = list(range(len(state.on_table)))
+    m = len(numbers)
+    pocketed, order = [-1] * m, [-1] * m
+    for k, (ball, pocket) in enumerate(drops.items()):
+        pocketed[ball], order[ball] = pocket, k
+    cushions = [1] * m
+    positions = [(1.5 + 0.01 * row, 0.6) for row in range(m)]
+    called = calls.pop("called", None)
+    got, after = compiled_judge(
+        TABLE, state, positions, numbers, (0, first), cushions, pocketed, order, called, **calls
+    )
+    hit = np.full(m, -1)
+    hit[0] = first
+    shot = ShotOutcome.from_arrays(hit, cushions, pocketed, order, np.array(numbers))
+    ref, ref_after = judge(state, shot, called, **calls)
+    same_verdict(ref, ref_after, got, after)
+    have = {**got, "continues": got["keeps"] and got["winner"] is None}
+    assert {key: have[key] for key in want} == want
 
 
 def test_the_vector_env_plays_the_rules_alike_threaded_and_with_rule_options() -> None:

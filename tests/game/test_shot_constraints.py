@@ -28,8 +28,9 @@ from tests.wpa_reference import OPEN, SOLIDS, STRIPES, RackState
 TABLE = Table()
 CONFIGS = {
     game: make_config(table=TABLE, scene=SCENES[game], game=game, players=2)
-    for game in ("nine", "eight")
+    for game in ("nine", "ten", "eight")
 }
+MONEY = {"nine": 9, "ten": 10, "eight": 8}
 
 
 def _observe(state: RackState) -> np.ndarray:
@@ -47,11 +48,10 @@ def _observe(state: RackState) -> np.ndarray:
 @st.composite
 def rack_states(draw: st.DrawFn) -> RackState:
     """A rack state the rules can reach: balls off, groups, fouls, ball in hand, the break."""
-    game = draw(st.sampled_from(["nine", "eight"]))
-    n = 10 if game == "nine" else 16
+    game = draw(st.sampled_from(["nine", "ten", "eight"]))
+    n = MONEY[game] + 1 if game != "eight" else 16
     on = [True] + [draw(st.booleans()) for _ in range(n - 1)]
-    decisive = 9 if game == "nine" else 8
-    on[decisive] = True  # the rack is still being played
+    on[MONEY[game]] = True  # the rack is still being played
     breaking = draw(st.booleans())
     if breaking:
         on = [True] * n
@@ -59,11 +59,15 @@ def rack_states(draw: st.DrawFn) -> RackState:
     if game == "eight" and not breaking and draw(st.booleans()):
         groups = draw(st.sampled_from([(SOLIDS, STRIPES), (STRIPES, SOLIDS)]))
     in_hand = breaking or draw(st.booleans())
+    offer = "none"  # the push-out or the option: 9-ball and 10-ball, no break, no ball in hand
+    if game != "eight" and not in_hand:
+        offer = draw(st.sampled_from(["none", "push_out", "option"]))
     return RackState(
         game=game, on_table=tuple(on), shooter=draw(st.sampled_from([0, 1])),
         breaking=breaking, fouls=(draw(st.integers(0, 2)), draw(st.integers(0, 2))),
         groups=groups, ball_in_hand=in_hand,
         behind_head_string=in_hand and (breaking or draw(st.booleans())),
+        push_out=offer == "push_out", option=offer == "option",
     )  # fmt: skip
 
 
@@ -72,8 +76,8 @@ def rack_states(draw: st.DrawFn) -> RackState:
 def test_constraints_read_the_rules_from_the_observation(state: RackState) -> None:
     config = CONFIGS[state.game]
     got = shot_constraints(config, _observe(state))
-    if state.breaking:  # the break: 9-ball the 1, 8-ball any ball (WPA 8-ball 3.2)
-        want = (1,) if state.game == "nine" else tuple(range(1, 16))
+    if state.breaking:  # the break: the 1 in rotation, 8-ball any ball (WPA 8-ball 3.2)
+        want = (1,) if state.game != "eight" else tuple(range(1, 16))
     else:
         want = state.legal_first_balls()
     assert got.first_balls == want
@@ -81,8 +85,10 @@ def test_constraints_read_the_rules_from_the_observation(state: RackState) -> No
     assert got.breaking == state.breaking
     speeds = config.break_speed_range if state.breaking else config.speed_range
     assert got.speed_range == speeds
-    assert got.call_pocket == (state.game == "eight" and not state.breaking and want == (8,))
-    assert not got.push_out  # no game offers one yet
+    on_eight = state.game == "eight" and want == (8,)
+    assert got.call_pocket == (not state.breaking and (on_eight or state.game == "ten"))
+    assert got.call_ball == (state.game == "ten" and not state.breaking)
+    assert got.push_out == state.push_out and got.option == state.option
     if not state.ball_in_hand:
         assert got.placement is None
     else:
@@ -107,7 +113,7 @@ def test_placement_box_is_what_the_step_accepts() -> None:
         config.ruleset.encode_placement(config, (x_high + 1e-3, y_low), True, False)
 
 
-@pytest.mark.parametrize("game", ["solitaire", "nine", "eight"])
+@pytest.mark.parametrize("game", ["solitaire", "nine", "ten", "eight"])
 def test_layout_partitions_the_observation(game: str) -> None:
     """Every entry belongs to exactly one named part, and the parts are in order."""
     scene = {"solitaire": "random", **SCENES}[game]

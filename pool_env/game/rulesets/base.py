@@ -63,7 +63,7 @@ class Outcome(NamedTuple):
 
 #: What :meth:`Ruleset.execute` returns: ``(shots, states, extra)``: the executed shots
 #: ``(K, 2)`` (spin ``(K, 4)``), the initial ball states ``(K, N, 2)`` (spin ``(K, N, 5)``)
-#: and what the ruleset's own judge needs besides (the called pockets; ``None``: nothing).
+#: and what the ruleset's own judge needs besides (the WPA games' calls; ``None``: nothing).
 Executed = tuple[NDArray[np.float64], NDArray[np.float64], Any]
 
 #: What :meth:`Ruleset.judge` returns: ``(rewards, flags, hits)``, columns named in
@@ -79,7 +79,7 @@ class RulesSection:
     subclass as its :attr:`Ruleset.section`.
 
     Attributes:
-        game: The game (``"solitaire"``, ``"nine"``, ``"eight"``).
+        game: The game (``"solitaire"``, ``"nine"``, ``"ten"``, ``"eight"``).
     """
 
     game: str = "solitaire"
@@ -198,7 +198,7 @@ class Ruleset:
         Raises:
             ValueError: Always here: this game has no ball in hand.
         """
-        raise ValueError("the cue ball is placed in hand under rules (game='nine' or 'eight')")
+        raise ValueError("the cue ball is placed in hand under rules (game='nine', 'ten', 'eight')")
 
     def parse_rules(self, section: RulesSection) -> RuleOptions:
         """Check and parse the game's section: no options here (no fouls, no break)."""

@@ -31,7 +31,7 @@ class Solitaire(Ruleset):
     ) -> None:
         """Refuse the rule games' arguments: ``end_on_foul`` and two players."""
         if end_on_foul or players != 1:
-            raise ValueError("end_on_foul and players need game='nine' or game='eight'")
+            raise ValueError("end_on_foul and players need a rules game: 'nine', 'ten' or 'eight'")
 
     def execute(
         self,
