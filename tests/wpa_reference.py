@@ -356,8 +356,8 @@ class Verdict:
 
 
 def _may_hit_first(state: RackState, ball: int) -> bool:
-    if state.breaking:
-        return state.game == "eight" or ball == 1
+    if state.breaking:  # 8-ball: any ball; rotation: the lowest (the 1 of a full rack)
+        return state.game == "eight" or ball == state.ball_on
     return ball in state.legal_first_balls()
 
 

@@ -712,6 +712,7 @@ def test_the_duel_opponent_hands_the_table_back_after_a_push_out(game: str) -> N
     duel.step(back)
     info = duel.infos["player_1"]
     assert info["handed_back"] and not info["push_out"] and info["foul"] is None
+    assert info["speed"] == 0.0 and info["angle"] == 0.0  # no shot struck
     assert duel.agent_selection == "player_0" and not duel.rack["option"]
     np.testing.assert_array_equal(duel.positions, before)  # nothing was struck
     assert duel.shots == shots + 1

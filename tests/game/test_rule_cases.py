@@ -50,6 +50,15 @@ def eight(off: tuple[int, ...] = (), **kw) -> RackState:
     return replace(RackState(game="eight", on_table=on, breaking=False), **kw)
 
 
+def ten(off: tuple[int, ...] = (), **kw) -> RackState:
+    """A 10-ball rack in play, the balls ``off`` already potted."""
+    on = tuple(b not in off for b in range(11))
+    return replace(RackState(game="ten", on_table=on, breaking=False), **kw)
+
+
+ROTATION_GAMES = {"nine": nine, "ten": ten}
+
+
 # --- the break ------------------------------------------------------------------------------
 
 
@@ -70,6 +79,19 @@ def test_a_nine_ball_break_must_hit_the_one_first() -> None:
     assert verdict.foul == "illegal_break"
     verdict, after = judge(RackState.new_rack("nine"), shot(first=1, potted=(3,), to_rail=6))
     assert verdict.legal and verdict.shooter_continues and after.shooter == 0
+
+
+@pytest.mark.parametrize("game", ["nine", "ten"])
+def test_a_rotation_break_set_up_without_the_one_needs_its_lowest_ball_first(game: str) -> None:
+    # Found by 120,000 random outcomes: the legal first ball of a break and the shooter's
+    # benefit of a simultaneous hit read the same ball, the lowest on the table.
+    state = replace(ROTATION_GAMES[game](off=(1, 2)), breaking=True)
+    verdict, _ = judge(state, shot(first=3, to_rail=4))
+    assert verdict.legal
+    verdict, _ = judge(state, shot(first=4, to_rail=4, simultaneous=(3,)))
+    assert verdict.legal  # the 3, met at the same instant, gives the benefit
+    verdict, _ = judge(state, shot(first=4, to_rail=4))
+    assert verdict.foul == "illegal_break"
 
 
 def test_groups_stay_open_after_an_eight_ball_break_that_pots() -> None:
@@ -302,15 +324,6 @@ def test_the_cue_ball_is_not_an_object_ball_driven_to_a_rail() -> None:
 
 
 # --- the push-out and the option (WPA 9-ball 1.7, 10-ball 4) ---------------------------------
-
-
-def ten(off: tuple[int, ...] = (), **kw) -> RackState:
-    """A 10-ball rack in play, the balls ``off`` already potted."""
-    on = tuple(b not in off for b in range(11))
-    return replace(RackState(game="ten", on_table=on, breaking=False), **kw)
-
-
-ROTATION_GAMES = {"nine": nine, "ten": ten}
 
 
 @pytest.mark.parametrize(("game", "offered"), [("nine", True), ("ten", True), ("eight", False)])

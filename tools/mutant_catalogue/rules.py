@@ -23,7 +23,7 @@ MUTANTS: tuple[Mutant, ...] = (
         "rules-nine-break-any-ball-first",
         "rules",
         W,
-        "first_ok = first >= 0 and (game == EIGHT or first == 1)",
+        "first_ok = first >= 0 and (game == EIGHT or first == lowest)",
         "first_ok = first >= 0",
         GAMES,
         "a 9-ball break that hits another ball before the 1 is legal",

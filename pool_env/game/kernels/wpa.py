@@ -9,7 +9,8 @@ hand the table back. :func:`judge_rack` updates that row in place.
 
 9-ball (WPA rules 1-2): the cue ball must first contact the lowest-numbered ball on the
 table; then a ball must be potted or some ball (the cue ball included) must touch a
-cushion; a scratch and a shot that touches no ball are fouls. Legal break: the 1 first,
+cushion; a scratch and a shot that touches no ball are fouls. Legal break: the 1 first
+(the lowest ball: a break set up without the 1 needs its lowest ball first),
 and a ball potted or at least four object balls driven to a cushion. The 9 potted on a
 legal shot wins (the break and combinations included); potted on a foul it is re-spotted.
 A player who fouls on three successive shots loses the rack. After a foul the incoming
@@ -229,8 +230,9 @@ def foul_of(game, rack, on_table, first, scratch, n_potted, rail, to_rail, kitch
         return FOUL_SCRATCH
     if kitchen:
         return FOUL_KITCHEN
-    if rack[BREAKING] != 0:
-        first_ok = first >= 0 and (game == EIGHT or first == 1)
+    if rack[BREAKING] != 0:  # rotation: the lowest ball first (the 1 of a rack)
+        lowest = ball_on(game, rack, on_table, rack[SHOOTER])
+        first_ok = first >= 0 and (game == EIGHT or first == lowest)
         spread = n_potted > 0 or to_rail >= BREAK_RAILS
         return NO_FOUL if first_ok and spread else FOUL_BREAK
     if push_out:
