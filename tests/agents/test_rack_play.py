@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import pool_env
+from agents.baselines.rule_play import rule_action
 from agents.evaluation.duels import play_duels
 from agents.evaluation.evaluate import main as evaluate_main
 from agents.evaluation.evaluate import make_agent
@@ -41,7 +42,7 @@ def test_each_candidate_action_decodes_to_its_planned_strike_on_the_ball_on() ->
         ball_on = int(np.flatnonzero(u.on_table[1:])[0]) + 1
         assert len(agent.last_found) > 10
         for c in agent.last_found:
-            action = np.array([c.action[0], c.action[1], 0, 0, 0, c.action[2], c.action[3]])
+            action = rule_action(u.config, c.action)  # the tip where the game's action has it
             shot = pool_env.decode_action(u.config, action, u.positions, u.on_table, u.rack)
             turn = (shot.angle - c.aim + math.pi) % (2 * math.pi) - math.pi
             assert abs(turn) < 2e-6, (c, shot)
