@@ -24,7 +24,7 @@ from agents.baselines.ghost_ball import ARRIVAL_SPEED, MIN_SIGMA, GhostBallAgent
 from agents.baselines.rule_play import (
     ROTATION,
     may_push,
-    push_rolls,
+    push_outcomes,
     push_value,
     rule_action,
     take_table,
@@ -202,13 +202,18 @@ class GameGhostBallAgent(BaselineAgent):
         if not pushing:
             return None
         best: tuple[float, NDArray[np.float32]] | None = None
-        trial = positions.copy()
-        for roll in push_rolls(self.config, self.ghost.mouths, positions, on):
-            strike = shot_to_action(roll.angle, roll.speed, positions, reference, self.ghost.spec)
+        targets = self._targets
+        for push in push_outcomes(self.config, positions, on, min(targets)):
+            strike = shot_to_action(push.angle, push.speed, positions, reference, self.ghost.spec)
             if strike is None:
-                continue  # the aim mode cannot play it (cut aim turned away from the ball on)
-            trial[0] = roll.rest
-            value = push_value(self.best_chance(trial, on, reference))
+                continue  # the aim mode cannot play it
+            # The opponent's view of the leave: the ball on then (the lowest left).
+            self._targets = list(self.config.ruleset.first_balls_after(push.on_table, -1))
+            seen = np.zeros_like(push.on_table)
+            seen[0] = True
+            seen[self._targets] = True
+            value = push_value(self.best_chance(push.positions, push.on_table, seen))
+            self._targets = targets
             if best is None or value > best[0]:
                 best = (value, strike)
         if best is None or best[0] <= chance:

@@ -19,17 +19,19 @@ search, the learned rack agent, the lookahead):
   estimate for both players, shooting is worth about ``p`` to the chooser and handing back
   about ``1 - p`` (the opponent then shoots the same shot), so the chooser plays exactly
   when ``p >= 1/2``.
-* **The push-out** (:func:`push_value`, :func:`push_rolls`): on the shot right after a
+* **The push-out** (:func:`push_value`, :func:`push_outcomes`): on the shot right after a
   legal break, against an opponent, the agent compares its best shot's chance with the
-  best soft roll of the cue ball (no contact, no scratch: a legal push-out) it can find,
-  each valued by the leave's best pot chance ``c`` on the ball on and the opponent's
-  option as above: the opponent hands back a leave with ``c < 1/2`` (the pusher then
-  shoots it: worth ``c``) and takes one with ``c >= 1/2`` (worth ``1 - c`` to the
-  pusher), so a roll is worth ``min(c, 1 - c)``-like, at most one half, best for a leave
-  that is as hard for either player. It pushes when that beats its shot.
-  With one player it never pushes: in run-out mode a push-out ends the run (it does not
-  keep the table), and in practice it would be a free second placement with nobody to
-  take the option, not the game; so every one-player figure is the game's without it.
+  best of a few soft hits across the ball on's face (:data:`PUSH_OFFSETS` x
+  :data:`PUSH_SPEEDS`, each played out on the simulator without noise; the cut aim of the
+  game ids can only aim at the ball on, and a push-out may touch it or whatever lies in the
+  way), each valued by the leave's best pot chance ``c`` (for the ball on then) and the
+  opponent's option as above: the opponent hands back a leave with ``c < 1/2`` (the pusher
+  then shoots it: worth ``c``) and takes one with ``c >= 1/2`` (worth ``1 - c`` to the
+  pusher), so a push is worth at most one half, most for a leave as hard for either
+  player. It pushes when that beats its shot. With one player it never pushes: in run-out
+  mode a push-out ends the run (it does not keep the table), and in practice it would be a
+  free second shot with nobody to take the option, not the game; so every one-player
+  figure is the game's without it.
 """
 
 from __future__ import annotations
@@ -40,10 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.cue_path import after_contact, strike
-from agents.baselines.geometry import PocketMouths, path_clear
-from agents.baselines.trace import Trace, roll_trace
-from pool_env import GameConfig
+from pool_env import GameConfig, shoot
 from pool_env.game.codec import encode_pocket
 from pool_env.game.rulesets.wpa import encode_ball
 
@@ -51,10 +50,11 @@ from pool_env.game.rulesets.wpa import encode_ball
 ROTATION = ("nine", "ten")
 #: The option: play on at this chance or more, else hand the table back (module doc).
 TAKE_CHANCE = 0.5
-#: Directions of the push-out rolls (evenly around the cue ball).
-PUSH_DIRECTIONS = 24
-#: Cue speeds (m/s) of the push-out rolls: soft, so that the cue ball goes where it is
-#: traced (a rolling ball a metre or two, no rail or one).
+#: Where the push-out's cue ball passes the ball on, in ball diameters across its face
+#: (the lookahead's grid too): from a full hit to a thin graze either side.
+PUSH_OFFSETS = (-0.85, -0.6, -0.3, 0.0, 0.3, 0.6, 0.85)
+#: Cue speeds (m/s) of the push-outs: soft, to move the cue ball a metre or two and the
+#: ball on little.
 PUSH_SPEEDS = (0.6, 0.9, 1.3)
 
 
@@ -118,69 +118,64 @@ def may_push(config: GameConfig, players: int) -> bool:
     return config.ruleset.has_option and players == 2
 
 
+def face_angles(
+    positions: NDArray[np.float64], ball: int, radius: float, offsets: tuple[float, ...]
+) -> list[float]:
+    """Directions of the cue ball (ball 0) that pass ``ball`` at ``offsets`` across its face.
+
+    Each offset is in ball diameters from a full hit (``+-1``: a graze); the cue ball touching
+    ``ball`` has none (an empty list).
+    """
+    gap = positions[ball] - positions[0]
+    dist = float(np.hypot(*gap))
+    if dist <= 2.0 * radius:
+        return []
+    centre = math.atan2(gap[1], gap[0])
+    return [centre + math.asin(min(1.0, f * 2.0 * radius / dist)) for f in offsets]
+
+
 @dataclass(frozen=True)
-class PushRoll:
-    """A soft roll of the cue ball that touches no ball and stays out of the pockets.
+class PushOutcome:
+    """A push-out strike and the layout it leaves (the simulator's, without noise).
 
     Attributes:
         angle: Its direction (rad from +x).
         speed: Its cue speed (m/s).
-        rest: Where the cue ball stops, ``(2,)``.
+        positions: ``(N, 2)`` the balls after it.
+        on_table: ``(N,)`` the balls left on the table.
     """
 
     angle: float
     speed: float
-    rest: NDArray[np.float64]
+    positions: NDArray[np.float64]
+    on_table: NDArray[np.bool_]
 
 
-def push_rolls(
-    config: GameConfig,
-    mouths: PocketMouths,
-    positions: NDArray[np.float64],
-    on_table: NDArray[np.bool_],
-) -> list[PushRoll]:
-    """The push-out rolls that touch no ball: :data:`PUSH_DIRECTIONS` x :data:`PUSH_SPEEDS`.
+def push_outcomes(
+    config: GameConfig, positions: NDArray[np.float64], on_table: NDArray[np.bool_], ball: int
+) -> list[PushOutcome]:
+    """The push-outs tried: soft centre-ball hits across ``ball``'s face, played out.
 
-    Each traced centre ball in closed form (:func:`agents.baselines.cue_path.after_contact`
-    from the strike on a spin table, :func:`agents.baselines.trace.roll_trace` on a roll
-    table), kept when every leg clears the other balls by a diameter and the cue ball does
-    not drop: no ball moves, so the layout after it is the same with the cue ball at
-    ``rest``.
+    :data:`PUSH_OFFSETS` x :data:`PUSH_SPEEDS` toward the ball on (every aim mode can play a
+    direction at it; the cut aim only those), each on the simulator without noise
+    (:func:`pool_env.shoot`: a push-out may touch any ball, or none, and it moves what it
+    touches). A strike that scratches (a foul even on a push-out) or pots the money ball
+    (re-spotted: not followed here) is left out.
     """
-    table = config.table
-    r = table.ball_radius
-    others = np.array([positions[j] for j in range(1, positions.shape[0]) if on_table[j]]).reshape(
-        -1, 2
-    )
+    table, money = config.table, config.ruleset.money_ball
+    rows = np.flatnonzero(on_table)
     low, high = config.speed_range
-    out: list[PushRoll] = []
-    for k in range(PUSH_DIRECTIONS):
-        angle = 2.0 * math.pi * k / PUSH_DIRECTIONS
-        heading = np.array([math.cos(angle), math.sin(angle)])
+    out: list[PushOutcome] = []
+    for angle in face_angles(positions, ball, table.ball_radius, PUSH_OFFSETS):
         for speed in PUSH_SPEEDS:
             if not low <= speed <= high:
                 continue
-            trace = _roll(config, mouths, positions[0], angle, heading, speed)
-            if trace.pocket >= 0:
+            result = shoot(table, positions[rows], angle, speed, record=False)
+            dropped = result.pocketed >= 0
+            if dropped[0] or (money in rows and dropped[np.searchsorted(rows, money)]):
                 continue
-            # A diameter and a little: the traced path is the model's, the cue ball's true
-            # one a few millimetres off it, and a touch would make the push a shot.
-            if all(path_clear(p, q, others, 2.1 * r) for p, q in trace.legs):
-                out.append(PushRoll(angle, speed, np.array(trace.rest)))
+            after, left = positions.copy(), on_table.copy()
+            after[rows] = result.positions
+            left[rows[dropped]] = False
+            out.append(PushOutcome(angle, speed, after, left))
     return out
-
-
-def _roll(
-    config: GameConfig,
-    mouths: PocketMouths,
-    start: NDArray[np.float64],
-    angle: float,
-    heading: NDArray[np.float64],
-    speed: float,
-) -> Trace:
-    """The cue ball's path from a centre-ball strike, as the table's model plays it."""
-    if config.spin:
-        return after_contact(
-            config.table, mouths, start, strike(config.table, angle, speed, (0.0, 0.0))
-        )
-    return roll_trace(config.table, mouths, start, speed * heading)

@@ -36,7 +36,6 @@ that pots a ball is valued as any miss (the opponent's option to hand it back is
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -44,7 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.ghost_ball import MIN_SIGMA
-from agents.baselines.rule_play import rule_action
+from agents.baselines.rule_play import PUSH_OFFSETS, face_angles, rule_action
 from agents.learned.game_model import GameModel
 from agents.learned.layout_value import LayoutValue, layout_features, observed_rack
 from agents.learned.rack_play import FEATURES, RackAgent
@@ -54,7 +53,7 @@ from pool_env.game.rack import rack_row
 from pool_env.game.rules import FOUL, KEEPS, WINNER
 
 #: Where the cue ball's centre passes the ball on, in ball diameters across its face.
-GRID_OFFSETS = (-0.85, -0.6, -0.3, 0.0, 0.3, 0.6, 0.85)
+GRID_OFFSETS = PUSH_OFFSETS
 #: Cue speeds (m/s) of the grid: from a touch that barely reaches a rail to a firm hit.
 GRID_SPEEDS = (0.9, 1.5, 2.3, 3.3)
 #: What the agent optimises: the two-player rack, or a run-out.
@@ -183,12 +182,9 @@ class LookaheadAgent(RackAgent):
         if not targets:
             return []
         r = self.config.table.ball_radius
-        gap = positions[targets[0]] - positions[0]
-        dist = float(np.hypot(*gap))
-        if dist <= 2.0 * r:
+        angles = face_angles(positions, targets[0], r, GRID_OFFSETS)
+        if not angles:
             return []
-        centre = math.atan2(gap[1], gap[0])
-        angles = [centre + math.asin(min(1.0, f * 2.0 * r / dist)) for f in GRID_OFFSETS]
         grid = [(a, s) for a in angles for s in GRID_SPEEDS]
         acts, ok = encode_shots(
             self.config, positions[None], reference[None], [[a for a, _ in grid]],
