@@ -9,6 +9,7 @@ import pytest
 import pool_env
 from agents.baselines.game_agents import GameGhostBallAgent
 from agents.baselines.rule_play import TAKE_CHANCE, push_value, rule_action, take_table
+from agents.evaluation.duels import play_duels
 from agents.evaluation.evaluate import make_agent
 from agents.policy import last_plan
 from pool_env.envs.multiagent import AGENTS, PoolDuelEnv
@@ -229,3 +230,10 @@ def test_with_the_option_on_a_hopeless_layout_the_agent_hands_back() -> None:
     assert seat == AGENTS[0]
     assert info["handed_back"] and last_plan(agents[seat])["kind"] == "hand back"
     assert duel.agent_selection == AGENTS[1]  # the table goes back as it lies
+
+
+def test_the_duels_play_ten_ball_racks_with_two_player_agents() -> None:
+    out = play_duels("ghost", "ghost", racks=2, seed=20_000, env_id="pool_env/TenBallGame-v1")
+    assert out["wins"] + out["losses"] + out["draws"] == 2
+    shots = out["agent"]["shots"] + out["opponent"]["shots"]
+    assert out["agent"]["breaks"] == out["opponent"]["breaks"] == 1 and shots >= 4
