@@ -155,9 +155,9 @@ class GameGhostBallAgent(BaselineAgent):
         The planners here pot the ball they hit first (direct pots, banks; no combinations),
         and 10-ball's rules let it be the ball on only.
         """
-        if self.config.game not in ROTATION or not self._targets:
+        if self.config.game not in ROTATION:
             return None
-        return min(self._targets)
+        return min(self._targets, default=1)  # none legal: a decided rack, any call
 
     def best_chance(
         self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]

@@ -13,12 +13,13 @@ search, the learned rack agent, the lookahead):
   pocket; a shot planned at no pocket (a safety, the fallback's full hit) calls the ball on
   and pocket 0, a call it does not expect to make.
 * **The option** (:func:`take_table`): the incoming player after the opponent's push-out,
-  or in 10-ball after a legal shot that potted a ball without its call, plays on when its
-  best shot's chance (a pot chance for ghost-ball, a win chance for the lookahead) is at
-  least :data:`TAKE_CHANCE`, else hands the table back. Why one half: with the same
-  estimate for both players, shooting is worth about ``p`` to the chooser and handing back
-  about ``1 - p`` (the opponent then shoots the same shot), so the chooser plays exactly
-  when ``p >= 1/2``.
+  or in 10-ball after a legal shot that potted a ball without its call, plays on when the
+  layout's best pot chance (the most forgiving clear shot under the aim noise:
+  :meth:`~agents.baselines.game_agents.GameGhostBallAgent.best_chance`, one estimate for
+  every agent built on it) is at least :data:`TAKE_CHANCE`, else hands the table back. Why
+  one half: with the same estimate for both players, shooting is worth about ``p`` to the
+  chooser and handing back about ``1 - p`` (the opponent then shoots the same shot), so the
+  chooser plays exactly when ``p >= 1/2``.
 * **The push-out** (:func:`push_value`, :func:`push_outcomes`): on the shot right after a
   legal break, against an opponent, the agent compares its best shot's chance with the
   best of a few soft hits across the ball on's face (:data:`PUSH_OFFSETS` x
@@ -75,21 +76,27 @@ def rule_action(
         place: The placement components (``action[2]``, ``action[3]``; used with the cue
             ball in hand).
         pocket: The called pocket (-1: none; the column is then 0, a call that does not count).
-        ball: 10-ball: the called ball (ignored by the other games).
+        ball: 10-ball: the called ball, required (ignored by the other games).
         option: 9-ball and 10-ball: declare a push-out, or hand the table back when the
             shooter has the option (:func:`take_table`).
 
     Returns:
         ``(config.action_size,)`` float64.
+
+    Raises:
+        ValueError: On 10-ball without a called ball (a column left at 0 would call the
+            middle ball, not the one planned).
     """
     ruleset = config.ruleset
+    if ruleset.calls_ball and ball is None:
+        raise ValueError(f"game={config.game!r} calls a ball on every shot: pass ball")
     out = np.zeros(config.action_size)
     part = np.asarray(strike_part, dtype=np.float64)
     out[0], out[1] = part[0], part[1]
     out[2], out[3] = place[0], place[1]
     if pocket >= 0:
         out[4] = encode_pocket(config, pocket)
-    if ruleset.calls_ball and ball is not None:
+    if ruleset.calls_ball:
         out[ruleset.ball_column] = encode_ball(ruleset.n_objects, int(ball))
     if ruleset.has_option:
         out[ruleset.option_column] = 1.0 if option else -1.0

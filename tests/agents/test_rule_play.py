@@ -37,14 +37,18 @@ def test_rule_action_lays_out_the_calls_and_the_tip_where_the_game_reads_them(en
     assert shot.pocket == 4
     assert shot.ball == (2 if config.game == "ten" else None)
     assert not shot.push_out and not shot.pass_back
+    if config.game == "ten":
+        with pytest.raises(ValueError, match="calls a ball"):
+            rule_action(config, strike)
     if config.spin:  # the tip is read from the game's own tip columns, whatever its width
         centre = pool_env.decode_action(
-            config, rule_action(config, strike[:2] + [0.0, 0.0]), u.positions, u.on_table, rack
-        )
+            config, rule_action(config, strike[:2] + [0.0, 0.0], ball=2), u.positions,
+            u.on_table, rack,
+        )  # fmt: skip
         assert shot.tip != centre.tip and centre.tip == (0.0, 0.0)
     if config.ruleset.has_option:  # the option column declares a push-out where offered
         pushed = pool_env.decode_action(
-            config, rule_action(config, strike, option=True), u.positions, u.on_table,
+            config, rule_action(config, strike, ball=2, option=True), u.positions, u.on_table,
             {**rack, "push_out": True},
         )  # fmt: skip
         assert pushed.push_out
