@@ -337,5 +337,5 @@ def test_bad_settings_are_refused(kwargs, message) -> None:
 
 
 def test_the_agent_refuses_a_roll_table_id() -> None:
-    with pytest.raises(ValueError, match="spin 9-ball"):
+    with pytest.raises(ValueError, match="spin rotation"):
         LookaheadAgent(gym.make("pool_env/NineBallGameRoll-v1"), _flat_value())

@@ -93,7 +93,8 @@ def test_the_agent_plays_the_candidate_of_the_highest_value() -> None:
     action, _ = agent.predict(obs)
     features, pick = agent.last_candidates
     assert pick == int(np.argmin(features[:, p_now]))
-    np.testing.assert_array_equal(action[[0, 1, 5, 6]], agent.last_found[pick].action[[0, 1, 2, 3]])
+    strike = action[[0, 1, *agent.config.tip_columns]]  # aim, speed and the tip (last two)
+    np.testing.assert_array_equal(strike, agent.last_found[pick].action[[0, 1, 2, 3]])
     score = features[:, FEATURES.index("planner_score")]
     agent.top_k = 3  # the least likely pot among the planner's three best
     agent.predict(obs)
@@ -119,8 +120,10 @@ def test_a_break_arm_plays_its_speed_and_tip(arm: int) -> None:
     assert info["tip"] == pytest.approx((0.0, vertical * limit), abs=1e-5)
     with pytest.raises(ValueError, match="break_arm"):
         RackAgent(env, break_arm=len(BREAK_ARMS))
-    with pytest.raises(ValueError, match="spin 9-ball"):
+    with pytest.raises(ValueError, match="spin rotation"):
         RackAgent(gym.make("pool_env/NineBallGameRoll-v1"))
+    with pytest.raises(ValueError, match="spin rotation"):
+        RackAgent(gym.make("pool_env/EightBallGame-v1"))
 
 
 @pytest.mark.parametrize(
