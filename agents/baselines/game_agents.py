@@ -1,10 +1,12 @@
-"""The baselines under the rules of the game ids: ghost-ball and search, 9-ball and 8-ball.
+"""The baselines under the rules of the game ids: ghost-ball and search, 9-ball, 10-ball, 8-ball.
 
 Both read the rules from the observation (the balls they may hit first, ball in hand,
-behind the head string, the break), place the cue ball in hand the same way and break the
-same way; they differ in how they choose the shot: :class:`GameGhostBallAgent` in closed
-form (:class:`agents.baselines.ghost_ball.GhostBallAgent`, position play with the tip on a
-spin env), :class:`GameSearchAgent` by checking candidates on the simulator
+behind the head string, the break, the push-out and the option), place the cue ball in
+hand the same way, break the same way and make the rules' other choices the same way
+(:mod:`agents.baselines.rule_play`: 10-ball's calls, the option, the push-out); they
+differ in how they choose the shot: :class:`GameGhostBallAgent` in closed form
+(:class:`agents.baselines.ghost_ball.GhostBallAgent`, position play with the tip on a spin
+env), :class:`GameSearchAgent` by checking candidates on the simulator
 (:class:`agents.baselines.search.SearchAgent`, judged by the rules: a legal first contact,
 the ball on or the group, the 8 only when it is on).
 """
@@ -16,11 +18,21 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from agents.baselines.aiming import shot_to_action
 from agents.baselines.base import BaselineAgent
-from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
+from agents.baselines.ghost_ball import ARRIVAL_SPEED, MIN_SIGMA, GhostBallAgent
+from agents.baselines.rule_play import (
+    ROTATION,
+    may_push,
+    push_outcomes,
+    push_value,
+    rule_action,
+    take_table,
+)
 from agents.baselines.search import SearchAgent, Shot
-from pool_env import ShotResult, obs_layout, shot_constraints
-from pool_env.game.codec import encode_placement, encode_pocket
+from agents.baselines.spin_play import pot_chance
+from pool_env import ShotConstraints, ShotResult, obs_layout, shot_constraints
+from pool_env.game.codec import encode_placement
 from pool_env.game.geometry import points_free
 
 #: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
@@ -29,31 +41,49 @@ PLACE_DISTANCES = (0.12, 0.25, 0.45)
 
 
 class GameGhostBallAgent(BaselineAgent):
-    """The ghost-ball heuristic under the rules of the game ids (``game="nine"``/``"eight"``).
+    """The ghost-ball heuristic under the rules of the game ids (9-ball, 10-ball, 8-ball).
 
     It reads the rules from the observation (the balls it may hit first, ball in hand,
     behind the head string, the break) and plays :class:`GhostBallAgent`'s most forgiving
-    shot on those balls only: the ball on (9-ball), its group (8-ball; any ball but the 8
-    on an open table), the 8 once the group is cleared, with the called pocket set to the
-    shot's pocket. With the cue ball in hand it tries straight-in placements
-    (:data:`PLACE_DISTANCES` behind the ghost-ball point of each legal ball and pocket,
-    inside the allowed region and clear of the balls) and keeps the one whose best shot
-    forgives the most. The break: the cue ball on the head spot, a full hit on the nearest
-    legal ball at the top of the break speed range.
+    shot on those balls only: the ball on (9-ball, 10-ball), its group (8-ball; any ball but
+    the 8 on an open table), the 8 once the group is cleared, with the called pocket set to
+    the shot's pocket and, in 10-ball, the called ball to the ball it pots (its planners pot
+    the ball they hit first, which the rules make the ball on). With the cue ball in hand it
+    tries straight-in placements (:data:`PLACE_DISTANCES` behind the ghost-ball point of
+    each legal ball and pocket, inside the allowed region and clear of the balls) and keeps
+    the one whose best shot forgives the most. The break: the cue ball on the head spot, a
+    full hit on the nearest legal ball at the top of the break speed range.
+
+    With the option it plays on or hands the table back, and on the shot after a legal
+    break (against an opponent) it may push out, both by the layout's best pot chance
+    (:meth:`best_chance`) as :mod:`agents.baselines.rule_play` decides.
 
     Args:
         env: A game-id environment (``gym.make("pool_env/NineBallGameRoll-v1")``, wrapped or not).
         arrival_speed: As :class:`GhostBallAgent`.
+        spin: On a spin env, whether to use the tip (else centre ball).
+        players: 2 when it plays against an opponent (the push-out is then worth playing),
+            ``None``: the env's (``config.players``; the duel fronts build their agents on
+            the one-player id and pass 2).
     """
 
     #: ``last_plan["kind"]`` of a planned shot.
     KIND = "ghost"
 
-    def __init__(self, env: Any, arrival_speed: float = ARRIVAL_SPEED, spin: bool = True) -> None:
+    def __init__(
+        self,
+        env: Any,
+        arrival_speed: float = ARRIVAL_SPEED,
+        spin: bool = True,
+        players: int | None = None,
+    ) -> None:
         config = env.unwrapped.config
         if not config.rules:
-            raise ValueError("GameGhostBallAgent plays the game ids (game='nine' or 'eight')")
+            raise ValueError("GameGhostBallAgent plays the game ids (game='nine', 'ten', 'eight')")
         self.config = config
+        self.players = config.players if players is None else int(players)
+        if self.players not in (1, 2):
+            raise ValueError(f"players must be 1 or 2, got {players!r}")
         self.ghost = GhostBallAgent(
             env, arrival_speed, self._legal, spin=spin, next_targets=self._next_legal
         )
@@ -74,7 +104,7 @@ class GameGhostBallAgent(BaselineAgent):
         return list(self.config.ruleset.first_balls_after(after, potted))
 
     def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
-        """The planned actions: ``(B, 5)``, or ``(B, 7)`` with the tip on a spin env."""
+        """The planned actions: ``(B, config.action_size)`` (the tip last on a spin env)."""
         balls = obs_layout(self.config)["balls"]
         layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, balls]))
         pairs = zip(observations, layouts, strict=True)
@@ -83,7 +113,7 @@ class GameGhostBallAgent(BaselineAgent):
 
     def _plan(
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
-    ) -> NDArray[np.float32]:
+    ) -> NDArray[np.float64]:
         rules = shot_constraints(self.config, obs)
         in_hand, behind, breaking = rules.ball_in_hand, rules.behind_head_string, rules.breaking
         self._targets = list(rules.first_balls)
@@ -99,25 +129,97 @@ class GameGhostBallAgent(BaselineAgent):
             action = self.ghost._fallback(positions, on, reference)
             action[1] = 1.0  # the top of the break speed range
             self.last_plan = {"kind": "break"}
+            return rule_action(self.config, action, place, ball=self._ball_on())
+        if in_hand:
+            positions, place = self._place(positions, on, reference, behind)
+        declared = self._option_or_push(rules, positions, on, reference)
+        if declared is not None:
+            return declared
+        called, action = self._choose(positions, on, reference)
+        if action is None:
+            action = self.ghost._fallback(positions, on, reference)
+            self.last_plan = {"kind": "fallback", "in_hand": in_hand}
+            called = -1
         else:
-            if in_hand:
-                positions, place = self._place(positions, on, reference, behind)
-            called, action = self._choose(positions, on, reference)
-            if action is None:
-                action = self.ghost._fallback(positions, on, reference)
-                self.last_plan = {"kind": "fallback", "in_hand": in_hand}
-            else:
-                self.last_plan = {
-                    "kind": self.KIND,
-                    "shot": self._chosen,
-                    "pocket": called,
-                    "in_hand": in_hand,
-                }
-        pocket = 0.0
-        called = self.last_plan.get("pocket", -1)
-        if called is not None and called >= 0:
-            pocket = encode_pocket(self.config, called)
-        return np.array([action[0], action[1], place[0], place[1], pocket, *action[2:]])
+            self.last_plan = {
+                "kind": self.KIND,
+                "shot": self._chosen,
+                "pocket": called,
+                "in_hand": in_hand,
+            }
+        return rule_action(self.config, action, place, called, self._ball_on())
+
+    def _ball_on(self) -> int | None:
+        """The ball a rotation game's shot calls: the lowest legal ball (10-ball's ball on).
+
+        The planners here pot the ball they hit first (direct pots, banks; no combinations),
+        and 10-ball's rules let it be the ball on only.
+        """
+        if self.config.game not in ROTATION:
+            return None
+        return min(self._targets, default=1)  # none legal: a decided rack, any call
+
+    def best_chance(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> float:
+        """The layout's best pot chance: the most forgiving shot on a legal ball, under noise.
+
+        What the option and the push-out are decided by (:mod:`agents.baselines.rule_play`):
+        the chance of the roll level's easiest shot that does not scratch
+        (:meth:`GhostBallAgent.easiest_shot`), 0 when there is none.
+        """
+        shot, _, action = self.ghost.easiest_shot(positions, on, reference)
+        if shot is None or action is None:
+            return 0.0
+        return pot_chance(shot.tolerance, self._sigma())
+
+    def _sigma(self) -> float:
+        """The aim noise (rad) pot chances are taken at: the env's, at least MIN_SIGMA."""
+        noise = self.ghost.spec.noise
+        return max(float(noise[0]) if noise else 0.0, MIN_SIGMA)
+
+    def _option_or_push(
+        self,
+        rules: ShotConstraints,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        reference: NDArray[np.bool_],
+    ) -> NDArray[np.float64] | None:
+        """The action that hands the table back or pushes out, ``None`` to shoot.
+
+        With the option: hand back when the best pot chance is below
+        :data:`~agents.baselines.rule_play.TAKE_CHANCE`. On a push-out shot (with an
+        opponent): push when the best roll's :func:`~agents.baselines.rule_play.push_value`
+        beats that chance.
+        """
+        pushing = rules.push_out and may_push(self.config, self.players)
+        if not (rules.option or pushing):
+            return None
+        chance = self.best_chance(positions, on, reference)
+        if rules.option and not take_table(chance):
+            self.last_plan = {"kind": "hand back", "chance": chance}
+            return rule_action(self.config, np.zeros(2), ball=self._ball_on(), option=True)
+        if not pushing:
+            return None
+        best: tuple[float, NDArray[np.float32]] | None = None
+        targets = self._targets
+        for push in push_outcomes(self.config, positions, on, min(targets)):
+            strike = shot_to_action(push.angle, push.speed, positions, reference, self.ghost.spec)
+            if strike is None:
+                continue  # the aim mode cannot play it
+            # The opponent's view of the leave: the ball on then (the lowest left).
+            self._targets = list(self.config.ruleset.first_balls_after(push.on_table, -1))
+            seen = np.zeros_like(push.on_table)
+            seen[0] = True
+            seen[self._targets] = True
+            value = push_value(self.best_chance(push.positions, push.on_table, seen))
+            self._targets = targets
+            if best is None or value > best[0]:
+                best = (value, strike)
+        if best is None or best[0] <= chance:
+            return None
+        self.last_plan = {"kind": "push out", "chance": chance, "value": best[0]}
+        return rule_action(self.config, best[1], ball=self._ball_on(), option=True)
 
     def _choose(
         self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
@@ -192,7 +294,8 @@ class RulesSearch(SearchAgent):
         """The shot by the rules: -1 for a foul, else the pots that keep the table.
 
         A foul: no legal first contact, a scratch, the 8 too early. Pots: any ball in
-        9-ball, the group's in 8-ball; :data:`WIN_VALUE` for the rack's winning ball.
+        9-ball, the group's in 8-ball, the ball on in 10-ball (the ball the agent calls);
+        :data:`WIN_VALUE` for the rack's winning ball (10-ball: the 10 as the ball on).
         """
         rows = self._rows
         legal = set(self.game._targets)
@@ -201,12 +304,15 @@ class RulesSearch(SearchAgent):
         if first < 0 or int(rows[first]) not in legal or pocketed[0] >= 0:
             return -1.0
         potted = [int(rows[k]) for k in range(1, len(rows)) if pocketed[k] >= 0]
-        final = 9 if self.game.config.game == "nine" else 8
-        if final in potted:
-            return WIN_VALUE if final in legal or self.game.config.game == "nine" else -1.0
-        if self.game.config.game == "nine":
+        config = self.game.config
+        money = config.ruleset.money_ball
+        if money in potted:
+            if money in legal or config.game == "nine":  # 10-ball: the 10 called, as the ball on
+                return WIN_VALUE
+            return -1.0 if config.game == "eight" else 0.0  # 10-ball: re-spotted, turn over
+        if config.game == "nine":
             return float(len(potted))
-        return float(sum(b in legal for b in potted))
+        return float(sum(b in legal for b in potted))  # the group; 10-ball: the called ball on
 
     def rank(self, result: ShotResult) -> float:
         """A random action's first key: its value (legal shots first)."""
@@ -227,12 +333,13 @@ class GameSearchAgent(GameGhostBallAgent):
     Args:
         env: A game-id environment.
         seed: Seed of the random fallback search.
+        players: As :class:`GameGhostBallAgent`.
     """
 
     KIND = "search"
 
-    def __init__(self, env: Any, seed: int | None = 0) -> None:
-        super().__init__(env)
+    def __init__(self, env: Any, seed: int | None = 0, players: int | None = None) -> None:
+        super().__init__(env, players=players)
         self.search = RulesSearch(env, self, seed)
 
     def _choose(

@@ -1,18 +1,21 @@
-"""Head-to-head 9-ball on the spin table: two agents, alternating breaks, a 95% interval.
+"""Head-to-head rule games (9-ball by default): two agents, alternating breaks, a 95% interval.
 
 Usage::
 
     python -m agents.duels --agent models/rack_value.npz --opponent ghost --racks 400
+    python -m agents.duels --env pool_env/TenBallGame-v1 --agent ghost --opponent search
 
-Rack ``k`` is :class:`pool_env.envs.multiagent.PoolDuelEnv` reset with seed ``seed + k``; the
-agent breaks the even racks (``player_0``) and the opponent the odd ones, so each side
-breaks half of the same racks. Each agent is built as :func:`agents.evaluation.evaluate.make_agent`
-builds it on the single-player id with the same settings (the planners read the table,
-the ranges and the noise from it) and plays from its seat's observation. The win rate is
-won racks over all racks with its Wilson interval; a rack that reaches the shot limit is a
-draw. Per side it also counts shots, pots, fouls and scratches, and how the breaks went;
-``--shots`` prints each side's shots by the plan its player chose (``last_plan``: a pot, a
-safety or grid shot, a break, ...) and the outcome by the rules.
+Rack ``k`` is :class:`pool_env.envs.multiagent.PoolDuelEnv` of the id's game and table reset
+with seed ``seed + k``; the agent breaks the even racks (``player_0``) and the opponent the odd
+ones, so each side breaks half of the same racks. Each agent is built as
+:func:`agents.evaluation.evaluate.make_agent` builds it on the single-player id with the same
+settings (the planners read the table, the ranges and the noise from it), told that it
+plays an opponent (``players=2``: it may push out), and plays from its seat's observation.
+The win rate is won racks over all racks with its Wilson interval; a rack that reaches the
+shot limit is a draw. Per side it also counts shots, pots, fouls and scratches, and how the
+breaks went; ``--shots`` prints each side's shots by the plan its player chose
+(``last_plan``: a pot, a safety or grid shot, a break, a push-out, a hand-back, ...) and the
+outcome by the rules.
 """
 
 from __future__ import annotations
@@ -77,7 +80,14 @@ def plan_kind(player: Policy) -> str:
 
 
 def shot_outcome(info: dict[str, Any]) -> str:
-    """A shot's outcome by the rules: ``"won"``, ``"pot"``, ``"miss"`` or the foul's name."""
+    """A shot's outcome by the rules: ``"won"``, ``"pot"``, ``"miss"`` or the foul's name.
+
+    9-ball and 10-ball also: ``"handed back"`` (the option used: no shot) and ``"push-out"``.
+    """
+    if info.get("handed_back"):
+        return "handed back"
+    if info.get("push_out") and info["foul"] is None:
+        return "push-out"
     if info["foul"] is not None:
         return str(info["foul"])
     if info.get("winner") is not None:  # a legal shot that ends the rack wins it
@@ -86,9 +96,16 @@ def shot_outcome(info: dict[str, Any]) -> str:
 
 
 def play_duels(
-    agent: str, opponent: str, racks: int, seed: int, noise: tuple[float, ...] = NOISE
+    agent: str,
+    opponent: str,
+    racks: int,
+    seed: int,
+    noise: tuple[float, ...] = NOISE,
+    env_id: str = ENV_ID,
 ) -> dict[str, Any]:
     """Play ``racks`` racks of ``agent`` against ``opponent`` (names or model paths).
+
+    The game and the table are ``env_id``'s (a rule game's id: 9-ball, 10-ball, 8-ball).
 
     Returns:
         ``wins``, ``losses``, ``draws``, ``win_rate`` (an
@@ -102,9 +119,14 @@ def play_duels(
     """
     if racks < 1:
         raise ValueError(f"racks must be >= 1, got {racks}")
-    duel = PoolDuelEnv(game="nine", model="spin", noise=tuple(noise))
-    envs = [make_env(ENV_ID, {"noise": tuple(noise)}) for _ in range(2)]
-    players = {"agent": make_agent(agent, envs[0]), "opponent": make_agent(opponent, envs[1])}
+    envs = [make_env(env_id, {"noise": tuple(noise)}) for _ in range(2)]
+    config = envs[0].unwrapped.config
+    model = "spin" if config.spin else "roll"
+    duel = PoolDuelEnv(game=config.game, model=model, noise=tuple(noise))
+    players = {
+        side: make_agent(name, env, players=2)
+        for side, name, env in (("agent", agent, envs[0]), ("opponent", opponent, envs[1]))
+    }
     counts = {side: Counter() for side in players}
     wins = losses = draws = 0
     shot_of_rack = [0]
@@ -145,6 +167,7 @@ def play_duels(
 def main(argv: list[str] | None = None) -> int:
     """Command-line entry point."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("--env", default=ENV_ID, help="the game's spin or roll id")
     parser.add_argument("--agent", required=True, help="a name of agents.evaluate or a model")
     parser.add_argument("--opponent", nargs="+", default=["ghost", "random"])
     parser.add_argument("--racks", type=int, default=400)
@@ -155,13 +178,13 @@ def main(argv: list[str] | None = None) -> int:
     if args.racks < 1:
         parser.error("--racks must be >= 1")
     noise = parse_noise(args.noise)
-    print(f"{args.agent}, 9-ball spin, noise {noise}, racks seeds {args.seed}..")
+    print(f"{args.agent}, {args.env}, noise {noise}, racks seeds {args.seed}..")
     print("| opponent | won | lost | drawn | win rate [95%] | side: shots, pots/shot, fouls/shot, "
           "scratch/shot, break scratches, breaks kept |")  # fmt: skip
     print("|---|---|---|---|---|---|")
     for opponent in args.opponent:
         start = time.perf_counter()
-        out = play_duels(args.agent, opponent, args.racks, args.seed, noise)
+        out = play_duels(args.agent, opponent, args.racks, args.seed, noise, args.env)
         sides = []
         for side in ("agent", "opponent"):
             c = out[side]

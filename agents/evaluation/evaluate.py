@@ -16,7 +16,7 @@ scan, see :mod:`agents.evaluation.constant_scan`), ``ghost`` (the geometric ghos
 heuristic, no simulation, :mod:`agents.baselines.ghost_ball`; on a spin env it plays
 position with the tip), ``ghost-centre`` (the same on a spin env with a centre-ball tip
 only: position by speed alone), ``search`` (candidate shots checked on the simulator:
-the oracle upper bound, :mod:`agents.baselines.search`) and, on the spin 9-ball id,
+the oracle upper bound, :mod:`agents.baselines.search`) and, on the spin 9-ball and 10-ball ids,
 ``rack-planner`` (:class:`agents.learned.rack_play.RackAgent`'s candidates ranked by the planner's
 own score: the trivial policy of the learned rack agent's action space). A rack model
 ``.npz`` (:mod:`agents.learned.rack_play`, with its ``<name>_config.yaml``) plays its learned value.
@@ -29,6 +29,7 @@ Execution noise: ``--noise 0.003,0.05`` (aim rad, speed m/s) or ``--noise 0.003,
 from __future__ import annotations
 
 import argparse
+import time
 from collections import Counter
 from pathlib import Path
 from typing import Any
@@ -87,23 +88,25 @@ GAME_COLUMNS: tuple[tuple[str, str, bool], ...] = (
 )
 
 
-def make_agent(name: str, env: Any, seed: int = 0) -> Policy:
-    """One of :data:`BASELINES` (``"const:a0,a1"`` too), an SB3 ``.zip`` or a 9-ball ``.npz`` model.
+def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -> Policy:
+    """One of :data:`BASELINES` (``"const:a0,a1"`` too), an SB3 ``.zip`` or a rack ``.npz`` model.
 
     A ``.npz`` is a :class:`~agents.learned.rack_play.RackAgent` value, or a
     :class:`~agents.learned.lookahead.LookaheadAgent` layout value when its config says
-    ``kind: lookahead``.
+    ``kind: lookahead``. ``players``: the rules agents' (2: they play against an opponent,
+    built on the one-player id by the duels; ``None``: the env's).
     """
     if name == "random":
         return RandomAgent(env, seed=seed)
+    rules = getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules
     if name in ("ghost", "ghost-centre"):
         spin = name == "ghost"
-        if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
-            return GameGhostBallAgent(env, spin=spin)
+        if rules:
+            return GameGhostBallAgent(env, spin=spin, players=players)
         return GhostBallAgent(env, spin=spin)
     if name == "search":
-        if getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.rules:
-            return GameSearchAgent(env, seed=seed)
+        if rules:
+            return GameSearchAgent(env, seed=seed, players=players)
         return SearchAgent(env, seed=seed)
     if name == "best-const":
         return best_constant_agent(env)
@@ -114,14 +117,14 @@ def make_agent(name: str, env: Any, seed: int = 0) -> Policy:
         action = tuple(float(v) for v in values.split(",")) if values else default
         return ConstantAgent(env, action)
     if name == "rack-planner":  # the rack agent's candidates ranked by the planner's score
-        return RackAgent(env)
+        return RackAgent(env, players=players)
     if name.endswith(".zip"):
         return load_model(name)
     if name.endswith(".npz"):  # a learned rack value (learned.rack_play, learned.lookahead)
         config = rack_model_config(name)
         if config.get("kind") == "lookahead":
-            return load_lookahead_agent(name, env, config)
-        return load_rack_agent(name, env)
+            return load_lookahead_agent(name, env, config, players=players)
+        return load_rack_agent(name, env, players=players)
     raise ValueError(
         f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1', a model .zip "
         "or a rack model .npz"
@@ -178,7 +181,7 @@ def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
     if game:
         lines.append(
             f"{episodes} racks each, same seeds; 95% confidence intervals in brackets. Racks "
-            "won: the rack ended with the agent's win (the 9 or the 8 legally potted). "
+            "won: the rack ended with the agent's win (the 9, the 10 or the 8 legally potted). "
             "Run-out: won without a foul or a missed turn."
         )
     else:
@@ -203,9 +206,10 @@ def rack_ends(agent: Policy, env: Any, episodes: int, seed: int) -> Counter[tupl
     """How each rack of a rules id ends: ``(shot, outcome)`` counts.
 
     ``shot`` is ``"break"``, ``"1st after break"``, ``"2nd after break"`` or ``"later"``;
-    the outcome is ``"won"``, the foul's name, or ``"missed"`` (a legal shot that potted
-    nothing). With a :class:`~agents.baselines.game_agents.GameGhostBallAgent`, a shot
-    it had no clear pot for is tagged ``"(fallback)"``: what limits a run-out.
+    the outcome is ``"won"``, the foul's name, ``"missed"`` (a legal shot that potted
+    nothing) or ``"missed call"`` (10-ball: a legal shot that potted, but not its call).
+    With a :class:`~agents.baselines.game_agents.GameGhostBallAgent`, a shot it had no clear
+    pot for is tagged ``"(fallback)"``: what limits a run-out.
     """
     names = ("break", "1st after break", "2nd after break")
     ends: Counter[tuple[str, str]] = Counter()
@@ -216,7 +220,8 @@ def rack_ends(agent: Policy, env: Any, episodes: int, seed: int) -> Counter[tupl
             obs, _, terminated, truncated, info = env.step(action)
             if not (terminated or truncated):
                 continue
-            outcome = "won" if info.get("winner") == 0 else (info.get("foul") or "missed")
+            missed = "missed call" if info.get("potted") else "missed"
+            outcome = "won" if info.get("winner") == 0 else (info.get("foul") or missed)
             if last_plan(agent).get("kind") == "fallback":
                 outcome += " (fallback)"
             ends[(names[shot] if shot < len(names) else "later", outcome)] += 1
@@ -297,7 +302,7 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(str(err))
     if args.aim:
         kwargs["aim"] = args.aim
-    rows = {}
+    rows, times = {}, {}
     for name in args.agent:
         agent, label = None, name
         if name == "best-const":  # scanned once, then labelled with the action it found
@@ -305,12 +310,18 @@ def main(argv: list[str] | None = None) -> int:
             agent = best_constant_agent(scan_env, episodes=args.scan_episodes)
             scan_env.close()
             label = "best-const (" + ", ".join(f"{a:+.2f}" for a in agent.action) + ")"
+        start = time.perf_counter()
         rows[label] = evaluate_agent(
             name, args.env, args.episodes, args.seed, kwargs or None, agent=agent
         )
+        times[label] = time.perf_counter() - start
     table = format_table(rows, args.episodes)
     print(f"{args.env} {kwargs or ''}, seeds {args.seed}..{args.seed + args.episodes - 1}")
     print(table)
+    # Wall time of each row's evaluation (its agent and the env, one process) per shot played.
+    for label, seconds in times.items():
+        shots = rows[label]["shots_per_episode"].value * args.episodes
+        print(f"- {label}: {seconds:.0f} s, {1000.0 * seconds / max(shots, 1.0):.1f} ms per shot")
     if args.ends:
         for name in args.agent:
             env = make_env(args.env, kwargs or None)

@@ -1,4 +1,4 @@
-"""A 9-ball player that looks one shot ahead on the true model and values what each shot leaves.
+"""A rotation player (9-ball, 10-ball) that looks one shot ahead and values what each shot leaves.
 
 :class:`LookaheadAgent` plays the spin 9-ball ids (``pool_env/NineBallGame-v1``) and the
 two-player front (:class:`pool_env.envs.multiagent.PoolDuelEnv`) from the observation alone. On
@@ -24,12 +24,18 @@ every shot it:
 In run-out mode (``objective="runout"``: the first miss or foul ends the rack, nobody else
 shoots) a miss is worth 0 and a kept table the layout's value, a chance to run out.
 The layout value is learned (:mod:`agents.training.fit_layout_value`), the rest is the model and
-the rules. The break and ball-in-hand placement are :class:`agents.learned.rack_play.RackAgent`'s.
+the rules. The break and ball-in-hand placement are :class:`agents.learned.rack_play.RackAgent`'s,
+and so are the option and the push-out (:mod:`agents.baselines.rule_play`).
+
+10-ball (``pool_env/TenBallGame-v1``): the same, every candidate calling the ball on and its
+pocket, so that the model judges the calls as the rules do. The layout value is the one fitted
+on 9-ball layouts (its features are the ball on's pot chances, the last ball, the balls left
+and the fouls: they read the same in 10-ball, up to one more ball left), and a 10-ball miss
+that pots a ball is valued as any miss (the opponent's option to hand it back is not modelled).
 """
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Any
 
@@ -37,6 +43,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.ghost_ball import MIN_SIGMA
+from agents.baselines.rule_play import PUSH_OFFSETS, face_angles, rule_action
 from agents.learned.game_model import GameModel
 from agents.learned.layout_value import LayoutValue, layout_features, observed_rack
 from agents.learned.rack_play import FEATURES, RackAgent
@@ -46,7 +53,7 @@ from pool_env.game.rack import rack_row
 from pool_env.game.rules import FOUL, KEEPS, WINNER
 
 #: Where the cue ball's centre passes the ball on, in ball diameters across its face.
-GRID_OFFSETS = (-0.85, -0.6, -0.3, 0.0, 0.3, 0.6, 0.85)
+GRID_OFFSETS = PUSH_OFFSETS
 #: Cue speeds (m/s) of the grid: from a touch that barely reaches a rail to a firm hit.
 GRID_SPEEDS = (0.9, 1.5, 2.3, 3.3)
 #: What the agent optimises: the two-player rack, or a run-out.
@@ -59,7 +66,8 @@ class LookaheadAgent(RackAgent):
     """Candidates played out on the true model, chosen by the value of what they leave.
 
     Args:
-        env: A spin 9-ball game id (``pool_env/NineBallGame-v1``), wrapped or not.
+        env: A spin rotation game id (``pool_env/NineBallGame-v1``, or ``TenBallGame-v1``
+            with a value fitted on 9-ball: see the module doc), wrapped or not.
         value: The learned layout value (the shooter's chance to win, or to run out).
         objective: ``"duel"`` or ``"runout"`` (module doc).
         pots: The planner's pots kept as candidates, best by its score first.
@@ -68,9 +76,11 @@ class LookaheadAgent(RackAgent):
         final_samples: Their extra plays.
         break_arm: The break (:data:`agents.learned.rack_play.BREAK_ARMS`; ``None``: the planner's).
         seed: Seed of the noise samples.
+        players: As :class:`~agents.baselines.game_agents.GameGhostBallAgent`.
 
     Raises:
-        ValueError: On an env that is not a spin 9-ball id or a bad setting.
+        ValueError: On an env that is not a spin rotation id (9-ball, 10-ball) or a bad
+            setting.
     """
 
     KIND = "lookahead"
@@ -86,8 +96,9 @@ class LookaheadAgent(RackAgent):
         final_samples: int = 24,
         break_arm: int | None = 15,
         seed: int = 0,
+        players: int | None = None,
     ) -> None:
-        super().__init__(env, break_arm=break_arm, seed=seed)
+        super().__init__(env, break_arm=break_arm, seed=seed, players=players)
         if objective not in OBJECTIVES:
             raise ValueError(f"objective must be one of {OBJECTIVES}, got {objective!r}")
         if min(pots, samples, finalists) < 1 or final_samples < 0:
@@ -130,21 +141,24 @@ class LookaheadAgent(RackAgent):
         pick = int(np.argmax(values))
         self.last_values = values
         self._chosen = kinds[pick]  # last_plan["shot"]: "pot", "ghost" or "grid"
-        return pockets[pick], acts[pick, [0, 1, 5, 6]].astype(np.float32)
+        strike = acts[pick, [0, 1, *self.config.tip_columns]]  # type: ignore[misc]
+        return pockets[pick], strike.astype(np.float32)
 
     def _candidates(
         self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
     ) -> tuple[list[NDArray[np.float64]], list[int], list[str]]:
-        """Full env actions (no placement: it is done), their called pockets and kinds."""
-        width = self.config.action_size
+        """Full env actions (no placement: it is done), their called pockets and kinds.
+
+        In 10-ball each calls the ball on and its pocket (a grid shot pocket 0: the model
+        then judges what it pots as the rules do, a call missed).
+        """
         actions: list[NDArray[np.float64]] = []
         pockets: list[int] = []
         kinds: list[str] = []
+        ball = self._ball_on()
 
         def add(strike: NDArray[np.floating], pocket: int, kind: str) -> None:
-            act = np.zeros(width)
-            act[[0, 1, 5, 6]] = strike
-            actions.append(act)
+            actions.append(rule_action(self.config, strike, pocket=pocket, ball=ball))
             pockets.append(pocket)
             kinds.append(kind)
 
@@ -168,12 +182,9 @@ class LookaheadAgent(RackAgent):
         if not targets:
             return []
         r = self.config.table.ball_radius
-        gap = positions[targets[0]] - positions[0]
-        dist = float(np.hypot(*gap))
-        if dist <= 2.0 * r:
+        angles = face_angles(positions, targets[0], r, GRID_OFFSETS)
+        if not angles:
             return []
-        centre = math.atan2(gap[1], gap[0])
-        angles = [centre + math.asin(min(1.0, f * 2.0 * r / dist)) for f in GRID_OFFSETS]
         grid = [(a, s) for a in angles for s in GRID_SPEEDS]
         acts, ok = encode_shots(
             self.config, positions[None], reference[None], [[a for a, _ in grid]],
@@ -226,7 +237,12 @@ class LookaheadAgent(RackAgent):
         return value.reshape(-1, samples).mean(axis=1)
 
 
-def load_lookahead_agent(path: str | Path, env: Any, config: dict[str, Any]) -> LookaheadAgent:
-    """The :class:`LookaheadAgent` of a layout value saved at ``path`` with its config."""
+def load_lookahead_agent(
+    path: str | Path, env: Any, config: dict[str, Any], players: int | None = None
+) -> LookaheadAgent:
+    """The :class:`LookaheadAgent` of a layout value saved at ``path`` with its config.
+
+    ``players``: as :class:`LookaheadAgent`.
+    """
     settings = {k: config[k] for k in PLAY_SETTINGS if k in config}
-    return LookaheadAgent(env, LayoutValue.load(path), **settings)
+    return LookaheadAgent(env, LayoutValue.load(path), players=players, **settings)

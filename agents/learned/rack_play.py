@@ -32,6 +32,7 @@ from numpy.typing import NDArray
 
 from agents.baselines.aiming import shot_to_action
 from agents.baselines.game_agents import GameGhostBallAgent
+from agents.baselines.rule_play import ROTATION
 from agents.baselines.spin_play import ARRIVAL_SPEEDS, plan_contact, pot_chance
 
 #: The clear shots (most forgiving first) whose tips and speeds become candidates.
@@ -120,10 +121,12 @@ class ValueNet:
 
 
 class RackAgent(GameGhostBallAgent):
-    """9-ball on the spin ids: the planner's candidates, chosen by a learned value.
+    """9-ball (and 10-ball) on the spin ids: the planner's candidates, chosen by a learned value.
 
     Args:
-        env: A spin game id (``pool_env/NineBallGame-v1``), wrapped or not.
+        env: A spin rotation game id (``pool_env/NineBallGame-v1``; ``TenBallGame-v1``, where
+            a value fitted on 9-ball sees its features off their training range: up to ten
+            balls left), wrapped or not.
         value: The learned value; ``None`` ranks by the planner's own score (the trivial
             policy of this action space: its first row).
         break_arm: Index into :data:`BREAK_ARMS`; ``None`` keeps the planner's break (the
@@ -132,9 +135,10 @@ class RackAgent(GameGhostBallAgent):
         seed: Seed of the exploration.
         top_k: Choose among the planner's ``top_k`` best candidates only (``None``: all):
             the value is surest where the data has it (the planner's picks).
+        players: As :class:`~agents.baselines.game_agents.GameGhostBallAgent`.
 
     Raises:
-        ValueError: On an env that is not a spin 9-ball game id, or a bad ``break_arm``.
+        ValueError: On an env that is not a spin rotation game id, or a bad ``break_arm``.
     """
 
     KIND = "learned"
@@ -147,10 +151,13 @@ class RackAgent(GameGhostBallAgent):
         explore: float = 0.0,
         seed: int | None = 0,
         top_k: int | None = None,
+        players: int | None = None,
     ) -> None:
-        super().__init__(env, spin=True)
-        if self.config.game != "nine" or self.ghost.spec.tip_limit is None:
-            raise ValueError("RackAgent plays the spin 9-ball ids (pool_env/NineBallGame-v1)")
+        super().__init__(env, spin=True, players=players)
+        if self.config.game not in ROTATION or self.ghost.spec.tip_limit is None:
+            raise ValueError(
+                "RackAgent plays the spin rotation ids (pool_env/NineBallGame-v1, TenBallGame-v1)"
+            )
         if break_arm is not None and not 0 <= break_arm < len(BREAK_ARMS):
             raise ValueError(f"break_arm must index BREAK_ARMS (0..{len(BREAK_ARMS) - 1})")
         if top_k is not None and top_k < 1:
@@ -167,12 +174,13 @@ class RackAgent(GameGhostBallAgent):
 
     def _plan(
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
-    ) -> NDArray[np.float32]:
+    ) -> NDArray[np.float64]:
         action = super()._plan(obs, positions, on)
         if self.last_plan.get("kind") == "break" and self.break_arm is not None:
             speed, vertical = BREAK_ARMS[self.break_arm]
+            side_column, vertical_column = self.config.tip_columns  # type: ignore[misc]
             action[1] = speed
-            action[5], action[6] = 0.0, vertical
+            action[side_column], action[vertical_column] = 0.0, vertical
             self.last_plan["arm"] = self.break_arm
         return action
 
@@ -250,8 +258,10 @@ class RackAgent(GameGhostBallAgent):
         return found[pick].pocket, found[pick].action
 
 
-def load_rack_agent(path: str | Path, env: Any) -> RackAgent:
+def load_rack_agent(path: str | Path, env: Any, players: int | None = None) -> RackAgent:
     """The :class:`RackAgent` saved at ``path`` (``.npz``) with its ``<stem>_config.yaml``.
+
+    ``players``: as :class:`RackAgent`.
 
     Raises:
         FileNotFoundError: If the model or its config is missing.
@@ -265,7 +275,7 @@ def load_rack_agent(path: str | Path, env: Any) -> RackAgent:
     config = yaml.safe_load(config_path.read_text()) or {}
     with np.load(path) as data:
         net = ValueNet({k: data[k] for k in data.files})
-    return RackAgent(env, net, config.get("break_arm"), top_k=config.get("top_k"))
+    return RackAgent(env, net, config.get("break_arm"), top_k=config.get("top_k"), players=players)
 
 
 def rack_model_config(path: str | Path) -> dict[str, Any]:

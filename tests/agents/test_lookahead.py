@@ -9,6 +9,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
+from agents.baselines.rule_play import rule_action
 from agents.evaluation.duels import shot_outcome
 from agents.evaluation.evaluate import make_agent
 from agents.learned.game_model import GameModel
@@ -178,10 +179,11 @@ def test_the_model_plays_as_the_env_steps_and_shares_noise_across_candidates() -
     positions, on = _open_layout()
     rules = {"break": False, "ball_in_hand": False}
     rng = np.random.default_rng(5)
-    actions = np.zeros((3, 7))
-    actions[:, [0, 1, 5, 6]] = rng.uniform(-0.5, 0.5, (3, 4))
-    # Noiseless: every sample is what the env itself does with the action.
     env = _env()
+    # (aim, speed, side, vertical) laid out in the game's action (the tip last).
+    strikes = rng.uniform(-0.5, 0.5, (3, 4))
+    actions = np.stack([rule_action(env.unwrapped.config, s) for s in strikes])
+    # Noiseless: every sample is what the env itself does with the action.
     model = GameModel(env.unwrapped.config)
     result, after, left = model.play(positions, on, rack_row({}), actions, 2)
     for c in range(3):
@@ -203,13 +205,15 @@ def test_the_model_plays_as_the_env_steps_and_shares_noise_across_candidates() -
 
 def test_the_model_refuses_ball_in_hand_and_bad_actions() -> None:
     positions, on = _open_layout()
-    model = GameModel(_env().unwrapped.config)
+    config = _env().unwrapped.config
+    model = GameModel(config)
+    width = config.action_size
     with pytest.raises(ValueError, match="place the cue ball"):
-        model.play(positions, on, rack_row({"ball_in_hand": True}), np.zeros((1, 7)), 1)
+        model.play(positions, on, rack_row({"ball_in_hand": True}), np.zeros((1, width)), 1)
     with pytest.raises(ValueError, match="actions must be"):
-        model.play(positions, on, rack_row({}), np.zeros((1, 5)), 1)
+        model.play(positions, on, rack_row({}), np.zeros((1, width - 1)), 1)
     with pytest.raises(ValueError, match="samples"):
-        model.play(positions, on, rack_row({}), np.zeros((1, 7)), 0)
+        model.play(positions, on, rack_row({}), np.zeros((1, width)), 0)
 
 
 def _flat_value() -> LayoutValue:
@@ -333,5 +337,5 @@ def test_bad_settings_are_refused(kwargs, message) -> None:
 
 
 def test_the_agent_refuses_a_roll_table_id() -> None:
-    with pytest.raises(ValueError, match="spin 9-ball"):
+    with pytest.raises(ValueError, match="spin rotation"):
         LookaheadAgent(gym.make("pool_env/NineBallGameRoll-v1"), _flat_value())

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import pool_env
+from agents.baselines.rule_play import rule_action
 from agents.evaluation.duels import play_duels
 from agents.evaluation.evaluate import main as evaluate_main
 from agents.evaluation.evaluate import make_agent
@@ -41,7 +42,7 @@ def test_each_candidate_action_decodes_to_its_planned_strike_on_the_ball_on() ->
         ball_on = int(np.flatnonzero(u.on_table[1:])[0]) + 1
         assert len(agent.last_found) > 10
         for c in agent.last_found:
-            action = np.array([c.action[0], c.action[1], 0, 0, 0, c.action[2], c.action[3]])
+            action = rule_action(u.config, c.action)  # the tip where the game's action has it
             shot = pool_env.decode_action(u.config, action, u.positions, u.on_table, u.rack)
             turn = (shot.angle - c.aim + math.pi) % (2 * math.pi) - math.pi
             assert abs(turn) < 2e-6, (c, shot)
@@ -92,7 +93,8 @@ def test_the_agent_plays_the_candidate_of_the_highest_value() -> None:
     action, _ = agent.predict(obs)
     features, pick = agent.last_candidates
     assert pick == int(np.argmin(features[:, p_now]))
-    np.testing.assert_array_equal(action[[0, 1, 5, 6]], agent.last_found[pick].action[[0, 1, 2, 3]])
+    strike = action[[0, 1, *agent.config.tip_columns]]  # aim, speed and the tip (last two)
+    np.testing.assert_array_equal(strike, agent.last_found[pick].action[[0, 1, 2, 3]])
     score = features[:, FEATURES.index("planner_score")]
     agent.top_k = 3  # the least likely pot among the planner's three best
     agent.predict(obs)
@@ -118,8 +120,10 @@ def test_a_break_arm_plays_its_speed_and_tip(arm: int) -> None:
     assert info["tip"] == pytest.approx((0.0, vertical * limit), abs=1e-5)
     with pytest.raises(ValueError, match="break_arm"):
         RackAgent(env, break_arm=len(BREAK_ARMS))
-    with pytest.raises(ValueError, match="spin 9-ball"):
+    with pytest.raises(ValueError, match="spin rotation"):
         RackAgent(gym.make("pool_env/NineBallGameRoll-v1"))
+    with pytest.raises(ValueError, match="spin rotation"):
+        RackAgent(gym.make("pool_env/EightBallGame-v1"))
 
 
 @pytest.mark.parametrize(
