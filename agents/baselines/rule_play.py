@@ -44,8 +44,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env import GameConfig, shoot
-from pool_env.game.codec import encode_pocket
-from pool_env.game.rulesets.wpa import encode_ball
+from pool_env.game.codec import encode_ball, encode_pocket
 
 #: The rotation games (the ball on is the lowest; the money ball wins).
 ROTATION = ("nine", "ten")
@@ -97,7 +96,7 @@ def rule_action(
     if pocket >= 0:
         out[4] = encode_pocket(config, pocket)
     if ruleset.calls_ball:
-        out[ruleset.ball_column] = encode_ball(ruleset.n_objects, int(ball))
+        out[ruleset.ball_column] = encode_ball(config, int(ball))
     if ruleset.has_option:
         out[ruleset.option_column] = 1.0 if option else -1.0
     if config.tip_columns is not None and part.shape[0] >= 4:

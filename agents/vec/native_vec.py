@@ -28,11 +28,10 @@ from pool_env import ENV_IDS, PoolVectorEnv
 from pool_env.envs.registration import VECTOR_ENTRY_POINT
 from pool_env.game.info import INFO_KEYS as STEP_INFO_KEYS
 from pool_env.game.info import RULE_KEYS, TIP_KEY
-from pool_env.game.rulesets.wpa import OPTION_KEYS
 
 #: ``PoolEnv``'s step info keys, in its order: every id's, the spin ids' tip, then the
-#: rules ids' own, then 9-ball's and 10-ball's (the push-out, the option used).
-INFO_KEYS = (*STEP_INFO_KEYS, TIP_KEY, *RULE_KEYS, *OPTION_KEYS)
+#: rules ids' own (9-ball's and 10-ball's push-out and option among them).
+INFO_KEYS = (*STEP_INFO_KEYS, TIP_KEY, *RULE_KEYS)
 
 #: Attributes that hold one value per table: ``get_attr`` returns each table's own.
 PER_TABLE = frozenset({"positions", "on_table", "shots", "np_random", "np_random_seed"})

@@ -42,6 +42,7 @@ from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
 from pool_env.game.kernels.encode import reference_balls as kernel_reference_balls
 from pool_env.game.kernels.tips import onto_tip_circle
 from pool_env.game.rack import rack_option, rack_row
+from pool_env.game.rulesets.wpa import encode_ball as encode_ball_of
 from pool_env.game.rulesets.wpa import encode_pocket as encode_pocket_of
 from pool_env.game.shots import Shot, ShotConstraints
 from pool_env.game.state import GameState, new_state
@@ -373,6 +374,18 @@ def encode_pocket(config: GameConfig, pocket: int) -> float:
         ValueError: If the table has no pocket ``pocket``.
     """
     return encode_pocket_of(config.table, pocket)
+
+
+def encode_ball(config: GameConfig, ball: int) -> float:
+    """The action component that calls object ball ``ball`` (10-ball): the middle of its bin.
+
+    Raises:
+        ValueError: On a game that calls no ball, or a ball that is not one of its own.
+    """
+    column = getattr(config.ruleset, "ball_column", -1)
+    if column < 0:
+        raise ValueError(f"game={config.game!r} calls no ball (10-ball does)")
+    return encode_ball_of(config.n_object_balls, ball)
 
 
 def _tip(
