@@ -98,6 +98,8 @@ FoulReason = Literal[
 
 #: Group codes of 8-ball: the table is open, solids (1-7), stripes (9-15).
 OPEN, SOLIDS, STRIPES = 0, 1, 2
+#: The codes by the names ``PoolEnv.rack`` gives them.
+GROUPS_BY_NAME = {"open": OPEN, "solids": SOLIDS, "stripes": STRIPES}
 #: Balls per game, cue ball included.
 N_BALLS: dict[str, int] = {"nine": 10, "ten": 11, "eight": 16}
 #: The games with the push-out and the option, and the ball each is won with.
