@@ -182,8 +182,11 @@ def test_layouts(table: Table) -> None:
     d = np.hypot(*(spaced[:, None] - spaced[None]).transpose(2, 0, 1))
     assert d[np.triu_indices(9, 1)].min() == pytest.approx(2 * R + 1e-3)
     np.testing.assert_allclose(break_scene(table, "eight")[0], head_spot(table))
+    ten = break_scene(table, "ten")  # the 1 on the foot spot, the 10 in the third row's middle
+    np.testing.assert_allclose(ten[1], foot_spot(table))
+    assert ten[10, 1] == pytest.approx(table.width / 2) and ten[10, 0] == pytest.approx(ten[4, 0])
     with pytest.raises(ValueError, match="rack"):
-        break_scene(table, "ten")
+        break_scene(table, "twelve")
     with pytest.raises(ValueError, match="gap"):
         rack_nine_ball(table, gap=-1.0)
     with pytest.raises(ValueError, match="fit"):

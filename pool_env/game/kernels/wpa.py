@@ -141,14 +141,15 @@ def rotation(game):
     return game in (NINE, TEN)
 
 
+#: The ball that wins the rack, by game code (solitaire has none): read by Python without
+#: compiling :func:`money_ball`.
+MONEY_BALLS = (-1, 9, 8, 10)
+
+
 @kernel
 def money_ball(game):
-    """The ball that wins the rack: 9, 10 or the 8."""
-    if game == NINE:
-        return 9
-    if game == TEN:
-        return 10
-    return 8
+    """The ball that wins the rack: 9, 8 or 10 (:data:`MONEY_BALLS`)."""
+    return MONEY_BALLS[game]
 
 
 @kernel

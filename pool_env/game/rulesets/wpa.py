@@ -32,7 +32,6 @@ from pool_env.game.kernels.observe import (
     OPTION_FEATURES,
     RULE_FEATURES,
     encode_rule_observations,
-    n_rule_features,
 )
 from pool_env.game.kernels.wpa import FOUL_NAMES, LOSS_NAMES
 from pool_env.game.rules import (
@@ -135,13 +134,12 @@ class WpaGame(Ruleset):
     ) -> None:
         self.name, self.code, self.n_objects = name, code, n_objects
         self.calls_ball, self.has_option = calls_ball, has_option
-        self.money_ball = int(wpa.money_ball(code))
+        self.money_ball = wpa.MONEY_BALLS[code]  # not the kernel: no compile at import
         self.ball_column = 5 if calls_ball else -1
         self.option_column = 5 + int(calls_ball) if has_option else -1
         self.action_width = 5 + int(calls_ball) + int(has_option)
         self.info_keys = RULE_KEYS + (OPTION_KEYS if has_option else ())
         self.features = RULE_FEATURES + (OPTION_FEATURES if has_option else ())
-        assert len(self.features) == n_rule_features(code)
 
     def observation_width(self, n_balls: int) -> int:
         """``3 N`` ball entries, ``N - 1`` legal-ball flags and the rule features."""
