@@ -21,27 +21,17 @@ from hypothesis import HealthCheck, settings
 #: Examples of the ``ci`` profile; the scale of :func:`examples`.
 CI_EXAMPLES = 100
 
-settings.register_profile(
-    "ci",
-    derandomize=True,
-    max_examples=CI_EXAMPLES,
-    deadline=None,
-    suppress_health_check=[HealthCheck.too_slow],
-)
-settings.register_profile(
-    "nightly",
-    derandomize=False,
-    max_examples=10 * CI_EXAMPLES,
-    deadline=None,
-    suppress_health_check=[HealthCheck.too_slow],
-)
-settings.register_profile(
-    "deep",
-    derandomize=False,
-    max_examples=200 * CI_EXAMPLES,
-    deadline=None,
-    suppress_health_check=[HealthCheck.too_slow],
-)
+#: Each profile's scale of :data:`CI_EXAMPLES`; only ``ci`` repeats its examples.
+SCALES = {"ci": 1, "nightly": 10, "deep": 200}
+
+for _name, _scale in SCALES.items():
+    settings.register_profile(
+        _name,
+        derandomize=_name == "ci",
+        max_examples=_scale * CI_EXAMPLES,
+        deadline=None,
+        suppress_health_check=[HealthCheck.too_slow],
+    )
 
 
 def load() -> str:
