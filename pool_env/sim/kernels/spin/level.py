@@ -76,7 +76,14 @@ from pool_env.sim.kernels.spin.state import (
     state_at,
 )
 from pool_env.sim.kernels.spin.strike import cue_strike
-from pool_env.sim.kernels.spin.zeno import RAIL_NX, RAIL_NY, pressed_roll, stick, wedged_ball
+from pool_env.sim.kernels.spin.zeno import (
+    RAIL_NX,
+    RAIL_NY,
+    pressed_pair,
+    pressed_roll,
+    stick,
+    wedged_ball,
+)
 from pool_env.sim.kernels.validation import BAD_SPIN, OK, SPIN_TOO_FAST, TOO_ENERGETIC, validate
 
 #: The anchor columns a spin segment row holds: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the
@@ -88,7 +95,11 @@ SEG_COLS = len(SEGMENT_COLUMNS)
 
 @kernel
 def _impact(st, ms, masses, i, j, now, prm, repeats, out):
-    """Resolve the impact of balls ``i`` and ``j``; return whether the pair must stick."""
+    """Resolve the impact of balls ``i`` and ``j``; return whether the pair must stick.
+
+    It sticks after ``ZENO_REPEATS`` repeats in a row, or when the impact leaves it pressed
+    together (:func:`~pool_env.sim.kernels.spin.zeno.pressed_pair`).
+    """
     xi, yi, vxi, vyi, wxi, wyi, wzi = state_at(st, ms, i, now, prm)
     xj, yj, vxj, vyj, wxj, wyj, wzj = state_at(st, ms, j, now, prm)
     dx, dy = xj - xi, yj - yi
@@ -110,7 +121,7 @@ def _impact(st, ms, masses, i, j, now, prm, repeats, out):
         )  # fmt: skip
     set_anchor(st, ms, i, now, xi, yi, out[0], out[1], out[2], out[3], out[4], prm, CLASSIFY)
     set_anchor(st, ms, j, now, xj, yj, out[5], out[6], out[7], out[8], out[9], prm, CLASSIFY)
-    return repeats >= ZENO_REPEATS
+    return repeats >= ZENO_REPEATS or pressed_pair(st, i, j, nx, ny, now)
 
 
 @kernel

@@ -8,7 +8,10 @@ along a cushion.
 Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slower than
 ``V_ZENO`` is perfectly inelastic along the normal; a pair repeating ``ZENO_REPEATS`` times
 that closely sticks: it and every ball touching it roll on together (:func:`stick`: each
-ball's slide ends at once, and all take the mean rolling velocity; energy only lost).
+ball's slide ends at once, and all take the mean rolling velocity; energy only lost). So
+does a pair that an impact leaves pressed together (:func:`pressed_pair`: its own
+accelerations bring it back before it has parted by more than ``CONTACT_TOL``), whatever
+the restitution: with ``e = 1`` its bounces neither shrink nor end.
 The lump then meets the cushions it touches as one body (the roll level's
 ``lump_off_contacts``) and, on a jaw table, with the roll level's jam rule for lumps
 wedged between contacts (``jaws.unpress_lump``). A single ball meeting a cushion slowly
@@ -37,7 +40,17 @@ from pool_env.sim.kernels.jaws import J_FACING0, J_TIP0, JAW_COLS, jaw_normal, o
 from pool_env.sim.kernels.kinds import JAW, POINT
 from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
-from pool_env.sim.kernels.spin.state import FORCE_ROLL, POTTED, set_anchor, state_at
+from pool_env.sim.kernels.spin.state import (
+    AX,
+    AY,
+    FORCE_ROLL,
+    POTTED,
+    TEND,
+    VX,
+    VY,
+    set_anchor,
+    state_at,
+)
 
 #: Rails' unit normals into the table, by rail index (0: x = R, 1: x = L - R, 2, 3: y).
 RAIL_NX = (1.0, -1.0, 0.0, 0.0)
@@ -144,6 +157,41 @@ def _jaw_gap(pockets, kind, arg, x, y):
         return abs((x - row[col]) * row[col + 4] + (y - row[col + 1]) * row[col + 5])
     col = J_TIP0 + 3 * side
     return abs(math.sqrt((x - row[col]) ** 2 + (y - row[col + 1]) ** 2) - row[col + 2])
+
+
+@kernel
+def pressed_pair(st, i, j, nx, ny, now):
+    """Whether balls ``i`` and ``j``, just re-anchored by their impact, are pressed together.
+
+    Two touching balls whose slips drive them into each other (spins pushing them together)
+    bounce off each other and are brought back by the cloth's friction: leaving at ``s``
+    with a closing acceleration ``a`` along the normal, they meet again after ``2 s / a``,
+    having parted by ``s^2 / (2 a)``. For ``e < 1`` the bounces shrink geometrically (a
+    Zeno sequence, ending in the window of the Zeno rules only once they are faster than
+    it); for ``e = 1`` they repeat at one speed for as long as the slips last, tens of
+    thousands of microsecond bounces (the event cap; ``tests/sim/test_spin_zeno.py``).
+    Parting by less than ``CONTACT_TOL``, the tolerance within which balls touch, the pair
+    never leaves contact: it is one contact under a compressive load, whose mean normal
+    force the bounces only resolve into impulses. The caller sticks it (:func:`stick`), as
+    it does a Zeno pair. The rule holds only while both accelerations do, so the pair must
+    meet again before either ball's next transition.
+
+    Args:
+        st: The anchors, ``i`` and ``j`` re-anchored at ``now`` by the impact.
+        i, j: The balls.
+        nx, ny: The unit normal from ``i``'s centre to ``j``'s.
+        now: The impact's time.
+
+    Returns:
+        Whether the pair comes back, with its present accelerations, within ``CONTACT_TOL``.
+    """
+    parting = (st[j, VX] - st[i, VX]) * nx + (st[j, VY] - st[i, VY]) * ny
+    closing = (st[i, AX] - st[j, AX]) * nx + (st[i, AY] - st[j, AY]) * ny
+    if not closing > 0.0 or parting < 0.0:
+        return False
+    back = 2.0 * parting / closing  # the time to meet again
+    held = parting * parting <= 2.0 * closing * CONTACT_TOL
+    return held and now + back <= min(st[i, TEND], st[j, TEND])
 
 
 @kernel
