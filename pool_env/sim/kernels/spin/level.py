@@ -52,6 +52,7 @@ from pool_env.sim.kernels.spin.params import (
     S_MU_BALL,
     S_MU_SLIDE,
     S_OMEGA_RATIO,
+    S_SLIDE_DECEL,
     S_TIP_RADIUS,
 )
 from pool_env.sim.kernels.spin.state import (
@@ -193,7 +194,8 @@ def _cushion(level, st, ms, kind, i, j, now, repeats, prm, pockets, out):
         vx, vy, wx, wy, wz, nx, ny, prm[P_RADIUS], prm[S_CUSHION_HEIGHT], e,
         prm[S_CUSHION_FRICTION], int(prm[S_CUSHION_MODEL]), prm[S_OMEGA_RATIO], out,
     )  # fmt: skip
-    mode = FORCE_ROLL if pressed_roll(out, nx, ny, prm[P_RADIUS]) else CLASSIFY
+    pressed = pressed_roll(out, nx, ny, prm[P_RADIUS], prm[S_SLIDE_DECEL])
+    mode = FORCE_ROLL if pressed else CLASSIFY
     set_anchor(st, ms, i, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
 
 
