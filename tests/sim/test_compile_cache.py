@@ -163,7 +163,7 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
         (path,) = folder.rglob(pattern)
         return path
 
-    only("entries.entries.locals.packed_strike-*.nbi").write_bytes(
+    only("entries.entries.locals.RollLevel.packed_strike-*.nbi").write_bytes(
         b""
     )  # a process killed mid-write
     index = only("validation.validate-*.nbi")
@@ -179,6 +179,54 @@ def test_a_corrupted_cache_heals(tmp_path: Path) -> None:
     assert "unreadable compile cache" not in err
     assert all(hits > 0 and misses == 0 for hits, misses in stats.values()), (stats, err)
     assert not list(folder.rglob("*.tmp.*"))  # written through numba's atomic rename
+
+
+LEVELS = """
+import sys
+from pool_env import Table, simulate
+from pool_env.sim.levels import level_of
+for model in sys.argv[1:]:
+    table = Table(model=model)
+    r = simulate(table, [[1.0, 0.635], [1.5, 0.635]], [[1.0, 0.0], [0.0, 0.0]])
+    entry = level_of(table).kernels.packed_shot
+    (compiled,) = entry.overloads.values()
+    hits = sum(entry.stats.cache_hits.values())
+    print(model, r.n_events, hits, id(compiled.environment), repr(r.positions.tolist()))
+"""
+
+
+def _levels_run(env: dict[str, str], *models: str) -> list[list[str]]:
+    proc = subprocess.run(
+        [sys.executable, "-c", LEVELS, *models],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+    assert proc.returncode == 0, proc.stderr
+    return [line.split(" ", 4) for line in proc.stdout.splitlines()]
+
+
+def test_both_levels_load_from_caches_written_by_separate_processes(tmp_path: Path) -> None:
+    """Each level's entry points compiled by a process of its own, then both loaded by one.
+
+    numba names a compiled function's environment (the constants its machine code reads,
+    such as the dtypes of the arrays it returns) after the function's qualified name, its
+    argument types and a per-process counter, and a process loading two cached functions
+    of one such name gives both the environment loaded first. The levels' entries are one
+    closure per level: with one qualified name for both, the roll process and the spin
+    process each named ``packed_shot``'s environment alike, and a process loading both ran
+    the spin level's code on the roll level's constants (``SystemError ... 'descr' is
+    NULL`` where their constants differed).
+    """
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    alone = [_levels_run(env, "roll")[0], _levels_run(env, "spin")[0]]
+    together = _levels_run(env, "roll", "spin")
+    assert [row[0] for row in together] == ["roll", "spin"]
+    for row, single in zip(together, alone, strict=True):
+        assert row[1] == single[1] and row[4] == single[4]  # the same events and final state
+        assert row[2] == "1"  # loaded from the cache the single-level process wrote
+    assert together[0][3] != together[1][3], "the levels' loaded code shares one environment"
 
 
 # The cache key: the folder's name hashes the sources of jit.KERNEL_MODULES, found in the

@@ -52,6 +52,7 @@ from pool_env.sim.kernels.spin.params import (
     S_MU_BALL,
     S_MU_SLIDE,
     S_OMEGA_RATIO,
+    S_SLIDE_DECEL,
     S_TIP_RADIUS,
 )
 from pool_env.sim.kernels.spin.state import (
@@ -76,7 +77,14 @@ from pool_env.sim.kernels.spin.state import (
     state_at,
 )
 from pool_env.sim.kernels.spin.strike import cue_strike
-from pool_env.sim.kernels.spin.zeno import RAIL_NX, RAIL_NY, pressed_roll, stick, wedged_ball
+from pool_env.sim.kernels.spin.zeno import (
+    RAIL_NX,
+    RAIL_NY,
+    pressed_pair,
+    pressed_roll,
+    stick,
+    wedged_ball,
+)
 from pool_env.sim.kernels.validation import BAD_SPIN, OK, SPIN_TOO_FAST, TOO_ENERGETIC, validate
 
 #: The anchor columns a spin segment row holds: ``x, y, vx, vy, wx, wy, wz, ax, ay`` at the
@@ -88,7 +96,11 @@ SEG_COLS = len(SEGMENT_COLUMNS)
 
 @kernel
 def _impact(st, ms, masses, i, j, now, prm, repeats, out):
-    """Resolve the impact of balls ``i`` and ``j``; return whether the pair must stick."""
+    """Resolve the impact of balls ``i`` and ``j``; return whether the pair must stick.
+
+    It sticks after ``ZENO_REPEATS`` repeats in a row, or when the impact leaves it pressed
+    together (:func:`~pool_env.sim.kernels.spin.zeno.pressed_pair`).
+    """
     xi, yi, vxi, vyi, wxi, wyi, wzi = state_at(st, ms, i, now, prm)
     xj, yj, vxj, vyj, wxj, wyj, wzj = state_at(st, ms, j, now, prm)
     dx, dy = xj - xi, yj - yi
@@ -110,7 +122,7 @@ def _impact(st, ms, masses, i, j, now, prm, repeats, out):
         )  # fmt: skip
     set_anchor(st, ms, i, now, xi, yi, out[0], out[1], out[2], out[3], out[4], prm, CLASSIFY)
     set_anchor(st, ms, j, now, xj, yj, out[5], out[6], out[7], out[8], out[9], prm, CLASSIFY)
-    return repeats >= ZENO_REPEATS
+    return repeats >= ZENO_REPEATS or pressed_pair(st, i, j, nx, ny, now)
 
 
 @kernel
@@ -182,7 +194,8 @@ def _cushion(level, st, ms, kind, i, j, now, repeats, prm, pockets, out):
         vx, vy, wx, wy, wz, nx, ny, prm[P_RADIUS], prm[S_CUSHION_HEIGHT], e,
         prm[S_CUSHION_FRICTION], int(prm[S_CUSHION_MODEL]), prm[S_OMEGA_RATIO], out,
     )  # fmt: skip
-    mode = FORCE_ROLL if pressed_roll(out, nx, ny, prm[P_RADIUS]) else CLASSIFY
+    pressed = pressed_roll(out, nx, ny, prm[P_RADIUS], prm[S_SLIDE_DECEL])
+    mode = FORCE_ROLL if pressed else CLASSIFY
     set_anchor(st, ms, i, now, x, y, out[0], out[1], out[2], out[3], out[4], prm, mode)
 
 

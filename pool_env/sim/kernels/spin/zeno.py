@@ -1,14 +1,17 @@
 """The spin level's rules for contacts that would repeat without end (compiled).
 
 The pressed-cushion rule (:func:`pressed_roll`): a ball left at a cushion with a normal
-speed below ``V_ZENO`` whose slip drives it back into the cushion rolls at once (its
-slide's end state, the part into the cushion dropped): the model has no constrained slide
-along a cushion.
+speed below ``V_ZENO``, or held there (:func:`held`), whose slip drives it back into the
+cushion rolls at once (its slide's end state, the part into the cushion dropped): the
+model has no constrained slide along a cushion.
 
 Zeno rules (as the roll level): an impact repeating within ``ZENO_WINDOW`` slower than
 ``V_ZENO`` is perfectly inelastic along the normal; a pair repeating ``ZENO_REPEATS`` times
 that closely sticks: it and every ball touching it roll on together (:func:`stick`: each
-ball's slide ends at once, and all take the mean rolling velocity; energy only lost).
+ball's slide ends at once, and all take the mean rolling velocity; energy only lost). So
+does a pair that an impact leaves pressed together (:func:`pressed_pair`: its own
+accelerations bring it back before it has parted by more than ``CONTACT_TOL``,
+:func:`held`), whatever the restitution: with ``e = 1`` its bounces neither shrink nor end.
 The lump then meets the cushions it touches as one body (the roll level's
 ``lump_off_contacts``) and, on a jaw table, with the roll level's jam rule for lumps
 wedged between contacts (``jaws.unpress_lump``). A single ball meeting a cushion slowly
@@ -37,7 +40,17 @@ from pool_env.sim.kernels.jaws import J_FACING0, J_TIP0, JAW_COLS, jaw_normal, o
 from pool_env.sim.kernels.kinds import JAW, POINT
 from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
-from pool_env.sim.kernels.spin.state import FORCE_ROLL, POTTED, set_anchor, state_at
+from pool_env.sim.kernels.spin.state import (
+    AX,
+    AY,
+    FORCE_ROLL,
+    POTTED,
+    TEND,
+    VX,
+    VY,
+    set_anchor,
+    state_at,
+)
 
 #: Rails' unit normals into the table, by rail index (0: x = R, 1: x = L - R, 2, 3: y).
 RAIL_NX = (1.0, -1.0, 0.0, 0.0)
@@ -147,6 +160,51 @@ def _jaw_gap(pockets, kind, arg, x, y):
 
 
 @kernel
+def held(parting, closing, last):
+    """Whether a contact that parts at ``parting`` is held: it comes back within tolerance.
+
+    A ball pressed into a contact (another ball, a cushion) by its own acceleration, the
+    cloth's friction on its slip, bounces off it and is brought back: leaving at ``s``
+    with a closing acceleration ``a`` along the normal, it meets the contact again after
+    ``2 s / a``, having parted by ``s^2 / (2 a)``. For ``e < 1`` the bounces shrink
+    geometrically (a Zeno sequence, entering the window of the Zeno rules only once they
+    come faster than it); for ``e = 1`` they repeat at one speed for as long as the slip
+    lasts, tens of thousands of microsecond bounces (the event cap;
+    ``tests/sim/test_spin_zeno.py``). Parting by no more than ``CONTACT_TOL``, the
+    tolerance within which balls touch, the contact never opens: it is one contact under
+    a compressive load, whose mean force the bounces only resolve into impulses. The rule
+    holds only while the acceleration does: the contact must close again within ``last``.
+
+    Args:
+        parting: The normal speed away from the contact just after the impact.
+        closing: The normal acceleration towards it.
+        last: How long the acceleration lasts (to the next transition).
+    """
+    if not closing > 0.0 or parting < 0.0:
+        return False
+    return parting * parting <= 2.0 * closing * CONTACT_TOL and 2.0 * parting <= closing * last
+
+
+@kernel
+def pressed_pair(st, i, j, nx, ny, now):
+    """Whether balls ``i`` and ``j``, just re-anchored by their impact, are pressed together.
+
+    Two touching balls whose slips drive them into each other (spins pushing them
+    together) are one contact under a load when :func:`held`; the caller sticks them
+    (:func:`stick`), as it does a Zeno pair, whatever the restitution.
+
+    Args:
+        st: The anchors, ``i`` and ``j`` re-anchored at ``now`` by the impact.
+        i, j: The balls.
+        nx, ny: The unit normal from ``i``'s centre to ``j``'s.
+        now: The impact's time.
+    """
+    parting = (st[j, VX] - st[i, VX]) * nx + (st[j, VY] - st[i, VY]) * ny
+    closing = (st[i, AX] - st[j, AX]) * nx + (st[i, AY] - st[j, AY]) * ny
+    return held(parting, closing, min(st[i, TEND], st[j, TEND]) - now)
+
+
+@kernel
 def stick(st, ms, masses, i, now, prm, pockets, changed):
     """Ball ``i`` and every ball touching it, transitively, roll on together.
 
@@ -206,26 +264,33 @@ def stick(st, ms, masses, i, now, prm, pockets, changed):
 
 
 @kernel
-def pressed_roll(out, nx, ny, radius):
+def pressed_roll(out, nx, ny, radius, slide_decel):
     """The pressed-cushion rule: a ball held at a cushion by its own slip rolls at once.
 
     ``out`` holds a cushion impact's result ``(vx, vy, wx, wy, wz)``, ``n`` the cushion's
-    normal into the table. If the ball leaves slower than ``V_ZENO`` along ``n`` while its
-    slip drives it back into the cushion (the cloth's friction ``-mu g u / |u|`` has a
-    component against ``n``), the model's free slide would re-hit the cushion endlessly
-    (a Zeno sequence) or, at rounding speed, pass it. The cushion's reaction would hold
+    normal into the table, ``slide_decel`` the sliding deceleration ``mu_s g``. If the ball
+    leaves slower than ``V_ZENO`` along ``n``, or so slowly that it comes back within
+    ``CONTACT_TOL`` (:func:`held`: an elastic cushion returns its speed whole, so the
+    bounces would never shrink), while its slip drives it back into the cushion (the
+    cloth's friction ``-mu g u / |u|`` has a component against ``n``), the model's free
+    slide would re-hit the cushion endlessly (a Zeno sequence, or microsecond bounces at
+    one speed) or, at rounding speed, pass it. The cushion's reaction would hold
     the ball at it while the slip dies; this rule ends that slide at once instead: the
     ball takes the rolling velocity its slide would end in, ``v - (2/7) u`` (angular
     momentum about the cloth contact conserved), loses any part of it into the cushion
     and rolls. Energy only drops. Returns whether the rule applied (``out`` rewritten).
     """
     vx, vy, wx, wy = out[0], out[1], out[2], out[3]
-    if abs(vx * nx + vy * ny) >= V_ZENO:
-        return False
     ux, uy = vx - radius * wy, vy + radius * wx
     slip = math.sqrt(ux * ux + uy * uy)
-    if not ux * nx + uy * ny > APPROACH_RTOL * slip:
+    into = ux * nx + uy * ny
+    if not into > APPROACH_RTOL * slip:
         return False  # the slip does not press the ball into the cushion
+    parting = vx * nx + vy * ny
+    # The slide lasts slip / (3.5 mu_s g); its friction presses in at mu_s g into / slip.
+    pressed = held(parting, slide_decel * into / slip, slip / (3.5 * slide_decel))
+    if not (abs(parting) < V_ZENO or pressed):
+        return False
     vx -= 2.0 / 7.0 * ux
     vy -= 2.0 / 7.0 * uy
     vn = vx * nx + vy * ny
