@@ -60,10 +60,8 @@ from agents.baselines.spin_play import (
 from agents.baselines.trace import cue_ball_scratches
 from pool_env import nearest_object_ball, onto_tip_circle
 from pool_env.game.formulas import to_unit
+from pool_env.game.shot_features import ARRIVAL_SPEED  # the shot features' arrival speed
 
-#: Speed (m/s) at which the object ball should reach the pocket: enough to forgive a small
-#: error of the deceleration model, soft enough that the cue ball stays out of the pockets.
-ARRIVAL_SPEED = 0.3
 #: On a spin env: the most forgiving shots whose tips and speeds are tried for position.
 POSITION_SHOTS = 6
 #: The least aim error (rad) the position score assumes (a noiseless env still rewards

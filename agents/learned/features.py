@@ -33,11 +33,9 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.baselines.base import EnvSpec, env_spec
-from agents.baselines.ghost_ball import ARRIVAL_SPEED
 from pool_env import nearest_object_ball
-from pool_env.game import geometry as geo
-from pool_env.game.codec import decode_observations, encode_shots, reference_balls
-from pool_env.game.geometry import PocketMouths, pocket_mouths
+from pool_env.game.codec import decode_observations
+from pool_env.game.shot_features import SHOT_FEATURES, shot_feature_batch, table_mouths
 
 
 class PocketFeatures(gym.ObservationWrapper):
@@ -107,11 +105,11 @@ class GhostShotFeatures:
     """
 
     #: Features per shot (see above).
-    PER_SHOT = 8
+    PER_SHOT = len(SHOT_FEATURES)
 
     def __init__(self, spec: EnvSpec) -> None:
         self.spec = spec
-        self.mouths = pocket_mouths(spec.table)
+        self.mouths = table_mouths(spec.table)
         self._diagonal = math.hypot(spec.table.length, spec.table.width)
 
     @property
@@ -121,7 +119,7 @@ class GhostShotFeatures:
 
     def __call__(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> NDArray:
         """The ``(size,)`` float32 features of one layout (``(N, 2)`` centres, cue first)."""
-        return ghost_feature_batch(self.spec, self.mouths, positions[None], on_table[None])[0]
+        return ghost_feature_batch(self.spec, positions[None], on_table[None])[0]
 
     def of_observations(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
         """``(B, size)`` features of ``(B, D)`` observations, each decoded to its layout.
@@ -133,7 +131,7 @@ class GhostShotFeatures:
         geometry here does not need a valid layout.
         """
         positions, on_table = decode_observations(self.spec.table, observations)
-        return ghost_feature_batch(self.spec, self.mouths, positions, on_table)
+        return ghost_feature_batch(self.spec, positions, on_table)
 
 
 class GhostBallFeatures(gym.ObservationWrapper):
@@ -160,49 +158,22 @@ class GhostBallFeatures(gym.ObservationWrapper):
 
 def ghost_feature_batch(
     spec: EnvSpec,
-    mouths: PocketMouths,
     positions: NDArray[np.float64],
     on_table: NDArray[np.bool_],
 ) -> NDArray[np.float32]:
     """:class:`GhostShotFeatures` of ``B`` layouts at once, ``(B, K * PER_SHOT)`` float32.
 
-    The game's compiled geometry and codec, each called once for the batch: the ghost-ball
-    shots on each layout's reference ball (:func:`pool_env.game.geometry.ghost_shots`,
-    offset 0), their speeds (:func:`pool_env.game.geometry.cue_speeds`) and their actions
-    (:func:`pool_env.game.codec.encode_shots`), rows ordered by tolerance. That is what lets
-    the native vector env train on them.
+    The env's ``"shots"`` observation features
+    (:func:`pool_env.game.shot_features.shot_feature_batch`), on the nearest ball: compiled
+    calls, each once for the batch, which is what lets the native vector env train on them.
 
     Args:
         spec: The environment's table and config (aim mode and ranges).
-        mouths: The table's pockets (:func:`pool_env.game.geometry.pocket_mouths`).
         positions: ``(B, N, 2)`` ball centres, cue (ball 0) first.
         on_table: ``(B, N)`` which balls are on the table.
     """
-    table = spec.table
-    pos = np.ascontiguousarray(positions, dtype=np.float64)
-    on = np.ascontiguousarray(on_table, dtype=np.bool_)
-    nb = on.shape[0]
-    ref = reference_balls(pos, on)  # the aim's reference: the features' target ball
-    shots = geo.ghost_shots(table, mouths, pos, on, ref[:, None])[:, 0]  # (B, K, NG)
-    speed = geo.cue_speeds(table, shots, ARRIVAL_SPEED)
-    actions, playable = encode_shots(spec.config, pos, on, shots[..., geo.ANGLE], speed)
-    valid = (shots[..., geo.VALID] > 0.0) & playable
-    action = actions.astype(np.float32).astype(np.float64)  # the env's action dtype
-    diagonal = math.hypot(table.length, table.width)
-    per_shot = np.stack(
-        [
-            np.ones(valid.shape),
-            shots[..., geo.CLEAR_PATH],
-            action[..., 0],
-            shots[..., geo.COS_CUT],
-            shots[..., geo.CUE_DIST] / diagonal,
-            (shots[..., geo.BALL_DIST] + 2.0 * table.ball_radius) / diagonal,
-            shots[..., geo.APPROACH],
-            action[..., 1],
-        ],
-        axis=-1,
-    )  # (B, K, PER_SHOT)
-    order = np.argsort(np.where(valid, -shots[..., geo.TOLERANCE], np.inf), axis=1, kind="stable")
-    per_shot = np.where(valid[..., None], per_shot, 0.0)
-    out = np.take_along_axis(per_shot, order[..., None], axis=1)
-    return np.clip(out, -1.0, 1.0).reshape(nb, -1).astype(np.float32)
+    config = spec.config
+    return shot_feature_batch(
+        spec.table, config.params, config.aim_range, config.speed_range, positions,
+        on_table, on_table,
+    )  # fmt: skip

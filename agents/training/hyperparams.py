@@ -59,10 +59,16 @@ def split(entry: dict[str, Any]) -> tuple[dict[str, Any], dict[str, Any]]:
 
 
 def linear_schedule(initial: float) -> Callable[[float], float]:
-    """SB3 schedule: ``initial`` at the start, falling linearly to 0 at the end."""
+    """SB3 schedule: ``initial`` at the start, falling linearly to 0 at the end, then 0.
+
+    SB3's progress runs below 0 in the last rollout when the step count is not a multiple
+    of the rollout's size (``1 - steps / total``); unclipped, that last update's learning
+    rate is negative and Adam climbs the loss (a 300k-step PPO run on OneBall-v1 fell from
+    81% to 62% pots in that one update).
+    """
 
     def schedule(progress_remaining: float) -> float:
-        return progress_remaining * initial
+        return max(progress_remaining, 0.0) * initial
 
     return schedule
 

@@ -258,8 +258,11 @@ def obs_layout(config: GameConfig) -> dict[str, slice]:
     Every game has ``"balls"`` (``(x, y, on_table)`` per ball, the cue ball first); the
     rule games add ``"legal"`` (object balls ``1..N-1``: may the viewer hit it first) and
     one entry per rule feature (``"ball_in_hand"``, ``"behind_head_string"``, ``"break"``,
-    ``"open_table"``, ``"fouls"``, ``"opponent_fouls"``, ``"to_shoot"``). The game's
-    :meth:`~pool_env.game.rulesets.base.Ruleset.obs_layout`.
+    ``"open_table"``, ``"fouls"``, ``"opponent_fouls"``, ``"to_shoot"``; 9-ball and
+    10-ball also ``"push_out"`` and ``"option"``): the game's
+    :meth:`~pool_env.game.rulesets.base.Ruleset.obs_layout`. With ``observation="shots"``
+    the last part is ``"shots"``: per pocket the
+    :data:`~pool_env.game.shot_features.SHOT_FEATURES` row.
 
     Examples:
         >>> import gymnasium as gym, pool_env
@@ -269,7 +272,11 @@ def obs_layout(config: GameConfig) -> dict[str, slice]:
         >>> layout["balls"], layout["legal"], layout["ball_in_hand"]
         (slice(0, 30, None), slice(30, 39, None), slice(39, 40, None))
     """
-    return config.ruleset.obs_layout(config.n_balls)
+    layout = config.ruleset.obs_layout(config.n_balls)
+    if config.shot_features_width:
+        end = config.observation_size
+        layout["shots"] = slice(end - config.shot_features_width, end)
+    return layout
 
 
 def shot_constraints(config: GameConfig, observation: ArrayLike) -> ShotConstraints:

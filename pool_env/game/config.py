@@ -22,6 +22,7 @@ from pool_env.game.rulesets import RULESETS, Ruleset, ruleset_for
 from pool_env.game.rulesets.wpa import DEFAULT_BREAK_SPEED_RANGE
 from pool_env.game.scenes import ScenePlan, placement, plan_scene
 from pool_env.game.sections import DEFAULT_SPEED_RANGE, PoolConfig, default_config, resolve
+from pool_env.game.shot_features import OBSERVATIONS, shot_features_width
 from pool_env.sim.table import Table
 
 __all__ = [
@@ -31,6 +32,7 @@ __all__ = [
     "DEFAULT_BREAK_SPEED_RANGE",
     "DEFAULT_SPEED_RANGE",
     "GAMES",
+    "OBSERVATIONS",
     "GameConfig",
     "PoolConfig",
     "default_config",
@@ -111,6 +113,9 @@ class GameConfig:
             (m/s) of action[1] = -1 and +1 on a break.
         rule_rewards: Rules only (solitaire: ``(0, 0)``): ``(foul, win)`` (a lost rack
             gives ``-win``). The game's :meth:`~pool_env.game.rulesets.base.Ruleset.parse_rules`.
+        observation: ``"balls"`` or ``"shots"`` (:data:`OBSERVATIONS`): whether the
+            observation ends with the ghost-ball shot features
+            (:mod:`pool_env.game.shot_features`).
         tip_limit: Spin tables only (else ``None``): the largest axis offset of the cue
             tip (fraction of ``R``), the radius of the miscue circle the two tip action
             components map onto (:func:`default_tip_limit` by default).
@@ -138,6 +143,7 @@ class GameConfig:
     break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
     rule_rewards: tuple[float, float] = (-1.0, 1.0)
     tip_limit: float | None = None
+    observation: str = "balls"
     source: PoolConfig | None = field(default=None, repr=False, compare=False)
     ruleset: Ruleset = field(init=False, repr=False, compare=False)
 
@@ -164,9 +170,16 @@ class GameConfig:
     def observation_size(self) -> int:
         """Observation entries: ``3 N``; under rules also the legal-ball flags and more.
 
-        The ruleset's :meth:`~pool_env.game.rulesets.base.Ruleset.observation_width`.
+        The ruleset's :meth:`~pool_env.game.rulesets.base.Ruleset.observation_width`, and
+        with ``observation="shots"`` the shot features
+        (:func:`~pool_env.game.shot_features.shot_features_width`).
         """
-        return self.ruleset.observation_width(self.n_balls)
+        return self.ruleset.observation_width(self.n_balls) + self.shot_features_width
+
+    @property
+    def shot_features_width(self) -> int:
+        """Entries of the ``"shots"`` observation's shot features (0 for ``"balls"``)."""
+        return shot_features_width(self.table) if self.observation == "shots" else 0
 
     @property
     def action_size(self) -> int:
@@ -247,6 +260,10 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
     spin = parsed_table.has_spin
     if task.aim not in AIM_MODES:
         raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {task.aim!r}")
+    if task.observation not in OBSERVATIONS:
+        raise ValueError(
+            f"observation must be one of {list(OBSERVATIONS)}, got {task.observation!r}"
+        )
     aims = checks.parse_range("aim_range", task.aim_range or DEFAULT_AIM_RANGE[task.aim], None)
     speeds = checks.parse_range("speed_range", task.speed_range, 0.0)
     sigmas = checks.parse_noise(source.noise.sigmas, spin)
@@ -287,6 +304,7 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
         break_speed_range=breaks,
         rule_rewards=rule_rewards,
         tip_limit=limit,
+        observation=task.observation,
         source=source,
     )
 

@@ -59,6 +59,9 @@ class TaskSection:
         n_balls: Object balls of a random scene.
         aim: ``"cut"``, ``"relative"`` or ``"absolute"``: what ``action[0]`` means.
         aim_range: What ``action[0] = -1`` and ``+1`` map to (``None``: the aim's default).
+        observation: ``"balls"`` (the balls' positions, and under rules the rack's state)
+            or ``"shots"``: and per pocket the ghost-ball shot on the aim's reference ball
+            (:mod:`pool_env.game.shot_features`).
         speed_range: Cue ball speeds (m/s) of ``action[1] = -1`` and ``+1``.
         tip_limit: Spin tables: the largest cue tip axis offset (fraction of ``R``);
             ``None``: a half-radius contact, the miscue limit.
@@ -74,6 +77,7 @@ class TaskSection:
     n_balls: int | None = None
     aim: str = "cut"
     aim_range: tuple[float, float] | None = None
+    observation: str = "balls"
     speed_range: tuple[float, float] = DEFAULT_SPEED_RANGE
     tip_limit: float | None = None
     end_on_miss: bool = False

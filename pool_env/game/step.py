@@ -27,6 +27,7 @@ from pool_env.game.config import GameConfig
 from pool_env.game.reset import option_layouts, reset
 from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH, TERMINATED, TRUNCATED
 from pool_env.game.rulesets.base import Outcome, Ruleset
+from pool_env.game.shot_features import shot_feature_batch
 from pool_env.game.state import GameState
 from pool_env.sim.batch import (
     PARALLEL_FROM,
@@ -247,6 +248,17 @@ def observe(
 
     The ruleset's :meth:`~pool_env.game.rulesets.base.Ruleset.observe`. Under the WPA
     rules, ``viewers`` (``(B,)``, default: each table's shooter) says whose perspective
-    the rule features take (the two-player front observes for each agent).
+    the rule features take (the two-player front observes for each agent). With
+    ``observation="shots"`` the ghost-ball shot features follow
+    (:mod:`pool_env.game.shot_features`), on each viewer's reference ball.
     """
-    return config.ruleset.observe(config.table, config.params, state, viewers)
+    ruleset = config.ruleset
+    obs = ruleset.observe(config.table, config.params, state, viewers)
+    if config.observation != "shots":
+        return obs
+    refer = ruleset.aim_references(config.params, state, viewers)
+    shots = shot_feature_batch(
+        config.table, config.params, config.aim_range, config.speed_range, state.positions,
+        state.on_table, refer,
+    )  # fmt: skip
+    return np.concatenate([obs, shots], axis=1)

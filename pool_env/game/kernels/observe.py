@@ -163,3 +163,20 @@ def encode_rule_observations(params, positions, on_table, rack, viewers, length,
             out[k, base + 7] = 1.0 if to_shoot and row[PUSH_OUT] != 0 else 0.0
             out[k, base + 8] = 1.0 if to_shoot and row[OPTION] != 0 else 0.0
     return out
+
+
+@kernel
+def legal_balls(params, on_table, rack, viewers):
+    """``(B, N)``: which balls each table's viewer may hit first (the aim's reference set).
+
+    Args:
+        params: The config's numbers (``params[GAME]``).
+        on_table: ``(B, N)`` which balls are on the table.
+        rack: ``(B, N_RACK)`` rack states.
+        viewers: ``(B,)`` whose perspective (player 0 or 1).
+    """
+    game = int(params[GAME])
+    out = np.zeros(on_table.shape, dtype=np.bool_)
+    for k in range(on_table.shape[0]):
+        legal_targets(game, rack[k], on_table[k], viewers[k], out[k])
+    return out

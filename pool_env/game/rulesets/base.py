@@ -288,6 +288,15 @@ class Ruleset:
         """``(B, obs)`` observations of every table: per ball ``(x, y, on_table)``."""
         return encode_observations(state.positions, state.on_table, table.length, table.width)
 
+    def aim_references(
+        self,
+        params: NDArray[np.float64],
+        state: GameState,
+        viewers: NDArray[np.int64] | None,
+    ) -> NDArray[np.bool_]:
+        """``(B, N)``: the balls relative and cut aim may refer to: here every ball on."""
+        return state.on_table
+
     def table_info(self, hits: list[int], info: dict[str, Any]) -> None:
         """Add the game's keys to a one-table ``info`` from its ``hits`` row: none here."""
 

@@ -32,6 +32,7 @@ from pool_env.game.kernels.observe import (
     OPTION_FEATURES,
     RULE_FEATURES,
     encode_rule_observations,
+    legal_balls,
 )
 from pool_env.game.kernels.wpa import FOUL_NAMES, LOSS_NAMES
 from pool_env.game.rules import (
@@ -408,6 +409,17 @@ class WpaGame(Ruleset):
             params, state.positions, state.on_table, state.rack, viewers, table.length,
             table.width,
         )  # fmt: skip
+
+    def aim_references(
+        self,
+        params: NDArray[np.float64],
+        state: GameState,
+        viewers: NDArray[np.int64] | None,
+    ) -> NDArray[np.bool_]:
+        """``(B, N)``: the balls each viewer (``None``: each shooter) may hit first."""
+        if viewers is None:
+            viewers = state.rack[:, wpa.SHOOTER]
+        return legal_balls(params, state.on_table, state.rack, viewers)
 
     def table_info(self, hits: list[int], info: dict[str, Any]) -> None:
         """:data:`RULE_KEYS` as Python scalars."""
