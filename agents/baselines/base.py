@@ -138,14 +138,18 @@ class LayoutSource:
         env: The environment the agent plays (``gym.Env`` or SB3 ``VecEnv``), or ``None``
             to always decode observations.
         table: The table (to decode and to check observations).
+        n_balls: Balls of a layout: the observation's first ``3 n_balls`` entries are
+            theirs (what follows, such as the ``"shots"`` features, is not read).
     """
 
-    def __init__(self, env: Any, table: Table) -> None:
+    def __init__(self, env: Any, table: Table, n_balls: int) -> None:
         self.env = env
         self.table = table
+        self.n_balls = n_balls
 
     def layouts(self, obs: NDArray[np.floating]) -> list[Layout]:
         """One ``(positions, on_table)`` per row of the ``(B, D)`` observations."""
+        obs = obs[:, : 3 * self.n_balls]
         exact = self._exact(obs.shape[0])
         out = []
         for k in range(obs.shape[0]):

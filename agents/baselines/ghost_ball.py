@@ -107,7 +107,7 @@ class GhostBallAgent(BaselineAgent):
         if not (math.isfinite(arrival_speed) and arrival_speed >= 0.0):
             raise ValueError(f"arrival_speed must be a finite speed >= 0, got {arrival_speed!r}")
         self.spec: EnvSpec = env_spec(env)
-        self.source = LayoutSource(env, self.spec.table)
+        self.source = LayoutSource(env, self.spec.table, self.spec.n_balls)
         self.mouths = pocket_mouths(self.spec.table)
         self.arrival_speed = float(arrival_speed)
         self.legal_targets = legal_targets

@@ -107,7 +107,7 @@ class SearchAgent(BaselineAgent):
         legal_targets: LegalTargets = any_object_ball,
     ) -> None:
         self.spec: EnvSpec = env_spec(env)
-        self.source = LayoutSource(env, self.spec.table)
+        self.source = LayoutSource(env, self.spec.table, self.spec.n_balls)
         self.mouths = pocket_mouths(self.spec.table)
         self.legal_targets = legal_targets
         self.rng = np.random.default_rng(seed)

@@ -79,6 +79,11 @@ def scan_constant_actions(
     return ConstantScan(best[0], best[1], table)
 
 
+def lattice_size(env: Any, grid: int = 9, tip_grid: int = 3) -> int:
+    """Actions :func:`scan_constant_actions` plays: ``grid^2`` (and ``tip_grid^2`` on spin)."""
+    return grid * grid * tip_grid ** (int(env.action_space.shape[0]) - 2)
+
+
 def best_constant_agent(env: Any, grid: int = 9, episodes: int = 1000) -> ConstantAgent:
     """A :class:`ConstantAgent` playing the best action of :func:`scan_constant_actions`."""
     return ConstantAgent(env, scan_constant_actions(env, grid, episodes).action)

@@ -38,6 +38,7 @@ from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
 from agents.baselines.ghost_ball import GhostBallAgent
 from agents.baselines.random_agent import ConstantAgent, RandomAgent
 from agents.baselines.search import SearchAgent
+from agents.baselines.shot_row import ShotRowAgent
 from agents.evaluation.constant_scan import best_constant_agent
 from agents.evaluation.episodes import run_episodes
 from agents.evaluation.metrics import Estimate
@@ -61,7 +62,10 @@ __all__ = [
 ]
 
 #: The baselines by name (``const`` also takes ``const:a0,a1``).
-BASELINES = ("random", "const", "best-const", "ghost", "ghost-centre", "search", "rack-planner")
+BASELINES = (
+    "random", "const", "best-const", "ghost", "ghost-centre", "search", "rack-planner",
+    "first-row",
+)  # fmt: skip
 
 #: Statistics printed, with their labels; rates are shown as percentages.
 COLUMNS: tuple[tuple[str, str, bool], ...] = (
@@ -116,6 +120,8 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
         default = (0.0, 1.0) + (0.0,) * (width - 2)  # a spin env: centre ball
         action = tuple(float(v) for v in values.split(",")) if values else default
         return ConstantAgent(env, action)
+    if name == "first-row":  # row 0 of the env's "shots" observation, played exactly
+        return ShotRowAgent(env)
     if name == "rack-planner":  # the rack agent's candidates ranked by the planner's score
         return RackAgent(env, players=players)
     if name.endswith(".zip"):

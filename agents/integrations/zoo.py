@@ -64,6 +64,14 @@ def zoo_entry(env_id: str, algo: str, path: str | Path | None = None) -> dict[st
             raise ValueError(f"wrapper {wrapper!r} has no zoo env_wrapper: {sorted(ENV_WRAPPERS)}")
         entry["env_wrapper"] = ENV_WRAPPERS[wrapper]
     entry.update(algo_kwargs)
+    policy_kwargs = entry.get("policy_kwargs")
+    if isinstance(policy_kwargs, dict) and "activation_fn" in policy_kwargs:
+        # Zoo evaluates a policy_kwargs string with torch.nn imported as nn; a class cannot
+        # be written in YAML data.
+        cls = hyperparams.ACTIVATION_CLASSES[policy_kwargs["activation_fn"]]
+        args = [f"{k}=nn.{cls}" if k == "activation_fn" else f"{k}={v!r}"
+                for k, v in policy_kwargs.items()]  # fmt: skip
+        entry["policy_kwargs"] = f"dict({', '.join(args)})"
     return entry
 
 

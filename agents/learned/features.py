@@ -130,7 +130,8 @@ class GhostShotFeatures:
         apart as :func:`agents.baselines.base.decode_observation` does for the simulator: the
         geometry here does not need a valid layout.
         """
-        positions, on_table = decode_observations(self.spec.table, observations)
+        balls = np.asarray(observations)[:, : 3 * self.spec.n_balls]
+        positions, on_table = decode_observations(self.spec.table, balls)
         return ghost_feature_batch(self.spec, positions, on_table)
 
 

@@ -31,23 +31,42 @@ RUN_KEYS = (
     "wrapper",
     "eval_freq",
     "eval_episodes",
+    "final_baselines",
 )
 
-#: Activation functions by name (``policy_kwargs.activation_fn``).
-ACTIVATIONS = ("tanh", "relu", "elu", "leaky_relu", "silu")
+#: Activation functions by name (``policy_kwargs.activation_fn``) and their ``torch.nn`` class.
+ACTIVATION_CLASSES = {
+    "tanh": "Tanh", "relu": "ReLU", "elu": "ELU", "leaky_relu": "LeakyReLU", "silu": "SiLU",
+}  # fmt: skip
+ACTIVATIONS = tuple(ACTIVATION_CLASSES)
 
 
-def load(env_id: str, algo: str, path: str | Path | None = None) -> dict[str, Any]:
+def entry_key(algo: str, recipe: str | None = None) -> str:
+    """The key of an entry under its env id: ``algo``, or ``<algo>-<recipe>`` for a named one."""
+    return algo if recipe is None else f"{algo}-{recipe}"
+
+
+def load(
+    env_id: str, algo: str, path: str | Path | None = None, recipe: str | None = None
+) -> dict[str, Any]:
     """The entry for ``env_id`` and ``algo`` (or the ``default`` entry), as plain data.
 
+    ``recipe`` names another entry of the id (``ppo-candidates``): a second way to train
+    the same algorithm there, which the ``default`` entry never supplies.
+
     Raises:
-        KeyError: If neither the id nor ``default`` has an entry for ``algo``.
+        KeyError: If neither the id nor ``default`` has an entry for ``algo`` (with a
+            recipe: if the id has no such entry).
     """
     yaml = require("yaml", "train", "the hyperparameter file")
     data = yaml.safe_load(Path(path or DEFAULT_PATH).read_text()) or {}
-    for key in (env_id, "default"):
-        if algo in (data.get(key) or {}):
-            return copy.deepcopy(data[key][algo])
+    key = entry_key(algo, recipe)
+    for env_key in (env_id,) if recipe else (env_id, "default"):
+        if key in (data.get(env_key) or {}):
+            return copy.deepcopy(data[env_key][key])
+    if recipe:
+        named = sorted(k for k in data.get(env_id) or {} if "-" in k)
+        raise KeyError(f"no recipe {key!r} for {env_id!r} in {path or DEFAULT_PATH}: {named}")
     raise KeyError(f"no hyperparameters for {algo!r} under {env_id!r} or 'default' in {path}")
 
 
@@ -97,14 +116,7 @@ def to_sb3(kwargs: dict[str, Any]) -> dict[str, Any]:
     policy_kwargs = out.get("policy_kwargs")
     if policy_kwargs and isinstance(policy_kwargs.get("activation_fn"), str):
         name = policy_kwargs["activation_fn"]
-        classes = {
-            "tanh": torch.nn.Tanh,
-            "relu": torch.nn.ReLU,
-            "elu": torch.nn.ELU,
-            "leaky_relu": torch.nn.LeakyReLU,
-            "silu": torch.nn.SiLU,
-        }
-        if name not in classes:
+        if name not in ACTIVATION_CLASSES:
             raise ValueError(f"unknown activation_fn {name!r}: use one of {ACTIVATIONS}")
-        policy_kwargs["activation_fn"] = classes[name]
+        policy_kwargs["activation_fn"] = getattr(torch.nn, ACTIVATION_CLASSES[name])
     return out

@@ -2,7 +2,7 @@
 
 Run: ``python -m agents.training.profile_learner --steps 100000``.
 
-Trains the hyperparameter file's recipe (PPO on ``OneBallRoll-v1`` by default) for a number of
+Trains the hyperparameter file's recipe (PPO on ``OneBall-v1`` by default) for a number of
 steps with three clocks: the vector env's ``step`` (the simulator, the ghost-ball features
 and the candidate decoding), the policy's forward pass while collecting rollouts, and
 PPO's ``train`` (the gradient epochs). What is left is SB3's Python around them (rollout
@@ -71,7 +71,7 @@ def profile(env_id: str, algo: str, steps: int, seed: int = 0) -> dict[str, floa
 def main(argv: list[str] | None = None) -> int:
     """Profile and print the table."""
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--env", default="pool_env/OneBallRoll-v1")
+    p.add_argument("--env", default="pool_env/OneBall-v1")
     p.add_argument("--algo", default="ppo", choices=sorted(ALGOS))
     p.add_argument("--steps", type=int, default=100_000)
     p.add_argument("--seed", type=int, default=0)

@@ -33,7 +33,7 @@ from stable_baselines3.common.vec_env import (
     VecMonitor,
 )
 
-from agents.evaluation.constant_scan import best_constant_agent
+from agents.evaluation.constant_scan import best_constant_agent, lattice_size
 from agents.evaluation.episodes import run_episodes
 from agents.evaluation.evaluate import evaluate_agent, format_table, one_line
 from agents.evaluation.metrics import Estimate
@@ -63,6 +63,11 @@ FINAL_SEED = 10_000
 #: Baselines of the final evaluation, in the order printed (see :mod:`agents.evaluation.evaluate`).
 FINAL_BASELINES = ("random", "best-const", "ghost", "search")
 
+#: Shots the best-constant scan may play: its episodes per action are this over the
+#: lattice's size, at most the final evaluation's (81 actions on a roll id: 1000 each; 729
+#: with a spin id's tip: 137 each, about 20 s, where 1000 each took minutes).
+SCAN_SHOTS = 100_000
+
 
 @dataclass
 class TrainConfig:
@@ -71,6 +76,8 @@ class TrainConfig:
     Attributes:
         env_id: Registered environment id.
         algo: Key of :data:`ALGOS`.
+        recipe: The named entry of ``hyperparams.yml`` it came from (``None``: the
+            algorithm's own entry).
         seed: Seed of the algorithm and of the training envs.
         n_timesteps: Environment steps to train for.
         n_envs: Parallel environments.
@@ -79,7 +86,9 @@ class TrainConfig:
         eval_freq: Environment steps between evaluations (0: none during training).
         eval_episodes: Episodes per periodic evaluation.
         final_episodes: Episodes of the final evaluation (model and baselines).
-        baselines: Evaluate the baselines (:data:`FINAL_BASELINES`) next to the model.
+        baselines: Evaluate the baselines next to the model.
+        final_baselines: Which (:data:`FINAL_BASELINES` by default): the spin entries leave
+            out the search, whose 1000 episodes take over two minutes there.
         progress_bar: Show SB3's progress bar.
         policy: SB3 policy name.
         env_kwargs: ``gymnasium.make`` keyword arguments.
@@ -89,6 +98,7 @@ class TrainConfig:
 
     env_id: str = "pool_env/OneBallRoll-v1"
     algo: str = "ppo"
+    recipe: str | None = None
     seed: int = 0
     n_timesteps: int = 100_000
     n_envs: int = 8
@@ -98,6 +108,7 @@ class TrainConfig:
     eval_episodes: int = 500
     final_episodes: int = 1000
     baselines: bool = True
+    final_baselines: list[str] = field(default_factory=lambda: list(FINAL_BASELINES))
     progress_bar: bool = True
     policy: str = "MlpPolicy"
     env_kwargs: dict[str, Any] = field(default_factory=dict)
@@ -189,19 +200,24 @@ class PeriodicEval(BaseCallback):
 
 
 def resolve_config(
-    env_id: str, algo: str, overrides: dict[str, Any], path: str | Path | None = None
+    env_id: str,
+    algo: str,
+    overrides: dict[str, Any],
+    path: str | Path | None = None,
+    recipe: str | None = None,
 ) -> TrainConfig:
     """Merge ``hyperparams.yml`` (for ``env_id``/``algo``) with command-line overrides.
 
     ``overrides`` holds :class:`TrainConfig` fields (``None`` values are ignored) and an
-    optional ``algo_kwargs`` dict merged over the file's.
+    optional ``algo_kwargs`` dict merged over the file's; ``recipe`` picks a named entry
+    (:func:`agents.training.hyperparams.load`).
     """
     if algo not in ALGOS:
         raise ValueError(f"unknown algorithm {algo!r}: use one of {list(ALGOS)}")
-    run, algo_kwargs = hyperparams.split(hyperparams.load(env_id, algo, path))
+    run, algo_kwargs = hyperparams.split(hyperparams.load(env_id, algo, path, recipe))
     algo_kwargs.update(overrides.pop("algo_kwargs", None) or {})
     fields = {**run, **{k: v for k, v in overrides.items() if v is not None}}
-    return TrainConfig(env_id=env_id, algo=algo, algo_kwargs=algo_kwargs, **fields)
+    return TrainConfig(env_id=env_id, algo=algo, recipe=recipe, algo_kwargs=algo_kwargs, **fields)
 
 
 def run_folder(root: str | Path, config: TrainConfig) -> Path:
@@ -306,6 +322,8 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     print(table)
     print(_best_const_note(best_const).strip())
     print("\n" + one_line(rows))
+    if history:
+        print(climb_line(history, out))
     if not quiet:
         print(
             f"\nTraining took {train_seconds:.0f} s (plus {eval_seconds:.0f} s of periodic "
@@ -328,14 +346,17 @@ def _final_evaluation(
     rows = {name: evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, wrap, agent=model)}
     best_const = None
     if config.baselines:  # baselines read the raw observation: no wrapper, same layouts
-        for name in FINAL_BASELINES:
+        for name in config.final_baselines:
             agent = None
             if name == "best-const":  # scanned on its own seeds, then evaluated on these
                 scan_env = make_env(config.env_id, kw)
-                agent = best_constant_agent(scan_env, episodes=min(n, 1000))
+                per_action = max(1, min(n, SCAN_SHOTS // lattice_size(scan_env)))
+                agent = best_constant_agent(scan_env, episodes=per_action)
                 scan_env.close()
                 best_const = [float(v) for v in agent.action]
             rows[name] = evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, None, agent=agent)
+        if (kw or {}).get("observation") == "shots" and wrap is None:  # its trivial policy
+            rows["first-row"] = evaluate_agent("first-row", config.env_id, n, FINAL_SEED, kw)
         if wrap == "ghost_candidates":  # the trivial candidate policy: row 0, no residual
             probe = make_env(config.env_id, kw, wrap)
             first_row = FirstRowAgent(probe.n_rows)
@@ -344,6 +365,22 @@ def _final_evaluation(
                 "first-row", config.env_id, n, FINAL_SEED, kw, wrap, agent=first_row
             )
     return rows, best_const
+
+
+def climb_line(history: list[tuple[int, float, dict]], out: Path) -> str:
+    """What training did, from the periodic evaluations: first and last, and the curve's file.
+
+    The first evaluation is the untrained policy's, the last the trained one's (the same
+    ``EVAL_SEED`` episodes, apart from the final table's).
+    """
+    (steps0, _, first), (steps1, seconds, last) = history[0], history[-1]
+    start, end = first["pots_per_shot"], last["pots_per_shot"]
+    return (
+        f"Learning: pots per shot {start.value:.1%} untrained (step {steps0:,}), "
+        f"{end.value:.1%} after {steps1:,} steps ({100 * (end.value - start.value):+.1f} "
+        f"points, {seconds:.0f} s after the command started); the curve: "
+        f"{out / 'learning_curve.png'} (data: curve.csv)"
+    )
 
 
 def _best_const_note(action: list[float] | None) -> str:

@@ -34,7 +34,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     rules also the cue ball's placement and a called pocket, in 10-ball a called ball, in
     9-ball and 10-ball the option (push out, or hand the table back), each in ``[-1, 1]``)
     is played by the simulator to rest. The observation is each ball's ``(x, y, on_table)`` scaled
-    to ``[-1, 1]`` (under rules, then the legal first balls and the rack state:
+    to ``[-1, 1]`` (under rules, then the legal first balls and the rack state; with
+    ``observation="shots"`` then the ghost-ball shot into each pocket:
     :func:`pool_env.obs_layout` names each part). The reward counts pots (and under rules
     fouls and the rack's result). The whole specification, with every ``info`` key, is
     ``docs/environments/specification.md``.
@@ -49,7 +50,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             * table: ``table`` (a :class:`~pool_env.Table` or a dict of its
               arguments), ``model`` (``"roll"`` or ``"spin"``);
             * task: ``scene``, ``n_balls``, ``aim`` (``"cut"``, ``"relative"``,
-              ``"absolute"``), ``aim_range``, ``speed_range`` (m/s), ``tip_limit`` (spin,
+              ``"absolute"``), ``aim_range``, ``observation`` (``"balls"``, or ``"shots"``:
+              per pocket the ghost-ball shot appended), ``speed_range`` (m/s), ``tip_limit`` (spin,
               fraction of R), ``end_on_miss``, ``max_shots``, ``reward_pot``,
               ``reward_scratch``, ``reward_no_contact``, ``reward_shaping``;
             * noise: ``noise`` (sigmas: rad, m/s and on a spin table the tip's, in R);

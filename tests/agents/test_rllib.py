@@ -51,19 +51,19 @@ def test_make_env_gives_the_native_vector_env_in_next_step_mode() -> None:
 def test_hyperparameters_translate_key_by_key() -> None:
     run, algo = hyperparams.split(hyperparams.load(ONE, "ppo"))
     kw = rllib_training_kwargs(algo, 300_000, run["n_envs"])
-    # The OneBall entry: gamma 0, lambda 0, n_steps 64 x 32 envs, batch 256, 10 epochs, lr
-    # annealed, no entropy bonus.
+    # The OneBall entry: gamma 0, lambda 0, n_steps 64 x 64 envs, batch 512, 10 epochs, lr
+    # annealed, no entropy bonus, relu 128x128.
     assert kw["gamma"] == 0.0
     assert kw["lambda_"] == 0.0
-    assert kw["train_batch_size_per_learner"] == algo["n_steps"] * 32 == 2048
-    assert kw["minibatch_size"] == algo["batch_size"] == 256
+    assert kw["train_batch_size_per_learner"] == algo["n_steps"] * 64 == 4096
+    assert kw["minibatch_size"] == algo["batch_size"] == 512
     assert kw["num_epochs"] == algo["n_epochs"] == 10
     # lin_1e-3: RLlib's piecewise-linear schedule from 1e-3 to 0 over the run's steps.
     assert algo["learning_rate"] == "lin_1e-3"
     assert kw["lr"] == [[0, pytest.approx(1e-3)], [300_000, 0.0]]
     assert kw["entropy_coeff"] == algo["ent_coef"] == 0.0
-    assert kw["model"] == {"fcnet_hiddens": [64, 64], "fcnet_activation": "tanh"}
-    assert resolve_run(ONE, {}).sb3_n_envs == 32  # the file's n_envs sets the train batch
+    assert kw["model"] == {"fcnet_hiddens": [128, 128], "fcnet_activation": "relu"}
+    assert resolve_run(ONE, {}).sb3_n_envs == 64  # the file's n_envs sets the train batch
 
 
 @pytest.fixture(scope="module")

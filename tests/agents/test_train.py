@@ -33,11 +33,11 @@ def test_train_py_writes_a_complete_run_folder(
     printed = capsys.readouterr().out
     # The first line says what the command waits for (the trainer, the compile); the
     # warm-up comes before training; the last lines set the run beside the baselines.
-    assert printed.splitlines()[0] == first_line("pool_env/OneBallRoll-v1", "ppo", "sb3")
+    assert printed.splitlines()[0] == first_line("pool_env/OneBall-v1", "ppo", "sb3")
     assert "simulator compiles" in printed.splitlines()[0]
     assert printed.index("Ready in") < printed.index("pots per shot: ppo")
-    assert all(f"| {name} " in printed for name in ("random", "best-const", "ghost", "search"))
-    (run,) = (tmp_path / "OneBallRoll-v1").iterdir()
+    assert all(f"| {name} " in printed for name in ("random", "best-const", "ghost", "first-row"))
+    (run,) = (tmp_path / "OneBall-v1").iterdir()
     for name in ("config.yaml", "command.txt", "model.zip", "evaluation.md", "evaluation.json",
                  "curve.csv", "learning_curve.png"):  # fmt: skip
         assert (run / name).is_file(), name
@@ -45,19 +45,38 @@ def test_train_py_writes_a_complete_run_folder(
     config = yaml.safe_load((run / "config.yaml").read_text())
     assert config["algo"] == "ppo" and config["n_timesteps"] == 512
     assert config["algo_kwargs"]["n_steps"] == 128
+    assert config["env_kwargs"] == {"observation": "shots"} and config["wrapper"] is None
     report = json.loads((run / "evaluation.json").read_text())
-    # The candidate-action recipe adds its trivial policy (row 0 exactly) to the baselines.
+    # The "shots" observation adds its trivial policy (row 0 played exactly) to the
+    # baselines; the spin entry leaves the (slow) search out.
     assert set(report["results"]) == {
-        "ppo (this run)", "random", "best-const", "ghost", "search", "first-row"
+        "ppo (this run)", "random", "best-const", "ghost", "first-row"
     }  # fmt: skip
-    assert report["results"]["first-row"]["pots_per_shot"][0] >= 0.8
     assert report["process_seconds"] > 0.0
     assert report["total_seconds"] <= report["process_seconds"]
-    assert report["results"]["search"]["pots_per_shot"][0] >= 0.9
+    assert report["results"]["ghost"]["pots_per_shot"][0] >= 0.8
     grid = np.linspace(-1.0, 1.0, 9).tolist()
     assert all(v in grid for v in report["best_const_action"])
-    assert len((run / "curve.csv").read_text().splitlines()) >= 3  # header, start, end
+    curve = (run / "curve.csv").read_text().splitlines()
+    assert len(curve) >= 3  # header, start, end
+    # The climb is printed from the curve's first and last points, and names the plot.
+    first, last = (float(line.split(",")[2]) for line in (curve[1], curve[-1]))
+    climb = next(line for line in printed.splitlines() if line.startswith("Learning:"))
+    assert f"{first:.1%} untrained" in climb and f"{last:.1%} after" in climb
+    assert str(run / "learning_curve.png") in climb
     _assert_saved_model_is_the_evaluated_one(run, "ppo (this run)")
+
+
+def test_the_candidates_recipe_and_its_paired_comparison(tmp_path: Path) -> None:
+    args = ["--env", "pool_env/OneBallRoll-v1", "--recipe", "candidates"]
+    assert train.main([*TINY, *args, "--runs", str(tmp_path), "--set", "n_steps=128"]) == 0
+    (run,) = (tmp_path / "OneBallRoll-v1").iterdir()
+    report = json.loads((run / "evaluation.json").read_text())
+    config = yaml.safe_load((run / "config.yaml").read_text())
+    assert (config["recipe"], config["wrapper"]) == ("candidates", "ghost_candidates")
+    assert {"ppo (this run)", "first-row", "search"} <= set(report["results"])
+    assert report["results"]["first-row"]["pots_per_shot"][0] >= 0.8
+    assert report["results"]["search"]["pots_per_shot"][0] >= 0.9
     # The paired comparison replays the report's layouts: the same two clean rates, and a
     # difference that is the discordant layouts' balance.
     paired = paired_clean(str(run / "model.zip"), 20, report["final_seed"])
@@ -80,7 +99,7 @@ def _assert_saved_model_is_the_evaluated_one(run: Path, name: str) -> None:
 def test_sac_runs(tmp_path: Path) -> None:
     argv = [*TINY, "--algo", "sac", "--runs", str(tmp_path), "--no-baselines", "--eval-freq", "0"]
     assert train.main([*argv, "--set", "learning_starts=64", "gradient_steps=1"]) == 0
-    (run,) = (tmp_path / "OneBallRoll-v1").iterdir()
+    (run,) = (tmp_path / "OneBall-v1").iterdir()
     model = load_model(run / "model.zip")
     assert type(model).__name__ == "SAC" and model.num_timesteps == 512
     assert model._n_updates > 0  # it trained after learning_starts, not only collected
@@ -107,13 +126,15 @@ def test_native_vec_missing_is_a_clear_error(monkeypatch: pytest.MonkeyPatch) ->
 def test_every_hyperparameter_entry_resolves() -> None:
     data = yaml.safe_load(hyperparams.DEFAULT_PATH.read_text())
     for env_id, entries in data.items():
-        for algo, entry in entries.items():
+        for key, entry in entries.items():
+            algo, _, recipe = key.partition("-")  # "ppo" or a named recipe "ppo-candidates"
             assert algo in ALGOS
             run, kwargs = hyperparams.split(entry)
             hyperparams.to_sb3(kwargs)
             # "default" serves the ids without an entry of their own.
             env = next(i for i in ENV_IDS if i not in data) if env_id == "default" else env_id
-            assert resolve_config(env, algo, {}).n_timesteps == run["n_timesteps"]
+            config = resolve_config(env, algo, {}, recipe=recipe or None)
+            assert config.n_timesteps == run["n_timesteps"]
 
 
 def test_schedules_and_bad_values() -> None:
@@ -129,14 +150,40 @@ def test_schedules_and_bad_values() -> None:
         train.main(["--set", "novalue"])
 
 
+def test_a_schedule_stops_at_zero_past_the_end() -> None:
+    """SB3's progress runs below 0 in a last rollout that overshoots the step count."""
+    schedule = hyperparams.to_sb3({"learning_rate": "lin_1e-3"})["learning_rate"]
+    assert schedule(-0.01) == 0.0
+    assert schedule(0.0) == 0.0
+
+
+def test_a_named_recipe_is_its_own_entry() -> None:
+    candidates = resolve_config("pool_env/OneBallRoll-v1", "ppo", {}, recipe="candidates")
+    assert (candidates.recipe, candidates.wrapper) == ("candidates", "ghost_candidates")
+    own = resolve_config("pool_env/OneBallRoll-v1", "ppo", {})
+    assert own.recipe is None and own.wrapper is None
+    assert own.env_kwargs == {"observation": "shots"}
+    with pytest.raises(KeyError, match="ppo-nothing"):
+        resolve_config("pool_env/OneBallRoll-v1", "ppo", {}, recipe="nothing")
+    with pytest.raises(SystemExit):
+        train.main(["--recipe", "nothing", "--no-baselines"])
+
+
 @pytest.mark.parametrize(
-    ("algo", "wrapper"), [("ppo", "ghost_candidates"), ("sac", "ghost_features")]
+    ("env_id", "algo", "recipe", "wrapper"),
+    [
+        ("pool_env/OneBallRoll-v1", "ppo", "candidates", "ghost_candidates"),
+        ("pool_env/OneBall-v1", "ppo", None, None),
+        ("pool_env/OneBall-v1", "sac", None, None),
+    ],
 )
-def test_default_recipe_trains_on_what_its_evaluation_sees(algo: str, wrapper: str) -> None:
+def test_default_recipe_trains_on_what_its_evaluation_sees(
+    env_id: str, algo: str, recipe: str | None, wrapper: str | None
+) -> None:
     """The OneBall recipes on the native vector env see and act as their eval env does."""
     from agents.learned.envs import make_env
 
-    config = resolve_config("pool_env/OneBallRoll-v1", algo, {"n_envs": 2})
+    config = resolve_config(env_id, algo, {"n_envs": 2}, recipe=recipe)
     assert (config.vec, config.wrapper) == ("native", wrapper)
     venv = make_vec(config)
     env = make_env(config.env_id, config.env_kwargs, config.wrapper)

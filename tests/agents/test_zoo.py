@@ -31,11 +31,21 @@ def test_every_id_has_its_entry_with_the_algorithm_arguments(algo: str) -> None:
     for env_id in ENV_IDS:
         run, algo_kwargs = hyperparams.split(hyperparams.load(env_id, algo))
         entry = data[env_id]
+        policy = algo_kwargs.pop("policy_kwargs", None)
         assert {k: entry[k] for k in algo_kwargs} == algo_kwargs
+        if isinstance(entry.get("policy_kwargs"), str):
+            # An activation is a class: zoo evaluates the string with torch.nn as nn, and it
+            # must give what train.py builds from the same entry.
+            import torch
+
+            built = eval(entry["policy_kwargs"], {"nn": torch.nn, "dict": dict})
+            assert built == hyperparams.to_sb3({"policy_kwargs": policy})["policy_kwargs"]
+        else:
+            assert entry.get("policy_kwargs") == policy
         assert entry["n_timesteps"] == run["n_timesteps"]
         assert entry["n_envs"] == run["n_envs"]
         # Keys zoo does not know would reach the SB3 constructor and fail there.
-        assert not set(entry) & {"vec", "eval_freq", "eval_episodes", "wrapper"}
+        assert not set(entry) & {"vec", "eval_freq", "eval_episodes", "wrapper", "final_baselines"}
 
 
 def test_a_wrapper_becomes_a_zoo_env_wrapper(tmp_path: Path) -> None:
