@@ -256,7 +256,7 @@ def observe(
     obs = ruleset.observe(config.table, config.params, state, viewers)
     if config.observation != "shots":
         return obs
-    refer = ruleset.aim_references(config.params, state, viewers)
+    refer = ruleset.aim_references(state, viewers)
     shots = shot_feature_batch(
         config.table, config.params, config.aim_range, config.speed_range, state.positions,
         state.on_table, refer,

@@ -166,16 +166,15 @@ def encode_rule_observations(params, positions, on_table, rack, viewers, length,
 
 
 @kernel
-def legal_balls(params, on_table, rack, viewers):
+def legal_balls(game, on_table, rack, viewers):
     """``(B, N)``: which balls each table's viewer may hit first (the aim's reference set).
 
     Args:
-        params: The config's numbers (``params[GAME]``).
+        game: The game's code (:mod:`pool_env.game.kernels.wpa`).
         on_table: ``(B, N)`` which balls are on the table.
         rack: ``(B, N_RACK)`` rack states.
         viewers: ``(B,)`` whose perspective (player 0 or 1).
     """
-    game = int(params[GAME])
     out = np.zeros(on_table.shape, dtype=np.bool_)
     for k in range(on_table.shape[0]):
         legal_targets(game, rack[k], on_table[k], viewers[k], out[k])

@@ -164,10 +164,6 @@ class Ruleset:
         """
         return tuple(int(j) for j in np.flatnonzero(on_after[1:]) + 1)
 
-    def aim_targets(self, state: GameState) -> NDArray[np.bool_]:
-        """The balls of table 0 that relative and cut aim may refer to: those on the table."""
-        return state.on_table[0].copy()
-
     def placed_cue(self, state: GameState) -> tuple[float, float] | None:
         """Where table 0's cue ball was placed in hand by :meth:`place`: never here."""
         return None
@@ -289,13 +285,14 @@ class Ruleset:
         return encode_observations(state.positions, state.on_table, table.length, table.width)
 
     def aim_references(
-        self,
-        params: NDArray[np.float64],
-        state: GameState,
-        viewers: NDArray[np.int64] | None,
+        self, state: GameState, viewers: NDArray[np.int64] | None = None
     ) -> NDArray[np.bool_]:
-        """``(B, N)``: the balls relative and cut aim may refer to: here every ball on."""
-        return state.on_table
+        """``(B, N)``: the balls relative and cut aim may refer to: here every ball on.
+
+        Under rules, the balls each viewer (``None``: each table's shooter) may hit first.
+        A fresh array.
+        """
+        return state.on_table.copy()
 
     def table_info(self, hits: list[int], info: dict[str, Any]) -> None:
         """Add the game's keys to a one-table ``info`` from its ``hits`` row: none here."""

@@ -208,13 +208,6 @@ class WpaGame(Ruleset):
         group = [j for j in left if (j < 8) == (potted < 8) and j != 8]
         return tuple(group or [j for j in left if j == 8])
 
-    def aim_targets(self, state: GameState) -> NDArray[np.bool_]:
-        """The legal first balls of table 0's shooter (what the step's aim refers to)."""
-        row, on = state.rack[0], state.on_table[0]
-        targets = on.copy()
-        wpa.legal_targets(self.code, row, on, row[wpa.SHOOTER], targets)
-        return targets
-
     def placed_cue(self, state: GameState) -> tuple[float, float] | None:
         """Where table 0's cue ball stands if it was in hand, else ``None``."""
         if not state.rack[0, wpa.IN_HAND]:
@@ -411,15 +404,12 @@ class WpaGame(Ruleset):
         )  # fmt: skip
 
     def aim_references(
-        self,
-        params: NDArray[np.float64],
-        state: GameState,
-        viewers: NDArray[np.int64] | None,
+        self, state: GameState, viewers: NDArray[np.int64] | None = None
     ) -> NDArray[np.bool_]:
         """``(B, N)``: the balls each viewer (``None``: each shooter) may hit first."""
         if viewers is None:
             viewers = state.rack[:, wpa.SHOOTER]
-        return legal_balls(params, state.on_table, state.rack, viewers)
+        return legal_balls(self.code, state.on_table, state.rack, viewers)
 
     def table_info(self, hits: list[int], info: dict[str, Any]) -> None:
         """:data:`RULE_KEYS` as Python scalars."""
