@@ -24,5 +24,5 @@ PY
 "$work/venv/bin/python" quickstart.py
 "$work/venv/bin/pool-env-train" --timesteps 256 --n-envs 2 --eval-freq 0 --final-episodes 10 \
     --no-baselines --no-progress --runs "$work/runs" --set n_steps=128 batch_size=64
-test -f "$(ls -d "$work"/runs/OneBallRoll-v1/*/)model.zip"
+test -f "$(ls -d "$work"/runs/OneBall-v1/*/)model.zip"
 echo "wheel check: quickstart and pool-env-train ran from the installed wheel"
