@@ -47,8 +47,17 @@ def cut_shot_env(render_mode: str = "rgb_array", width: int = 800) -> PoolEnv:
 
 
 def break_env(width: int = 480) -> PoolEnv:
-    """The env after a 9-ball break at 10 m/s from the head spot, full on the 1 ball."""
-    env = PoolEnv(scene="nine_ball", game="nine", render_mode="rgb_array", render_width=width)
+    """The env after a 9-ball break at 10 m/s from the head spot, full on the 1 ball.
+
+    The rack in its fixed order (``rack_order="fixed"``), as the committed picture shows it.
+    """
+    env = PoolEnv(
+        scene="nine_ball",
+        game="nine",
+        rack_order="fixed",
+        render_mode="rgb_array",
+        render_width=width,
+    )
     env.reset(seed=0)
     # Cue ball on the head spot (x = L/4, y = W/2), a full hit at the middle of 8-12 m/s.
     env.step(np.array([0.0, 0.0, 1.0, 0.0, 0.0, -1.0], dtype=np.float32))  # no push-out

@@ -3,13 +3,14 @@
 It shares no code with :mod:`pool_env.game`: layouts, action decoding, aiming, noise,
 settling, rewards, episode ends, observations and info are written out here again, one
 table, one ball at a time, in Python floats. What it does borrow is the physics
-(:func:`pool_env.shoot`, checked against its own 50-digit reference elsewhere) and the
+(:func:`pool_env.shoot`, checked against its own 50-digit reference elsewhere), the
 rare nearest-free-point search of a re-spot when the head spot is covered
-(:func:`pool_env.free_spot`, with its own tests). ``tests/game/test_game_reference.py`` plays
-random episodes of every registered id on this and on ``gym.make(id)`` and compares them
-exactly. On a spin table (the spin ids) the action's last two components are the cue tip,
-decoded here again (clip, scale by the tip limit, back onto the miscue circle) and struck
-through :func:`pool_env.shoot`'s ``tip``.
+(:func:`pool_env.free_spot`, with its own tests) and a rack's spots
+(:mod:`pool_env.sim.layouts`; the order the rules rack the balls in is written out here).
+``tests/game/test_game_reference.py`` plays random episodes of every registered id on this
+and on ``gym.make(id)`` and compares them exactly. On a spin table (the spin ids) the
+action's last two components are the cue tip, decoded here again (clip, scale by the tip
+limit, back onto the miscue circle) and struck through :func:`pool_env.shoot`'s ``tip``.
 """
 
 from __future__ import annotations
@@ -20,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from pool_env import Table, free_spot, shoot
-from pool_env.sim.layouts import break_scene
+from pool_env.sim.layouts import break_scene, rack_spots
 
 CLEARANCE = 1e-7  # the documented margin of every placed ball (pool_env.game.scenes)
 TRIES = 4096
@@ -38,13 +39,14 @@ class ReferenceEnv:
                  aim: str = "cut", noise: tuple[float, float] | None = None,
                  end_on_miss: bool = False, speed_range: tuple[float, float] = (0.45, 4.5),
                  reward_shaping: float = 0.0, reward_no_contact: float = 0.0,
-                 model: str = "roll", tip_limit: float | None = None) -> None:  # fmt: skip
+                 model: str = "roll", tip_limit: float | None = None,
+                 rack_order: str = "random") -> None:  # fmt: skip
         self.table = Table(model=model)
         self.spin = model == "spin"
         # a contact offset of half a radius, as an axis offset: 0.5 (1 + r_tip / R)
         ratio = self.table.cue_tip_radius / self.table.ball_radius
         self.tip_limit = tip_limit if tip_limit is not None else min(1.0, 0.5 * (1.0 + ratio))
-        self.scene = scene
+        self.scene, self.rack_order = scene, rack_order
         counts = {"one_ball": 1, "nine_ball": 9, "eight_ball": 15}
         self.n = counts.get(scene, 3 if n_balls is None else n_balls)
         self.aim, self.aim_range, self.speed_range = aim, AIM_RANGES[aim], speed_range
@@ -85,6 +87,29 @@ class ReferenceEnv:
             assert failures < TRIES, "the reference does not model the grid fallback"
         return balls[len(placed) :]
 
+    def _wpa_order(self) -> list[list[float]]:
+        """The rack as the rules rack it, drawn after the cue ball (``rack_order="random"``).
+
+        Spots in row order (apex first; the simulator's ``rack_spots``). 9-ball: the 1 on
+        the apex (spot 0), the 9 in the centre (spot 4); 8-ball: the 8 in the third row's
+        middle (spot 4), a solid (``integers(1, 8)``) and a stripe (``integers(9, 16)``) in
+        the back corners 10 and 14, the solid's corner by ``integers(2)``; then the other
+        balls onto the other spots in the order of ``permutation``.
+        """
+        assert self.rng is not None
+        name = "nine" if self.scene == "nine_ball" else "eight"
+        spots = rack_spots(self.table, name).tolist()
+        pins = {1: 0, 9: 4} if name == "nine" else {8: 4}
+        if name == "eight":
+            solid, stripe = int(self.rng.integers(1, 8)), int(self.rng.integers(9, 16))
+            corners = (10, 14) if int(self.rng.integers(2)) == 0 else (14, 10)
+            pins[solid], pins[stripe] = corners
+        free_spots = [k for k in range(self.n) if k not in pins.values()]
+        order = self.rng.permutation(free_spots).tolist()
+        free_balls = [b for b in range(1, self.n + 1) if b not in pins]
+        spot_of = {**pins, **dict(zip(free_balls, order, strict=True))}
+        return [spots[spot_of[b]] for b in range(1, self.n + 1)]
+
     def reset(self, seed: int | None = None) -> tuple[np.ndarray, dict]:
         if seed is not None or self.rng is None:
             self.rng = np.random.Generator(np.random.PCG64(np.random.SeedSequence(seed)))
@@ -92,6 +117,8 @@ class ReferenceEnv:
         if self.scene in ("nine_ball", "eight_ball"):
             rack = break_scene(t, "nine" if self.scene == "nine_ball" else "eight")[1:].tolist()
             cue = self._draw(1, (r, t.length / 4.0, r, t.width - r), [tuple(b) for b in rack])
+            if self.rack_order == "random":  # the rack's spots are the same: only the order
+                rack = self._wpa_order()
             self.pos = [list(cue[0])] + [list(b) for b in rack]
         else:
             self.pos = [

@@ -49,10 +49,12 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
             * table: ``table`` (a :class:`~pool_env.Table` or a dict of its
               arguments), ``model`` (``"roll"`` or ``"spin"``);
-            * task: ``scene``, ``n_balls``, ``aim`` (``"cut"``, ``"relative"``,
-              ``"absolute"``), ``aim_range``, ``observation`` (``"balls"``, or ``"shots"``:
-              per pocket the ghost-ball shot appended), ``speed_range`` (m/s), ``tip_limit`` (spin,
-              fraction of R), ``end_on_miss``, ``max_shots``, ``reward_pot``,
+            * task: ``scene``, ``n_balls``, ``rack_order`` (``"random"``: a rack scene
+              racked as the WPA rules rack it, drawn by each reset; ``"fixed"``), ``aim``
+              (``"cut"``, ``"relative"``, ``"absolute"``), ``aim_range``, ``observation``
+              (``"balls"``, or ``"shots"``: per pocket the ghost-ball shot appended),
+              ``speed_range`` (m/s), ``tip_limit`` (spin, fraction of R),
+              ``end_on_miss``, ``max_shots``, ``reward_pot``,
               ``reward_scratch``, ``reward_no_contact``, ``reward_shaping``;
             * noise: ``noise`` (sigmas: rad, m/s and on a spin table the tip's, in R);
             * rules: ``game`` (``"solitaire"``, ``"nine"``, ``"ten"``, ``"eight"``); the

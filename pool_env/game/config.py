@@ -278,7 +278,7 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
     if players not in (1, 2) or isinstance(players, bool):
         raise ValueError(f"players must be 1 or 2, got {players!r}")
     foul_ends, breaks, rule_rewards = ruleset.parse_rules(rules)
-    plan = plan_scene(task.scene, parsed_table, task.n_balls)
+    plan = plan_scene(task.scene, parsed_table, task.n_balls, task.rack_order)
     ruleset.check(plan, parsed_table, miss, foul_ends, players)
     params = kernel_params(parsed_table, task.aim, aims, speeds, sigmas, weights, miss, shots or 0)  # type: ignore[arg-type]
     if limit is not None:

@@ -19,6 +19,7 @@ from pool_env.game.kernels.layout import sample_layouts
 from pool_env.game.rack import check_rack, rack_option
 from pool_env.game.scenes import check_layout
 from pool_env.game.state import GameState
+from pool_env.sim.layouts import shuffled_spots
 
 
 def reset(
@@ -63,7 +64,12 @@ def reset(
 
 
 def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> None:
-    """The scene's layouts for ``tables``."""
+    """The scene's layouts for ``tables``.
+
+    A rack scene's cue ball is drawn first, then (``rack_order="random"``) the rack's order,
+    each table from its own generator: the cue ball's spot does not depend on the order, and
+    with ``rack_order="fixed"`` the cue ball's are the only draws.
+    """
     scene = config.scene
     if scene.fixed is not None:
         state.positions[tables] = scene.fixed
@@ -72,6 +78,9 @@ def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> 
             config.params, config.table.pockets, tables, state.positions, state.ptrs,
             scene.placed, scene.box, scene.fallback,
         )  # fmt: skip
+        if scene.rack is not None:  # the rack's balls follow the drawn ones (row n_new on)
+            for b, rng in zip(tables.tolist(), state.generators_of(tables), strict=True):
+                state.positions[b, scene.n_new :] = scene.spots[shuffled_spots(scene.rack, rng)]
     else:  # a callable scene: Python, one table at a time
         generators = state.generators_of(tables)
         for b, rng in zip(tables.tolist(), generators, strict=True):

@@ -15,6 +15,14 @@ ten_ball   10              the 10-ball triangle on the foot spot; cue in the kit
 eight_ball 15              the 15-ball triangle on the foot spot; cue in the kitchen (break)
 ========== =============== ==================================================================
 
+The rack scenes rack the balls as the WPA rules do (``rack_order="random"``, the default):
+9-ball the 1 on the apex and the 9 in the centre, 10-ball the 1 on the apex and the 10 in
+the middle of the third row, 8-ball the 8 in the centre of the third row and a solid and a
+stripe in the back corners, every other ball on a spot drawn at random by each reset from
+the table's generator (:func:`pool_env.sim.layouts.shuffled_spots`), after the cue ball's
+spot. ``rack_order="fixed"`` racks one order every time
+(:func:`pool_env.sim.layouts.rack_nine_ball` and the others) and draws nothing for it.
+
 "Uniformly at random" means centres uniform over ``[R, L - R] x [R, W - R]``, rejected when
 inside a pocket's capture circle or closer than ``2R`` to a ball already placed (both with
 :data:`CLEARANCE` to spare). The kitchen is the area behind the head string
@@ -35,7 +43,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.layout import free_points, point_free
-from pool_env.sim.layouts import break_scene, head_spot
+from pool_env.sim.layouts import break_scene, head_spot, rack_spots
 from pool_env.sim.simulate import check_positions
 from pool_env.sim.table import Table
 
@@ -43,6 +51,9 @@ from pool_env.sim.table import Table
 SCENES: dict[str, int | None] = {
     "one_ball": 1, "random": None, "nine_ball": 9, "ten_ball": 10, "eight_ball": 15,
 }  # fmt: skip
+
+#: The orders of a rack scene's balls (``rack_order``): drawn as the rules rack them, or fixed.
+RACK_ORDERS: tuple[str, ...] = ("random", "fixed")
 
 #: Object balls of the ``"random"`` scene when ``n_balls`` is not given.
 DEFAULT_RANDOM_BALLS = 3
@@ -76,6 +87,10 @@ class ScenePlan:
         placed: ``(M, 2)`` fixed balls of a random layout (a rack), after the drawn ones.
         box: ``(4,)`` where the drawn balls go.
         fallback: ``(n_new, 2)`` drawn balls' grid layout, used when random placement fails.
+        rack: The rack (``"nine"``, ``"ten"``, ``"eight"``) whose order each reset draws
+            (``rack_order="random"``), or ``None``: ``placed`` keeps its order.
+        spots: ``(M, 2)`` the rack's spots in row order (:func:`~pool_env.sim.layouts.rack_spots`)
+            when ``rack`` is set, else empty.
     """
 
     spec: SceneSpec
@@ -85,6 +100,8 @@ class ScenePlan:
     placed: NDArray[np.float64]
     box: NDArray[np.float64]
     fallback: NDArray[np.float64]
+    rack: str | None
+    spots: NDArray[np.float64]
 
 
 def placement(table: Table) -> NDArray[np.float64]:
@@ -205,7 +222,9 @@ def grid_layout(
     return np.ascontiguousarray(points[ok][:n])
 
 
-def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan:
+def plan_scene(
+    scene: SceneSpec, table: Table, n_balls: int | None, rack_order: str = "random"
+) -> ScenePlan:
     """Parse and check a scene once; every reset then follows the plan.
 
     Args:
@@ -213,23 +232,31 @@ def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan
             callable ``(table, rng) -> (N, 2)`` (called once here with a fixed seed).
         table: The table.
         n_balls: Requested object balls (``None``: the scene's own count).
+        rack_order: ``"random"`` (a rack scene's balls as the rules rack them, drawn at each
+            reset) or ``"fixed"`` (:data:`RACK_ORDERS`); other scenes have no rack to order.
 
     Returns:
         The plan.
 
     Raises:
-        ValueError: Naming the argument: an unknown scene, a count the scene cannot have,
-            a scene that does not fit on the table, or an invalid layout.
+        ValueError: Naming the argument: an unknown scene or rack order, a count the scene
+            cannot have, a scene that does not fit on the table, or an invalid layout.
     """
+    if not isinstance(rack_order, str) or rack_order not in RACK_ORDERS:
+        raise ValueError(f"rack_order must be one of {list(RACK_ORDERS)}, got {rack_order!r}")
     empty = np.zeros((0, 2))
     full_table = bounds(placement(table))
     if isinstance(scene, str):
         n = n_object_balls(scene, n_balls)
+        rack, spots = None, empty
         if scene in ("one_ball", "random"):
             n_new, placed, box = n + 1, empty, full_table
         else:
-            rack = break_scene(table, scene.removesuffix("_ball"))
-            n_new, placed, box = 1, np.ascontiguousarray(rack[1:]), np.array(kitchen_box(table))
+            name = scene.removesuffix("_ball")
+            layout = break_scene(table, name)
+            n_new, placed, box = 1, np.ascontiguousarray(layout[1:]), np.array(kitchen_box(table))
+            if rack_order == "random":
+                rack, spots = name, rack_spots(table, name)
         fallback = grid_layout(table, n_new, box, placed)
         if fallback is None:
             raise ValueError(
@@ -240,7 +267,7 @@ def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan
                 "of the pockets); "
                 "use fewer balls, smaller balls or a larger table"
             )
-        return ScenePlan(scene, n, None, n_new, placed, box, fallback)
+        return ScenePlan(scene, n, None, n_new, placed, box, fallback, rack, spots)
     kind = "callable" if callable(scene) else "layout"
     try:
         given = scene(table, np.random.default_rng(0)) if callable(scene) else scene
@@ -254,7 +281,7 @@ def plan_scene(scene: SceneSpec, table: Table, n_balls: int | None) -> ScenePlan
     if not callable(scene):
         layout.setflags(write=False)
         fixed = layout
-    return ScenePlan(scene, n, fixed, 0, empty, full_table, empty)
+    return ScenePlan(scene, n, fixed, 0, empty, full_table, empty, None, empty)
 
 
 def free_spot(

@@ -57,6 +57,9 @@ class TaskSection:
         scene: A named scene (``"random"``, ``"one_ball"``, ``"nine_ball"``, ...), a list
             of ball positions, or a function of the generator (``pool_env.SCENES``).
         n_balls: Object balls of a random scene.
+        rack_order: A rack scene's order of the balls: ``"random"`` (as the WPA rules rack
+            them: the balls they place on their spots, the others drawn by each reset) or
+            ``"fixed"`` (one order every episode; :mod:`pool_env.game.scenes`).
         aim: ``"cut"``, ``"relative"`` or ``"absolute"``: what ``action[0]`` means.
         aim_range: What ``action[0] = -1`` and ``+1`` map to (``None``: the aim's default).
         observation: ``"balls"`` (the balls' positions, and under rules the rack's state)
@@ -75,6 +78,7 @@ class TaskSection:
 
     scene: SceneSpec = "random"
     n_balls: int | None = None
+    rack_order: str = "random"
     aim: str = "cut"
     aim_range: tuple[float, float] | None = None
     observation: str = "balls"

@@ -18,7 +18,7 @@ VARIANTS = [
     {},
     {"noise": (0.02, 0.3)},
     {"aim": "relative", "reward_shaping": 0.5, "reward_no_contact": -0.25},
-    {"aim": "absolute", "noise": (0.05, 2.0), "speed_range": (0.1, 3.0)},
+    {"aim": "absolute", "noise": (0.05, 2.0), "speed_range": (0.1, 3.0), "rack_order": "fixed"},
 ]
 
 
