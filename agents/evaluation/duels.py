@@ -4,6 +4,7 @@ Usage::
 
     python -m agents.duels --agent models/rack_value.npz --opponent ghost --racks 400
     python -m agents.duels --env pool_env/TenBallGame-v1 --agent ghost --opponent search
+    python -m agents.duels --agent ghost --opponent random --noise fastfiz:5
 
 Rack ``k`` is :class:`pool_env.envs.multiagent.PoolDuelEnv` of the id's game and table reset
 with seed ``seed + k``; the agent breaks the even racks (``player_0``) and the opponent the odd
@@ -33,6 +34,7 @@ from agents.evaluation.metrics import wilson
 from agents.learned.envs import make_env
 from agents.policy import Policy, last_plan
 from pool_env.envs.multiagent import AGENTS, PoolDuelEnv
+from pool_env.game.noise import NoiseSpec
 
 ENV_ID = "pool_env/NineBallGame-v1"
 #: The evaluation's execution noise (aim rad, speed m/s, tip fraction of R).
@@ -100,7 +102,7 @@ def play_duels(
     opponent: str,
     racks: int,
     seed: int,
-    noise: tuple[float, ...] = NOISE,
+    noise: NoiseSpec = NOISE,
     env_id: str = ENV_ID,
 ) -> dict[str, Any]:
     """Play ``racks`` racks of ``agent`` against ``opponent`` (names or model paths).
@@ -119,10 +121,10 @@ def play_duels(
     """
     if racks < 1:
         raise ValueError(f"racks must be >= 1, got {racks}")
-    envs = [make_env(env_id, {"noise": tuple(noise)}) for _ in range(2)]
+    envs = [make_env(env_id, {"noise": noise}) for _ in range(2)]
     config = envs[0].unwrapped.config
     model = "spin" if config.spin else "roll"
-    duel = PoolDuelEnv(game=config.game, model=model, noise=tuple(noise))
+    duel = PoolDuelEnv(game=config.game, model=model, noise=noise)
     players = {
         side: make_agent(name, env, players=2)
         for side, name, env in (("agent", agent, envs[0]), ("opponent", opponent, envs[1]))
@@ -172,12 +174,20 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--opponent", nargs="+", default=["ghost", "random"])
     parser.add_argument("--racks", type=int, default=400)
     parser.add_argument("--seed", type=int, default=20_000)
-    parser.add_argument("--noise", default="0.003,0.05,0.05")
+    parser.add_argument(
+        "--noise",
+        default="0.003,0.05,0.05",
+        help="execution noise, as agents.evaluate takes it: sigmas (aim rad, speed m/s, tip "
+        "in R) or fastfiz / fastfiz:K (the computer billiards championships' model, K times)",
+    )
     parser.add_argument("--shots", action="store_true", help="shots by plan and outcome")
     args = parser.parse_args(argv)
     if args.racks < 1:
         parser.error("--racks must be >= 1")
-    noise = parse_noise(args.noise)
+    try:
+        noise = parse_noise(args.noise)
+    except ValueError as err:
+        parser.error(str(err))
     print(f"{args.agent}, {args.env}, noise {noise}, racks seeds {args.seed}..")
     print("| opponent | won | lost | drawn | win rate [95%] | side: shots, pots/shot, fouls/shot, "
           "scratch/shot, break scratches, breaks kept |")  # fmt: skip

@@ -22,7 +22,9 @@ own score: the trivial policy of the learned rack agent's action space). A rack 
 ``.npz`` (:mod:`agents.learned.rack_play`, with its ``<name>_config.yaml``) plays its learned value.
 
 Execution noise: ``--noise 0.003,0.05`` (aim rad, speed m/s) or ``--noise 0.003,0.05,0.05``
-(and the tip's offset, fractions of R, on a spin env): the env's ``noise`` keyword.
+(and the tip's offset, fractions of R, on a spin env), or ``--noise fastfiz`` (FastFiz's model,
+the computer billiards championships') and ``--noise fastfiz:5`` (five times it): the env's
+``noise`` keyword (:func:`parse_noise`).
 ``--ends`` also counts how the racks of a rules id end (:func:`rack_ends`).
 """
 
@@ -47,7 +49,10 @@ from agents.learned.lookahead import load_lookahead_agent
 from agents.learned.pretrained import load_model, model_config
 from agents.learned.rack_play import RackAgent, load_rack_agent, rack_model_config
 from agents.policy import Policy, last_plan
+from pool_env import Table
 from pool_env.extras import require
+from pool_env.game.checks import parse_noise as parse_env_noise
+from pool_env.game.noise import NOISE_MODELS, NoiseSpec
 
 __all__ = [
     "BASELINES",
@@ -235,19 +240,34 @@ def rack_ends(agent: Policy, env: Any, episodes: int, seed: int) -> Counter[tupl
     return ends
 
 
-def parse_noise(text: str) -> tuple[float, ...]:
-    """``"0.003,0.05[,0.05]"`` as the env's noise tuple (aim, speed[, tip]).
+def parse_noise(text: str) -> NoiseSpec:
+    """``--noise``'s text as the env's ``noise`` value, checked by the env's own check.
+
+    ``"0.003,0.05[,0.05]"``: the sigmas (aim rad, speed m/s[, tip in fractions of R]);
+    ``"fastfiz"``: FastFiz's model, the computer billiards championships' (x1);
+    ``"fastfiz:K"``: that model times ``K >= 0`` (``fastfiz:5``: the championships' "high"
+    noise; :mod:`pool_env.game.noise`).
 
     Raises:
-        ValueError: Unless two or three finite sigmas >= 0.
+        ValueError: Naming ``--noise`` and what is wrong with the text.
     """
+    name, colon, multiple = text.partition(":")
+    value: NoiseSpec
     try:
-        values = tuple(float(v) for v in text.split(","))
+        if name in NOISE_MODELS:
+            value = (name, float(multiple)) if colon else name
+        else:
+            value = tuple(float(v) for v in text.split(","))
     except ValueError:
-        raise ValueError(f"--noise takes 2 or 3 comma-separated numbers, got {text!r}") from None
-    if len(values) not in (2, 3) or not all(v >= 0.0 and v < float("inf") for v in values):
-        raise ValueError(f"--noise takes 2 or 3 finite sigmas >= 0, got {text!r}")
-    return values
+        raise ValueError(
+            f"--noise takes 2 or 3 comma-separated sigmas, or {' or '.join(NOISE_MODELS)}"
+            f"[:K] with a number K, got {text!r}"
+        ) from None
+    try:  # a spin table takes every spelling: a roll env refuses a tip sigma itself
+        parse_env_noise(value, Table(model="spin"))
+    except ValueError as err:
+        raise ValueError(f"--noise {text!r}: {err}") from None
+    return value
 
 
 def _yaml_mapping(text: str) -> Any:
@@ -281,7 +301,8 @@ def main(argv: list[str] | None = None) -> int:
         "--noise",
         default=None,
         help="execution noise sigmas: aim (rad), speed (m/s)[, tip (fraction of R)], e.g. "
-        "0.003,0.05,0.05 (the env's noise keyword)",
+        "0.003,0.05,0.05, or fastfiz (the computer billiards championships' model) or "
+        "fastfiz:K (K times it, e.g. fastfiz:5) (the env's noise keyword)",
     )
     parser.add_argument(
         "--scan-episodes",

@@ -56,7 +56,9 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
               ``speed_range`` (m/s), ``tip_limit`` (spin, fraction of R),
               ``end_on_miss``, ``max_shots``, ``reward_pot``,
               ``reward_scratch``, ``reward_no_contact``, ``reward_shaping``;
-            * noise: ``noise`` (sigmas: rad, m/s and on a spin table the tip's, in R);
+            * noise: ``noise`` (sigmas: rad, m/s and on a spin table the tip's, in R; or
+              ``"fastfiz"`` / ``("fastfiz", k)``: the computer billiards championships'
+              model times ``k``, :mod:`pool_env.game.noise`);
             * rules: ``game`` (``"solitaire"``, ``"nine"``, ``"ten"``, ``"eight"``); the
               WPA games add ``end_on_foul``, ``break_speed_range``, ``reward_foul``,
               ``reward_win``.

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.noise import NOISE_MODELS
 from pool_env.sim.table import MODELS, Table
 
 
@@ -84,37 +85,67 @@ def parse_range(name: str, value: object, minimum: float | None) -> tuple[float,
     return low, high
 
 
-def parse_noise(value: object, spin: bool = False) -> tuple[float, ...] | None:
+def parse_noise(value: object, table: Table) -> tuple[float, ...] | None:
     """Noise sigmas ``(angle, speed)`` or, on a spin table, ``(angle, speed, tip)``.
 
-    All must be >= 0; ``None`` when off (or all 0). A roll table has no cue tip: a
-    non-zero tip sigma there is refused (a zero one is accepted, so one noise setting
-    serves every id).
+    ``value`` is the sigmas themselves (angle in radians, speed in m/s, tip in fractions of
+    R; all >= 0), or a noise model by name (:mod:`pool_env.game.noise`): ``"fastfiz"`` or
+    ``("fastfiz", k)``, its sigmas times ``k >= 0``. ``None`` when off (or all 0). A roll
+    table has no cue tip: there a non-zero tip sigma given as a number is refused (a zero one
+    is accepted, so one noise setting serves every id), and a named model has none.
     """
     if value is None:
         return None
+    if isinstance(value, str) or (
+        isinstance(value, tuple | list) and len(value) > 0 and isinstance(value[0], str)
+    ):
+        name, multiple = _noise_model(value)
+        sigmas = NOISE_MODELS[name](table, multiple)
+        return None if not any(sigmas) else sigmas
     try:
         sigmas = tuple(parse_float("noise", v) for v in value)  # type: ignore[union-attr]
     except (TypeError, ValueError) as exc:
         raise ValueError(
-            f"noise must be (sigma_angle, sigma_speed) or (sigma_angle, sigma_speed, "
-            f"sigma_tip), got {value!r}"
+            f"noise must be (sigma_angle, sigma_speed), (sigma_angle, sigma_speed, "
+            f"sigma_tip), {_NAMED}, got {value!r}"
         ) from exc
     if len(sigmas) not in (2, 3):
         raise ValueError(
-            f"noise must be (sigma_angle, sigma_speed) or (sigma_angle, sigma_speed, "
-            f"sigma_tip), got {value!r}"
+            f"noise must be (sigma_angle, sigma_speed), (sigma_angle, sigma_speed, "
+            f"sigma_tip), {_NAMED}, got {value!r}"
         )
     if min(sigmas) < 0.0:
         raise ValueError(f"noise sigmas must be >= 0, got {value!r}")
-    if len(sigmas) == 3 and sigmas[2] != 0.0 and not spin:
+    if len(sigmas) == 3 and sigmas[2] != 0.0 and not table.has_spin:
         raise ValueError(
             f"noise {value!r} has a tip sigma, but a roll table has no cue tip: use "
             "model='spin' (the spin ids) or give (sigma_angle, sigma_speed)"
         )
-    if not spin:
+    if not table.has_spin:
         sigmas = sigmas[:2]
     return None if not any(sigmas) else sigmas
+
+
+#: The named spellings of ``noise``, for the messages.
+_NAMED = " or ".join(f"{name!r} or ({name!r}, k)" for name in NOISE_MODELS)
+
+
+def _noise_model(value: str | tuple[Any, ...] | list[Any]) -> tuple[str, float]:
+    """The model's name and multiple of ``"name"`` or ``("name", k)``, checked."""
+    name, rest = (value, ()) if isinstance(value, str) else (value[0], tuple(value[1:]))
+    if name not in NOISE_MODELS:
+        raise ValueError(
+            f"unknown noise model {name!r}: use {_NAMED}, or the sigmas (sigma_angle, "
+            "sigma_speed[, sigma_tip])"
+        )
+    if isinstance(value, str):
+        return name, 1.0
+    if len(rest) != 1:
+        raise ValueError(f"noise ({name!r}, k) takes one multiple k >= 0, got {value!r}")
+    multiple = parse_float(f"noise ({name!r}, k): k", rest[0])
+    if multiple < 0.0:
+        raise ValueError(f"noise ({name!r}, k): k must be >= 0, got {value!r}")
+    return name, multiple
 
 
 def parse_bool(name: str, value: object) -> bool:

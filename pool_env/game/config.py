@@ -99,7 +99,7 @@ class GameConfig:
         aim_range: What action[0] = -1 and +1 map to.
         speed_range: Speeds (m/s) of action[1] = -1 and +1.
         noise: Execution noise sigmas ``(angle, speed)`` (spin: optionally ``(angle,
-            speed, tip)``) or ``None``.
+            speed, tip)``) or ``None``; a named model (``"fastfiz"``) parsed into its sigmas.
         end_on_miss: A shot that pots nothing (or scratches) ends the episode.
         max_shots: The raw environment's own shot limit, or ``None``.
         shot_limit: Shots after which an episode is truncated (0: never): ``max_shots``,
@@ -257,7 +257,6 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
     source = resolve(config, overrides)
     task, rules = source.task, source.rules
     parsed_table = checks.parse_table(source.table.table, source.table.model)
-    spin = parsed_table.has_spin
     if task.aim not in AIM_MODES:
         raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {task.aim!r}")
     if task.observation not in OBSERVATIONS:
@@ -266,7 +265,7 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
         )
     aims = checks.parse_range("aim_range", task.aim_range or DEFAULT_AIM_RANGE[task.aim], None)
     speeds = checks.parse_range("speed_range", task.speed_range, 0.0)
-    sigmas = checks.parse_noise(source.noise.sigmas, spin)
+    sigmas = checks.parse_noise(source.noise.sigmas, parsed_table)
     limit = parse_tip_limit(parsed_table, task.tip_limit)
     miss = checks.parse_bool("end_on_miss", task.end_on_miss)
     shots = checks.parse_count("max_shots", task.max_shots)

@@ -7,7 +7,7 @@ overrides: ``PoolEnv(scene="one_ball", noise=(0.003, 0.05))`` is
 A keyword names a field of one section (:data:`KEYS` says which); a section's name takes
 the section itself, or a mapping of its fields (``task={"scene": "one_ball"}``). Two
 names are both a section and its main field: ``table`` (a :class:`~pool_env.Table` or
-a dict of its arguments) and ``noise`` (the sigmas).
+a dict of its arguments) and ``noise`` (the sigmas, or a noise model by name).
 
 The sections hold the arguments as given; :func:`pool_env.game.config.make_config`
 checks and parses them into the :class:`~pool_env.game.config.GameConfig` the decision
@@ -24,6 +24,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
+from pool_env.game.noise import NoiseSpec
 from pool_env.game.rulesets import RULESETS, ruleset_for
 from pool_env.game.rulesets.base import RulesSection
 from pool_env.game.scenes import SceneSpec
@@ -98,10 +99,13 @@ class NoiseSection:
 
     Attributes:
         sigmas: Gaussian sigmas ``(angle rad, speed m/s)``, on a spin table optionally
-            ``(angle, speed, tip)`` (tip in fractions of ``R``), or ``None``: no noise.
+            ``(angle, speed, tip)`` (tip in fractions of ``R``); or a noise model by name,
+            ``"fastfiz"`` or ``("fastfiz", k)`` (FastFiz's sigmas times ``k >= 0``, the
+            computer billiards championships' model: :mod:`pool_env.game.noise`); or
+            ``None``: no noise.
     """
 
-    sigmas: tuple[float, ...] | None = None
+    sigmas: NoiseSpec | None = None
 
 
 @dataclass(frozen=True)

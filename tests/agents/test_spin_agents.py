@@ -82,13 +82,23 @@ def test_search_pots_every_seeded_oneball_v1_layout() -> None:
 
 @pytest.mark.parametrize(
     ("text", "expected"),
-    [("0.003,0.05", (0.003, 0.05)), ("0.003,0.05,0.05", (0.003, 0.05, 0.05))],
+    [
+        ("0.003,0.05", (0.003, 0.05)),
+        ("0.003,0.05,0.05", (0.003, 0.05, 0.05)),
+        ("fastfiz", "fastfiz"),  # FastFiz's model, the championships' (pool_env.game.noise)
+        ("fastfiz:5", ("fastfiz", 5.0)),
+        ("fastfiz:0", ("fastfiz", 0.0)),
+    ],
 )
-def test_noise_option_parses_two_or_three_sigmas(text: str, expected: tuple) -> None:
+def test_noise_option_parses_sigmas_or_the_model(text: str, expected: object) -> None:
     assert parse_noise(text) == expected
 
 
-@pytest.mark.parametrize("text", ["0.003", "0.003,0.05,0.05,1", "a,b", "-1,0", "0,inf"])
+@pytest.mark.parametrize(
+    "text",
+    ["0.003", "0.003,0.05,0.05,1", "a,b", "-1,0", "0,inf", "fastfizz", "fastfiz:x",
+     "fastfiz:-1", "fastfiz:", "fastfiz,5"],
+)  # fmt: skip
 def test_bad_noise_is_a_clear_error(text: str) -> None:
     with pytest.raises(ValueError, match="--noise"):
         parse_noise(text)
@@ -109,6 +119,21 @@ def test_tip_noise_moves_the_executed_tip_by_its_sigma() -> None:
     spread = np.std(np.concatenate(errors))
     assert 0.035 < spread < 0.065
     assert agent.spec.noise == (0.0, 0.0, 0.05)
+
+
+def test_the_commands_take_the_model_by_name(capsys: pytest.CaptureFixture[str]) -> None:
+    """``--noise fastfiz:5`` reaches the env of agents.evaluate and agents.duels alike."""
+    from agents.evaluation import duels
+
+    assert main(["--env", ONE, "--agent", "random", "--episodes", "2", "--noise", "fastfiz:5"]) == 0
+    assert "'noise': ('fastfiz', 5.0)" in capsys.readouterr().out
+    argv = ["--env", "pool_env/NineBallGameRoll-v1", "--agent", "random", "--opponent",
+            "random", "--racks", "1", "--noise", "fastfiz"]  # fmt: skip
+    assert duels.main(argv) == 0
+    assert "noise fastfiz," in capsys.readouterr().out
+    with pytest.raises(SystemExit):
+        duels.main([*argv[:-1], "fastfiz:-1"])
+    assert "k must be >= 0" in capsys.readouterr().err
 
 
 def test_evaluate_runs_a_spin_id_with_tip_noise(capsys: pytest.CaptureFixture[str]) -> None:
