@@ -74,15 +74,34 @@ def ball_on(on_table: NDArray[np.bool_]) -> NDArray[np.int64]:
     return np.where(objects.any(axis=1), first, -1).astype(np.int64)
 
 
+def clear_tolerances(rows: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The tolerances (rad) of ghost-shot rows ``(..., NG)``: 0 unless valid with clear paths."""
+    ok = (rows[..., VALID] > 0.5) & (rows[..., CLEAR_PATH] > 0.5)
+    return np.where(ok, rows[..., TOLERANCE], 0.0)
+
+
+def aim_chances(tolerance: NDArray[np.float64], sigma: float) -> NDArray[np.float64]:
+    """``erf(tolerance / (sigma sqrt 2))``: the chance that an aim error of ``sigma`` (rad) pots.
+
+    As :func:`agents.baselines.spin_play.pot_chance`, elementwise; the erf is only taken
+    where the tolerance is not 0 (most shots of a layout are not on), as it costs a Python
+    call per element.
+    """
+    tol = np.asarray(tolerance, dtype=np.float64)
+    out = np.zeros_like(tol)
+    some = tol != 0.0
+    if some.any():
+        out[some] = np.vectorize(math.erf)(tol[some] / (sigma * math.sqrt(2.0)))
+    return out
+
+
 def _chances(rows: NDArray[np.float64], sigma: float) -> NDArray[np.float64]:
     """Pot chances of ghost-shot rows ``(..., NG)`` under an aim error of ``sigma`` (rad).
 
     ``erf(tolerance / (sigma sqrt 2))`` for a valid shot with clear paths, else 0 (as
     :func:`agents.baselines.spin_play.pot_chance`).
     """
-    ok = (rows[..., VALID] > 0.5) & (rows[..., CLEAR_PATH] > 0.5)
-    tol = np.where(ok, rows[..., TOLERANCE], 0.0)
-    return np.vectorize(math.erf)(tol / (sigma * math.sqrt(2.0))) if tol.size else tol
+    return aim_chances(clear_tolerances(rows), sigma)
 
 
 def layout_features(

@@ -5,6 +5,8 @@ Usage (from the repository root)::
     python -m agents.training.fit_layout_value collect --racks 600 --seed 70000 \
         --out runs/layout/g0.npz
     python -m agents.training.fit_layout_value fit runs/layout/g0.npz --out models/duel_value.npz
+    python -m agents.training.fit_layout_value collect --runout --racks 1500 --seed 90000 \
+        --noise 0.0021817,0.075,0.0175 --out runs/layout/ff0.npz
 
 ``collect`` plays two-player racks on :class:`pool_env.envs.multiagent.PoolDuelEnv` (9-ball, spin
 table, the duels' execution noise) through :func:`agents.evaluation.duels.play_rack`, rack ``k``
@@ -14,7 +16,15 @@ from the shooter's side (:func:`agents.learned.layout_value.layout_features`, re
 shooter's observation alone) and whether that shooter went on to win the rack (a draw at
 the shot limit counts as not won). With ``--runout`` it plays run-out mode on the
 single-player id instead (``end_on_foul``: the first miss or foul ends the rack) and the
-label is whether the rack was run out.
+label is whether the rack was run out. ``--noise`` sets the execution noise (default the
+duels'); the features' pot chances are taken at its aim error.
+
+Beside the features, ``collect`` saves every recorded layout raw, from the shooter's side, so
+that other layout values (:mod:`agents.training.fit_set_value`) are fitted from the same files:
+``positions`` ``(M, N, 2)``, ``on_table`` ``(M, N)``, ``in_hand`` ``(M,)``, ``fouls`` ``(M, 2)``
+(the shooter's and the opponent's, 0..2), ``label`` ``(M,)`` (``won`` again under the name the
+other fitters read), ``rack`` ``(M,)`` (the rack's seed: what a split by rack groups by), and
+``sigma`` (the features' aim error) and ``noise``.
 
 ``fit`` is a logistic regression of the labels on the features
 (:func:`agents.learned.layout_value.fit_layout_value`): the chance that the player to shoot wins
@@ -55,13 +65,19 @@ from pool_env.game.geometry import pocket_mouths
 SIGMA = NOISE[0]
 
 
-class _Recorder:
-    """Wraps a player: records the features of each observation it is asked to play."""
+#: One recorded shot: the rack's seed, then :func:`observation_layout` of the shooter's view.
+Layout = tuple[int, NDArray[np.float64], NDArray[np.bool_], bool, tuple[int, int]]
 
-    def __init__(self, player: Policy, side: str, config: Any, rows: list[tuple[str, Any]]) -> None:
+
+class _Recorder:
+    """Wraps a player: records the layout of each observation it is asked to play."""
+
+    def __init__(
+        self, player: Policy, side: str, config: Any, rows: list[tuple[str, Layout]]
+    ) -> None:
         self.player, self.side, self.rows = player, side, rows
         self.config = config
-        self.mouths = pocket_mouths(config.table)
+        self.rack = 0  # the seed of the rack being played (set by collect)
 
     def predict(
         self,
@@ -72,67 +88,128 @@ class _Recorder:
     ) -> tuple[Any, Any]:
         """The wrapped player's ``predict(observation)``, recording the layout first."""
         if not observed_rack(observation, self.config)[1]:  # not the break
-            features = observation_features(self.config, self.mouths, observation)
-            self.rows.append((self.side, features))
+            layout = (self.rack, *observation_layout(self.config, observation))
+            self.rows.append((self.side, layout))
         return self.player.predict(observation)
 
 
+def observation_layout(
+    config: Any, obs: NDArray[np.floating]
+) -> tuple[NDArray[np.float64], NDArray[np.bool_], bool, tuple[int, int]]:
+    """The layout a rule observation shows its viewer: ``(positions, on_table, in_hand, fouls)``.
+
+    ``positions`` ``(N, 2)`` and ``on_table`` ``(N,)`` as decoded from the observation;
+    ``fouls``: the viewer's and the opponent's successive fouls.
+    """
+    in_hand, _, fouls = observed_rack(obs, config)
+    balls = np.asarray(obs)[obs_layout(config)["balls"]]
+    positions, on = decode_observations(config.table, balls[None])
+    return positions[0], on[0], in_hand, fouls
+
+
 def observation_features(
-    config: Any, mouths: Any, obs: NDArray[np.floating]
+    config: Any, mouths: Any, obs: NDArray[np.floating], sigma: float = SIGMA
 ) -> NDArray[np.float64]:
     """:func:`layout_features` of one rule observation (``(F,)``), from its viewer's side."""
-    in_hand, _, fouls = observed_rack(obs, config)
-    table = config.table
-    balls = np.asarray(obs)[obs_layout(config)["balls"]]
-    positions, on = decode_observations(table, balls[None])
+    positions, on, in_hand, fouls = observation_layout(config, obs)
     hand, counts = np.array([in_hand]), np.array([fouls])
-    return layout_features(table, mouths, positions, on, hand, counts, SIGMA)[0]
+    return layout_features(config.table, mouths, positions[None], on[None], hand, counts, sigma)[0]
+
+
+def _records(
+    config: Any, mouths: Any, layouts: list[Layout], labels: list[bool], sigma: float
+) -> dict[str, NDArray[Any]]:
+    """The saved arrays of recorded layouts: the raw layouts, their features (one batched call)."""
+    n = config.n_balls
+    positions = np.array([x[1] for x in layouts], dtype=np.float64).reshape(-1, n, 2)
+    on = np.array([x[2] for x in layouts], dtype=np.bool_).reshape(-1, n)
+    hand = np.array([x[3] for x in layouts], dtype=np.bool_)
+    fouls = np.array([x[4] for x in layouts], dtype=np.int64).reshape(-1, 2)
+    label = np.array(labels, dtype=np.bool_)
+    features = (
+        layout_features(config.table, mouths, positions, on, hand, fouls, sigma)
+        if layouts
+        else np.zeros((0, len(LAYOUT_FEATURES)))  # every rack ended at its break
+    )
+    return {
+        "features": features, "won": label, "positions": positions, "on_table": on,
+        "in_hand": hand, "fouls": fouls, "label": label,
+        "rack": np.array([x[0] for x in layouts], dtype=np.int64),
+    }  # fmt: skip
 
 
 def collect(
-    agent: str, opponent: str, racks: int, seed: int, runout: bool = False
+    agent: str,
+    opponent: str,
+    racks: int,
+    seed: int,
+    runout: bool = False,
+    noise: tuple[float, float, float] = NOISE,
 ) -> dict[str, NDArray[Any]]:
-    """Play ``racks`` racks and return ``features`` ``(S, F)`` and ``won`` ``(S,)``."""
+    """Play ``racks`` racks: ``features``, ``won`` and the raw layouts (module doc).
+
+    Args:
+        agent: The player (:func:`agents.evaluation.evaluate.make_agent`'s names and models).
+        opponent: Its opponent in a duel (unused with ``runout``).
+        racks: How many racks; rack ``k`` is seeded ``seed + k``.
+        seed: The first rack's seed.
+        runout: Run-out mode, one player (module doc).
+        noise: The execution noise; the features' pot chances are taken at its aim error.
+
+    Raises:
+        ValueError: If ``racks < 1``.
+    """
     if racks < 1:
         raise ValueError(f"racks must be >= 1, got {racks}")
-    features: list[NDArray[np.float64]] = []
+    noise = (float(noise[0]), float(noise[1]), float(noise[2]))
+    layouts: list[Layout] = []
     won: list[bool] = []
     if runout:
-        env = make_env(ENV_ID, {"noise": NOISE, "end_on_foul": True})
+        env = make_env(ENV_ID, {"noise": noise, "end_on_foul": True})
         config = env.unwrapped.config
         player = make_agent(agent, env)
-        mouths = pocket_mouths(config.table)
         for k in range(racks):
             obs, _ = env.reset(seed=seed + k)
-            rows: list[NDArray[np.float64]] = []
+            rows: list[Layout] = []
             done, success = False, False
             while not done:
                 if not observed_rack(obs, config)[1]:  # not the break
-                    rows.append(observation_features(config, mouths, obs))
+                    rows.append((seed + k, *observation_layout(config, obs)))
                 action, _ = player.predict(obs)
                 obs, _, terminated, truncated, info = env.step(action)
                 done = terminated or truncated
                 success = bool(info.get("is_success", False))
-            features += rows
+            layouts += rows
             won += [success] * len(rows)
         env.close()
     else:
-        duel = PoolDuelEnv(game="nine", model="spin", noise=NOISE)
-        envs = [make_env(ENV_ID, {"noise": NOISE}) for _ in range(2)]
+        duel = PoolDuelEnv(game="nine", model="spin", noise=noise)
+        envs = [make_env(ENV_ID, {"noise": noise}) for _ in range(2)]
         config = envs[0].unwrapped.config
-        rows_k: list[tuple[str, Any]] = []
+        rows_k: list[tuple[str, Layout]] = []
         players = {
             side: _Recorder(make_agent(name, env, seed=seed), side, config, rows_k)
             for side, name, env in (("agent", agent, envs[0]), ("opponent", opponent, envs[1]))
         }
         for k in range(racks):
             rows_k.clear()
+            for recorder in players.values():
+                recorder.rack = seed + k
             winner = play_rack(duel, players, seed + k, k % 2 == 0)
-            features += [f for _, f in rows_k]
+            layouts += [layout for _, layout in rows_k]
             won += [side == winner for side, _ in rows_k]
         for env in envs:
             env.close()
-    return {"features": np.array(features).reshape(-1, len(LAYOUT_FEATURES)), "won": np.array(won)}
+    data = _records(config, pocket_mouths(config.table), layouts, won, noise[0])
+    return {**data, "sigma": np.float64(noise[0]), "noise": np.array(noise)}
+
+
+def _noise(text: str) -> tuple[float, float, float]:
+    """``--noise``: three comma-separated sigmas (aim rad, speed m/s, tip R)."""
+    values = tuple(float(v) for v in text.split(","))
+    if len(values) != 3:
+        raise argparse.ArgumentTypeError(f"--noise takes three sigmas a,b,c; got {text!r}")
+    return values  # type: ignore[return-value]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -145,6 +222,7 @@ def main(argv: list[str] | None = None) -> int:
     c.add_argument("--racks", type=int, default=300)
     c.add_argument("--seed", type=int, default=70_000)
     c.add_argument("--runout", action="store_true", help="run-out mode, one player")
+    c.add_argument("--noise", type=_noise, default=NOISE, help="aim,speed,tip sigmas")
     c.add_argument("--out", required=True)
     f = sub.add_parser("fit", help="fit the layout value, save it with its config")
     f.add_argument("data", nargs="+")
@@ -153,7 +231,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     start = time.perf_counter()
     if args.command == "collect":
-        data = collect(args.agent, args.opponent, args.racks, args.seed, args.runout)
+        data = collect(args.agent, args.opponent, args.racks, args.seed, args.runout, args.noise)
         Path(args.out).parent.mkdir(parents=True, exist_ok=True)
         np.savez(args.out, **data)
         print(f"{args.racks} racks, {data['won'].size} layouts, won {data['won'].mean():.3f} "
