@@ -48,6 +48,7 @@ from agents.learned.envs import make_env
 from agents.learned.lookahead import load_lookahead_agent
 from agents.learned.pretrained import load_model, model_config
 from agents.learned.rack_play import RackAgent, load_rack_agent, rack_model_config
+from agents.learned.search_player import load_search_player
 from agents.policy import Policy, last_plan
 from pool_env import Table
 from pool_env.extras import require
@@ -98,7 +99,10 @@ GAME_COLUMNS: tuple[tuple[str, str, bool], ...] = (
 
 
 def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -> Policy:
-    """One of :data:`BASELINES` (``"const:a0,a1"`` too), an SB3 ``.zip`` or a rack ``.npz`` model.
+    """An agent by name: a baseline, an SB3 ``.zip``, a rack ``.npz`` or a search ``.yaml``.
+
+    The names are :data:`BASELINES` (``"const:a0,a1"`` too); a ``.yaml`` is a search
+    player's config (``models/search_player.yaml``).
 
     A ``.npz`` is a :class:`~agents.learned.rack_play.RackAgent` value, or a
     :class:`~agents.learned.lookahead.LookaheadAgent` layout value when its config says
@@ -131,6 +135,8 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
         return RackAgent(env, players=players)
     if name.endswith(".zip"):
         return load_model(name)
+    if name.endswith(".yaml"):  # a search player's config (learned.search_player)
+        return load_search_player(name, env, players=players)
     if name.endswith(".npz"):  # a learned rack value (learned.rack_play, learned.lookahead)
         config = rack_model_config(name)
         if config.get("kind") == "lookahead":

@@ -51,6 +51,7 @@ class GameModel:
         rack: NDArray[np.int64],
         actions: NDArray[np.float64],
         samples: int,
+        parallel: bool | None = False,
     ) -> tuple[StepResult, NDArray[np.float64], NDArray[np.bool_]]:
         """Play each of ``C`` actions ``samples`` times from one position.
 
@@ -62,6 +63,7 @@ class GameModel:
             actions: ``(C, A)`` env actions (the config's width).
             samples: Plays of each action; sample ``m`` of every action draws the same
                 execution noise.
+            parallel: Split the batch over the CPUs (``None``: the step's own threshold).
 
         Returns:
             ``(result, positions, on_table)``: the step's :class:`StepResult` over the
@@ -72,22 +74,71 @@ class GameModel:
             ValueError: On a rack state with ball in hand or actions of the wrong width.
         """
         acts = np.asarray(actions, dtype=np.float64)
+        c = acts.shape[0] if acts.ndim == 2 else 0
+        return self.play_layouts(
+            np.broadcast_to(positions, (c, *np.shape(positions))),
+            np.broadcast_to(on_table, (c, *np.shape(on_table))),
+            np.broadcast_to(rack, (c, *np.shape(rack))),
+            acts, samples, parallel,
+        )  # fmt: skip
+
+    def play_layouts(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        racks: NDArray[np.int64],
+        actions: NDArray[np.float64],
+        samples: int,
+        parallel: bool | None = None,
+        common_noise: bool = True,
+    ) -> tuple[StepResult, NDArray[np.float64], NDArray[np.bool_]]:
+        """Play ``C`` actions, each from its own position, ``samples`` times each.
+
+        Args:
+            positions: ``(C, N, 2)`` each action's ball centres (the cue ball placed).
+            on_table: ``(C, N)`` which balls are on the table.
+            racks: ``(C, N_RACK)`` the rack states to shoot from (no ball in hand).
+            actions: ``(C, A)`` env actions (the config's width).
+            samples: Plays of each action; sample ``m`` of every action draws the same
+                execution noise.
+            parallel: Split the batch over the CPUs (``None``: the step's own threshold).
+            common_noise: Give sample ``m`` of every action the same noise. Without it each
+                table's generator goes on with its own stream (still seeded, and cheaper:
+                setting thousands of generator states costs more than a batch of shots).
+
+        Returns:
+            As :meth:`play`.
+
+        Raises:
+            ValueError: On shapes that do not fit, a rack state with ball in hand or
+                actions of the wrong width.
+        """
+        acts = np.asarray(actions, dtype=np.float64)
         if acts.ndim != 2 or acts.shape[1] != self.config.action_size:
             raise ValueError(f"actions must be (C, {self.config.action_size}), got {acts.shape}")
-        if rack[IN_HAND]:
+        c, n_balls = acts.shape[0], self.config.n_balls
+        if np.shape(positions) != (c, n_balls, 2) or np.shape(on_table) != (c, n_balls):
+            raise ValueError(
+                f"positions must be ({c}, {n_balls}, 2) and on_table ({c}, {n_balls}), got "
+                f"{np.shape(positions)} and {np.shape(on_table)}"
+            )
+        if np.asarray(racks)[:, IN_HAND].any():
             raise ValueError("place the cue ball first: the model plays from a placed cue ball")
         if samples < 1:
             raise ValueError(f"samples must be >= 1, got {samples}")
-        n = acts.shape[0] * samples
+        n = c * samples
         self._reserve(n)
         state = self.state
         tables = np.arange(n)
-        state.positions[:n] = positions
-        state.on_table[:n] = on_table
-        state.rack[:n] = rack
+        state.positions[:n] = np.repeat(positions, samples, axis=0)
+        state.on_table[:n] = np.repeat(on_table, samples, axis=0)
+        state.rack[:n] = np.repeat(racks, samples, axis=0)
         state.shots[:n] = 0
-        noise = [np.random.PCG64(s).state for s in self.rng.integers(2**63, size=samples)]
-        for b in range(n):
-            state.generators[b].bit_generator.state = noise[b % samples]  # type: ignore[union-attr]
-        result = step(self.config, state, tables, np.repeat(acts, samples, axis=0), parallel=False)
+        if common_noise:
+            noise = [np.random.PCG64(s).state for s in self.rng.integers(2**63, size=samples)]
+            for b in range(n):
+                state.generators[b].bit_generator.state = noise[b % samples]  # type: ignore[union-attr]
+        result = step(
+            self.config, state, tables, np.repeat(acts, samples, axis=0), parallel=parallel
+        )
         return result, state.positions[:n].copy(), state.on_table[:n].copy()

@@ -45,12 +45,12 @@ from numpy.typing import NDArray
 from agents.baselines.ghost_ball import MIN_SIGMA
 from agents.baselines.rule_play import PUSH_OFFSETS, face_angles, rule_action
 from agents.learned.game_model import GameModel
-from agents.learned.layout_value import LayoutValue, layout_features, observed_rack
+from agents.learned.layout_value import LayoutValue, observed_rack
+from agents.learned.leaf_value import LeafValue, LogisticLeaf, outcome_values
 from agents.learned.rack_play import FEATURES, RackAgent
 from pool_env.game.codec import encode_shots
 from pool_env.game.geometry import pocket_mouths
 from pool_env.game.rack import rack_row
-from pool_env.game.rules import FOUL, KEEPS, WINNER
 
 #: Where the cue ball's centre passes the ball on, in ball diameters across its face.
 GRID_OFFSETS = PUSH_OFFSETS
@@ -111,6 +111,8 @@ class LookaheadAgent(RackAgent):
         self.mouths = pocket_mouths(self.config.table)
         noise = self.config.noise
         self.sigma = max(float(noise[0]) if noise else 0.0, MIN_SIGMA)  # as the planner's
+        #: What an outcome's layout is worth (:mod:`agents.learned.leaf_value`).
+        self.leaf: LeafValue = LogisticLeaf(value, self.config.table, self.mouths, self.sigma)
         self._fouls = (0, 0)
         #: The last shot's candidates' mean values (``-inf``: not among the finalists).
         self.last_values: NDArray[np.float64] | None = None
@@ -203,37 +205,8 @@ class LookaheadAgent(RackAgent):
         mine, theirs = self._fouls
         rack = rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
         result, after, left = self.model.play(positions, on, rack, actions, samples)
-        hits = result.hits
-        foul = hits[:, FOUL] != 0
-        keeps = ~foul & (hits[:, KEEPS] != 0)
-        winner = hits[:, WINNER]
-        value = np.where(winner == 0, 1.0, 0.0)
-        open_rack = winner < 0
-        if self.objective == "runout":
-            go = open_rack & keeps
-            if go.any():
-                feats = layout_features(
-                    self.config.table, self.mouths, after[go], left[go],
-                    np.zeros(int(go.sum()), dtype=np.bool_), np.zeros((int(go.sum()), 2), int),
-                    self.sigma,
-                )  # fmt: skip
-                value[go] = self.layout_value(feats)
-        elif open_rack.any():
-            rows = np.flatnonzero(open_rack)
-            kept = keeps[rows]
-            mine_after = np.where(foul[rows], min(mine + 1, 2), 0)  # a legal shot clears them
-            # Whoever shoots next: the shooter again (its fouls cleared), or the opponent.
-            fouls = np.where(
-                kept[:, None],
-                np.stack([np.zeros_like(mine_after), np.full_like(mine_after, min(theirs, 2))], 1),
-                np.stack([np.full_like(mine_after, min(theirs, 2)), mine_after], 1),
-            )
-            hand = ~kept & foul[rows]
-            feats = layout_features(
-                self.config.table, self.mouths, after[rows], left[rows], hand, fouls, self.sigma
-            )
-            chance = self.layout_value(feats)
-            value[rows] = np.where(kept, chance, 1.0 - chance)
+        runout = self.objective == "runout"
+        value = outcome_values(self.leaf, runout, result, after, left, self._fouls)
         return value.reshape(-1, samples).mean(axis=1)
 
 

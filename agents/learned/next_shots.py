@@ -1,0 +1,154 @@
+"""The search's deeper plies: every layout's best next shot, found in one batch on the model.
+
+The rack agents' planner works out exact spin strikes one layout at a time in Python
+(about 0.1 s a layout); a search that looks a shot further needs the best next shot of
+hundreds of simulated outcomes per decision. :func:`next_shot_actions` lists candidates for
+``L`` layouts at once from the compiled ghost-ball geometry: on the ball on, the
+:data:`POCKETS_KEPT` most forgiving clear pockets, each aimed at :data:`OFFSETS` across the
+mouth (the collision's throw turns the object ball off the ghost-ball line by up to a few
+degrees; rather than model it, the fan lets the simulation find the aim that drops), at
+:data:`ARRIVALS` (how fast the object ball reaches the pocket: position by speed) and
+:data:`TIPS` (stun, follow, draw). :func:`best_next_values` plays them all on the game's own
+step (:class:`agents.learned.game_model.GameModel`), values the outcomes with a leaf value
+(:func:`agents.learned.leaf_value.outcome_values`) and keeps, per layout, the best
+candidate's mean: what the shooter can expect from the layout with one more shot searched.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import NDArray
+
+from agents.baselines.rule_play import rule_action
+from agents.learned.game_model import GameModel
+from agents.learned.layout_value import ball_on
+from agents.learned.leaf_value import LeafValue, outcome_values
+from pool_env.game.codec import encode_shots
+from pool_env.game.config import GameConfig
+from pool_env.game.geometry import (
+    ANGLE,
+    CLEAR_PATH,
+    TOLERANCE,
+    VALID,
+    PocketMouths,
+    cue_speeds,
+    ghost_shots,
+)
+from pool_env.game.rack import rack_row
+
+#: Aim points across the pocket's mouth, in fractions of its half-width seen along the path.
+OFFSETS = (-0.8, -0.4, 0.0, 0.4, 0.8)
+#: The object ball's speed (m/s) as it reaches the pocket: a soft pot to a firm one.
+ARRIVALS = (0.3, 0.9, 1.8)
+#: Cue tip offsets ``(side, vertical)`` in fractions of R: stun, follow, draw.
+TIPS = ((0.0, 0.0), (0.0, 0.4), (0.0, -0.4))
+#: The pockets tried per layout, most forgiving first.
+POCKETS_KEPT = 2
+
+
+def next_shot_actions(
+    config: GameConfig,
+    mouths: PocketMouths,
+    positions: NDArray[np.float64],
+    on_table: NDArray[np.bool_],
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """Candidate env actions on the ball on of ``L`` rotation layouts (module doc).
+
+    Args:
+        config: The env's config (a rotation game on a spin table).
+        mouths: Its pockets.
+        positions: ``(L, N, 2)`` ball centres, the cue ball where it lies.
+        on_table: ``(L, N)`` which balls are on the table (an object ball at least).
+
+    Returns:
+        ``(actions, ok)``: ``(L, M, A)`` full env actions and ``(L, M)`` which are playable
+        (a clear, valid ghost-ball shot the aim mode can play within the speed range).
+    """
+    table = config.table
+    pos = np.ascontiguousarray(positions, dtype=np.float64)
+    on = np.ascontiguousarray(on_table, dtype=np.bool_)
+    n_layouts = on.shape[0]
+    target = ball_on(on)
+    rows = np.stack(
+        [ghost_shots(table, mouths, pos, on, target[:, None], offset=o)[:, 0] for o in OFFSETS],
+        axis=1,
+    )  # (L, O, K, NG)
+    centre = rows[:, OFFSETS.index(0.0)]
+    usable = (centre[..., VALID] > 0.5) & (centre[..., CLEAR_PATH] > 0.5)
+    rank = np.argsort(-np.where(usable, centre[..., TOLERANCE], -1.0), axis=1)
+    kept = rank[:, :POCKETS_KEPT]  # (L, P)
+    picked = np.take_along_axis(rows, kept[:, None, :, None], axis=2)  # (L, O, P, NG)
+    pocket_ok = np.take_along_axis(usable, kept, axis=1)  # (L, P)
+    ok_rows = (picked[..., VALID] > 0.5) & pocket_ok[:, None, :]
+    speeds = np.stack([cue_speeds(table, picked, a) for a in ARRIVALS], axis=-1)  # (L,O,P,S)
+    shape = (*speeds.shape, len(TIPS))  # (L, O, P, S, T)
+    angles = np.broadcast_to(picked[..., ANGLE][..., None, None], shape)
+    speed = np.broadcast_to(speeds[..., None], shape)
+    tips = np.broadcast_to(np.asarray(TIPS, dtype=np.float64), (*shape, 2))
+    ok = np.broadcast_to(ok_rows[..., None, None], shape)
+    m = int(np.prod(shape[1:]))
+    refer = np.zeros_like(on)
+    refer[:, 0] = True
+    refer[np.arange(n_layouts), np.maximum(target, 0)] = target >= 0
+    parts, playable = encode_shots(
+        config, pos, refer, angles.reshape(n_layouts, m), speed.reshape(n_layouts, m),
+        tips.reshape(n_layouts, m, 2),
+    )  # fmt: skip
+    lo, top = config.speed_range
+    flat_speed = speed.reshape(n_layouts, m)
+    in_range = (flat_speed >= lo) & (flat_speed <= top)
+    template = rule_action(config, np.zeros(4))
+    actions = np.broadcast_to(template, (n_layouts, m, template.shape[0])).copy()
+    actions[..., 0:2] = parts[..., 0:2]
+    actions[..., list(config.tip_columns)] = parts[..., 2:4]  # type: ignore[arg-type]
+    return actions, ok.reshape(n_layouts, m) & playable & in_range
+
+
+def best_next_values(
+    model: GameModel,
+    mouths: PocketMouths,
+    leaf: LeafValue,
+    runout: bool,
+    positions: NDArray[np.float64],
+    on_table: NDArray[np.bool_],
+    fouls: tuple[int, int],
+    samples: int,
+) -> NDArray[np.float64]:
+    """``(L,)`` each layout's value to the shooter with its next shot searched (module doc).
+
+    Args:
+        model: The game model (the env's config, noise included).
+        mouths: The table's pockets.
+        leaf: The leaf value of what the next shot leaves.
+        runout: Run-out mode (a miss or a foul is worth 0).
+        positions: ``(L, N, 2)`` layouts, the shooter to play with the cue ball where it lies.
+        on_table: ``(L, N)`` the balls on the table.
+        fouls: The shooter's and the opponent's successive fouls (0..2).
+        samples: Noisy plays of each candidate.
+
+    Returns:
+        The best candidate's mean outcome value per layout; a layout with no candidate
+        (no clear pot on the ball on) keeps its own leaf value.
+    """
+    config = model.config
+    n_layouts = positions.shape[0]
+    hand = np.zeros(n_layouts, dtype=np.bool_)
+    leaf_fouls = np.tile(np.asarray(fouls, dtype=np.int64), (n_layouts, 1))
+    own = leaf(positions, on_table, hand, leaf_fouls)
+    if not n_layouts:
+        return own
+    actions, ok = next_shot_actions(config, mouths, positions, on_table)
+    layout, cand = np.nonzero(ok)
+    if not layout.size:
+        return own
+    rack = rack_row({"fouls": fouls})
+    racks = np.broadcast_to(rack, (layout.size, rack.size))
+    result, after, left = model.play_layouts(
+        positions[layout], on_table[layout], racks, actions[layout, cand], samples,
+        common_noise=False,
+    )  # fmt: skip
+    value = outcome_values(leaf, runout, result, after, left, fouls)
+    means = value.reshape(-1, samples).mean(axis=1)
+    best = np.full(n_layouts, -np.inf)
+    np.maximum.at(best, layout, means)
+    return np.where(np.isfinite(best), best, own)

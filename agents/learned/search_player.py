@@ -1,0 +1,369 @@
+"""A rotation player (9-ball) that searches its shots within a time budget, two shots deep.
+
+:class:`SearchPlayer` is :class:`agents.learned.lookahead.LookaheadAgent` given a clock and
+a second ply. On every shot, within ``budget`` seconds of wall time:
+
+1. **Candidates**: the lookahead's (the spin planner's pots by pocket, tip and speed, the
+   ghost-ball agent's choice with its banks and kicks, and the grid of centre-ball hits
+   across the ball on's face at four speeds: safeties, combinations, kisses).
+2. **First ply**: each candidate is played ``samples`` times on the game's own step with
+   the env's execution noise (common noise across candidates) and its outcomes valued by
+   the leaf value (:mod:`agents.learned.leaf_value`); the ``finalists`` best go on.
+3. **Second ply, anytime**: in rounds of ``round_samples`` more plays of every finalist,
+   each outcome that keeps the table is valued by the best next shot searched from it
+   (:func:`agents.learned.next_shots.best_next_values`: ghost-ball pots across the mouth,
+   three speeds, three tips, ``next_samples`` noisy plays each, valued by the leaf value).
+   Against an opponent, an outcome that hands over the table is worth one minus the
+   opponent's best reply found the same way (the fast policy of the reply), or one minus
+   the leaf value with ball in hand after a foul. After each round the finalists whose mean
+   is below the leader's by more than ``prune_z`` standard errors drop out. Rounds go on
+   until the budget is spent; the finalist of the best two-ply mean is played.
+4. **Ball in hand**: placements are searched too: straight-in spots behind every pocket of
+   the ball on and random free spots, each valued by its best shot searched
+   (:func:`best_next_values`); the cue ball goes on the best, and the search above
+   plays from there.
+5. **The break**: a fixed, searched break (:mod:`agents.training.break_search`): where on
+   the head string to place the cue ball, its aim off a full hit on the 1, the speed and
+   the tip; saved in the player's config (``models/search_player.yaml``).
+
+The leaf value is the logistic layout value or the set network
+(:mod:`agents.learned.set_value`), named in the config. The numba kernels split large
+batches over both cores (the step's own threshold).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import dataclass, fields
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from agents.baselines.aiming import shot_to_action
+from agents.baselines.rule_play import rule_action
+from agents.learned.layout_value import LayoutValue, ball_on
+from agents.learned.leaf_value import LeafValue, SetLeaf, outcome_values
+from agents.learned.lookahead import LookaheadAgent
+from agents.learned.next_shots import best_next_values
+from agents.learned.set_value import SetValue
+from pool_env.game.geometry import points_free
+from pool_env.game.rack import rack_row
+
+
+@dataclass(frozen=True)
+class SearchSettings:
+    """The search's knobs (their reasons are in ``models/search_player.yaml``).
+
+    Attributes:
+        budget: Wall-clock seconds per shot.
+        samples: First-ply plays of every candidate.
+        finalists: Candidates searched at the second ply.
+        round_samples: Plays of every finalist per second-ply round.
+        next_samples: Noisy plays of each next-shot candidate at the second ply.
+        prune_z: A finalist drops out when its mean is this many standard errors below
+            the leader's.
+        min_rounds: Second-ply rounds played whatever the clock says (so that a slow
+            first ply still gets a second).
+        hand_spots: Random free spots tried with the cue ball in hand (beside the
+            straight-in spots).
+        hand_samples: Noisy plays of each candidate when valuing a spot.
+        break_y: The break's cue ball, metres off the head spot along the head string.
+        break_cut: The break's aim off a full hit on the 1 (radians, counter-clockwise).
+        break_speed: The break's speed action in ``[-1, 1]`` (the break speed range).
+        break_tip: The break's tip ``(side, vertical)`` in fractions of the tip limit.
+    """
+
+    budget: float = 1.0
+    samples: int = 8
+    finalists: int = 5
+    round_samples: int = 8
+    next_samples: int = 4
+    prune_z: float = 3.0
+    min_rounds: int = 1
+    hand_spots: int = 24
+    hand_samples: int = 3
+    break_y: float = 0.0
+    break_cut: float = 0.0
+    break_speed: float = 1.0
+    break_tip: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        if not self.budget > 0.0:
+            raise ValueError(f"budget must be > 0 seconds, got {self.budget!r}")
+        counts = ("samples", "finalists", "round_samples", "next_samples", "hand_samples")
+        for name in counts:
+            if int(getattr(self, name)) < 1:
+                raise ValueError(f"{name} must be >= 1, got {getattr(self, name)!r}")
+        if self.min_rounds < 0 or self.hand_spots < 0:
+            raise ValueError("min_rounds and hand_spots must be >= 0")
+        if not -1.0 <= self.break_speed <= 1.0:
+            raise ValueError(f"break_speed must lie in [-1, 1], got {self.break_speed!r}")
+        if len(self.break_tip) != 2 or max(abs(float(t)) for t in self.break_tip) > 1.0:
+            raise ValueError(f"break_tip must be two fractions in [-1, 1], got {self.break_tip}")
+
+
+#: The config keys of :class:`SearchSettings`.
+SETTINGS = tuple(f.name for f in fields(SearchSettings))
+
+
+class SearchPlayer(LookaheadAgent):
+    """The anytime two-ply search player (module doc).
+
+    Args:
+        env: A spin 9-ball id (``pool_env/NineBallGame-v1``), wrapped or not.
+        value: The logistic layout value (the first ply's leaves; and the second's unless
+            ``leaf`` is given).
+        objective: ``"runout"`` or ``"duel"``.
+        settings: The search's knobs.
+        leaf: The leaf value (``None``: the logistic's).
+        seed: Seed of the noise samples and of the random spots.
+        players: As :class:`~agents.baselines.game_agents.GameGhostBallAgent`.
+    """
+
+    KIND = "search"
+
+    def __init__(
+        self,
+        env: Any,
+        value: LayoutValue,
+        objective: str = "runout",
+        settings: SearchSettings | None = None,
+        leaf: LeafValue | None = None,
+        seed: int = 0,
+        players: int | None = None,
+    ) -> None:
+        s = settings or SearchSettings()
+        super().__init__(
+            env, value, objective, samples=s.samples, finalists=s.finalists, final_samples=0,
+            break_arm=None, seed=seed, players=players,
+        )  # fmt: skip
+        if self.config.game != "nine":
+            raise ValueError("SearchPlayer plays 9-ball (pool_env/NineBallGame-v1)")
+        self.settings = s
+        if leaf is not None:
+            self.leaf = leaf
+        self.spot_rng = np.random.default_rng(seed)
+        self._start = 0.0
+        #: What the last decision did: candidates, rounds, plays, seconds.
+        self.last_search: dict[str, Any] = {}
+
+    # -- the clock and the plan ------------------------------------------------------------
+
+    def _plan(
+        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> NDArray[np.float32]:
+        self._start = time.perf_counter()
+        self.last_search = {}
+        action = super()._plan(obs, positions, on)
+        if self.last_plan.get("kind") == "break":
+            action = self.break_action(positions, on)
+        self.last_search["seconds"] = time.perf_counter() - self._start
+        return action
+
+    def _left(self) -> float:
+        """Seconds of the budget left."""
+        return self.settings.budget - (time.perf_counter() - self._start)
+
+    # -- the break -------------------------------------------------------------------------
+
+    def break_action(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> NDArray[np.float64]:
+        """The settings' break: the cue ball on the head string, aimed at the 1, speed, tip."""
+        s, table = self.settings, self.config.table
+        spot = np.array([table.length / 4.0, table.width / 2.0 + s.break_y])
+        placed = positions.copy()
+        placed[0] = spot
+        apex = int(ball_on(on[None])[0])
+        d = placed[apex] - spot
+        reference = np.zeros_like(on)
+        reference[[0, apex]] = True
+        angle = math.atan2(d[1], d[0]) + s.break_cut
+        strike = shot_to_action(angle, 1.0, placed, reference, self.ghost.spec, tip=(0.0, 0.0))
+        if strike is None:
+            raise ValueError(f"the break's aim {angle:.4f} rad cannot be played in this aim mode")
+        limit = float(self.ghost.spec.tip_limit or 1.0)
+        part = np.array([strike[0], s.break_speed, *(np.asarray(s.break_tip) * limit)])
+        self.last_plan = {"kind": "break", "spot": spot.tolist()}
+        place = self._place_action(spot, True)
+        return rule_action(self.config, part, place, ball=self._ball_on())
+
+    # -- ball in hand ----------------------------------------------------------------------
+
+    def _place(
+        self,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        reference: NDArray[np.bool_],
+        behind: bool,
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        """The spot whose best searched shot is worth the most (module doc, item 4)."""
+        spots = self._spots(positions, on, behind)
+        if not len(spots):
+            return super()._place(positions, on, reference, behind)
+        layouts = np.repeat(positions[None], len(spots), axis=0)
+        layouts[:, 0] = spots
+        flags = np.repeat(on[None], len(spots), axis=0)
+        values = best_next_values(
+            self.model, self.mouths, self.leaf, self.objective == "runout", layouts, flags,
+            self._fouls, self.settings.hand_samples,
+        )  # fmt: skip
+        best = spots[int(np.argmax(values))]
+        placed = positions.copy()
+        placed[0] = best
+        self.last_search["hand_spots"] = len(spots)
+        return placed, self._place_action(best, behind)
+
+    def _spots(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], behind: bool
+    ) -> NDArray[np.float64]:
+        """Free spots for the cue ball: straight-in behind each pocket of the ball on, random."""
+        table = self.config.table
+        r = table.ball_radius
+        others = positions[[j for j in range(1, on.shape[0]) if on[j]]]
+        target = positions[int(ball_on(on[None])[0])]
+        away = target[None] - table.pockets[:, :2]
+        away /= np.maximum(np.hypot(away[:, 0], away[:, 1]), 1e-12)[:, None]
+        dists = np.array([0.15, 0.3, 0.5])
+        straight = (target[None, None] + (2.0 * r + dists[None, :, None]) * away[:, None]).reshape(
+            -1, 2
+        )
+        x_high = table.length / 4.0 if behind else table.length
+        low = np.array([r, r])
+        high = np.array([x_high - r, table.width - r])
+        scattered = self.spot_rng.uniform(low, high, size=(self.settings.hand_spots, 2))
+        spots = np.vstack([straight, scattered])
+        free = points_free(table, spots, others, behind)
+        # The agent's own margin, wider than the rule's: no cue ball frozen to a ball.
+        gaps = np.hypot(*(spots[:, None] - others[None]).transpose(2, 0, 1))
+        return spots[free & (gaps.min(axis=1) >= 2.2 * r)]
+
+    # -- the shot --------------------------------------------------------------------------
+
+    def _choose(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> tuple[int, NDArray[np.float32] | None]:
+        """The finalist of the best two-ply mean (module doc, items 1-3)."""
+        s = self.settings
+        actions, pockets, kinds = self._candidates(positions, on, reference)
+        if not actions:
+            self.last_values = None
+            return -1, None
+        acts = np.stack(actions)
+        first = self._values(positions, on, acts, s.samples)
+        finalists = np.argsort(-first, kind="stable")[: s.finalists]
+        total = np.zeros(len(finalists))
+        squares = np.zeros(len(finalists))
+        counts = np.zeros(len(finalists))
+        alive = np.ones(len(finalists), dtype=np.bool_)
+        rounds, round_time = 0, 0.0
+        while alive.sum() > 1 and (rounds < s.min_rounds or self._left() > round_time):
+            started = time.perf_counter()
+            live = np.flatnonzero(alive)
+            values = self._deep_values(positions, on, acts[finalists[live]], s.round_samples)
+            per = values.reshape(len(live), s.round_samples)
+            total[live] += per.sum(axis=1)
+            squares[live] += (per**2).sum(axis=1)
+            counts[live] += s.round_samples
+            rounds += 1
+            mean = total[live] / counts[live]
+            se = np.sqrt(np.maximum(squares[live] / counts[live] - mean**2, 1e-6) / counts[live])
+            lead = int(np.argmax(mean))
+            if rounds >= 2:  # one round's spread is too rough to prune on
+                alive[live] = mean + s.prune_z * np.hypot(se, se[lead]) >= mean[lead]
+            round_time = time.perf_counter() - started  # the next round costs about as much
+        scores = np.where(counts > 0, total / np.maximum(counts, 1), -np.inf)
+        if not np.isfinite(scores).any():
+            scores = first[finalists]
+        pick = int(finalists[int(np.argmax(scores))])
+        values = np.full(len(actions), -np.inf)
+        values[finalists] = scores
+        self.last_values = values
+        self.last_search.update(
+            candidates=len(actions), rounds=rounds, plays=int(counts.sum()),
+            value=float(scores.max()),
+        )  # fmt: skip
+        self._chosen = kinds[pick]
+        strike = acts[pick, [0, 1, *self.config.tip_columns]]  # type: ignore[misc]
+        return pockets[pick], strike.astype(np.float32)
+
+    def _deep_values(
+        self,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        actions: NDArray[np.float64],
+        samples: int,
+    ) -> NDArray[np.float64]:
+        """``(C * samples,)`` outcome values with the next shot searched (module doc)."""
+        mine, theirs = self._fouls
+        rack = rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
+        result, after, left = self.model.play(positions, on, rack, actions, samples, None)
+        runout = self.objective == "runout"
+        return outcome_values(self._searched_leaf, runout, result, after, left, self._fouls)
+
+    def _searched_leaf(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        in_hand: NDArray[np.bool_],
+        fouls: NDArray[np.int64],
+    ) -> NDArray[np.float64]:
+        """A leaf value one shot deeper: the best next shot searched (ball in hand: the leaf)."""
+        out = self.leaf(positions, on_table, in_hand, fouls)
+        searched = ~np.asarray(in_hand, dtype=np.bool_)
+        groups = {tuple(int(f) for f in row) for row in np.asarray(fouls)[searched]}
+        runout = self.objective == "runout"
+        for group in groups:
+            rows = np.flatnonzero(searched & (np.asarray(fouls) == group).all(axis=1))
+            out[rows] = best_next_values(
+                self.model, self.mouths, self.leaf, runout, positions[rows], on_table[rows],
+                group, self.settings.next_samples,
+            )  # fmt: skip
+        return out
+
+
+def load_search_player(path: str | Path, env: Any, players: int | None = None) -> SearchPlayer:
+    """The :class:`SearchPlayer` the config (``kind: search``) at ``path`` describes.
+
+    The config names the logistic layout values (``layout_value``: the chance to run out,
+    ``duel_value``: to win against an opponent; ``.npz`` paths relative to the repository
+    root or to the config), optionally a set network (``set_value``), and the
+    :class:`SearchSettings`. The objective is the run-out alone, or the duel when the
+    player is told it plays an opponent (``players=2``, as the duels build it).
+
+    Raises:
+        ValueError: On an unknown setting.
+        FileNotFoundError: If a named model is missing.
+    """
+    import yaml
+
+    path = Path(path)
+    if not path.is_file():
+        raise FileNotFoundError(f"no search player config {path}")
+    config = yaml.safe_load(path.read_text()) or {}
+    if config.get("kind") != "search":
+        raise ValueError(f"{path} is not a search player's config (kind: search)")
+    base = path.parent
+
+    def resolve(name: str) -> Path:
+        candidate = Path(name)
+        return candidate if candidate.is_file() else base / candidate.name
+
+    unknown = set(config.get("settings", {})) - set(SETTINGS)
+    if unknown:
+        raise ValueError(f"unknown search settings {sorted(unknown)}: use {list(SETTINGS)}")
+    raw = dict(config.get("settings", {}))
+    if "break_tip" in raw:
+        raw["break_tip"] = tuple(float(t) for t in raw["break_tip"])
+    settings = SearchSettings(**raw)
+    duel = (players if players is not None else env.unwrapped.config.players) == 2
+    value = LayoutValue.load(resolve(config["duel_value" if duel else "layout_value"]))
+    objective = "duel" if duel else "runout"
+    player = SearchPlayer(env, value, objective, settings, players=players)
+    if config.get("set_value") and not duel:  # the set network predicts run-outs
+        net = SetValue.load(resolve(config["set_value"]))
+        player.leaf = SetLeaf(net, player.config.table, player.mouths, player.sigma)
+    return player
