@@ -3,7 +3,7 @@
 Usage::
 
     python -m agents.evaluation.runouts --agents models/search_player.yaml ghost \
-        --racks 100 --seed 949000 --noise fastfiz --out results/runouts_x1.json
+        --racks 100 --seed 949000 --noise fastfiz --out results/search_player_runs/runouts_x1.json
 
 Rack ``k`` is the run-out mode of the id (``end_on_foul``: the player breaks, and the first
 miss or foul ends the rack) reset with ``seed + k``, so every agent plays the same racks.

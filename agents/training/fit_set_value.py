@@ -4,8 +4,11 @@ Usage (from the repository root)::
 
     python -m agents.training.fit_layout_value collect --runout --racks 2500 --seed 90000 \
         --noise 0.0021817,0.075,0.0175 --out runs/set_value/ghost_ff_a.npz
-    python -m agents.training.fit_set_value fit runs/set_value/ghost_ff_*.npz \
-        --out models/set_value_ghost.npz --seed 0
+    python -m agents.training.fit_set_value fit runs/set_value/ghost_ff_*.npz runs/ei/r1.npz \
+        --out models/set_value.npz --seed 0
+
+(``runs/ei/r1.npz``: the search player's racks, expert iteration's first round; the
+commands are in ``results/search_player.md``.)
 
 The data are :mod:`agents.training.fit_layout_value`'s files (their raw layouts: ``positions``,
 ``on_table``, ``in_hand``, ``fouls``, ``label``, ``rack``); :func:`load_records` joins several,
