@@ -202,12 +202,27 @@ class LookaheadAgent(RackAgent):
         samples: int,
     ) -> NDArray[np.float64]:
         """``(C,)`` each action's mean outcome value over ``samples`` noisy plays."""
+        return self._sample_values(positions, on, actions, samples).reshape(-1, samples).mean(1)
+
+    def _sample_values(
+        self,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        actions: NDArray[np.float64],
+        samples: int,
+        leaf: LeafValue | None = None,
+        parallel: bool | None = False,
+    ) -> NDArray[np.float64]:
+        """``(C * samples,)`` each noisy play's outcome value (action ``c``'s plays in a row).
+
+        ``leaf``: what the outcomes' layouts are worth (the agent's own by default);
+        ``parallel``: as :meth:`GameModel.play`.
+        """
         mine, theirs = self._fouls
         rack = rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
-        result, after, left = self.model.play(positions, on, rack, actions, samples)
+        result, after, left = self.model.play(positions, on, rack, actions, samples, parallel)
         runout = self.objective == "runout"
-        value = outcome_values(self.leaf, runout, result, after, left, self._fouls)
-        return value.reshape(-1, samples).mean(axis=1)
+        return outcome_values(leaf or self.leaf, runout, result, after, left, self._fouls)
 
 
 def load_lookahead_agent(

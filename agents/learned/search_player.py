@@ -45,12 +45,11 @@ from numpy.typing import NDArray
 from agents.baselines.aiming import shot_to_action
 from agents.baselines.rule_play import rule_action
 from agents.learned.layout_value import LayoutValue, ball_on
-from agents.learned.leaf_value import LeafValue, SetLeaf, outcome_values
+from agents.learned.leaf_value import LeafValue, SetLeaf
 from agents.learned.lookahead import LookaheadAgent
 from agents.learned.next_shots import best_next_values
 from agents.learned.set_value import SetValue
 from pool_env.game.geometry import points_free
-from pool_env.game.rack import rack_row
 
 
 @dataclass(frozen=True)
@@ -263,7 +262,9 @@ class SearchPlayer(LookaheadAgent):
         while alive.sum() > 1 and (rounds < s.min_rounds or self._left() > round_time):
             started = time.perf_counter()
             live = np.flatnonzero(alive)
-            values = self._deep_values(positions, on, acts[finalists[live]], s.round_samples)
+            values = self._sample_values(
+                positions, on, acts[finalists[live]], s.round_samples, self._searched_leaf, None
+            )
             per = values.reshape(len(live), s.round_samples)
             total[live] += per.sum(axis=1)
             squares[live] += (per**2).sum(axis=1)
@@ -289,20 +290,6 @@ class SearchPlayer(LookaheadAgent):
         self._chosen = kinds[pick]
         strike = acts[pick, [0, 1, *self.config.tip_columns]]  # type: ignore[misc]
         return pockets[pick], strike.astype(np.float32)
-
-    def _deep_values(
-        self,
-        positions: NDArray[np.float64],
-        on: NDArray[np.bool_],
-        actions: NDArray[np.float64],
-        samples: int,
-    ) -> NDArray[np.float64]:
-        """``(C * samples,)`` outcome values with the next shot searched (module doc)."""
-        mine, theirs = self._fouls
-        rack = rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
-        result, after, left = self.model.play(positions, on, rack, actions, samples, None)
-        runout = self.objective == "runout"
-        return outcome_values(self._searched_leaf, runout, result, after, left, self._fouls)
 
     def _searched_leaf(
         self,
