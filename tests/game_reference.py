@@ -214,6 +214,11 @@ class ReferenceEnv:
             "potted": tuple(sorted(potted)), "scratch": scratch, "first_contact": first,
             "n_events": result.n_events, "hit_event_cap": result.hit_event_cap,
             "angle": angle, "speed": speed, "is_success": cleared,
+            # each reward term, scaled: 0.0 (not -0.0) where it did not happen
+            "reward_pot": w[0] * len(potted) if potted else 0.0,
+            "reward_scratch": w[1] if scratch else 0.0,
+            "reward_no_contact": w[2] if first < 0 else 0.0,
+            "reward_shaping": w[3] * phi_change if w[3] else 0.0,
         }  # fmt: skip
         if self.spin:
             info["tip"] = tip

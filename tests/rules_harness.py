@@ -1,4 +1,4 @@
-"""Run the compiled rules (:func:`pool_env.game.rules.judge_rules`) on one shot's outcome.
+"""Run the compiled WPA rules (:mod:`pool_env.game.games.wpa.judge`) on one shot's outcome.
 
 The tests judge each outcome twice, with the plain-Python reference
 (:mod:`tests.wpa_reference`) and with the product's compiled rules, and compare; this file
@@ -14,17 +14,9 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from pool_env.game.config import GameConfig, make_config
-from pool_env.game.contact import shooters_benefit
-from pool_env.game.kernels import wpa as cw
-from pool_env.game.kernels.actions import (
-    CALL_BALL,
-    CALL_HAND_BACK,
-    CALL_POCKET,
-    CALL_PUSH_OUT,
-    N_CALLS,
-)
-from pool_env.game.kernels.params import GAME as GAME_CODE
-from pool_env.game.rules import (
+from pool_env.game.games.wpa import rack_state as cw
+from pool_env.game.games.wpa.first_contact import shooters_benefit
+from pool_env.game.games.wpa.judge import (
     BALL_ON,
     FOUL,
     KEEPS,
@@ -33,6 +25,14 @@ from pool_env.game.rules import (
     RESPOT,
     WINNER,
     judge_rules,
+)
+from pool_env.game.games.wpa.params import VARIANT as GAME_CODE
+from pool_env.game.games.wpa.shots import (
+    CALL_BALL,
+    CALL_HAND_BACK,
+    CALL_POCKET,
+    CALL_PUSH_OUT,
+    N_CALLS,
 )
 from pool_env.sim.table import Table
 from tests.wpa_reference import RackState
@@ -112,7 +112,7 @@ def compiled_judge(
         players: 1 or 2.
         simultaneous: Other balls (numbers) the cue ball met at its first contact's
             instant: the first ball is then read as the product reads it
-            (:func:`pool_env.game.contact.shooters_benefit`).
+            (:func:`pool_env.game.games.wpa.first_contact.shooters_benefit`).
         crossed: The cue ball crossed the head string before its first contact.
         start: ``(M, 2)`` positions before the shot (default: ``positions``); the kitchen
             rule reads the first ball's.

@@ -1,6 +1,6 @@
 """A plain-Python reference of the 9-ball, 10-ball and 8-ball rules (WPA): tests only.
 
-The product's one copy of the rules is compiled, :mod:`pool_env.game.kernels.wpa`; this
+The product's one copy of the rules is compiled, :mod:`pool_env.game.games.wpa.rules`; this
 file shares no code with it and is what ``tests/game/test_wpa.py`` and ``tests/game/test_games.py``
 check it against (on the rule-case table and on random outcomes).
 
@@ -107,7 +107,7 @@ ROTATION: dict[str, int] = {"nine": 9, "ten": 10}
 #: Object balls driven to a cushion that make a break legal without a pot.
 BREAK_RAILS = 4
 #: Impacts of the cue ball this close in time (s) to its first are simultaneous (the
-#: tolerance the product documents, pool_env.game.contact.SIMULTANEOUS).
+#: tolerance the product documents, pool_env.game.games.wpa.first_contact.SIMULTANEOUS).
 SIMULTANEOUS = 1e-9
 
 

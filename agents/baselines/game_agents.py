@@ -78,7 +78,7 @@ class GameGhostBallAgent(BaselineAgent):
         players: int | None = None,
     ) -> None:
         config = env.unwrapped.config
-        if not config.rules:
+        if not config.ruleset.has_rack:
             raise ValueError("GameGhostBallAgent plays the game ids (game='nine', 'ten', 'eight')")
         self.config = config
         self.players = config.players if players is None else int(players)
@@ -99,7 +99,7 @@ class GameGhostBallAgent(BaselineAgent):
     ) -> list[int]:
         """The legal balls once ``potted`` drops (``after``: the balls left).
 
-        The game's :meth:`~pool_env.game.rulesets.base.Ruleset.first_balls_after`.
+        The game's :meth:`~pool_env.game.ruleset.Ruleset.first_balls_after`.
         """
         return list(self.config.ruleset.first_balls_after(after, potted))
 

@@ -14,8 +14,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.game.config import GameConfig
-from pool_env.game.formulas import IN_HAND
-from pool_env.game.state import GameState, new_state
+from pool_env.game.games.wpa import IN_HAND
+from pool_env.game.state import GameState
 from pool_env.game.step import StepResult, step
 
 
@@ -28,18 +28,18 @@ class GameModel:
     """
 
     def __init__(self, config: GameConfig, seed: int = 0) -> None:
-        if not config.rules:
+        if not config.ruleset.has_rack:
             raise ValueError("GameModel plays the rules' game ids (game='nine' or 'eight')")
         self.config = config
         self.rng = np.random.default_rng(seed)
-        self.state: GameState = new_state(0, config.n_balls)
+        self.state: GameState = config.new_state(0)
 
     def _reserve(self, tables: int) -> None:
         """At least ``tables`` tables, each with its own generator."""
         have = self.state.n_tables
         if tables <= have:
             return
-        grown = new_state(tables, self.config.n_balls)
+        grown = self.config.new_state(tables)
         for b in range(tables):
             grown.use_generator(b, np.random.Generator(np.random.PCG64(b)))
         self.state = grown

@@ -49,8 +49,8 @@ from agents.learned.layout_value import LayoutValue, observed_rack
 from agents.learned.leaf_value import LeafValue, LogisticLeaf, outcome_values
 from agents.learned.rack_play import FEATURES, RackAgent
 from pool_env.game.codec import encode_shots
+from pool_env.game.games.wpa import rack_row
 from pool_env.game.geometry import pocket_mouths
-from pool_env.game.rack import rack_row
 
 #: Where the cue ball's centre passes the ball on, in ball diameters across its face.
 GRID_OFFSETS = PUSH_OFFSETS

@@ -25,6 +25,7 @@ from agents.learned.layout_value import ball_on
 from agents.learned.leaf_value import LeafValue, outcome_values
 from pool_env.game.codec import encode_shots
 from pool_env.game.config import GameConfig
+from pool_env.game.games.wpa import rack_row
 from pool_env.game.geometry import (
     ANGLE,
     CLEAR_PATH,
@@ -34,7 +35,6 @@ from pool_env.game.geometry import (
     cue_speeds,
     ghost_shots,
 )
-from pool_env.game.rack import rack_row
 
 #: Aim points across the pocket's mouth, in fractions of its half-width seen along the path.
 OFFSETS = (-0.8, -0.4, 0.0, 0.4, 0.8)

@@ -18,10 +18,9 @@ from pool_env.game import step as game
 from pool_env.game.checks import check_actions
 from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
-from pool_env.game.rack import rack_dict
-from pool_env.game.rules import TERMINATED, TRUNCATED
+from pool_env.game.kernels.outcome import TERMINATED, TRUNCATED
 from pool_env.game.sections import resolve
-from pool_env.game.state import GameState, new_state
+from pool_env.game.state import GameState
 from pool_env.sim.result import ShotResult
 
 _ONE = np.zeros(1, dtype=np.intp)  # the rows of the single table
@@ -106,7 +105,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self.observation_space = gym.spaces.Box(-1.0, 1.0, (config.observation_size,), np.float32)
         self.action_space = gym.spaces.Box(-1.0, 1.0, (config.action_size,), np.float32)
         self._record = render_mode is not None  # trajectories only when something draws them
-        self._state: GameState = new_state(1, n)
+        self._state: GameState = self.config.new_state(1)
         self._started = False
         self._potted_lut = potted_lookup(config.n_object_balls)
         self._last_shot: ShotResult | None = None
@@ -192,8 +191,8 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
 
     @property
     def rack(self) -> dict[str, Any]:
-        """Under rules: the rack state (:func:`pool_env.game.rack.rack_dict`), a new dict."""
-        return rack_dict(self.config, self._state.rack[0])
+        """Under rules: the rack state (the game's ``Ruleset.state_dict``), a new dict."""
+        return self.config.ruleset.state_dict(self._state.rack[0])
 
     @property
     def last_shot(self) -> ShotResult | None:

@@ -2,7 +2,7 @@
 
 Both are thin fronts over the decision process (:func:`pool_env.game.step.step` with
 ``GameConfig.players == 2``): the rules, ball in hand, the break and the turns are
-:mod:`pool_env.game.kernels.wpa`'s, the action and observation those of the game ids
+:mod:`pool_env.game.games.wpa`'s, the action and observation those of the game ids
 (:class:`pool_env.PoolEnv` with ``game="nine"``, ``"ten"`` or ``"eight"``), seen from each
 agent's seat.
 
@@ -54,11 +54,9 @@ from pool_env.game import step as game_step
 from pool_env.game.checks import check_actions, check_options
 from pool_env.game.config import GameConfig, PoolConfig, default_config, make_config
 from pool_env.game.info import potted_lookup, table_info
-from pool_env.game.kernels import wpa
-from pool_env.game.rack import rack_dict
-from pool_env.game.rules import TRUNCATED
+from pool_env.game.kernels.outcome import TRUNCATED
 from pool_env.game.sections import resolve
-from pool_env.game.state import GameState, new_state
+from pool_env.game.state import GameState
 
 AECEnv = require("pettingzoo", "multiagent", "pool_env.envs.multiagent").AECEnv
 AGENTS = ("player_0", "player_1")
@@ -107,10 +105,9 @@ class PoolDuelEnv(AECEnv):
         base = default_config(**registered, max_shots=steps) if config is None else config
         self.config: GameConfig = make_config(resolve(base, {**overrides, "game": game}), 2)
         self.possible_agents = list(AGENTS)
-        n = self.config.n_balls
         self._action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)
         self._observation_space = spaces.Box(-1.0, 1.0, (self.config.observation_size,), np.float32)
-        self._state: GameState = new_state(1, n)
+        self._state: GameState = self.config.new_state(1)
         seed_table(self._state, 0, None)
         self._lut = potted_lookup(self.config.n_object_balls)
         game_step.reset(self.config, self._state, _ONE)
@@ -130,8 +127,8 @@ class PoolDuelEnv(AECEnv):
 
     @property
     def rack(self) -> dict[str, Any]:
-        """The rack state (:func:`pool_env.game.rack.rack_dict`)."""
-        return rack_dict(self.config, self._state.rack[0])
+        """The rack state (the game's :meth:`~pool_env.game.ruleset.Ruleset.state_dict`)."""
+        return self.config.ruleset.state_dict(self._state.rack[0])
 
     @property
     def shots(self) -> int:
@@ -144,7 +141,7 @@ class PoolDuelEnv(AECEnv):
         ``options={"positions": (N, 2), "on_table": (N,), "rules": {...}}`` starts instead
         from that layout (ball ``k`` in row ``k``, the cue ball on the table); without
         ``rules``: ``player_0`` to shoot, not a break, the cue ball where it lies, an open
-        table (see :func:`pool_env.game.rack.rack_option`). Other keys are ignored, as
+        table (see :func:`pool_env.game.games.wpa.rack.rack_option`). Other keys are ignored, as
         PettingZoo's API test expects.
 
         Raises:
@@ -160,7 +157,7 @@ class PoolDuelEnv(AECEnv):
         self.terminations = {a: False for a in self.agents}
         self.truncations = {a: False for a in self.agents}
         self.infos = {a: {} for a in self.agents}
-        self.agent_selection = AGENTS[int(self._state.rack[0, wpa.SHOOTER])]
+        self.agent_selection = AGENTS[int(self.config.ruleset.shooters(self._state)[0])]
 
     def observe(self, agent: str) -> NDArray[np.float32]:
         """The observation of ``agent`` (a fresh array)."""
@@ -187,7 +184,7 @@ class PoolDuelEnv(AECEnv):
                 self.terminations[name] = True
         elif result.flags[0, TRUNCATED]:
             self.truncations = {name: True for name in self.agents}
-        self.agent_selection = AGENTS[int(self._state.rack[0, wpa.SHOOTER])]
+        self.agent_selection = AGENTS[int(self.config.ruleset.shooters(self._state)[0])]
         self._accumulate_rewards()
 
     def render(self) -> None:

@@ -21,9 +21,8 @@ from pool_env.game import step as game
 from pool_env.game.checks import check_actions, check_options, parse_count
 from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import batch_info, potted_lookup
-from pool_env.game.rack import rack_dict
 from pool_env.game.sections import resolve
-from pool_env.game.state import GameState, new_state
+from pool_env.game.state import GameState
 
 _OPTIONS = ("positions", "on_table", "reset_mask")
 
@@ -138,7 +137,6 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         config = self.config
 
         self.num_envs = int(num_envs)
-        n = config.n_balls
         self.single_observation_space = gym.spaces.Box(
             -1.0, 1.0, (config.observation_size,), np.float32
         )
@@ -146,7 +144,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self.observation_space = batch_space(self.single_observation_space, self.num_envs)
         self.action_space = batch_space(self.single_action_space, self.num_envs)
 
-        self._state: GameState = new_state(self.num_envs, n)
+        self._state: GameState = self.config.new_state(self.num_envs)
         self._done = np.zeros(self.num_envs, dtype=np.bool_)  # finished, awaiting a reset
         self._unset = np.ones(self.num_envs, dtype=np.bool_)  # never reset: no layout yet
         self._all = np.arange(self.num_envs)
@@ -273,7 +271,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     @property
     def rack(self) -> tuple[dict[str, Any], ...]:
         """Under rules: each table's rack state (as ``PoolEnv.rack``)."""
-        return tuple(rack_dict(self.config, row) for row in self._state.rack)
+        return tuple(self.config.ruleset.state_dict(row) for row in self._state.rack)
 
     @property
     def shots(self) -> NDArray[np.int64]:

@@ -2,8 +2,8 @@
 
 :func:`decode_action` runs the decision process's own decoding on one table, noise off:
 the game's ruleset places the cue ball in hand and executes the shot
-(:meth:`~pool_env.game.rulesets.base.Ruleset.place`,
-:meth:`~pool_env.game.rulesets.base.Ruleset.execute`), as a step does. There is one decoder: what it
+(:meth:`~pool_env.game.ruleset.Ruleset.place`,
+:meth:`~pool_env.game.ruleset.Ruleset.execute`), as a step does. There is one decoder: what it
 returns is what a step executes before its noise. :func:`encode_action` inverts it: it
 maps each part of a :class:`Shot` back onto its action component (the aim through the
 same reference ball, :func:`~pool_env.game.kernels.actions.nearest_object_ball` of the
@@ -14,21 +14,17 @@ balls the rules let the cue ball hit first), so ``decode_action(encode_action(sh
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env.game.checks import check_actions
-from pool_env.game.components import unit_component
+from pool_env.game.components import ball_component, pocket_component, unit_component
 from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
-from pool_env.game.kernels import wpa
 from pool_env.game.kernels.actions import (
-    CALL_BALL,
-    CALL_HAND_BACK,
-    CALL_POCKET,
-    CALL_PUSH_OUT,
     nearest_object_ball,
 )
 from pool_env.game.kernels.encode import (
@@ -41,11 +37,9 @@ from pool_env.game.kernels.encode import (
 from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
 from pool_env.game.kernels.encode import reference_balls as kernel_reference_balls
 from pool_env.game.kernels.tips import onto_tip_circle
-from pool_env.game.rack import rack_option, rack_row
-from pool_env.game.rulesets.wpa import encode_ball as encode_ball_of
-from pool_env.game.rulesets.wpa import encode_pocket as encode_pocket_of
+from pool_env.game.ruleset import Turn
 from pool_env.game.shots import Shot, ShotConstraints
-from pool_env.game.state import GameState, new_state
+from pool_env.game.state import GameState
 from pool_env.sim import Table
 
 _ONE = np.zeros(1, dtype=np.intp)
@@ -73,25 +67,10 @@ def _table(
     on = np.ones(n, dtype=np.bool_) if on_table is None else np.array(on_table, dtype=np.bool_)
     if on.shape != (n,):
         raise ValueError(f"on_table must have shape ({n},), got {on.shape}")
-    state = new_state(1, n)
+    state = config.new_state(1)
     state.positions[0], state.on_table[0] = pos, on
-    if config.ruleset.has_rack:  # the input's parsing; the encoding asks the ruleset
-        state.rack[0] = _rack_row(config, rack)
-    elif rack is not None:
-        raise ValueError("rack is for the rules ids (game='nine', 'ten' or 'eight')")
+    state.rack[0] = config.ruleset.state_row(config, rack)  # the game parses its own state
     return state
-
-
-def _rack_row(config: GameConfig, rack: Any) -> NDArray[np.int64]:
-    """The rack-state row of ``rack``: a row, a dict as ``PoolEnv.rack`` gives, or None."""
-    if rack is None:  # a reset's default for a given layout
-        return rack_option(config, None, rack_scene=False)
-    if isinstance(rack, dict):
-        return rack_row(rack)
-    row = np.array(rack, dtype=np.int64)
-    if row.shape != (wpa.N_RACK,):
-        raise ValueError(f"rack must be PoolEnv.rack's dict or a ({wpa.N_RACK},) row, got {rack!r}")
-    return row
 
 
 def _quiet(config: GameConfig) -> NDArray[np.float64]:
@@ -129,20 +108,12 @@ def decode_action(
     """
     actions = check_actions(action, 1, single=True, width=config.action_size)
     state = _table(config, positions, on_table, rack)
-    params, ruleset = _quiet(config), config.ruleset
-    ruleset.place(config.table, params, state, _ONE, actions)
-    cue = ruleset.placed_cue(state)
-    shots, _, calls = ruleset.execute(params, config.table.pockets, state, _ONE, actions)
-    row = shots[0].tolist()
+    ruleset = config.ruleset
+    quiet = replace(config, params=_quiet(config))
+    executed = ruleset.shoot(Turn(quiet, state, _ONE), actions)
+    row = executed.shots[0].tolist()
     tip = (row[2], row[3]) if config.spin else (0.0, 0.0)
-    if calls is None:
-        return Shot(angle=row[0], speed=row[1], tip=tip, cue=cue)
-    call = calls[0]
-    return Shot(
-        angle=row[0], speed=row[1], tip=tip, cue=cue, pocket=int(call[CALL_POCKET]),
-        ball=int(call[CALL_BALL]) if call[CALL_BALL] > 0 else None,
-        push_out=bool(call[CALL_PUSH_OUT]), pass_back=bool(call[CALL_HAND_BACK]),
-    )  # fmt: skip
+    return ruleset.decoded_shot(row, executed.calls, tip, ruleset.placed_cue(state))
 
 
 def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> float:
@@ -260,7 +231,7 @@ def obs_layout(config: GameConfig) -> dict[str, slice]:
     one entry per rule feature (``"ball_in_hand"``, ``"behind_head_string"``, ``"break"``,
     ``"open_table"``, ``"fouls"``, ``"opponent_fouls"``, ``"to_shoot"``; 9-ball and
     10-ball also ``"push_out"`` and ``"option"``): the game's
-    :meth:`~pool_env.game.rulesets.base.Ruleset.obs_layout`. With ``observation="shots"``
+    :meth:`~pool_env.game.ruleset.Ruleset.obs_layout`. With ``observation="shots"``
     the last part is ``"shots"``: per pocket the
     :data:`~pool_env.game.shot_features.SHOT_FEATURES` row.
 
@@ -284,7 +255,7 @@ def shot_constraints(config: GameConfig, observation: ArrayLike) -> ShotConstrai
 
     The legal first balls, ball in hand and its placement box, the break (and its speed
     range), whether the called pocket counts: the game's
-    :meth:`~pool_env.game.rulesets.base.Ruleset.constraints`. Agents ask this rather than
+    :meth:`~pool_env.game.ruleset.Ruleset.constraints`. Agents ask this rather than
     restate the rules.
 
     Raises:
@@ -380,7 +351,7 @@ def encode_pocket(config: GameConfig, pocket: int) -> float:
     Raises:
         ValueError: If the table has no pocket ``pocket``.
     """
-    return encode_pocket_of(config.table, pocket)
+    return pocket_component(config.table.n_pockets, pocket)
 
 
 def encode_ball(config: GameConfig, ball: int) -> float:
@@ -392,7 +363,7 @@ def encode_ball(config: GameConfig, ball: int) -> float:
     column = getattr(config.ruleset, "ball_column", -1)
     if column < 0:
         raise ValueError(f"game={config.game!r} calls no ball (10-ball does)")
-    return encode_ball_of(config.n_object_balls, ball)
+    return ball_component(config.n_object_balls, ball)
 
 
 def _tip(

@@ -8,6 +8,8 @@ refused (or clipped) by one rule with one message.
 
 from __future__ import annotations
 
+import numpy as np
+
 from pool_env.game.kernels.encode import to_unit
 
 
@@ -31,3 +33,29 @@ def unit_component(name: str, value: float, low: float, high: float, clip: bool)
     if not -1.0 - 1e-12 <= c <= 1.0 + 1e-12 and not clip:
         raise ValueError(f"{name} {value!r} lies outside its range [{low!r}, {high!r}]")
     return min(max(c, -1.0), 1.0)
+
+
+def pocket_component(n_pockets: int, pocket: int) -> float:
+    """The action component that calls ``pocket`` of ``n_pockets``: the middle of its bin.
+
+    Raises:
+        ValueError: If the table has no pocket ``pocket``.
+    """
+    if not 0 <= pocket < n_pockets:
+        raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {pocket!r}")
+    return (2.0 * pocket + 1.0) / n_pockets - 1.0
+
+
+def ball_component(n_objects: int, ball: int) -> float:
+    """The action component that calls object ball ``ball`` (10-ball): the middle of its bin.
+
+    Raises:
+        ValueError: If ``ball`` is not one of the ``n_objects`` object balls.
+    """
+    if (
+        isinstance(ball, bool)
+        or not isinstance(ball, int | np.integer)
+        or not (1 <= ball <= n_objects)
+    ):
+        raise ValueError(f"the called ball must be in 1..{n_objects}, got {ball!r}")
+    return (2.0 * (ball - 1) + 1.0) / n_objects - 1.0

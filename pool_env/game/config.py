@@ -9,6 +9,7 @@ Every front builds its config here, so defaults, checks and messages exist once.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from typing import Any, Literal
 
@@ -17,24 +18,31 @@ from numpy.typing import NDArray
 
 from pool_env.game import checks
 from pool_env.game.kernels import params as kp
-from pool_env.game.rules import CUE as RULES_CUE
-from pool_env.game.rulesets import RULESETS, Ruleset, ruleset_for
-from pool_env.game.rulesets.wpa import DEFAULT_BREAK_SPEED_RANGE
+from pool_env.game.kernels.outcome import CUE
+from pool_env.game.registry import BUILTIN, ruleset_for
+from pool_env.game.ruleset import Ruleset, RulesSection, Setup
 from pool_env.game.scenes import ScenePlan, placement, plan_scene
-from pool_env.game.sections import DEFAULT_SPEED_RANGE, PoolConfig, default_config, resolve
+from pool_env.game.sections import (
+    DEFAULT_SPEED_RANGE,
+    PoolConfig,
+    TaskSection,
+    default_config,
+    resolve,
+)
 from pool_env.game.shot_features import OBSERVATIONS, shot_features_width
+from pool_env.game.state import GameState, new_state
 from pool_env.sim.table import Table
 
 __all__ = [
     "AIM_MODES",
     "CUE",
     "DEFAULT_AIM_RANGE",
-    "DEFAULT_BREAK_SPEED_RANGE",
     "DEFAULT_SPEED_RANGE",
     "GAMES",
     "OBSERVATIONS",
     "GameConfig",
     "PoolConfig",
+    "TaskConfig",
     "default_config",
     "default_tip_limit",
     "kernel_params",
@@ -65,12 +73,8 @@ DEFAULT_AIM_RANGE: dict[str, tuple[float, float]] = {
     "cut": (-1.0, 1.0),
 }
 
-#: The games (:data:`pool_env.game.rulesets.RULESETS`), in the order of their codes in the
-#: kernels (:mod:`.kernels.wpa`).
-GAMES: tuple[str, ...] = tuple(RULESETS)
-
-#: The cue ball's row in every layout (the rules' constant).
-CUE = RULES_CUE
+#: The built-in games' names (:func:`pool_env.game.registry.game_names` adds the user's).
+GAMES: tuple[str, ...] = tuple(BUILTIN)
 
 #: The contact offset (fraction of R) beyond which a real tip miscues: about half a radius
 #: (pooltool and Dr. Dave's miscue-limit FAQ). The default tip limit is the axis offset
@@ -89,66 +93,118 @@ def default_tip_limit(table: Table) -> float:
 
 
 @dataclass(frozen=True)
-class GameConfig:
-    """Everything about the decision process that does not change while it runs.
+class TaskConfig:
+    """The task section parsed (:class:`~pool_env.game.sections.TaskSection`).
 
     Attributes:
-        table: The table.
         scene: The parsed scene (:class:`pool_env.game.scenes.ScenePlan`).
         aim: Aim mode.
         aim_range: What action[0] = -1 and +1 map to.
         speed_range: Speeds (m/s) of action[1] = -1 and +1.
-        noise: Execution noise sigmas ``(angle, speed)`` (spin: optionally ``(angle,
-            speed, tip)``) or ``None``; a named model (``"fastfiz"``) parsed into its sigmas.
-        end_on_miss: A shot that pots nothing (or scratches) ends the episode.
-        max_shots: The raw environment's own shot limit, or ``None``.
-        shot_limit: Shots after which an episode is truncated (0: never): ``max_shots``,
-            or the vector env's smaller of it and ``max_episode_steps``.
-        reward_weights: ``(pot, scratch, no contact, shaping)``.
-        game: The rule: ``"solitaire"``, ``"nine"``, ``"ten"`` or ``"eight"``.
-        players: 1 (one agent shoots every shot) or 2 (the turn passes by the rules).
-        end_on_foul: Rules only (solitaire: False): a foul, or a shot that does not keep
-            the table, ends the episode (run-out mode).
-        break_speed_range: Rules only (solitaire, which has no break: ``(0, 0)``): speeds
-            (m/s) of action[1] = -1 and +1 on a break.
-        rule_rewards: Rules only (solitaire: ``(0, 0)``): ``(foul, win)`` (a lost rack
-            gives ``-win``). The game's :meth:`~pool_env.game.rulesets.base.Ruleset.parse_rules`.
         observation: ``"balls"`` or ``"shots"`` (:data:`OBSERVATIONS`): whether the
             observation ends with the ghost-ball shot features
             (:mod:`pool_env.game.shot_features`).
         tip_limit: Spin tables only (else ``None``): the largest axis offset of the cue
             tip (fraction of ``R``), the radius of the miscue circle the two tip action
             components map onto (:func:`default_tip_limit` by default).
-        params: All of the above that the kernels read, as one read-only float64 array
-            (:mod:`pool_env.game.kernels.params` names its entries).
-        source: The sectioned config this was parsed from (``None``: built by hand).
-        ruleset: The game's :class:`~pool_env.game.rulesets.base.Ruleset` (from ``game``):
-            what the step, the observation and the ``info`` ask wherever games differ.
+        end_on_miss: A shot that pots nothing (or scratches) ends the episode (solitaire).
+        max_shots: The raw environment's own shot limit, or ``None``.
     """
 
-    table: Table
     scene: ScenePlan
     aim: AimMode
     aim_range: tuple[float, float]
     speed_range: tuple[float, float]
-    noise: tuple[float, ...] | None
+    observation: str
+    tip_limit: float | None
     end_on_miss: bool
     max_shots: int | None
-    shot_limit: int
-    reward_weights: tuple[float, float, float, float]
+
+
+@dataclass(frozen=True)
+class GameConfig:
+    """Everything about the decision process that does not change while it runs.
+
+    The sections parsed, each read where it is used; the numbers the kernels read are
+    packed once in ``params``.
+
+    Attributes:
+        table: The table (the table section parsed).
+        task: The task section parsed (:class:`TaskConfig`).
+        noise: Execution noise sigmas ``(angle, speed)`` (spin: optionally ``(angle,
+            speed, tip)``) or ``None``; a named model (``"fastfiz"``) parsed into its sigmas.
+        rules: The game's rules section, checked by the game
+            (:meth:`~pool_env.game.ruleset.Ruleset.parse_section`); ``rules.game`` names it.
+        rewards: The reward scales by term, the game's defaults with the user's over them,
+            in the game's order (:attr:`~pool_env.game.ruleset.Ruleset.reward_terms`).
+        players: 1 (one agent shoots every shot) or 2 (the turn passes by the rules).
+        shot_limit: Shots after which an episode is truncated (0: never): ``max_shots``,
+            or the vector env's smaller of it and ``max_episode_steps``.
+        params: What the kernels read, as one read-only float64 array: the shared head and
+            the game's tail (:mod:`pool_env.game.kernels.params`).
+        source: The sectioned config this was parsed from (``None``: built by hand).
+        ruleset: The game's :class:`~pool_env.game.ruleset.Ruleset` (from ``rules.game``):
+            what the step, the observation and the ``info`` ask wherever games differ.
+    """
+
+    table: Table
+    task: TaskConfig
+    noise: tuple[float, ...] | None
+    rules: RulesSection
+    rewards: Mapping[str, float]
     params: NDArray[np.float64]
-    game: str = "solitaire"
     players: int = 1
-    end_on_foul: bool = False
-    break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
-    rule_rewards: tuple[float, float] = (-1.0, 1.0)
-    tip_limit: float | None = None
-    observation: str = "balls"
+    shot_limit: int = 0
     source: PoolConfig | None = field(default=None, repr=False, compare=False)
     ruleset: Ruleset = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "ruleset", ruleset_for(self.game))
+        object.__setattr__(self, "ruleset", ruleset_for(self.rules.game))
+
+    @property
+    def game(self) -> str:
+        """The game's name (``rules.game``)."""
+        return self.rules.game
+
+    @property
+    def scene(self) -> ScenePlan:
+        """The parsed scene (``task.scene``)."""
+        return self.task.scene
+
+    @property
+    def aim(self) -> AimMode:
+        """The aim mode (``task.aim``)."""
+        return self.task.aim
+
+    @property
+    def aim_range(self) -> tuple[float, float]:
+        """What action[0] = -1 and +1 map to (``task.aim_range``)."""
+        return self.task.aim_range
+
+    @property
+    def speed_range(self) -> tuple[float, float]:
+        """Speeds (m/s) of action[1] = -1 and +1 (``task.speed_range``)."""
+        return self.task.speed_range
+
+    @property
+    def tip_limit(self) -> float | None:
+        """The spin table's tip limit, else ``None`` (``task.tip_limit``)."""
+        return self.task.tip_limit
+
+    @property
+    def observation(self) -> str:
+        """``"balls"`` or ``"shots"`` (``task.observation``)."""
+        return self.task.observation
+
+    @property
+    def end_on_miss(self) -> bool:
+        """A shot that pots nothing ends the episode (``task.end_on_miss``)."""
+        return self.task.end_on_miss
+
+    @property
+    def max_shots(self) -> int | None:
+        """The raw environment's own shot limit (``task.max_shots``)."""
+        return self.task.max_shots
 
     @property
     def spin(self) -> bool:
@@ -162,15 +218,10 @@ class GameConfig:
         return (size - 2, size - 1) if self.spin else None
 
     @property
-    def rules(self) -> bool:
-        """Whether a game with a rack state (9-ball or 8-ball) applies, not solitaire."""
-        return self.ruleset.has_rack
-
-    @property
     def observation_size(self) -> int:
         """Observation entries: ``3 N``; under rules also the legal-ball flags and more.
 
-        The ruleset's :meth:`~pool_env.game.rulesets.base.Ruleset.observation_width`, and
+        The ruleset's :meth:`~pool_env.game.ruleset.Ruleset.observation_width`, and
         with ``observation="shots"`` the shot features
         (:func:`~pool_env.game.shot_features.shot_features_width`).
         """
@@ -193,12 +244,16 @@ class GameConfig:
     @property
     def n_object_balls(self) -> int:
         """Object balls of the scene."""
-        return self.scene.n_objects
+        return self.task.scene.n_objects
 
     @property
     def n_balls(self) -> int:
         """Balls of a layout, the cue ball included."""
-        return self.scene.n_objects + 1
+        return self.task.scene.n_objects + 1
+
+    def new_state(self, n_tables: int) -> GameState:
+        """``n_tables`` empty tables of this config's balls and game state."""
+        return new_state(n_tables, self.n_balls, self.ruleset.rack_width)
 
     def with_shot_limit(self, limit: int | None) -> GameConfig:
         """This config truncating after ``min(max_shots, limit)`` shots."""
@@ -212,19 +267,29 @@ class GameConfig:
 
 def kernel_params(
     table: Table,
-    aim: str,
-    aim_range: tuple[float, float],
-    speed_range: tuple[float, float],
+    task: TaskConfig,
     noise: tuple[float, ...] | None,
-    weights: tuple[float, float, float, float],
-    end_on_miss: bool,
     shot_limit: int,
+    players: int = 1,
+    tail: NDArray[np.float64] | None = None,
+    action_width: int = 2,
 ) -> NDArray[np.float64]:
-    """The read-only parameter array of :mod:`pool_env.game.kernels.params`."""
+    """The read-only parameter array of :mod:`pool_env.game.kernels.params`.
+
+    Args:
+        table: The parsed table.
+        task: The parsed task section.
+        noise: The parsed sigmas, or ``None``.
+        shot_limit: Shots after which an episode is truncated (0: never).
+        players: 1 or 2.
+        tail: The game's tail (:meth:`~pool_env.game.ruleset.Ruleset.configure`;
+            ``None``: zeros).
+        action_width: The game's action columns (the tip's follow).
+    """
     params = placement(table)
-    params[kp.AIM_MODE] = AIM_MODES.index(aim)
-    params[[kp.AIM_LOW, kp.AIM_HIGH]] = aim_range
-    params[[kp.SPEED_LOW, kp.SPEED_HIGH]] = speed_range
+    params[kp.AIM_MODE] = AIM_MODES.index(task.aim)
+    params[[kp.AIM_LOW, kp.AIM_HIGH]] = task.aim_range
+    params[[kp.SPEED_LOW, kp.SPEED_HIGH]] = task.speed_range
     if noise is not None:
         params[[kp.NOISE, kp.SIGMA_ANGLE, kp.SIGMA_SPEED]] = (1.0, *noise[:2])
         params[kp.SIGMA_TIP] = noise[2] if len(noise) > 2 else 0.0
@@ -233,16 +298,23 @@ def kernel_params(
         params[[kp.BALL_MASS, kp.CUE_END_MASS, kp.CUE_TIP_RADIUS]] = (
             table.ball_mass, table.cue_end_mass, table.cue_tip_radius
         )  # fmt: skip
-    params[[kp.W_POT, kp.W_SCRATCH, kp.W_NO_CONTACT, kp.W_SHAPING]] = weights
-    params[kp.END_ON_MISS] = float(end_on_miss)
+    if task.tip_limit is not None:
+        params[kp.TIP_LIMIT] = task.tip_limit
     params[kp.SHOT_LIMIT] = shot_limit
-    params[[kp.BALL_COLUMN, kp.OPTION_COLUMN, kp.TIP_COLUMN]] = (-1.0, -1.0, 2.0)  # rules: theirs
+    params[kp.PLAYERS] = players
+    params[kp.TIP_COLUMN] = action_width
+    if tail is not None:
+        params[kp.TAIL :] = tail
     params.setflags(write=False)
     return params
 
 
 def make_config(config: PoolConfig | None = None, players: int = 1, **overrides: Any) -> GameConfig:
     """Check and parse an environment's config (see :class:`pool_env.PoolEnv`).
+
+    Each section is parsed on its own: the table, the task, the noise; then the game
+    (``rules.game``) checks its rules section against them and gives its tail of the
+    kernel parameters, with the reward scales (its terms' defaults, the user's over them).
 
     Args:
         config: The sectioned config (``None``: :func:`~pool_env.game.sections.default_config`).
@@ -255,57 +327,64 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
             refused here, never at a reset.
     """
     source = resolve(config, overrides)
-    task, rules = source.task, source.rules
-    parsed_table = checks.parse_table(source.table.table, source.table.model)
+    table = checks.parse_table(source.table.table, source.table.model)
+    task = parse_task(source.task, table)
+    sigmas = checks.parse_noise(source.noise.sigmas, table)
+    ruleset = ruleset_for(source.rules.game)
+    if players not in (1, 2) or isinstance(players, bool):
+        raise ValueError(f"players must be 1 or 2, got {players!r}")
+    rewards = parse_rewards(ruleset, source.rewards.scales)
+    rules = ruleset.parse_section(source.rules)
+    setup = Setup(table, task.scene, rules, rewards, task.end_on_miss, players,
+                  ruleset.action_width)  # fmt: skip
+    tail = ruleset.configure(setup)
+    shots = task.max_shots or 0
+    params = kernel_params(table, task, sigmas, shots, players, tail, ruleset.action_width)
+    return GameConfig(
+        table=table, task=task, noise=sigmas, rules=rules, rewards=rewards, params=params,
+        players=players, shot_limit=shots, source=source,
+    )  # fmt: skip
+
+
+def parse_task(task: TaskSection, table: Table) -> TaskConfig:
+    """The task section checked and parsed (``ValueError``, naming the first bad value)."""
     if task.aim not in AIM_MODES:
         raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {task.aim!r}")
     if task.observation not in OBSERVATIONS:
         raise ValueError(
             f"observation must be one of {list(OBSERVATIONS)}, got {task.observation!r}"
         )
-    aims = checks.parse_range("aim_range", task.aim_range or DEFAULT_AIM_RANGE[task.aim], None)
-    speeds = checks.parse_range("speed_range", task.speed_range, 0.0)
-    sigmas = checks.parse_noise(source.noise.sigmas, parsed_table)
-    limit = parse_tip_limit(parsed_table, task.tip_limit)
-    miss = checks.parse_bool("end_on_miss", task.end_on_miss)
-    shots = checks.parse_count("max_shots", task.max_shots)
-    weights = tuple(
-        checks.parse_float(name, getattr(task, name))
-        for name in ("reward_pot", "reward_scratch", "reward_no_contact", "reward_shaping")
-    )
-    ruleset = ruleset_for(rules.game)
-    if players not in (1, 2) or isinstance(players, bool):
-        raise ValueError(f"players must be 1 or 2, got {players!r}")
-    foul_ends, breaks, rule_rewards = ruleset.parse_rules(rules)
-    plan = plan_scene(task.scene, parsed_table, task.n_balls, task.rack_order)
-    ruleset.check(plan, parsed_table, miss, foul_ends, players)
-    params = kernel_params(parsed_table, task.aim, aims, speeds, sigmas, weights, miss, shots or 0)  # type: ignore[arg-type]
-    if limit is not None:
-        params = params.copy()
-        params[kp.TIP_LIMIT] = limit
-        params.setflags(write=False)
-    params = ruleset.rule_params(params, parsed_table, players, foul_ends, breaks, rule_rewards)
-    return GameConfig(
-        table=parsed_table,
-        scene=plan,
+    return TaskConfig(
+        scene=plan_scene(task.scene, table, task.n_balls, task.rack_order),
         aim=task.aim,  # type: ignore[arg-type]
-        aim_range=aims,
-        speed_range=speeds,
-        noise=sigmas,
-        end_on_miss=miss,
-        max_shots=shots,
-        shot_limit=shots or 0,
-        reward_weights=weights,  # type: ignore[arg-type]
-        params=params,
-        game=rules.game,
-        players=players,
-        end_on_foul=foul_ends,
-        break_speed_range=breaks,
-        rule_rewards=rule_rewards,
-        tip_limit=limit,
+        aim_range=checks.parse_range(
+            "aim_range", task.aim_range or DEFAULT_AIM_RANGE[task.aim], None
+        ),
+        speed_range=checks.parse_range("speed_range", task.speed_range, 0.0),
         observation=task.observation,
-        source=source,
+        tip_limit=parse_tip_limit(table, task.tip_limit),
+        end_on_miss=checks.parse_bool("end_on_miss", task.end_on_miss),
+        max_shots=checks.parse_count("max_shots", task.max_shots),
     )
+
+
+def parse_rewards(ruleset: Ruleset, given: Mapping[str, Any]) -> dict[str, float]:
+    """The game's reward scales: its defaults, with the given ones checked over them.
+
+    Raises:
+        ValueError: On a term the game has not, or a scale that is no finite number.
+    """
+    unknown = [term for term in given if term not in ruleset.reward_terms]
+    if unknown:
+        terms = ", ".join(f"reward_{t}" for t in ruleset.reward_terms)
+        raise ValueError(
+            f"reward_{unknown[0]}: game={ruleset.name!r} has no reward term {unknown[0]!r} "
+            f"(its terms: {terms})"
+        )
+    return {
+        term: checks.parse_float(f"reward_{term}", given.get(term, default))
+        for term, default in ruleset.reward_terms.items()
+    }
 
 
 def parse_tip_limit(table: Table, tip_limit: object) -> float | None:

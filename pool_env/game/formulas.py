@@ -12,9 +12,10 @@ names only" in ``pyproject.toml``):
 * :func:`decode_tips`: the cue tip ``(side, vertical)`` the env executes for actions;
 * :func:`to_unit`: a value of a range as its action component in ``[-1, 1]``;
 * :func:`cue_speed`: the cue speed at which an object ball drops at a given speed
-  (:func:`pool_env.game.geometry.cue_speeds` for one shot);
-* :data:`IN_HAND`, the rack state's ball-in-hand entry (a planner's own copy of the
-  rack state; the observation's parts are named by :func:`pool_env.obs_layout`).
+  (:func:`pool_env.game.geometry.cue_speeds` for one shot).
+
+A game's own names (the WPA rack state's columns, its results' columns) are its package's
+public names (:mod:`pool_env.game.games.wpa`).
 """
 
 from __future__ import annotations
@@ -28,10 +29,8 @@ from pool_env.game.kernels.actions import decode_shots
 from pool_env.game.kernels.encode import to_unit
 from pool_env.game.kernels.geometry import cue_speed
 from pool_env.game.kernels.tips import decode_tips
-from pool_env.game.kernels.wpa import IN_HAND
 
 __all__ = [
-    "IN_HAND",
     "cue_speed",
     "decode_on_layout",
     "decode_tips",

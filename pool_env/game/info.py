@@ -6,22 +6,22 @@ and the array type set by the value (``bool``, ``int64``, ``float64``, or ``obje
 the tuple of potted balls). :func:`batch_info` builds that from a
 :class:`pool_env.game.step.StepResult` without a loop over tables, :func:`table_info` the
 single environment's dict; both read the same columns. The keys a game adds are its
-ruleset's (:meth:`~pool_env.game.rulesets.base.Ruleset.table_info`,
-:meth:`~pool_env.game.rulesets.base.Ruleset.batch_info`).
+ruleset's (:meth:`~pool_env.game.ruleset.Ruleset.table_info`,
+:meth:`~pool_env.game.ruleset.Ruleset.batch_info`).
 """
 
 from __future__ import annotations
 
+from functools import cache
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
-from pool_env.game.rulesets.wpa import OPTION_KEYS
-from pool_env.game.rulesets.wpa import RULE_KEYS as WPA_KEYS
+from pool_env.game.kernels.outcome import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
 
 if TYPE_CHECKING:
+    from pool_env.game.ruleset import Ruleset
     from pool_env.game.step import StepResult
 
 #: ``info`` key -> (array of :class:`~pool_env.game.step.StepResult`, its column or
@@ -37,15 +37,28 @@ COLUMNS: dict[str, tuple[str, int | None, type]] = {
     "is_success": ("flags", CLEARED, np.bool_),
 }
 
-#: The keys the WPA games add, in their order: every one's, then 9-ball and 10-ball's.
-RULE_KEYS: tuple[str, ...] = (*WPA_KEYS, *OPTION_KEYS)
-
 #: Every key of a step's ``info``.
 INFO_KEYS: tuple[str, ...] = ("potted", *COLUMNS)
 
 #: The key a spin table's step adds: the executed cue tip ``(a, b)`` (side, vertical;
 #: fractions of R, after noise and the miscue limit), a tuple as ``potted`` is.
 TIP_KEY = "tip"
+
+#: The prefix of the reward terms' keys: ``reward_pot``, ``reward_scratch``, ...
+REWARD_KEY_PREFIX = "reward_"
+
+
+@cache
+def reward_keys(ruleset: Ruleset) -> tuple[str, ...]:
+    """The ``info`` keys of a game's reward terms, in their order."""
+    return tuple(f"{REWARD_KEY_PREFIX}{term}" for term in ruleset.reward_terms)
+
+
+def info_keys(ruleset: Ruleset, spin: bool) -> tuple[str, ...]:
+    """Every key of a step's ``info`` under ``ruleset`` (``spin``: a spin table's tip too)."""
+    return (*INFO_KEYS, *((TIP_KEY,) if spin else ()), *reward_keys(ruleset),
+            *ruleset.info_keys)  # fmt: skip
+
 
 #: Object balls up to which the potted tuples come from a lookup table (``2^n`` entries).
 LOOKUP_MAX_BALLS = 16
@@ -95,7 +108,12 @@ def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str,
     if result.shots.shape[1] > 2:
         shot_row = rows.get("shots") or result.shots[0].tolist()
         info[TIP_KEY] = (shot_row[2], shot_row[3])
-    result.ruleset.table_info(rows.get("hits") or result.hits[0].tolist(), info)
+    ruleset = result.ruleset
+    values = result.values[0].tolist()
+    for k, key in enumerate(reward_keys(ruleset)):
+        info[key] = values[1 + k]
+    for key, column in ruleset.info_columns(result.hits[:1]).items():
+        info[key] = column.tolist()[0]
     return info
 
 
@@ -136,5 +154,15 @@ def batch_info(
         ):
             tips[t] = (side, vertical)  # one by one: numpy would unpack the tuples
         info[TIP_KEY], info[f"_{TIP_KEY}"] = tips, present.copy()
-    result.ruleset.batch_info(result.hits, rows, tables, n_envs, present, info)
+    ruleset = result.ruleset
+    values = result.values[rows]
+    for k, key in enumerate(reward_keys(ruleset)):
+        column = np.zeros(n_envs)
+        column[tables] = values[:, 1 + k]
+        info[key], info[f"_{key}"] = column, present.copy()
+    for key, game_column in ruleset.info_columns(result.hits[rows]).items():
+        column = (np.full(n_envs, None, dtype=object) if game_column.dtype == object
+                  else np.zeros(n_envs, dtype=game_column.dtype))  # fmt: skip
+        column[tables] = game_column
+        info[key], info[f"_{key}"] = column, present.copy()
     return info

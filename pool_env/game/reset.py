@@ -16,7 +16,7 @@ from numpy.typing import NDArray
 from pool_env.game.checks import check_options
 from pool_env.game.config import CUE, GameConfig
 from pool_env.game.kernels.layout import sample_layouts
-from pool_env.game.rack import check_rack, rack_option
+from pool_env.game.ruleset import Turn
 from pool_env.game.scenes import check_layout
 from pool_env.game.state import GameState
 from pool_env.sim.layouts import shuffled_spots
@@ -42,25 +42,21 @@ def reset(
     Raises:
         ValueError: On bad options, naming them; the state is then unchanged.
     """
-    if config.rules and "rules" not in option_names:
+    ruleset = config.ruleset
+    if ruleset.has_rack and "rules" not in option_names:
         option_names = (*option_names, "rules")
     options = check_options(options)
-    rack = None
-    if config.rules:
-        rack = rack_option(config, options.pop("rules", None), rack_scene=not options)
+    given = options.pop("rules", None) if ruleset.has_rack else None
+    turn = Turn(config, state, tables)
     if options:
         positions, on_table = option_layouts(config, options, tables, state.n_tables, option_names)
-        if rack is not None:
-            check_rack(config, rack, on_table)
+        ruleset.start(turn, given, False, on_table)  # checked before the layouts land
         state.positions[tables], state.on_table[tables] = positions, on_table
     else:
-        if rack is not None:
-            check_rack(config, rack, np.ones((1, config.n_balls), dtype=np.bool_))
+        ruleset.start(turn, given, True, np.ones((1, config.n_balls), dtype=np.bool_))
         _lay_out(config, state, tables)
         state.on_table[tables] = True
     state.shots[tables] = 0
-    if rack is not None:
-        state.rack[tables] = rack
 
 
 def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> None:

@@ -36,7 +36,7 @@ def candidates_state(state: GameState, table: int, k: int) -> GameState:
     rng = state.generators[table]
     if rng is None:
         raise ValueError(f"table {table} has no generator yet: reset it first")
-    copies = new_state(k, state.positions.shape[1])
+    copies = new_state(k, state.positions.shape[1], state.rack.shape[1])
     copies.positions[...] = state.positions[table]
     copies.on_table[...] = state.on_table[table]
     copies.shots[...] = state.shots[table]

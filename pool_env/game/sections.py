@@ -1,4 +1,4 @@
-"""The environment's configuration as sections: table, task, noise and the game's rules.
+"""The environment's configuration as sections: table, task, noise, the game's rules and rewards.
 
 Every front takes one :class:`PoolConfig` (``config=``, :func:`default_config` if none)
 and keyword overrides, in the manner of MuJoCo Playground's ``default_config()`` with
@@ -14,8 +14,12 @@ checks and parses them into the :class:`~pool_env.game.config.GameConfig` the de
 process runs on, which keeps its :class:`PoolConfig` as ``source``.
 
 The rules section belongs to the game: each ruleset names its own section type
-(:attr:`pool_env.game.rulesets.base.Ruleset.section`), so ``end_on_foul`` exists where a
-game has fouls, and ``game="nine"`` swaps the section for 9-ball's.
+(:attr:`pool_env.game.ruleset.Ruleset.section`), so ``end_on_foul`` exists where a
+game has fouls, and ``game="nine"`` swaps the section for 9-ball's. So do the rewards: a
+game names its reward terms and their default scales
+(:attr:`~pool_env.game.ruleset.Ruleset.reward_terms`); the rewards section holds the scales
+a user set (``reward_pot=2.0`` or ``rewards={"pot": 2.0}``), each checked against the
+game's terms when the config is parsed.
 """
 
 from __future__ import annotations
@@ -25,8 +29,8 @@ from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 from pool_env.game.noise import NoiseSpec
-from pool_env.game.rulesets import RULESETS, ruleset_for
-from pool_env.game.rulesets.base import RulesSection
+from pool_env.game.registry import every_game, ruleset_for
+from pool_env.game.ruleset import RulesSection
 from pool_env.game.scenes import SceneSpec
 from pool_env.sim.table import Table
 
@@ -71,10 +75,6 @@ class TaskSection:
             ``None``: a half-radius contact, the miscue limit.
         end_on_miss: A shot that pots nothing (or scratches) ends the episode.
         max_shots: Shots after which the episode is truncated, or ``None``.
-        reward_pot: Reward per object ball potted.
-        reward_scratch: Reward when the cue ball drops.
-        reward_no_contact: Reward when the cue ball touches no object ball.
-        reward_shaping: Weight of the potential-based shaping term (0: none).
     """
 
     scene: SceneSpec = "random"
@@ -87,10 +87,6 @@ class TaskSection:
     tip_limit: float | None = None
     end_on_miss: bool = False
     max_shots: int | None = None
-    reward_pot: float = 1.0
-    reward_scratch: float = -1.0
-    reward_no_contact: float = 0.0
-    reward_shaping: float = 0.0
 
 
 @dataclass(frozen=True)
@@ -109,6 +105,23 @@ class NoiseSection:
 
 
 @dataclass(frozen=True)
+class RewardsSection:
+    """The reward's scales by term: the game names its terms and their default scales.
+
+    Attributes:
+        scales: The scales set, by term (``{"pot": 2.0}``); a term left out keeps the
+            game's default (:attr:`pool_env.game.ruleset.Ruleset.reward_terms`). Solitaire's
+            terms are ``pot``, ``scratch``, ``no_contact`` and ``shaping``; the WPA games'
+            ``pot``, ``foul`` and ``win``. The keyword ``reward_<term>`` sets one.
+    """
+
+    scales: Mapping[str, float] = field(default_factory=dict)
+
+    def __hash__(self) -> int:
+        return hash(tuple(sorted(self.scales.items())))
+
+
+@dataclass(frozen=True)
 class PoolConfig:
     """One environment's arguments, by section (see the module docstring).
 
@@ -117,12 +130,14 @@ class PoolConfig:
         task: The :class:`TaskSection`.
         noise: The :class:`NoiseSection`.
         rules: The game's rules section (``rules.game`` names the game).
+        rewards: The :class:`RewardsSection`.
     """
 
     table: TableSection = field(default_factory=TableSection)
     task: TaskSection = field(default_factory=TaskSection)
     noise: NoiseSection = field(default_factory=NoiseSection)
-    rules: RulesSection = field(default_factory=lambda: ruleset_for("solitaire").section())
+    rules: RulesSection = field(default_factory=RulesSection)
+    rewards: RewardsSection = field(default_factory=RewardsSection)
 
     def override(self, **overrides: Any) -> PoolConfig:
         """This config with ``overrides`` applied (see the module docstring).
@@ -146,16 +161,20 @@ class PoolConfig:
             return self._update("task", dict(value))
         if name == "noise" and isinstance(value, Mapping):
             return replace(self, noise=_section(NoiseSection, "noise", dict(value)))
+        if name == "rewards" and isinstance(value, Mapping):
+            return self._with_rewards(dict(value))
+        if name.startswith(REWARD_PREFIX) and name[len(REWARD_PREFIX) :].isidentifier():
+            return self._with_rewards({name[len(REWARD_PREFIX) :]: value})
         if name == "players":  # the front's: PoolEnv has one agent, PoolDuelEnv two
             raise ValueError("players is not an argument of PoolEnv: see pool_env.envs.multiagent")
         if name not in KEYS:
+            if _is_rule_key(name):
+                return self._with_rules({name: value}, _UNSET)
             raise ValueError(
-                f"unknown config key {name!r}: use one of {sorted(KEYS)} or a section "
-                f"({', '.join(SECTIONS)})"
+                f"unknown config key {name!r}: use one of {sorted(KEYS)}, reward_<term>, a "
+                f"rule key of the game or a section ({', '.join(SECTIONS)})"
             )
         section = KEYS[name]
-        if section == "rules":
-            return self._with_rules({name: value}, _UNSET)
         if section == "noise":
             return replace(self, noise=NoiseSection(sigmas=value))
         return self._update(section, {name: value})
@@ -163,6 +182,11 @@ class PoolConfig:
     def _update(self, section: str, values: dict[str, Any]) -> PoolConfig:
         current = getattr(self, section)
         return replace(self, **{section: _section(type(current), section, values, current)})
+
+    def _with_rewards(self, scales: dict[str, Any]) -> PoolConfig:
+        if not all(isinstance(term, str) for term in scales):
+            raise ValueError(f"rewards must map term names to scales, got {scales!r}")
+        return replace(self, rewards=RewardsSection({**self.rewards.scales, **scales}))
 
     def _with_rules(self, rules: Any, game: Any) -> PoolConfig:
         values: dict[str, Any] = {}
@@ -179,7 +203,7 @@ class PoolConfig:
         current = self.rules if type(self.rules) is section_type else section_type()
         for key in values:
             if key not in {f.name for f in fields(section_type)}:
-                owners = [g for g, r in RULESETS.items() if key in _field_names(r.section)]
+                owners = [g for g, r in every_game().items() if key in _field_names(r.section)]
                 raise ValueError(
                     f"{key} is a rule of game {' or '.join(map(repr, owners))}, not of "
                     f"game={name!r}"
@@ -230,7 +254,10 @@ def _section(section_type: type, name: str, values: dict[str, Any], current: Any
 _UNSET = object()  # "game" not given (None is a value, refused by the ruleset lookup)
 
 #: The sections by name, in the order of :class:`PoolConfig`.
-SECTIONS: tuple[str, ...] = ("table", "task", "noise", "rules")
+SECTIONS: tuple[str, ...] = ("table", "task", "noise", "rules", "rewards")
+
+#: A keyword ``reward_<term>`` sets the scale of the game's reward term ``<term>``.
+REWARD_PREFIX = "reward_"
 
 #: Sections given whole, by name.
 _WHOLE: dict[str, type] = {
@@ -238,13 +265,19 @@ _WHOLE: dict[str, type] = {
     "task": TaskSection,
     "noise": NoiseSection,
     "rules": RulesSection,
+    "rewards": RewardsSection,
 }
 
-#: Every keyword override and the section it sets (``noise`` sets the noise's sigmas;
-#: a rule key is valid where the config's game has it).
+#: Every keyword override of the shared sections and the section it sets (``noise`` sets
+#: the noise's sigmas). Besides them: ``game``, ``reward_<term>`` (the rewards section) and
+#: a rule key of some game (valid where the config's game has it).
 KEYS: dict[str, str] = {
     **{f.name: "table" for f in fields(TableSection)},
     **{f.name: "task" for f in fields(TaskSection)},
     "noise": "noise",
-    **{f.name: "rules" for r in RULESETS.values() for f in fields(r.section)},
 }
+
+
+def _is_rule_key(name: str) -> bool:
+    """Whether ``name`` is a field of some game's rules section."""
+    return any(name in _field_names(r.section) for r in every_game().values())

@@ -3,7 +3,7 @@
 :class:`Shot` is an action's image on the table (:func:`pool_env.game.codec.decode_action`
 returns it and :func:`~pool_env.game.codec.encode_action` takes it). :class:`ShotConstraints`
 is the rules' answer to "what may the next shot do" (the game's
-:meth:`~pool_env.game.rulesets.base.Ruleset.constraints`, read from an observation, as
+:meth:`~pool_env.game.ruleset.Ruleset.constraints`, read from an observation, as
 pooltool's ``ShotConstraints`` is read from its game state): the agents ask it instead of
 restating a game's rules.
 """

@@ -16,8 +16,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.kernels.wpa import N_RACK
-
 
 @dataclass
 class GameState:
@@ -28,9 +26,9 @@ class GameState:
             where it was captured.
         on_table: ``(B, N)`` which balls are on each table.
         shots: ``(B,)`` shots played in each table's episode.
-        rack: ``(B, N_RACK)`` int64 rack states of the 9-ball and 8-ball rules (who
-            shoots, ball in hand, the break, groups, successive fouls, the winner; columns
-            named in :mod:`pool_env.game.kernels.wpa`); unused by solitaire.
+        rack: ``(B, W)`` int64: each table's game state, ``W`` the game's
+            :attr:`~pool_env.game.ruleset.Ruleset.rack_width` (the WPA games: who shoots,
+            ball in hand, the break, groups, fouls, the winner; none in solitaire).
         generators: Each table's generator (``None`` until first seeded).
         seeds: The seed each generator was made from (``None``: not from an int).
         ptrs: ``(B, 3)`` addresses of each generator's state and draw functions.
@@ -95,13 +93,17 @@ class GameState:
                 self.ptrs[i] = generator_addresses(rng)
 
 
-def new_state(n_tables: int, n_balls: int) -> GameState:
-    """``n_tables`` empty tables of ``n_balls`` balls (lay them out with a reset)."""
+def new_state(n_tables: int, n_balls: int, rack_width: int = 0) -> GameState:
+    """``n_tables`` empty tables of ``n_balls`` balls (lay them out with a reset).
+
+    ``rack_width`` is the game's (:attr:`~pool_env.game.ruleset.Ruleset.rack_width`;
+    ``GameConfig.new_state`` passes it).
+    """
     return GameState(
         positions=np.zeros((n_tables, n_balls, 2)),
         on_table=np.ones((n_tables, n_balls), dtype=np.bool_),
         shots=np.zeros(n_tables, dtype=np.int64),
-        rack=np.zeros((n_tables, N_RACK), dtype=np.int64),
+        rack=np.zeros((n_tables, rack_width), dtype=np.int64),
         generators=[None] * n_tables,
         seeds=[None] * n_tables,
         ptrs=np.zeros((n_tables, 3), dtype=np.uintp),

@@ -3,15 +3,13 @@
 ``step(config, state, tables, actions)`` plays one shot on each of ``tables``:
 
 1. place each cue ball in hand and decode each action into a shot with execution noise
-   (the game's ruleset: :meth:`~pool_env.game.rulesets.base.Ruleset.place`,
-   :meth:`~pool_env.game.rulesets.base.Ruleset.execute`);
+   (the game's ruleset: :meth:`~pool_env.game.ruleset.Ruleset.shoot`);
 2. simulate the shots to rest (:mod:`pool_env.sim`: one table through its single-shot
    entry, whose fixed cost is a third of the batch call's; several through the batch);
-3. apply the outcomes by the rules (:meth:`~pool_env.game.rulesets.base.Ruleset.judge`,
-   then :meth:`~pool_env.game.rulesets.base.Ruleset.fix_spots`): balls that dropped,
-   re-spotting, rewards, episode ends.
+3. apply the outcomes by the rules (:meth:`~pool_env.game.ruleset.Ruleset.judge`): balls
+   that dropped, re-spotting, rewards and their terms, episode ends.
 
-One path for every game: where games differ, ``config.ruleset`` (:mod:`.rulesets`) decides.
+One path for every game: where games differ, ``config.ruleset`` (:mod:`.ruleset`) decides.
 
 ``reset(config, state, tables, options)`` (from :mod:`.reset`) lays out new episodes and
 ``observe`` encodes observations. :class:`pool_env.PoolEnv` is these with B = 1,
@@ -24,9 +22,17 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.game.config import GameConfig
+from pool_env.game.kernels.outcome import (
+    CLEARED,
+    FIRST_BALL,
+    POTTED_BITS,
+    REWARD,
+    SCRATCH,
+    TERMINATED,
+    TRUNCATED,
+)
 from pool_env.game.reset import option_layouts, reset
-from pool_env.game.rules import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH, TERMINATED, TRUNCATED
-from pool_env.game.rulesets.base import Outcome, Ruleset
+from pool_env.game.ruleset import Judged, Outcome, Ruleset, Turn
 from pool_env.game.shot_features import shot_feature_batch
 from pool_env.game.state import GameState
 from pool_env.sim.batch import (
@@ -42,6 +48,7 @@ __all__ = ["StepResult", "observe", "option_layouts", "reset", "step"]
 
 _NO_CONTACT = np.full((1, 2), -1, dtype=np.int64)
 _NO_CONTACT.setflags(write=False)
+_EVERY = np.zeros(0, dtype=np.intp)  # observe reads every table: the turn's tables unused
 
 
 class StepResult:
@@ -52,11 +59,12 @@ class StepResult:
 
     Attributes:
         tables: ``(K,)`` the tables that shot.
-        rewards: ``(K,)`` float64.
-        flags: ``(K, 5)`` booleans, columns named in :mod:`pool_env.game.rules` (the WPA
-            games: ``(K, 6)``).
-        hits: ``(K, 2)`` integers: potted bits and the first ball hit (the WPA games:
-            ``(K, 9)``, and the foul, the ball on, ...).
+        values: ``(K, 1 + T)`` float64: the reward, then the game's ``T`` reward terms,
+            scaled (:attr:`~pool_env.game.ruleset.Ruleset.reward_terms`).
+        flags: ``(K, F)`` booleans, the shared columns of
+            :mod:`pool_env.game.kernels.outcome` first, then the game's.
+        hits: ``(K, H)`` integers: potted bits and the first ball hit, then the game's (the
+            WPA games: the foul, the ball on, ...).
         shots: ``(K, 2)`` the executed ``(angle, speed)``; ``(K, 4)`` on a spin table:
             and the executed tip ``(a, b)``.
         pocketed: ``(K, M)`` the simulator's pocket per ball (-1: none), columns ``balls``.
@@ -66,25 +74,27 @@ class StepResult:
         ruleset: The game's ruleset (it reads its own ``info`` columns).
     """
 
-    __slots__ = ("_capped", "_n_events", "balls", "flags", "hits", "pocketed", "rewards",
-                 "ruleset", "shot", "shots", "tables")  # fmt: skip
+    __slots__ = ("_capped", "_n_events", "balls", "flags", "hits", "pocketed", "ruleset",
+                 "shot", "shots", "tables", "values")  # fmt: skip
 
     def __init__(
         self,
         tables: NDArray[np.intp],
-        rewards: NDArray[np.float64],
-        flags: NDArray[np.bool_],
-        hits: NDArray[np.int64],
+        judged: Judged,
         shots: NDArray[np.float64],
         outcome: Outcome,
         ruleset: Ruleset,
     ) -> None:
-        self.tables, self.rewards, self.flags, self.hits, self.shots = (
-            tables, rewards, flags, hits, shots
-        )  # fmt: skip
+        self.tables, self.shots = tables, shots
+        self.values, self.flags, self.hits = judged
         self.ruleset = ruleset
         self.pocketed, self.balls, self.shot = outcome.pocketed, outcome.balls, outcome.shot
         self._n_events, self._capped = outcome.n_events, outcome.capped
+
+    @property
+    def rewards(self) -> NDArray[np.float64]:
+        """``(K,)`` the rewards: the sum of each row's reward terms."""
+        return self.values[:, REWARD]
 
     @property
     def terminated(self) -> NDArray[np.bool_]:
@@ -163,16 +173,13 @@ def step(
     Returns:
         The :class:`StepResult`.
     """
-    table, params, ruleset = config.table, config.params, config.ruleset
-    ruleset.place(table, params, state, tables, actions)
-    shots, states, extra = ruleset.execute(params, table.pockets, state, tables, actions)
-    velocities, spins = split_states(states)
-    out = _simulate(table, state, tables, velocities, spins, record, parallel)
-    rewards, flags, hits = ruleset.judge(
-        table, params, state, tables, out, velocities, spins, extra
-    )
-    ruleset.fix_spots(table, params, state, tables, flags, hits)
-    return StepResult(tables, rewards, flags, hits, shots, out, ruleset)
+    ruleset = config.ruleset
+    turn = Turn(config, state, tables)
+    executed = ruleset.shoot(turn, actions)
+    velocities, spins = split_states(executed.states)
+    out = _simulate(config.table, state, tables, velocities, spins, record, parallel)
+    judged = ruleset.judge(turn, out, executed)
+    return StepResult(tables, judged, executed.shots, out, ruleset)
 
 
 def split_states(
@@ -222,7 +229,7 @@ def _simulate(
         final, pocketed = shot.positions, shot.pocketed
         return Outcome(
             final[None], pocketed[None], first, shot.cushions_after_contact[None],
-            shot.pocket_order[None], None, None, balls, shot,
+            shot.pocket_order[None], None, None, balls, shot, vel, spins,
         )  # fmt: skip
     every = n_shots == state.n_tables
     pos = state.positions if every else state.positions[tables]
@@ -237,7 +244,7 @@ def _simulate(
     return Outcome(
         result.positions, result.pocketed, result.first_contact,
         result.cushions_after_contact, result.pocket_order, result.n_events,
-        result.hit_event_cap, np.arange(n_balls), None,
+        result.hit_event_cap, np.arange(n_balls), None, vel, spins,
     )  # fmt: skip
 
 
@@ -246,14 +253,14 @@ def observe(
 ) -> NDArray[np.float32]:
     """``(B, obs)`` observations of every table (see :class:`pool_env.PoolEnv`).
 
-    The ruleset's :meth:`~pool_env.game.rulesets.base.Ruleset.observe`. Under the WPA
+    The ruleset's :meth:`~pool_env.game.ruleset.Ruleset.observe`. Under the WPA
     rules, ``viewers`` (``(B,)``, default: each table's shooter) says whose perspective
     the rule features take (the two-player front observes for each agent). With
     ``observation="shots"`` the ghost-ball shot features follow
     (:mod:`pool_env.game.shot_features`), on each viewer's reference ball.
     """
     ruleset = config.ruleset
-    obs = ruleset.observe(config.table, config.params, state, viewers)
+    obs = ruleset.observe(Turn(config, state, _EVERY), viewers)
     if config.observation != "shots":
         return obs
     refer = ruleset.aim_references(state, viewers)

@@ -25,6 +25,7 @@ from agents.learned.layout_value import (
 from agents.learned.lookahead import LookaheadAgent
 from agents.training.fit_layout_value import main as layout_value_main
 from agents.training.fit_layout_value import observation_features
+from pool_env.game.games.wpa import rack_row
 from pool_env.game.geometry import (
     AIM_X,
     AIM_Y,
@@ -37,7 +38,6 @@ from pool_env.game.geometry import (
     ghost_shots,
     pocket_mouths,
 )
-from pool_env.game.rack import rack_row
 
 ENV_ID = "pool_env/NineBallGame-v1"
 P_BEST = LAYOUT_FEATURES.index("p_best")

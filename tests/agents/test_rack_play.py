@@ -114,7 +114,7 @@ def test_a_break_arm_plays_its_speed_and_tip(arm: int) -> None:
     action, _ = agent.predict(obs)
     *_, info = env.step(action)
     speed, vertical = BREAK_ARMS[arm]
-    lo, hi = env.unwrapped.config.break_speed_range
+    lo, hi = env.unwrapped.config.rules.break_speed_range
     assert info["speed"] == pytest.approx(lo + (speed + 1) / 2 * (hi - lo), rel=1e-5)
     limit = env.unwrapped.config.tip_limit
     assert info["tip"] == pytest.approx((0.0, vertical * limit), abs=1e-5)

@@ -19,9 +19,8 @@ from agents.learned.leaf_value import outcome_values
 from agents.learned.next_shots import best_next_values, next_shot_actions
 from agents.learned.search_player import SearchPlayer, SearchSettings, load_search_player
 from pool_env.game.codec import decode_observations, obs_layout
+from pool_env.game.games.wpa import FOUL, KEEPS, WINNER, rack_row
 from pool_env.game.geometry import pocket_mouths
-from pool_env.game.rack import rack_row
-from pool_env.game.rules import FOUL, KEEPS, WINNER
 
 ENV_ID = "pool_env/NineBallGame-v1"
 ROOT = Path(__file__).resolve().parents[2]
@@ -171,7 +170,7 @@ def test_the_break_places_the_cue_ball_on_the_head_string_and_hits_the_1() -> No
     assert spot == pytest.approx([config.table.length / 4, config.table.width / 2 + 0.2])
     *_, info = env.step(action)
     assert info["first_contact"] == 1
-    assert info["speed"] == pytest.approx(np.mean(config.break_speed_range))
+    assert info["speed"] == pytest.approx(np.mean(config.rules.break_speed_range))
 
 
 @pytest.mark.parametrize(

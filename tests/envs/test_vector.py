@@ -14,7 +14,7 @@ from gymnasium.vector.utils import batch_space
 
 import pool_env
 from pool_env import ENV_IDS, PoolEnv, PoolVectorEnv, Table
-from pool_env.game.config import kernel_params
+from pool_env.game.config import make_config
 from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.kernels.layout import sample_layouts
 from pool_env.game.kernels.params import N_PARAMS, RESTARTS, TRIES, X_HIGH, Y_HIGH
@@ -275,9 +275,10 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
     table = np.array([generator_addresses(ours)], dtype=np.uintp)
     one, zero_action = np.zeros(1, np.intp), np.zeros((1, 2))
     noise = (1.0, 2.0)
-    params = kernel_params(
-        Table(), "absolute", (0.0, 0.0), (5.0, 5.0), noise, (1, -1, 0, 0), False, 0
-    )
+    params = make_config(
+        scene="one_ball", aim="absolute", aim_range=(0.0, 0.0), speed_range=(5.0, 5.0),
+        noise=noise,
+    ).params  # fmt: skip
     at_rest, on = np.zeros((1, 2, 2)), np.ones((1, 2), np.bool_)
     angles, speeds = np.zeros(20_000), np.zeros(20_000)
     for k in range(20_000):  # noise of one table, drawn 20,000 times: tails included

@@ -22,7 +22,7 @@ IDS = [
 
 
 def _before(env: PoolEnv) -> tuple:
-    rack = env.rack if env.config.rules else None
+    rack = env.rack if env.config.ruleset.has_rack else None
     return env.positions, env.on_table, rack
 
 
@@ -67,7 +67,7 @@ def test_encode_inverts_decode(env_id: str, aim: str) -> None:
         if shot.cue is not None:
             np.testing.assert_allclose(twice.cue, shot.cue, rtol=0, atol=1e-12)
         keep = np.ones(action.shape, dtype=bool)
-        if config.rules:
+        if config.ruleset.has_rack:
             # a pocket's and a ball's bins, encoded as their middles; the option's sign
             keep[4 : config.ruleset.action_width] = False
             keep[2:4] = False  # a covered point moves to a free one: compared as shot.cue

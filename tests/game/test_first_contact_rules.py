@@ -21,7 +21,7 @@ import numpy as np
 import pytest
 
 from pool_env import shoot
-from pool_env.game.contact import SIMULTANEOUS
+from pool_env.game.games.wpa.first_contact import SIMULTANEOUS
 from tests.game.test_games import IDS, KWARGS, MID, action, fit, layout, make
 from tests.game.test_wpa import TABLE, R, parked
 from tests.rules_harness import compiled_judge, same_verdict

@@ -9,18 +9,20 @@ import pytest
 
 from pool_env import AIM_MODES, Table, decode_shots, encode_observations, nearest_object_ball
 from pool_env.game.checks import check_actions
-from pool_env.game.config import kernel_params
+from pool_env.game.config import make_config
+from pool_env.game.games.solitaire import REWARD_TERMS
+from pool_env.game.games.solitaire.rules import judge
 from pool_env.game.kernels.actions import aim_angles, decode_actions
 from pool_env.game.kernels.observe import pocket_potentials
-from pool_env.game.rules import (
+from pool_env.game.kernels.outcome import (
     CLEARED,
     FIRST_BALL,
     POTTED_BITS,
+    REWARD,
     SCRATCH,
     SPOT_TAKEN,
     TERMINATED,
     TRUNCATED,
-    judge,
 )
 from pool_env.sim.layouts import head_spot
 
@@ -174,9 +176,11 @@ def _judge(
     on: np.ndarray | None = None,
 ) -> tuple:
     """The rules after a shot that left every ball in place but dropped ``dropped``."""
-    params = kernel_params(
-        TABLE, "cut", (-1.0, 1.0), (0.5, 10.0), None, weights, end_on_miss, limit
-    )  # type: ignore[arg-type]
+    scales = {f"reward_{term}": w for term, w in zip(REWARD_TERMS, weights, strict=True)}
+    params = make_config(
+        table=TABLE, scene="one_ball", speed_range=(0.5, 10.0), end_on_miss=end_on_miss,
+        max_shots=limit or None, **scales,
+    ).params  # fmt: skip
     n = layout.shape[0]
     pos = layout[None].copy()
     on_table = np.ones((1, n), bool) if on is None else on[None].copy()
@@ -186,10 +190,11 @@ def _judge(
         params, TABLE.pockets, np.zeros(1, np.intp), np.arange(n), pos, on_table,
         np.array([shots]), layout[None].copy(), pocketed, np.array([first]),
     )  # fmt: skip
-    rewards, flags, hits = out
+    values, flags, hits = out
     f, h = flags[0], hits[0]
+    assert values[0, REWARD] == values[0, 1:].sum()  # the terms add up to the reward
     return (
-        rewards[0], f[TERMINATED], f[TRUNCATED], f[CLEARED], h[POTTED_BITS], f[SCRATCH],
+        values[0, REWARD], f[TERMINATED], f[TRUNCATED], f[CLEARED], h[POTTED_BITS], f[SCRATCH],
         h[FIRST_BALL], f[SPOT_TAKEN], pos[0], on_table[0],
     )  # fmt: skip
 

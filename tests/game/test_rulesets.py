@@ -1,9 +1,10 @@
 """The games as rulesets: each config value picks one strategy, and the step has one path.
 
 The behaviour of each game is pinned elsewhere (tests/game/test_games.py, tests/game/test_wpa.py,
-tests/game/test_game_reference.py); here: the registry agrees with the kernels' game codes,
-the spaces are each ruleset's closed forms, ball in hand is the WPA games' alone, and a
-new ruleset plugged in by its name alone is what the step, the reward and the ``info`` run.
+tests/game/test_game_reference.py); here: the registry names the built-in games and the
+WPA codes, the spaces are each ruleset's closed forms, ball in hand is the WPA games' alone,
+a new ruleset registered by its name alone is what the step, the reward and the ``info``
+run, and each step's reward terms sum to its reward.
 """
 
 from __future__ import annotations
@@ -17,14 +18,15 @@ from numpy.typing import NDArray
 
 import pool_env  # noqa: F401  (registers the ids)
 from pool_env import PoolEnv
-from pool_env.game import rulesets
+from pool_env.game import registry
 from pool_env.game.config import GAMES, make_config
-from pool_env.game.info import INFO_KEYS, TIP_KEY
+from pool_env.game.games.solitaire import Solitaire
+from pool_env.game.games.wpa import params as wp
+from pool_env.game.games.wpa import rack_state as wpa
+from pool_env.game.info import info_keys
 from pool_env.game.kernels import params as kp
-from pool_env.game.kernels import wpa
-from pool_env.game.rulesets import RULESETS, Outcome, ruleset_for
-from pool_env.game.rulesets.base import Judged
-from pool_env.game.rulesets.solitaire import Solitaire
+from pool_env.game.registry import game_names, register_game, ruleset_for
+from pool_env.game.ruleset import Judged, Outcome, Turn
 from pool_env.game.state import GameState, new_state
 from pool_env.sim.table import Table
 
@@ -41,14 +43,16 @@ SPACES = [
 ]
 
 
-def test_the_registry_follows_the_kernels_game_codes() -> None:
-    assert GAMES == tuple(RULESETS) == ("solitaire", "nine", "eight", "ten")
-    codes = {"solitaire": wpa.SOLITAIRE, "nine": wpa.NINE, "eight": wpa.EIGHT, "ten": wpa.TEN}
-    for name, ruleset in RULESETS.items():
+def test_the_registry_names_the_built_in_games_and_the_wpa_codes() -> None:
+    assert GAMES == game_names() == ("solitaire", "nine", "eight", "ten")
+    codes = {"nine": wpa.NINE, "eight": wpa.EIGHT, "ten": wpa.TEN}
+    for name in GAMES:
+        ruleset = ruleset_for(name)
         assert ruleset.name == name
-        assert ruleset.code == codes[name] == GAMES.index(name)
         assert ruleset_for(name) is ruleset
         assert ruleset.has_rack == (name != "solitaire")
+        if name in codes:
+            assert ruleset.code == codes[name]  # type: ignore[attr-defined]
 
 
 @pytest.mark.parametrize("game", ["ten_ball", "", None, 1, "Solitaire"])
@@ -71,12 +75,12 @@ def test_spaces_are_the_rulesets_closed_forms(
     _, info = env.reset(seed=3)
     _, _, _, _, info = env.step(env.action_space.sample())
     spin = config.spin
-    assert set(info) == {*INFO_KEYS, *config.ruleset.info_keys, *([TIP_KEY] if spin else [])}
+    assert set(info) == set(info_keys(config.ruleset, spin))
     assert env.observation_space.contains(env.unwrapped._observation())
 
 
 def _one_table(n_balls: int, rack: NDArray[np.int64] | None = None) -> GameState:
-    state = new_state(1, n_balls)
+    state = new_state(1, n_balls, wpa.N_RACK)
     table = Table()
     # The object balls on the foot half, the cue ball past the head string.
     state.positions[0] = np.linspace((0.6, 0.3), (0.9, 0.7), n_balls) * table.length
@@ -97,17 +101,17 @@ def test_ball_in_hand_is_placed_by_the_wpa_rulesets_alone(game: str) -> None:
     state = _one_table(n, rack)
     # Placement (+1, 0): the head string's far end of the kitchen, mid-table.
     action = np.array([[0.0, 0.0, 1.0, 0.0, 0.0]])
-    config.ruleset.place(config.table, config.params, state, np.zeros(1, np.intp), action)
+    config.ruleset.shoot(Turn(config, state, np.zeros(1, np.intp)), action)
     p = config.params
-    x = p[kp.X_LOW] + 1.0 * (p[kp.HEAD_X] - p[kp.X_LOW])
+    x = p[kp.X_LOW] + 1.0 * (p[wp.HEAD_X] - p[kp.X_LOW])
     y = p[kp.Y_LOW] + 0.5 * (p[kp.Y_HIGH] - p[kp.Y_LOW])
     assert state.positions[0, 0].tolist() == [x, y]
     assert x == pytest.approx(config.table.length / 4.0)
-    # Solitaire has no ball in hand: the same call leaves the table as it was.
-    solitaire = Solitaire()
+    # Solitaire has no ball in hand: the same shot leaves the cue ball where it was.
+    solitaire = make_config(scene=scene)
     state = _one_table(n, rack)
     before = state.positions.copy()
-    solitaire.place(config.table, config.params, state, np.zeros(1, np.intp), action)
+    solitaire.ruleset.shoot(Turn(solitaire, state, np.zeros(1, np.intp)), action[:, :2])
     np.testing.assert_array_equal(state.positions, before)
 
 
@@ -117,8 +121,8 @@ class _DoubleRewards(Solitaire):
     name = "double"
 
     def judge(self, *args: Any) -> Judged:
-        rewards, flags, hits = super().judge(*args)
-        return 2.0 * rewards, flags, hits
+        values, flags, hits = super().judge(*args)
+        return Judged(2.0 * values, flags, hits)
 
 
 class _Recorder(_DoubleRewards):
@@ -130,14 +134,14 @@ class _Recorder(_DoubleRewards):
         self.seen: list[Outcome] = []
 
     def judge(self, *args: Any) -> Judged:
-        self.seen.append(args[4])
+        self.seen.append(args[1])
         return super().judge(*args)
 
 
 def test_a_new_ruleset_is_a_subclass_and_a_name(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setitem(rulesets.RULESETS, "double", _DoubleRewards())
-    recorder = _Recorder()
-    monkeypatch.setitem(rulesets.RULESETS, "recorded", recorder)
+    monkeypatch.setattr(registry, "_games", dict(registry._games))  # undone after the test
+    register_game(_DoubleRewards())
+    recorder = register_game(_Recorder())
     kwargs = {"scene": "nine_ball", "reward_pot": 1.0, "reward_scratch": -1.0}
     envs = {g: PoolEnv(game=g, **kwargs) for g in ("solitaire", "double", "recorded")}
     for env in envs.values():
@@ -149,7 +153,8 @@ def test_a_new_ruleset_is_a_subclass_and_a_name(monkeypatch: pytest.MonkeyPatch)
         for game, env in envs.items():
             _, reward, _, _, info = env.step(action)
             rewards[game].append(reward)
-            assert set(info) == set(INFO_KEYS)
+            assert set(info) == set(info_keys(env.config.ruleset, False))
+            assert reward == sum(info[f"reward_{t}"] for t in env.config.ruleset.reward_terms)
     assert any(r != 0.0 for r in rewards["solitaire"])  # the test can tell double from single
     assert rewards["double"] == [2.0 * r for r in rewards["solitaire"]]
     assert rewards["recorded"] == rewards["double"]

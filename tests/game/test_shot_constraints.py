@@ -18,12 +18,14 @@ from hypothesis import strategies as st
 
 from pool_env import Table, obs_layout, shot_constraints
 from pool_env.game.config import make_config
-from pool_env.game.kernels import params as kp
-from pool_env.game.state import new_state
+from pool_env.game.games.wpa import params as wp
+from pool_env.game.ruleset import Turn
 from pool_env.sim.layouts import break_scene
 from tests.profiles import examples
 from tests.rules_harness import SCENES, rack_row
 from tests.wpa_reference import OPEN, SOLIDS, STRIPES, RackState
+
+_ONE = np.zeros(1, dtype=np.intp)
 
 TABLE = Table()
 CONFIGS = {
@@ -37,12 +39,12 @@ def _observe(state: RackState) -> np.ndarray:
     """The observation the env shows the shooter of ``state`` (a racked layout)."""
     config = CONFIGS[state.game]
     n = config.n_balls
-    game_state = new_state(1, n)
+    game_state = config.new_state(1)
     game_state.positions[0] = break_scene(TABLE, state.game)
     game_state.on_table[0] = state.on_table
     game_state.rack[0] = rack_row(state)
     viewers = np.array([state.shooter], dtype=np.int64)
-    return config.ruleset.observe(TABLE, config.params, game_state, viewers)[0]
+    return config.ruleset.observe(Turn(config, game_state, _ONE), viewers)[0]
 
 
 @st.composite
@@ -83,7 +85,7 @@ def test_constraints_read_the_rules_from_the_observation(state: RackState) -> No
     assert got.first_balls == want
     assert got.ball_in_hand == state.ball_in_hand
     assert got.breaking == state.breaking
-    speeds = config.break_speed_range if state.breaking else config.speed_range
+    speeds = config.rules.break_speed_range if state.breaking else config.speed_range
     assert got.speed_range == speeds
     on_eight = state.game == "eight" and want == (8,)
     assert got.call_pocket == (not state.breaking and (on_eight or state.game == "ten"))
@@ -106,7 +108,7 @@ def test_placement_box_is_what_the_step_accepts() -> None:
     box = shot_constraints(config, _observe(state)).placement
     assert box is not None
     (_, x_high), (y_low, _) = box
-    assert x_high == config.params[kp.HEAD_X]
+    assert x_high == config.params[wp.HEAD_X]
     behind = config.ruleset.encode_placement(config, (x_high, y_low), True, False)
     assert behind == (1.0, -1.0)
     with pytest.raises(ValueError, match="cue x"):

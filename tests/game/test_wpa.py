@@ -2,7 +2,7 @@
 
 Every case shoots with :func:`pool_env.shoot` and judges the simulated outcome with the
 plain-Python reference (:mod:`tests.wpa_reference`), whose verdict the case asserts, and
-with the product's compiled rules (:func:`pool_env.game.rules.judge_rules`), which must
+with the product's compiled rules (:func:`pool_env.game.games.wpa.judge.judge_rules`), which must
 agree with it on the verdict and the rack after the shot. Pots are
 straight in along a corner pocket's diagonal from close range (the most forgiving pot on any
 pocket model); each case also asserts its premise (what the physics did), so that a change

@@ -20,9 +20,19 @@ import pytest
 import pool_env
 from pool_env import ENV_IDS, Table
 from pool_env.game.config import DEFAULT_AIM_RANGE, DEFAULT_SPEED_RANGE, make_config
-from pool_env.game.rulesets.base import RulesSection
-from pool_env.game.rulesets.wpa import WpaRules
+from pool_env.game.games.solitaire import REWARD_TERMS as SOLITAIRE_REWARDS
+from pool_env.game.games.wpa import REWARD_TERMS as WPA_REWARDS
+from pool_env.game.games.wpa import WpaRules
+from pool_env.game.ruleset import RulesSection
 from pool_env.game.sections import KEYS, NoiseSection, TableSection, TaskSection
+
+#: Every keyword the specification documents, and its section: the shared sections' keys,
+#: the built-in games' rules keys and their reward terms.
+DOCUMENTED_KEYS = {
+    **KEYS,
+    **{f.name: "rules" for f in dataclasses.fields(WpaRules)},
+    **{f"reward_{t}": "rewards" for terms in (SOLITAIRE_REWARDS, WPA_REWARDS) for t in terms},
+}
 
 ROOT = Path(__file__).resolve().parents[2]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
@@ -64,16 +74,18 @@ def _section_defaults() -> dict[str, object]:
     for section in (TableSection, TaskSection, WpaRules, RulesSection):  # game: solitaire's
         defaults.update((f.name, f.default) for f in dataclasses.fields(section))
     defaults["noise"] = NoiseSection().sigmas
+    for terms in (SOLITAIRE_REWARDS, WPA_REWARDS):
+        defaults.update((f"reward_{term}", scale) for term, scale in terms.items())
     return defaults
 
 
 def test_specification_table_matches_the_config_sections() -> None:
     rows = table_rows(SPEC.read_text(), "| Section | Key | Type | Default |")
     documented = {row[1].strip("`"): (row[0], row[3]) for row in rows}
-    assert set(documented) == set(KEYS)  # every key, no other
+    assert set(documented) == set(DOCUMENTED_KEYS)  # every key, no other
     defaults = _section_defaults()
     for name, (section, cell) in documented.items():
-        assert section.split()[0] == KEYS[name], (name, section)
+        assert section.split()[0] == DOCUMENTED_KEYS[name], (name, section)
         code = defaults[name]
         expected = NON_LITERAL[cell] if cell in NON_LITERAL else literal(cell)
         assert code == expected, (name, cell, code)

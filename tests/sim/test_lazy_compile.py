@@ -62,7 +62,7 @@ def _spin(kernel: str) -> bool:
 
 def _rules(kernel: str) -> bool:
     name = kernel.partition(" ")[0]
-    return name.startswith("pool_env.game.kernels.wpa.") or name.endswith(".judge_rules")
+    return name.startswith("pool_env.game.games.wpa.")
 
 
 @pytest.mark.parametrize(

@@ -13,8 +13,6 @@ segment a ball started with already ends at its rest point.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
 from pool_env.sim.jit import level_method
@@ -39,6 +37,7 @@ from pool_env.sim.kernels.roll.motion import (
     rest_point,
     set_anchor,
     state_at,
+    struck_velocity,
 )
 from pool_env.sim.kernels.roll.resolve import ball_ball, cushion, stick_cluster
 from pool_env.sim.kernels.validation import validate
@@ -131,10 +130,7 @@ def _check_scene(level, positions, velocities, angular, masses, prm, pockets):
 
 @level_method(level.strike, RollLevel)
 def _strike(level, speed, angle, a, b, elevation, prm, out):
-    # The same arithmetic as pool_env.shoot on this level: speed times the aim's cosine and
-    # sine (no squirt, no spin).
-    out[0] = speed * math.cos(angle)
-    out[1] = speed * math.sin(angle)
+    struck_velocity(speed, angle, out)  # as pool_env.shoot on this level: no squirt, no spin
     out[2] = out[3] = out[4] = 0.0
 
 

@@ -95,3 +95,13 @@ def arc_time(speed, s, a):
     if den <= 0.0:
         return 0.0
     return 2.0 * s / den
+
+
+@kernel
+def struck_velocity(speed, angle, out):
+    """The roll level's strike: ``out[:2]`` = the velocity of ``speed`` along ``angle``.
+
+    No squirt and no spin on this level: the ball leaves along the aim at the speed asked.
+    """
+    out[0] = speed * math.cos(angle)
+    out[1] = speed * math.sin(angle)

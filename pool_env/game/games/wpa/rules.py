@@ -90,123 +90,44 @@ Simplifications, all deliberate:
 
 from __future__ import annotations
 
-import numpy as np
-
-from pool_env.game.kernels.params import GAME, HEAD_X, RADIUS
+from pool_env.game.games.wpa.rack_state import (
+    BEHIND,
+    BREAKING,
+    EIGHT,
+    EIGHT_EARLY,
+    EIGHT_ON_FOUL,
+    EIGHT_WRONG_POCKET,
+    FOUL_BREAK,
+    FOUL_KITCHEN,
+    FOUL_NO_CONTACT,
+    FOUL_NO_RAIL,
+    FOUL_SCRATCH,
+    FOUL_WRONG_BALL,
+    FOULS_0,
+    GROUP_0,
+    IN_HAND,
+    NINE,
+    NO_FOUL,
+    NO_LOSS,
+    OPEN,
+    OPTION,
+    PUSH_OUT,
+    SHOOTER,
+    SOLIDS,
+    STRIPES,
+    TEN,
+    THREE_FOULS,
+    WINNER,
+    ball_on,
+    group_of,
+    legal_first,
+    money_ball,
+    rotation,
+)  # fmt: skip
 from pool_env.sim.jit import kernel
-
-#: Rule codes of ``params[GAME]``.
-SOLITAIRE, NINE, EIGHT, TEN = 0, 1, 2, 3
-
-#: Columns of a rack-state row: the shooter (0 or 1), ball in hand, ... behind the head
-#: string, the next shot is a break, each player's group (:data:`OPEN`, :data:`SOLIDS`,
-#: :data:`STRIPES`), each player's successive fouls, the winner (-1 while undecided), the
-#: next shot may be a push-out, the shooter may hand the table back instead of shooting.
-(
-    SHOOTER, IN_HAND, BEHIND, BREAKING, GROUP_0, GROUP_1, FOULS_0, FOULS_1, WINNER, PUSH_OUT,
-    OPTION, N_RACK,
-) = range(12)  # fmt: skip
-
-#: How a step was played (the rules' ``PLAY`` result column): a shot, a declared
-#: push-out, or the option used to hand the table back (no shot played).
-SHOT, PUSHED_OUT, HANDED_BACK = 0, 1, 2
-
-#: 8-ball groups.
-OPEN, SOLIDS, STRIPES = 0, 1, 2
-
-#: Foul codes and their ``info["foul"]`` names.
-NO_FOUL, FOUL_SCRATCH, FOUL_WRONG_BALL, FOUL_NO_RAIL, FOUL_NO_CONTACT, FOUL_BREAK = range(6)
-FOUL_KITCHEN = 6
-FOUL_NAMES: tuple[str | None, ...] = (
-    None, "scratch", "wrong_ball_first", "no_rail", "no_contact", "illegal_break",
-    "kitchen_ball_first",
-)  # fmt: skip
-
-#: Why a rack was lost, and the names.
-NO_LOSS, EIGHT_EARLY, EIGHT_WRONG_POCKET, EIGHT_ON_FOUL, THREE_FOULS = range(5)
-LOSS_NAMES: tuple[str | None, ...] = (
-    None, "eight_early", "eight_wrong_pocket", "eight_on_foul", "three_fouls",
-)  # fmt: skip
 
 #: Object balls driven to a cushion that make a break legal without a pot.
 BREAK_RAILS = 4
-
-#: Balls of each game, the cue ball included.
-GAME_BALLS = {NINE: 10, EIGHT: 16, TEN: 11}
-
-
-@kernel
-def rotation(game):
-    """Whether ``game`` is played in rotation (the lowest ball first): 9-ball and 10-ball."""
-    return game in (NINE, TEN)
-
-
-#: The ball that wins the rack, by game code (solitaire has none): read by Python without
-#: compiling :func:`money_ball`.
-MONEY_BALLS = (-1, 9, 8, 10)
-
-
-@kernel
-def money_ball(game):
-    """The ball that wins the rack: 9, 8 or 10 (:data:`MONEY_BALLS`)."""
-    return MONEY_BALLS[game]
-
-
-@kernel
-def group_of(ball):
-    """The 8-ball group of ``ball``: :data:`SOLIDS` (1-7), :data:`STRIPES` (9-15), else OPEN."""
-    if 1 <= ball <= 7:
-        return SOLIDS
-    if 9 <= ball <= 15:
-        return STRIPES
-    return OPEN
-
-
-@kernel
-def ball_on(game, rack, on_table, player):
-    """The one ball ``player`` must hit first, or -1 when it is not a single one.
-
-    9-ball and 10-ball: the lowest-numbered ball on the table; 8-ball: the 8 once the
-    player's group is cleared, else -1 (any ball of the group, or of either on an open table).
-    """
-    n = on_table.shape[0]
-    if rotation(game):
-        for j in range(1, n):
-            if on_table[j]:
-                return j
-        return -1
-    group = rack[GROUP_0 + player]
-    if group == OPEN:
-        return -1
-    for j in range(1, n):
-        if on_table[j] and group_of(j) == group:
-            return -1
-    return 8
-
-
-@kernel
-def legal_first(game, rack, on_table, player, on, j):
-    """Whether ``player`` may hit ball ``j`` first (``on`` is :func:`ball_on`'s answer)."""
-    if j < 1 or j >= on_table.shape[0] or not on_table[j]:
-        return False
-    if rotation(game):
-        return j == on
-    if rack[BREAKING] != 0:
-        return True
-    if on == 8:
-        return j == 8
-    group = rack[GROUP_0 + player]
-    if group == OPEN:
-        return j != 8
-    return group_of(j) == group
-
-
-@kernel
-def legal_targets(game, rack, on_table, player, out):
-    """``out[j]``: ``player`` may hit ball ``j`` first (the break: any ball in 8-ball)."""
-    on = ball_on(game, rack, on_table, player)
-    for j in range(on_table.shape[0]):
-        out[j] = legal_first(game, rack, on_table, player, on, j)
 
 
 @kernel
@@ -267,52 +188,6 @@ def kitchen_foul(rack, first, first_x, head_x, crossed):
         crossed: The cue ball's centre passed ``head_x`` before the contact.
     """
     return rack[BEHIND] != 0 and first >= 0 and first_x < head_x and not crossed
-
-
-@kernel
-def needs_replay(params, tables, balls, positions, on_table, rack, first):
-    """The shots whose first contact the rules cannot read from the fast path's outcome.
-
-    Two cases, both rare: the cue ball was in hand behind the head string and its first
-    ball lies behind the head string (did the cue ball cross the line first?), or its
-    first ball is not a legal one and a legal ball lies within 4R of it (did the cue ball
-    meet that one at the same instant?). :mod:`pool_env.game.contact` replays those shots
-    with their trajectories.
-
-    Args:
-        params: The config's numbers (the game, the ball radius, the head string's x).
-        tables: ``(K,)`` the tables that shot.
-        balls: ``(M,)`` ball number of each result column.
-        positions: ``(B, N, 2)`` positions before the shot.
-        on_table: ``(B, N)`` before the shot.
-        rack: ``(B, N_RACK)`` before the shot.
-        first: ``(K, 2)`` result columns of the first ball-ball impact (cue first), -1 none.
-
-    Returns:
-        ``(K,)`` booleans.
-    """
-    game, head_x = int(params[GAME]), params[HEAD_X]
-    near = 4.0 * params[RADIUS] + 1e-6  # two resting balls both touching the cue ball
-    out = np.zeros(tables.shape[0], dtype=np.bool_)
-    for k in range(tables.shape[0]):
-        if first[k, 0] < 0:
-            continue
-        b = tables[k]
-        f = balls[first[k, 1]]
-        if rack[b, BEHIND] != 0 and positions[b, f, 0] < head_x:
-            out[k] = True
-            continue
-        player = rack[b, SHOOTER]
-        on = ball_on(game, rack[b], on_table[b], player)
-        if legal_first(game, rack[b], on_table[b], player, on, f):
-            continue
-        for g in range(1, on_table.shape[1]):
-            if g != f and legal_first(game, rack[b], on_table[b], player, on, g):
-                dx = positions[b, g, 0] - positions[b, f, 0]
-                dy = positions[b, g, 1] - positions[b, f, 1]
-                if dx * dx + dy * dy <= near * near:
-                    out[k] = True
-    return out
 
 
 @kernel
@@ -435,17 +310,3 @@ def hand_back(players, rack):
     rack[OPTION] = 0
     rack[SHOOTER] = 1 - rack[SHOOTER]
     return True
-
-
-@kernel
-def new_rack(rack, breaking):
-    """Reset a rack-state row: player 0 to shoot, open table, no fouls, no winner.
-
-    A break (``breaking``) is played with the cue ball in hand behind the head string.
-    """
-    rack[:] = 0
-    rack[WINNER] = -1
-    if breaking:
-        rack[BREAKING] = 1
-        rack[IN_HAND] = 1
-        rack[BEHIND] = 1

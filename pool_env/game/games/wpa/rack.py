@@ -1,21 +1,23 @@
-"""The rack state at reset: ``options["rules"]`` parsed, and checked against the balls.
+"""The WPA rack state at reset: ``options["rules"]`` parsed, and checked against the balls.
 
-A rack state (:mod:`pool_env.game.kernels.wpa`'s row) is given at reset or made for a racked
-scene; :func:`check_rack` refuses one that the rules could never finish (no 9 in 9-ball,
-no 8 in 8-ball, an open table with nothing but the 8) or that no game reaches (groups on
+A rack state (:mod:`pool_env.game.games.wpa.rack_state`'s row) is given at reset or made
+for a racked scene; :func:`check_rack` refuses one that the rules could never finish (no 9
+in 9-ball, no 8 in 8-ball, an open table with nothing but the 8) or that no game reaches (groups on
 the break), so that ``info`` and the observation never show a state the rules document
 as impossible. :func:`rack_dict` reads a row back as the keys of ``options["rules"]``.
 """
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.config import GameConfig
-from pool_env.game.kernels import wpa
+from pool_env.game.games.wpa import rack_state as wpa
+
+if TYPE_CHECKING:
+    from pool_env.game.config import GameConfig
 
 #: ``options["rules"]`` group names, by code.
 GROUP_NAMES = ("open", "solids", "stripes")
@@ -69,7 +71,7 @@ def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.
     if "groups" in given:
         groups = given["groups"]
         if (
-            config.game != "eight"
+            config.ruleset.name != "eight"
             or not isinstance(groups, tuple | list)
             or len(groups) != 2
             or any(not isinstance(g, str) or g not in GROUP_NAMES for g in groups)
@@ -116,7 +118,7 @@ def check_option(config: GameConfig, row: NDArray[np.int64]) -> None:
         return
     key = "push_out" if row[wpa.PUSH_OUT] else "option"
     if not getattr(config.ruleset, "has_option", False):
-        raise ValueError(f"options['rules'][{key!r}]: game={config.game!r} has no push-out")
+        raise ValueError(f"options['rules'][{key!r}]: game={config.ruleset.name!r} has no push-out")
     if row[wpa.PUSH_OUT] and (row[wpa.BREAKING] or row[wpa.IN_HAND] or row[wpa.OPTION]):
         raise ValueError(
             "options['rules']['push_out'] is the shot right after a legal break: no break, "
@@ -161,11 +163,11 @@ def check_rack(config: GameConfig, row: NDArray[np.int64], on_table: NDArray[np.
         where = "" if on_table.shape[0] == 1 else f"table {k}: "
         if not on[key]:
             raise ValueError(
-                f"{where}the {key} must be on the table in game={config.game!r}: without it "
-                "no shot can win the rack (options['on_table'])"
+                f"{where}the {key} must be on the table in game={config.ruleset.name!r}: "
+                "without it no shot can win the rack (options['on_table'])"
             )
         if (
-            config.game == "eight"
+            config.ruleset.name == "eight"
             and groups[0] == wpa.OPEN
             and not on[1:8].any()
             and (not on[9:].any())
@@ -176,13 +178,11 @@ def check_rack(config: GameConfig, row: NDArray[np.int64], on_table: NDArray[np.
             )
 
 
-def rack_dict(config: GameConfig, row: NDArray[np.int64]) -> dict[str, Any]:
+def rack_dict(row: NDArray[np.int64]) -> dict[str, Any]:
     """A rack-state row as a dict of the keys of ``options["rules"]`` and ``winner``.
 
     ``winner`` is -1 while the rack is undecided; ``groups`` are names (8-ball).
     """
-    if not config.rules:
-        raise ValueError("the rack state exists under rules only (game='nine', 'ten', 'eight')")
     return {
         "shooter": int(row[wpa.SHOOTER]),
         "break": bool(row[wpa.BREAKING]),

@@ -12,14 +12,14 @@ with their trajectories (the simulator is deterministic: the replay is the same 
   legal (:func:`shooters_benefit` reads that ball as the first).
 * **The kitchen.** With the cue ball in hand behind the head string, a first ball whose
   base lies behind the head string is a foul unless the cue ball crossed the line first
-  (:func:`pool_env.game.kernels.wpa.kitchen_foul`). The object ball rests until the cue
+  (:func:`pool_env.game.games.wpa.rules.kitchen_foul`). The object ball rests until the cue
   ball meets it, so its base is its position before the shot; whether the cue ball
   crossed is read from its trajectory up to the contact: its centre's x moves
   monotonically along each straight segment, so the line was crossed exactly when some
   anchor before the contact (the start, each cushion impact, the contact itself) lies past
   it.
 
-:func:`pool_env.game.kernels.wpa.needs_replay` (compiled, one call per step) picks the
+:func:`needs_replay` (compiled, one call per step) picks the
 shots: a cue ball in hand behind the head string whose first ball lies behind it, or a
 first ball that is not legal with a legal one within 4R of it (only then can both touch
 the cue ball at once).
@@ -32,8 +32,10 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.kernels import params as kp
-from pool_env.game.kernels import wpa
+from pool_env.game.games.wpa.params import HEAD_X, VARIANT
+from pool_env.game.games.wpa.rack_state import BEHIND, SHOOTER, ball_on, legal_first, legal_targets
+from pool_env.game.kernels.params import RADIUS
+from pool_env.sim.jit import kernel
 from pool_env.sim.result import KIND_NAMES, ShotResult
 from pool_env.sim.simulate import simulate
 from pool_env.sim.table import Table
@@ -84,7 +86,7 @@ def shooters_benefit(
     The first of them that ``rack``'s shooter may hit first, else the first of them.
     """
     legal = np.zeros(on_table.shape[0], dtype=np.bool_)
-    wpa.legal_targets(game, rack, on_table, rack[wpa.SHOOTER], legal)
+    legal_targets(game, rack, on_table, rack[SHOOTER], legal)
     return next((g for g in met if legal[g]), met[0])
 
 
@@ -123,11 +125,11 @@ def read_first(
         ``(K,)`` whether the cue ball crossed the head string before its first contact
         (True where the rules do not read it).
     """
-    replay = wpa.needs_replay(params, tables, balls, positions, on_table, rack, first)
+    replay = needs_replay(params, tables, balls, positions, on_table, rack, first)
     if tables.shape[0] == 1 and not replay[0]:
         return _CROSSED  # the common case: nothing to replay, nothing allocated
     crossed = np.ones(tables.shape[0], dtype=np.bool_)
-    head_x = float(params[kp.HEAD_X])
+    head_x = float(params[HEAD_X])
     for k in np.flatnonzero(replay).tolist():
         b = int(tables[k])
         rows = np.flatnonzero(on_table[b])
@@ -143,3 +145,49 @@ def read_first(
         chosen = shooters_benefit(game, rack[b], on_table[b], met)
         first[k, 1] = int(np.flatnonzero(balls == chosen)[0])
     return crossed
+
+
+@kernel
+def needs_replay(params, tables, balls, positions, on_table, rack, first):
+    """The shots whose first contact the rules cannot read from the fast path's outcome.
+
+    Two cases, both rare: the cue ball was in hand behind the head string and its first
+    ball lies behind the head string (did the cue ball cross the line first?), or its
+    first ball is not a legal one and a legal ball lies within 4R of it (did the cue ball
+    meet that one at the same instant?). :func:`read_first` replays those shots
+    with their trajectories.
+
+    Args:
+        params: The config's numbers (the game, the ball radius, the head string's x).
+        tables: ``(K,)`` the tables that shot.
+        balls: ``(M,)`` ball number of each result column.
+        positions: ``(B, N, 2)`` positions before the shot.
+        on_table: ``(B, N)`` before the shot.
+        rack: ``(B, N_RACK)`` before the shot.
+        first: ``(K, 2)`` result columns of the first ball-ball impact (cue first), -1 none.
+
+    Returns:
+        ``(K,)`` booleans.
+    """
+    game, head_x = int(params[VARIANT]), params[HEAD_X]
+    near = 4.0 * params[RADIUS] + 1e-6  # two resting balls both touching the cue ball
+    out = np.zeros(tables.shape[0], dtype=np.bool_)
+    for k in range(tables.shape[0]):
+        if first[k, 0] < 0:
+            continue
+        b = tables[k]
+        f = balls[first[k, 1]]
+        if rack[b, BEHIND] != 0 and positions[b, f, 0] < head_x:
+            out[k] = True
+            continue
+        player = rack[b, SHOOTER]
+        on = ball_on(game, rack[b], on_table[b], player)
+        if legal_first(game, rack[b], on_table[b], player, on, f):
+            continue
+        for g in range(1, on_table.shape[1]):
+            if g != f and legal_first(game, rack[b], on_table[b], player, on, g):
+                dx = positions[b, g, 0] - positions[b, f, 0]
+                dy = positions[b, g, 1] - positions[b, f, 1]
+                if dx * dx + dy * dy <= near * near:
+                    out[k] = True
+    return out

@@ -1,0 +1,58 @@
+"""WPA 9-ball, 10-ball and 8-ball, as one package: everything the family owns.
+
+Its ruleset (:mod:`.game`: :data:`NINE`, :data:`TEN`, :data:`EIGHT`), rules section and
+reward terms (:mod:`.section`), compiled rules (:mod:`.rules`, over the rack state of
+:mod:`.rack_state`) and judge (:mod:`.judge`), ball in hand and calls (:mod:`.shots`),
+first contact (:mod:`.first_contact`), rack state at reset (:mod:`.rack`), observation
+(:mod:`.observe`), ``info`` keys (:mod:`.info`) and its tail of the kernel parameters
+(:mod:`.params`). The games register under ``"nine"``, ``"ten"`` and ``"eight"``
+(:mod:`pool_env.game.registry`). The names below are the package's public face, for
+players that read the rules' results.
+"""
+
+from __future__ import annotations
+
+from pool_env.game.games.wpa.game import EIGHT, NINE, TEN, WpaGame
+from pool_env.game.games.wpa.info import OPTION_KEYS, RULE_KEYS
+from pool_env.game.games.wpa.judge import (
+    BALL_ON,
+    FOUL,
+    KEEPS,
+    LOSS,
+    PLAY,
+    RESPOT,
+    RESPOT_TAKEN,
+    WINNER,
+)
+from pool_env.game.games.wpa.rack import GROUP_NAMES, rack_dict, rack_row
+from pool_env.game.games.wpa.rack_state import IN_HAND, SHOOTER
+from pool_env.game.games.wpa.section import DEFAULT_BREAK_SPEED_RANGE, REWARD_TERMS, WpaRules
+
+#: The rulesets this package registers, by name.
+GAMES = {game.name: game for game in (NINE, EIGHT, TEN)}
+
+__all__ = [
+    "BALL_ON",
+    "DEFAULT_BREAK_SPEED_RANGE",
+    "EIGHT",
+    "FOUL",
+    "GAMES",
+    "GROUP_NAMES",
+    "IN_HAND",
+    "KEEPS",
+    "LOSS",
+    "NINE",
+    "OPTION_KEYS",
+    "PLAY",
+    "RESPOT",
+    "RESPOT_TAKEN",
+    "REWARD_TERMS",
+    "RULE_KEYS",
+    "SHOOTER",
+    "TEN",
+    "WINNER",
+    "WpaGame",
+    "WpaRules",
+    "rack_dict",
+    "rack_row",
+]

@@ -1,0 +1,390 @@
+"""The interface of a game: what a game decides, as one strategy object over one context.
+
+:func:`pool_env.game.step.step` has one path, the same for every game; at each point where
+games differ it asks ``config.ruleset`` (a :class:`Ruleset`), handing it one
+:class:`Turn` (the config, the tables' state, the tables that shoot) rather than loose
+arrays. The compiled kernels stay numba functions in the game's own package; a ruleset
+only chooses which of them run and with which arrays. A game decides, in this order:
+
+1. :meth:`Ruleset.configure` (once, when an env is made): its rules section checked
+   against the scene, the table and the players, and its tail of the kernel parameters
+   (its rule options and reward scales);
+2. :meth:`Ruleset.start` (each reset): the per-table game state an episode starts from
+   (``GameState.rack``, :attr:`Ruleset.rack_width` integers a table; none in solitaire);
+3. :meth:`Ruleset.shoot` (each step): the actions decoded into struck shots, the cue
+   ball in hand placed first, with execution noise (one compiled call, but for the rare
+   covered placement);
+4. the simulator plays the shots to rest (the same for every game: :mod:`.step`);
+5. :meth:`Ruleset.judge`: the outcome applied to the state by the rules (rewards and
+   their terms, ends, re-spots);
+6. :meth:`Ruleset.observe` and :meth:`Ruleset.info_columns`: what the agent sees, and
+   what the step's ``info`` adds.
+
+The rest serves players and the codec, read-only: :meth:`Ruleset.obs_layout`,
+:meth:`Ruleset.constraints`, :meth:`Ruleset.first_balls_after`,
+:meth:`Ruleset.aim_references`, :meth:`Ruleset.encode` and the game state as a dict
+(:meth:`Ruleset.state_dict`, :meth:`Ruleset.state_row`, :meth:`Ruleset.shooters`).
+
+A game is a package of its own under :mod:`pool_env.game.games` (or anywhere: a user's
+package), made known by :func:`pool_env.game.registry.register_game`;
+``docs/own_game.md`` builds one.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from pool_env.game.kernels.observe import encode_observations
+from pool_env.game.kernels.outcome import CUE, SPOT_TAKEN
+from pool_env.game.kernels.params import TAIL_SIZE
+from pool_env.game.scenes import ScenePlan, free_spot
+from pool_env.game.shots import Shot, ShotConstraints
+from pool_env.game.state import GameState
+from pool_env.sim.result import ShotResult
+from pool_env.sim.table import Table
+
+if TYPE_CHECKING:
+    from pool_env.game.config import GameConfig
+
+
+class Outcome(NamedTuple):
+    """The simulator's answer for the tables that shot; row ``k`` is ``tables[k]``.
+
+    Attributes:
+        final: ``(K, M, 2)`` final positions, columns ``balls``.
+        pocketed: ``(K, M)`` pocket of each ball, -1 for none.
+        first: ``(K, 2)`` result columns of the first ball-ball impact, -1 for none.
+        cushions: ``(K, M)`` each ball's cushion impacts after the first contact.
+        order: ``(K, M)`` the order the balls dropped, -1 if they did not.
+        n_events: ``(K,)`` simulator events, or ``None``: read from ``shot``.
+        capped: ``(K,)`` a shot reached the event cap, or ``None``: read from ``shot``.
+        balls: ``(M,)`` ball number of each column.
+        shot: The :class:`~pool_env.ShotResult` of a one-table step, else ``None``.
+        velocities: ``(K, N, 2)`` the shots' initial velocities (a rule may replay a shot).
+        spins: ``(K, N, 3)`` their angular velocities on a spin table, else ``None``.
+    """
+
+    final: NDArray[np.float64]
+    pocketed: NDArray[np.int64]
+    first: NDArray[np.int64]
+    cushions: NDArray[np.int64]
+    order: NDArray[np.int64]
+    n_events: NDArray[np.int64] | None
+    capped: NDArray[np.bool_] | None
+    balls: NDArray[np.intp]
+    shot: ShotResult | None
+    velocities: NDArray[np.float64]
+    spins: NDArray[np.float64] | None
+
+
+class Turn(NamedTuple):
+    """The one context a game's step methods take: who shoots, on what, under which config.
+
+    Attributes:
+        config: The fixed model (its sections, table and kernel parameters).
+        state: The tables, changed in place by the step.
+        tables: ``(K,)`` the tables that shoot (or that are observed or reset).
+    """
+
+    config: GameConfig
+    state: GameState
+    tables: NDArray[np.intp]
+
+
+class Executed(NamedTuple):
+    """What :meth:`Ruleset.shoot` returns.
+
+    Attributes:
+        shots: ``(K, 2)`` the executed ``(angle, speed)``; ``(K, 4)`` on a spin table: and
+            the executed tip ``(a, b)``.
+        states: ``(K, N, 2)`` initial velocities; ``(K, N, 5)`` on a spin table: and
+            angular velocities.
+        calls: What the game's own judge needs besides (the WPA games' calls), or ``None``.
+    """
+
+    shots: NDArray[np.float64]
+    states: NDArray[np.float64]
+    calls: Any
+
+
+class Judged(NamedTuple):
+    """What :meth:`Ruleset.judge` returns; row ``k`` is ``tables[k]``.
+
+    Attributes:
+        values: ``(K, 1 + T)`` floats: the reward (column
+            :data:`~pool_env.game.kernels.outcome.REWARD`), then each of the game's ``T``
+            reward terms scaled (:attr:`Ruleset.reward_terms`' order); the reward is their sum.
+        flags: ``(K, F)`` booleans, the shared columns first
+            (:mod:`pool_env.game.kernels.outcome`), then the game's.
+        hits: ``(K, H)`` integers, the shared columns first, then the game's.
+    """
+
+    values: NDArray[np.float64]
+    flags: NDArray[np.bool_]
+    hits: NDArray[np.int64]
+
+
+@dataclass(frozen=True)
+class RulesSection:
+    """A game's section of the config (:mod:`pool_env.game.sections`): its name alone here.
+
+    A game with options of its own subclasses it (as the WPA games' ``WpaRules``) and
+    names the subclass as its :attr:`Ruleset.section`.
+
+    Attributes:
+        game: The game's registered name (``"solitaire"``, ``"nine"``, ...).
+    """
+
+    game: str = "solitaire"
+
+
+class Setup(NamedTuple):
+    """What :meth:`Ruleset.configure` is given: the parsed sections it may check and read.
+
+    Attributes:
+        table: The parsed table.
+        scene: The parsed scene.
+        rules: The game's rules section, as given (the game checks it).
+        rewards: The reward scales by term, checked finite numbers.
+        end_on_miss: The task section's ``end_on_miss``.
+        players: 1 or 2, the front's.
+        action_width: The game's action columns (the tip columns follow on a spin table).
+    """
+
+    table: Table
+    scene: ScenePlan
+    rules: RulesSection
+    rewards: Mapping[str, float]
+    end_on_miss: bool
+    players: int
+    action_width: int
+
+
+class Ruleset:
+    """A game: the steps of the decision process where games differ.
+
+    Subclasses set the class attributes and override what their game does differently;
+    the defaults here are what a game without ball in hand, game state or observation of
+    its own does (solitaire's).
+
+    Attributes:
+        name: The game's registered name (``gym.make(..., game=name)``).
+        rack_width: Integers of game state each table keeps (``GameState.rack``: turns,
+            fouls, ball in hand...); 0 for none.
+        action_width: Action components before a spin table's two tip components.
+        info_keys: The ``info`` keys this game adds to every step's.
+        section: The game's section of the config (its rule options and their defaults).
+        reward_terms: The game's reward terms and their default scales, in the order of
+            the judge's values; each step reports each term, scaled, as
+            ``info["reward_<term>"]``, and the reward is their sum.
+    """
+
+    name: str = ""
+    rack_width: int = 0
+    action_width: int = 2
+    info_keys: tuple[str, ...] = ()
+    section: type[RulesSection] = RulesSection
+    reward_terms: Mapping[str, float] = {}
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self.name!r})"
+
+    @property
+    def has_rack(self) -> bool:
+        """Whether each table keeps a game state (``PoolEnv.rack``, ``options["rules"]``)."""
+        return self.rack_width > 0
+
+    # -- configuration and reset ----------------------------------------------------------
+
+    def configure(self, setup: Setup) -> NDArray[np.float64]:
+        """Check the game's arguments and give its tail of the kernel parameters.
+
+        Returns:
+            ``(TAIL_SIZE,)`` float64 (:mod:`pool_env.game.kernels.params`: entries from
+            ``TAIL`` on, named in the game's package).
+
+        Raises:
+            ValueError: On arguments the game cannot play, naming them.
+        """
+        return np.zeros(TAIL_SIZE)
+
+    def parse_section(self, section: RulesSection) -> RulesSection:
+        """The rules section with its values checked and parsed (``ValueError`` if bad)."""
+        return section
+
+    def start(self, turn: Turn, given: Any, rack_scene: bool, on_table: NDArray[np.bool_]) -> None:
+        """Set the game state ``turn.tables`` start from (``options["rules"]``: ``given``).
+
+        Args:
+            turn: The reset tables.
+            given: ``options["rules"]`` (``None``: the game's default start).
+            rack_scene: The layout is the scene's named rack (a break follows).
+            on_table: ``(K, N)`` the balls each table starts with, for the checks.
+
+        Raises:
+            ValueError: On a given state the game cannot start from (state unchanged).
+        """
+        if given is not None:
+            raise ValueError(f"game={self.name!r} takes no options['rules']")
+
+    # -- one step -------------------------------------------------------------------------
+
+    def shoot(self, turn: Turn, actions: NDArray[np.float64]) -> Executed:
+        """The shots the actions play (the cue ball in hand placed first), with noise."""
+        raise NotImplementedError
+
+    def judge(self, turn: Turn, out: Outcome, executed: Executed) -> Judged:
+        """Apply the outcomes to ``turn.state`` by the rules, re-spots finished."""
+        raise NotImplementedError
+
+    def observe(self, turn: Turn, viewers: NDArray[np.int64] | None) -> NDArray[np.float32]:
+        """``(B, obs)`` observations of every table: per ball ``(x, y, on_table)``."""
+        table = turn.config.table
+        return encode_observations(
+            turn.state.positions, turn.state.on_table, table.length, table.width
+        )
+
+    def info_columns(self, hits: NDArray[np.int64]) -> dict[str, NDArray[Any]]:
+        """The game's ``info`` keys as one array over ``hits``' rows each: none here.
+
+        Each array's dtype is the key's (``bool``, ``int64``; ``object`` for names or
+        ``None``); :mod:`pool_env.game.info` turns them into the one-table dict or
+        Gymnasium's vector layout.
+        """
+        return {}
+
+    # -- views for players and the codec ---------------------------------------------------
+
+    def observation_width(self, n_balls: int) -> int:
+        """Observation entries for ``n_balls`` balls (the cue ball included): ``3 N``."""
+        return 3 * n_balls
+
+    def obs_layout(self, n_balls: int) -> dict[str, slice]:
+        """Where each part of an observation lies: here ``"balls"``, ``(x, y, on_table)`` each.
+
+        Ball ``j``'s entries are ``obs[layout["balls"]][3 j : 3 j + 3]``.
+        """
+        return {"balls": slice(0, 3 * n_balls)}
+
+    def constraints(self, config: GameConfig, observation: NDArray[Any]) -> ShotConstraints:
+        """What the next shot may do, read from one observation: any ball on the table."""
+        on = np.asarray(observation)[self.obs_layout(config.n_balls)["balls"]][2::3] > 0.5
+        first = tuple(int(j) for j in np.flatnonzero(on[1:]) + 1)
+        return ShotConstraints(first_balls=first, speed_range=config.speed_range)
+
+    def first_balls_after(self, on_after: NDArray[np.bool_], potted: int) -> tuple[int, ...]:
+        """The legal first balls of the next shot if the shooter keeps the table.
+
+        ``potted`` dropped and ``on_after`` are the balls left: here every object ball left.
+        """
+        return tuple(int(j) for j in np.flatnonzero(on_after[1:]) + 1)
+
+    def aim_references(
+        self, state: GameState, viewers: NDArray[np.int64] | None = None
+    ) -> NDArray[np.bool_]:
+        """``(B, N)``: the balls relative and cut aim may refer to: here every ball on.
+
+        Under rules, the balls each viewer (``None``: each table's shooter) may hit first.
+        A fresh array.
+        """
+        return state.on_table.copy()
+
+    def encode(
+        self, config: GameConfig, shot: Shot, state: GameState, out: NDArray[np.float64],
+        clip: bool,
+    ) -> tuple[float, float]:  # fmt: skip
+        """Write the game's own action components of ``shot`` (none here) into ``out``.
+
+        Also moves table 0's cue ball of ``state`` to where the shot places it, so that
+        the aim refers from there.
+
+        Returns:
+            The speed range of this shot's speed component.
+        """
+        return config.speed_range
+
+    def encode_placement(
+        self, config: GameConfig, cue: Any, behind: bool, clip: bool
+    ) -> tuple[float, float]:
+        """The action components that place the cue ball in hand at ``cue``.
+
+        Raises:
+            ValueError: Always here: this game has no ball in hand.
+        """
+        raise ValueError(
+            f"game={self.name!r} has no cue ball in hand: the cue ball is placed in hand "
+            "under rules (game='nine', 'ten', 'eight')"
+        )
+
+    def decoded_shot(self, row: list[float], calls: Any, tip: tuple[float, float],
+                     cue: tuple[float, float] | None) -> Shot:  # fmt: skip
+        """The :class:`Shot` of one executed row and its calls (:func:`.codec.decode_action`)."""
+        return Shot(angle=row[0], speed=row[1], tip=tip, cue=cue)
+
+    def placed_cue(self, state: GameState) -> tuple[float, float] | None:
+        """Where table 0's cue ball was placed in hand by :meth:`shoot`: never here."""
+        return None
+
+    def state_dict(self, row: NDArray[np.int64]) -> dict[str, Any]:
+        """A table's game state as a dict (``PoolEnv.rack``).
+
+        Raises:
+            ValueError: Here: this game keeps no state.
+        """
+        raise ValueError(f"game={self.name!r} keeps no rack state")
+
+    def state_row(self, config: GameConfig, given: Any) -> NDArray[np.int64]:
+        """A table's game state row from a dict (:meth:`state_dict`'s), a row or ``None``."""
+        if given is not None:
+            raise ValueError(
+                f"rack is for the rules ids (a game with a rack state), not game={self.name!r}"
+            )
+        return np.zeros(self.rack_width, dtype=np.int64)
+
+    def shooters(self, state: GameState) -> NDArray[np.int64]:
+        """``(B,)`` the player to shoot on each table: always 0 here (one player)."""
+        return np.zeros(state.n_tables, dtype=np.int64)
+
+
+def place_free(
+    table: Table,
+    state: GameState,
+    b: int,
+    ball: int,
+    target: NDArray[np.float64] | None,
+    behind: bool = False,
+) -> None:
+    """Move ``ball`` of table ``b`` to the free point nearest ``target`` (head spot: None)."""
+    occupied = state.on_table[b].copy()
+    occupied[ball] = False
+    state.positions[b, ball] = free_spot(
+        table, state.positions[b], occupied, target, behind_head_string=behind
+    )
+
+
+def place_cue_balls(turn: Turn, flags: NDArray[np.bool_]) -> None:
+    """Finish the cue balls the compiled rules left on a covered head spot (rare).
+
+    The cue ball of each ``SPOT_TAKEN`` row goes to the free point nearest the head spot.
+    """
+    if flags[:, SPOT_TAKEN].any():
+        for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
+            place_free(turn.config.table, turn.state, int(turn.tables[k]), CUE, None)
+
+
+__all__ = [
+    "Executed",
+    "Judged",
+    "Outcome",
+    "RulesSection",
+    "Ruleset",
+    "Setup",
+    "Turn",
+    "place_cue_balls",
+    "place_free",
+]
