@@ -147,7 +147,8 @@ def main(argv: list[str] | None = None) -> int:
         "progress_bar": not args.no_progress,
         "algo_kwargs": algo_kwargs,
     }
-    from agents.training.train_lib import NATIVE_WRAPPERS, resolve_config, train
+    from agents.training.run_config import resolve_config
+    from agents.training.train_lib import NATIVE_WRAPPERS, train
 
     try:
         config = resolve_config(args.env, args.algo, overrides, args.hyperparams, args.recipe)

@@ -17,7 +17,8 @@ import numpy as np
 
 from agents.baselines.base import env_spec
 from agents.learned.features import GhostShotFeatures
-from agents.training.train_lib import TrainConfig, make_vec
+from agents.training.run_config import TrainConfig
+from agents.training.train_lib import make_vec
 
 N_ENVS, STEPS, REPEATS = 64, 200, 3
 

@@ -20,7 +20,8 @@ from collections.abc import Callable
 from typing import Any
 
 from agents.training import hyperparams
-from agents.training.train_lib import ALGOS, make_vec, resolve_config, warm_up
+from agents.training.run_config import ALGOS, resolve_config
+from agents.training.train_lib import make_vec, warm_up
 
 
 def _timed(clock: dict[str, float], key: str, fn: Callable[..., Any]) -> Callable[..., Any]:

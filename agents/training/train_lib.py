@@ -9,16 +9,16 @@ the baselines on the same seeds: random, the best constant action, the geometric
 agent and the simulator search), ``curve.csv`` and ``learning_curve.png`` (the baselines
 drawn as horizontal lines). The kernels are compiled (or loaded from numba's cache) before
 the clock starts, and periodic evaluations are timed apart, so the reported training time
-is learning only.
+is learning only. What defines a run (:class:`TrainConfig`, :func:`resolve_config`,
+:data:`ALGOS`) is :mod:`agents.training.run_config`.
 """
 
 from __future__ import annotations
 
 import json
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import yaml
@@ -39,13 +39,12 @@ from agents.evaluation.evaluate import evaluate_agent, format_table, one_line
 from agents.evaluation.metrics import Estimate
 from agents.learned.candidates import FirstRowAgent
 from agents.learned.envs import EnvFactory, make_env
-from agents.learned.pretrained import ALGO_CLASSES, algo_class
 from agents.training import hyperparams, runs
 from agents.training.hyperparams import VEC_KINDS
+from agents.training.run_config import ALGOS, TrainConfig
+from agents.training.run_config import FINAL_BASELINES as FINAL_BASELINES  # re-exported
+from agents.training.run_config import resolve_config as resolve_config  # re-exported
 from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
-
-#: Algorithms by the name used in ``hyperparams.yml`` and on the command line.
-ALGOS: dict[str, type[BaseAlgorithm]] = {name: algo_class(name) for name in ALGO_CLASSES}
 
 #: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
 #: features as the ``gym.Env`` wrapper of that name (:data:`agents.learned.envs.WRAPPERS`),
@@ -60,60 +59,10 @@ NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {
 EVAL_SEED = 20_000
 FINAL_SEED = 10_000
 
-#: Baselines of the final evaluation, in the order printed (see :mod:`agents.evaluation.evaluate`).
-FINAL_BASELINES = ("random", "best-const", "ghost", "search")
-
 #: Shots the best-constant scan may play: its episodes per action are this over the
 #: lattice's size, at most the final evaluation's (81 actions on a roll id: 1000 each; 729
 #: with a spin id's tip: 137 each, about 20 s, where 1000 each took minutes).
 SCAN_SHOTS = 100_000
-
-
-@dataclass
-class TrainConfig:
-    """Everything that defines a run (saved as the run's ``config.yaml``).
-
-    Attributes:
-        env_id: Registered environment id.
-        algo: Key of :data:`ALGOS`.
-        recipe: The named entry of ``hyperparams.yml`` it came from (``None``: the
-            algorithm's own entry).
-        seed: Seed of the algorithm and of the training envs.
-        n_timesteps: Environment steps to train for.
-        n_envs: Parallel environments.
-        vec: One of :data:`VEC_KINDS`.
-        threads: Torch threads.
-        eval_freq: Environment steps between evaluations (0: none during training).
-        eval_episodes: Episodes per periodic evaluation.
-        final_episodes: Episodes of the final evaluation (model and baselines).
-        baselines: Evaluate the baselines next to the model.
-        final_baselines: Which (:data:`FINAL_BASELINES` by default): the spin entries leave
-            out the search, whose 1000 episodes take over two minutes there.
-        progress_bar: Show SB3's progress bar.
-        policy: SB3 policy name.
-        env_kwargs: ``gymnasium.make`` keyword arguments.
-        wrapper: Observation wrapper name (see :mod:`agents.learned.envs`), or ``None``.
-        algo_kwargs: Algorithm keyword arguments in their data form (``hyperparams.yml``).
-    """
-
-    env_id: str = "pool_env/OneBallRoll-v1"
-    algo: str = "ppo"
-    recipe: str | None = None
-    seed: int = 0
-    n_timesteps: int = 100_000
-    n_envs: int = 8
-    vec: str = "dummy"
-    threads: int = 1
-    eval_freq: int = 50_000
-    eval_episodes: int = 500
-    final_episodes: int = 1000
-    baselines: bool = True
-    final_baselines: list[str] = field(default_factory=lambda: list(FINAL_BASELINES))
-    progress_bar: bool = True
-    policy: str = "MlpPolicy"
-    env_kwargs: dict[str, Any] = field(default_factory=dict)
-    wrapper: str | None = None
-    algo_kwargs: dict[str, Any] = field(default_factory=dict)
 
 
 def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = None) -> VecEnv:
@@ -199,27 +148,6 @@ class PeriodicEval(BaseCallback):
         self.env.close()
 
 
-def resolve_config(
-    env_id: str,
-    algo: str,
-    overrides: dict[str, Any],
-    path: str | Path | None = None,
-    recipe: str | None = None,
-) -> TrainConfig:
-    """Merge ``hyperparams.yml`` (for ``env_id``/``algo``) with command-line overrides.
-
-    ``overrides`` holds :class:`TrainConfig` fields (``None`` values are ignored) and an
-    optional ``algo_kwargs`` dict merged over the file's; ``recipe`` picks a named entry
-    (:func:`agents.training.hyperparams.load`).
-    """
-    if algo not in ALGOS:
-        raise ValueError(f"unknown algorithm {algo!r}: use one of {list(ALGOS)}")
-    run, algo_kwargs = hyperparams.split(hyperparams.load(env_id, algo, path, recipe))
-    algo_kwargs.update(overrides.pop("algo_kwargs", None) or {})
-    fields = {**run, **{k: v for k, v in overrides.items() if v is not None}}
-    return TrainConfig(env_id=env_id, algo=algo, recipe=recipe, algo_kwargs=algo_kwargs, **fields)
-
-
 def run_folder(root: str | Path, config: TrainConfig) -> Path:
     """A new folder ``root/<env>/<algo>_s<seed>_<steps>_<time>`` for one run."""
     return runs.run_folder(root, config.env_id, config.algo, config.seed, config.n_timesteps)
@@ -247,7 +175,7 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     """Train, evaluate and write a run folder; return its path.
 
     Args:
-        config: The run (see :func:`resolve_config`).
+        config: The run (see :func:`~agents.training.run_config.resolve_config`).
         root: Parent folder of run folders.
         quiet: Print nothing but the final table.
 
@@ -336,7 +264,10 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
 def _final_evaluation(
     config: TrainConfig, model: BaseAlgorithm
 ) -> tuple[dict[str, dict], list[float] | None]:
-    """The model and (optionally) :data:`FINAL_BASELINES` on the same final seeds.
+    """The model and (optionally) the final baselines on the same final seeds.
+
+    The baselines: ``config.final_baselines``
+    (:data:`~agents.training.run_config.FINAL_BASELINES` by default).
 
     Returns:
         The rows by agent name, and the best constant action (``None`` without baselines).

@@ -27,7 +27,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.sim.kernels.jaws import (
+from pool_env.sim.kernels.jaw_geometry import (
     J_BOX,
     J_FACING0,
     J_FACING1,

@@ -4,7 +4,7 @@ The simulator's counterpart of ``mujoco.rollout``, for search and planning: a pl
 weighs candidate shots (or the noise draws of one shot) from the same layout hands them
 over as rows of one array and reads back the final positions, the pots and the first
 contacts. Shot ``s`` gives bit for bit what ``shoot(table, positions, *shots[s], cue)``
-gives; the kernels are :mod:`pool_env.sim.kernels.rollout`.
+gives; the kernels are :mod:`pool_env.sim.kernels.rollout_kernel`.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ from pool_env.sim.inputs import (
     check_table,
     kernel_array,
 )
-from pool_env.sim.kernels import rollout as _rollout
+from pool_env.sim.kernels import rollout_kernel
 from pool_env.sim.kernels.packing import BatchOutput, allocate_batch
 from pool_env.sim.kernels.validation import OK
 from pool_env.sim.levels import level_of
@@ -40,7 +40,7 @@ from pool_env.sim.table import Table
 
 __all__ = ["SHOT_COLUMNS", "rollout"]
 
-SHOT_COLUMNS = _rollout.SHOT_COLUMNS
+SHOT_COLUMNS = rollout_kernel.SHOT_COLUMNS
 
 #: Shots per thread below which a rollout stays on the calling thread: a part costs a
 #: thread hand-over (tens of microseconds), a two-ball shot about five.
@@ -59,9 +59,9 @@ def _as_shots(table: Table, shots: ArrayLike) -> NDArray[np.float64]:
         full = np.zeros((arr.shape[0], SHOT_COLUMNS))
         full[:, :2] = arr
         arr = full
-    angle, speed = arr[:, _rollout.SHOT_ANGLE], arr[:, _rollout.SHOT_SPEED]
-    a, b = arr[:, _rollout.SHOT_TIP_A], arr[:, _rollout.SHOT_TIP_B]
-    elevation = arr[:, _rollout.SHOT_ELEVATION]
+    angle, speed = arr[:, rollout_kernel.SHOT_ANGLE], arr[:, rollout_kernel.SHOT_SPEED]
+    a, b = arr[:, rollout_kernel.SHOT_TIP_A], arr[:, rollout_kernel.SHOT_TIP_B]
+    elevation = arr[:, rollout_kernel.SHOT_ELEVATION]
     checks = (
         (np.isfinite(angle), "has a non-finite angle"),
         (speed >= 0.0, "needs a non-negative finite speed"),  # NaN fails

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env.sim.kernels.contact import CONTACT_TOL
-from pool_env.sim.kernels.jaws import LOC_CIRCLE, LOC_FREE, locate_many
+from pool_env.sim.kernels.jaw_geometry import LOC_CIRCLE, LOC_FREE, locate_many
 from pool_env.sim.result import ShotResult, SpinShotResult
 from pool_env.sim.table import Table
 from pool_env.testing import spin_invariants
@@ -205,8 +205,8 @@ def check_momentum(result: ShotResult, masses: ArrayLike, table: Table | None = 
     momentum into it (any direction if ``table`` is not given, within ``ZENO_SPEED * mass``); a
     sticking lump against a jaw loses its velocity into it if below ``ZENO_SPEED``; and a lump
     wedged between jaws and rails, pressing slowly into all of them, stops (see
-    :func:`pool_env.sim.kernels.jaws.unpress_lump`). On the spin level a sticking lump ends
-    its balls' slides at once and rolls on together, so the cloth's friction changes its
+    :func:`pool_env.sim.kernels.roll.jaw_impacts.unpress_lump`). On the spin level a sticking
+    lump ends its balls' slides at once and rolls on together, so the cloth's friction changes its
     momentum (by at most :func:`~pool_env.testing.spin_invariants.lump_cloth_impulse`), and
     then meets the cushions it touches as one body (impulses out of them).
     """

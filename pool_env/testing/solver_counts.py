@@ -22,7 +22,7 @@ from typing import Any
 
 from pool_env.sim.kernels import roots
 from pool_env.sim.kernels.roll import predict as roll_predict
-from pool_env.sim.kernels.spin import jaws as spin_jaws
+from pool_env.sim.kernels.spin import jaw_events as spin_jaw_events
 from pool_env.sim.kernels.spin import predict as spin_predict
 
 __all__ = ["install"]
@@ -52,4 +52,4 @@ def install(counts: Counter[str]) -> None:
     roll_predict.equal_accel_contact = quadratic
     spin_predict.first_contact = quartic
     spin_predict.equal_accel_contact = quadratic
-    spin_jaws.first_contact = quartic
+    spin_jaw_events.first_contact = quartic

@@ -21,7 +21,8 @@ from agents.baselines.base import env_spec
 from agents.baselines.geometry import cue_speed, ghost_shots
 from agents.baselines.ghost_ball import ARRIVAL_SPEED, GhostBallAgent
 from agents.learned.features import GhostBallFeatures, GhostShotFeatures
-from agents.training.train_lib import TrainConfig, make_vec
+from agents.training.run_config import TrainConfig
+from agents.training.train_lib import make_vec
 from pool_env import encode_observations, nearest_object_ball
 from pool_env.sim.table import standard_pockets
 

@@ -15,7 +15,8 @@ from agents.evaluation.evaluate import evaluate_agent, load_model
 from agents.train import first_line
 from agents.training import hyperparams
 from agents.training.paired import paired_clean
-from agents.training.train_lib import ALGOS, TrainConfig, make_vec, resolve_config
+from agents.training.run_config import ALGOS, TrainConfig, resolve_config
+from agents.training.train_lib import make_vec
 from pool_env import ENV_IDS
 
 TINY = [

@@ -1,4 +1,4 @@
-"""Candidate actions under the rules (``pool_env.game.rollout``): each as one ``step``."""
+"""Candidate actions under the rules (``pool_env.game.candidate_actions``): each as one ``step``."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import pool_env  # noqa: F401  (registers the ids)
-from pool_env.game.rollout import candidates_state, rollout_actions
+from pool_env.game.candidate_actions import candidates_state, rollout_actions
 from pool_env.game.state import new_state
 from pool_env.game.step import step
 

@@ -16,9 +16,9 @@ import numpy as np
 import pytest
 
 from pool_env import Table
-from pool_env.sim.kernels.jaws import J_BOX, J_FACING0, J_FACING1, J_TIP0, J_TIP1, box_meets
+from pool_env.sim.kernels.jaw_geometry import J_BOX, J_FACING0, J_FACING1, J_TIP0, J_TIP1, box_meets
 from pool_env.sim.kernels.roots import APPROACH_RTOL
-from pool_env.sim.kernels.spin.jaws import predict_jaws
+from pool_env.sim.kernels.spin.jaw_events import predict_jaws
 from pool_env.sim.kernels.spin.params import S_SLIDE_DECEL
 from pool_env.sim.kernels.spin.predict import _extent
 from pool_env.sim.pockets import J_FX

@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from pool_env import Table, simulate
-from pool_env.sim.kernels.jaws import J_FACING0
+from pool_env.sim.kernels.jaw_geometry import J_FACING0
 from pool_env.sim.pockets import JawSpec
 from pool_env.testing.invariants import check_geometry
 from pool_env.testing.spin_invariants import energy_after_each_event

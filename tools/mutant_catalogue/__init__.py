@@ -9,7 +9,7 @@ the file do not move them.
 Dropped as equivalent (each was run, survived every test, and no observable behaviour
 tells it apart from the code):
 
-* ``jaws._facing_entry`` without ``or along > extent``: an offset facing ends ``2R`` past
+* ``jaw_geometry._facing_entry`` without ``or along > extent``: an offset facing ends ``2R`` past
   the fall line (``R (n . fall_normal) - 2R < 0``: behind it), so a contact beyond its end
   lies behind the fall line, which a straight path from the throat reaches first, and a
   centre there is potted.
@@ -21,7 +21,7 @@ tells it apart from the code):
   impact always involves the cue ball (only it moves at the start), which is column 0, so
   the ``else`` branch is dead.
 
-Not equivalent, not killed, left out: ``jaws.unpress_lump`` without the facing's extent
+Not equivalent, not killed, left out: ``jaw_impacts.unpress_lump`` without the facing's extent
 check (a lump touching a facing's line beyond its ends); no scene of the suite puts a
 sticking lump there.
 """

@@ -163,7 +163,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "jaw-facing-before-start",
         "jaws",
-        K + "jaws.py",
+        K + "jaw_geometry.py",
         "if along < 0.0 or along > extent:",
         "if along > extent:",
         JAWS,
@@ -172,7 +172,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "jaw-point-normal-of-facing",
         "jaws",
-        K + "jaws.py",
+        K + "jaw_geometry.py",
         "if kind == JAW:",
         "if kind >= JAW:",
         JAWS,
@@ -181,7 +181,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "jaw-locate-either-point",
         "jaws",
-        K + "jaws.py",
+        K + "jaw_geometry.py",
         "if not (_free_of_point(row, 0, x, y, tol) and _free_of_point(row, 1, x, y, tol)):",
         "if not (_free_of_point(row, 0, x, y, tol) or _free_of_point(row, 1, x, y, tol)):",
         JAWS,
@@ -190,7 +190,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "jaw-locate-tip-unsquared",
         "jaws",
-        K + "jaws.py",
+        K + "jaw_geometry.py",
         "return (x - cx) ** 2 + (y - cy) ** 2 >= (rho - tol) ** 2",
         "return (x - cx) ** 2 + (y - cy) ** 2 >= rho - tol",
         JAWS,
@@ -217,7 +217,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "spin-reach-box-shrunk",
         "jaws",
-        K + "jaws.py",
+        K + "jaw_geometry.py",
         "REACH_MARGIN = 1e-6",
         "REACH_MARGIN = -0.02",
         ("tests/sim/test_reach_culling.py",),

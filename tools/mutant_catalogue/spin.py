@@ -23,7 +23,7 @@ SPIN_LOOP = (
 )
 _SST = K + "spin/state.py"
 _SPR = K + "spin/predict.py"
-_SJ = K + "spin/jaws.py"
+_SJ = K + "spin/jaw_events.py"
 
 # The spin level's Zeno rules: closed forms of a stuck lump and a pressed cushion, the jams.
 SPIN_ZENO = (
@@ -243,7 +243,7 @@ MUTANTS: tuple[Mutant, ...] = (
         "if throat_of(px, py, prm, pockets) < -1:",
         ("tests/sim/test_spin_vs_roll.py", "tests/sim/test_spin_api.py"),
         "a fall line counted outside its own pocket's throat (a ball potted in the wrong pocket)",
-        "spin_jaws: the fall line",
+        "spin_jaw_events: the fall line",
     ),
     # -- the spin level's Zeno rules (spin_zeno.py): stuck lumps, the pressed cushion, jams --
     Mutant(

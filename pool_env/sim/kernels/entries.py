@@ -21,12 +21,12 @@ from collections import namedtuple
 from typing import Any
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels import batch, loop, rollout
+from pool_env.sim.kernels import batch, loop, rollout_kernel
 
 #: One level's entry points: :func:`~pool_env.sim.kernels.loop.packed_shot`,
 #: :func:`~pool_env.sim.kernels.loop.packed_strike`,
 #: :func:`~pool_env.sim.kernels.batch.run_batch`, ``run_batch_parallel`` and
-#: :func:`~pool_env.sim.kernels.rollout.run_shots`, each without the ``level`` argument.
+#: :func:`~pool_env.sim.kernels.rollout_kernel.run_shots`, each without the ``level`` argument.
 Entries = namedtuple(
     "Entries", ["packed_shot", "packed_strike", "run_batch", "run_batch_parallel", "run_shots"]
 )
@@ -74,7 +74,7 @@ def entries(level_class: type) -> Any:
 
     @entry
     def run_shots(pos, mass, index, cue, shots, prm, pockets, max_events, lo, hi, fields):
-        rollout.run_shots(
+        rollout_kernel.run_shots(
             level_class(0), pos, mass, index, cue, shots, prm, pockets, max_events, lo, hi,
             fields,
         )  # fmt: skip

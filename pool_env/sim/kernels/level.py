@@ -4,7 +4,7 @@ A model level is a motion law and its resolution models: how a ball moves in eac
 motion states, when it changes state, when it can meet a rail, a jaw, a pocket or another
 ball, and what an impact does. The event loop (:mod:`~pool_env.sim.kernels.loop`), the
 batch (:mod:`~pool_env.sim.kernels.batch`) and the rollout
-(:mod:`~pool_env.sim.kernels.rollout`) are written once, against the functions below, and
+(:mod:`~pool_env.sim.kernels.rollout_kernel`) are written once, against the functions below, and
 import no level. Each level lives in its own package and registers its implementation of
 every function here for its marker type (:func:`pool_env.sim.jit.level_method`):
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.jaws import LOC_CIRCLE, LOC_FALL, LOC_FREE, locate
+from pool_env.sim.kernels.jaw_geometry import LOC_CIRCLE, LOC_FALL, LOC_FREE, locate
 from pool_env.sim.kernels.limits import MAX_MASS, MIN_MASS, reachable_speed2, speed_allowed
 from pool_env.sim.kernels.params import P_DECEL, P_RADIUS
 

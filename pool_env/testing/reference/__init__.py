@@ -85,7 +85,7 @@ The reference is a test oracle: it is O(N^2) per event and slow, but a 3-ball, 3
 scene takes ~10 ms.
 
 The modules, one concern each: :mod:`.model` (numbers, types, vectors), :mod:`.roots` (exact
-event roots), :mod:`.pieces` (a ball's trajectory between events), :mod:`.jaws` (a jaw
+event roots), :mod:`.pieces` (a ball's trajectory between events), :mod:`.jaw_cushions` (a jaw
 table's cushion pieces), :mod:`.simulator` (the event loop and the impact laws),
 :mod:`.result` (:class:`ReferenceResult`) and :mod:`.simulate` (:func:`reference_simulate`,
 the entry point).

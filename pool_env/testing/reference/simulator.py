@@ -11,7 +11,7 @@ from typing import TYPE_CHECKING
 
 from mpmath import mp, mpf
 
-from pool_env.testing.reference.jaws import JawGeometry
+from pool_env.testing.reference.jaw_cushions import JawGeometry
 from pool_env.testing.reference.model import (
     TIE_TOLERANCE,
     Event,

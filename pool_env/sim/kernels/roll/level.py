@@ -2,7 +2,7 @@
 
 Every moving ball rolls on a straight line with constant deceleration ``a = mu_roll g``
 (:mod:`~pool_env.sim.kernels.roll.motion`); impacts are the seed's, its misprints fixed
-(:mod:`~pool_env.sim.kernels.roll.resolve`, :mod:`~pool_env.sim.kernels.roll.jaws`). This
+(:mod:`~pool_env.sim.kernels.roll.resolve`, :mod:`~pool_env.sim.kernels.roll.jaw_impacts`). This
 module implements every function of :mod:`pool_env.sim.kernels.level` for the marker
 :data:`~pool_env.sim.kernels.roll.marker.ROLL`.
 
@@ -19,12 +19,12 @@ from pool_env.sim.jit import level_method
 from pool_env.sim.kernels import level
 from pool_env.sim.kernels.contact import CONTACT_TOL, V_REST, V_ZENO
 from pool_env.sim.kernels.entries import entries
-from pool_env.sim.kernels.jaws import JAW_COLS
+from pool_env.sim.kernels.jaw_geometry import JAW_COLS
 from pool_env.sim.kernels.kinds import CUSHION
 from pool_env.sim.kernels.params import P_DECEL
 from pool_env.sim.kernels.record import log_anchor, new_segment_log
 from pool_env.sim.kernels.roll import predict  # noqa: F401 (registers its predictors)
-from pool_env.sim.kernels.roll.jaws import jaw_impact, unpress_lump
+from pool_env.sim.kernels.roll.jaw_impacts import jaw_impact, unpress_lump
 from pool_env.sim.kernels.roll.marker import ROLL, RollLevel  # noqa: F401 (ROLL: importing it from here registers the level)
 from pool_env.sim.kernels.roll.motion import (
     MOVING,

@@ -4,7 +4,7 @@ A ball's own events (cushion, pocket, stop, and on a jaw table facing and point 
 are computed once, when the ball is re-anchored, in arc length along its straight path:
 rails, facings, fall lines, capture circles and points are lines and circles, so each is a
 quadratic in ``s`` at most, and ``t`` follows from ``s = v t - a t^2 / 2`` (jaws:
-:mod:`pool_env.sim.kernels.jaws`).
+:mod:`pool_env.sim.kernels.jaw_geometry`).
 
 A pair's next impact is computed over the window in which both trajectories are fixed: until
 either ball's next cushion or pocket event (a stop does not change a trajectory, it ends a
@@ -26,7 +26,7 @@ import math
 
 from pool_env.sim.jit import kernel, level_method
 from pool_env.sim.kernels import level as interface
-from pool_env.sim.kernels.jaws import JAW_COLS, opening_of, predict_pocket, throat_of
+from pool_env.sim.kernels.jaw_geometry import JAW_COLS, opening_of, predict_pocket, throat_of
 from pool_env.sim.kernels.kinds import CUSHION, EV_ARG, EV_END, EV_KIND, EV_T, POCKET, STOP
 from pool_env.sim.kernels.params import P_DECEL, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.roll.marker import RollLevel

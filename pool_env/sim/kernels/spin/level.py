@@ -29,7 +29,7 @@ from pool_env.sim.jit import kernel, level_method
 from pool_env.sim.kernels import level
 from pool_env.sim.kernels.contact import V_ZENO, ZENO_REPEATS
 from pool_env.sim.kernels.entries import entries
-from pool_env.sim.kernels.jaws import jaw_normal
+from pool_env.sim.kernels.jaw_geometry import jaw_normal
 from pool_env.sim.kernels.kinds import CUSHION, SLIDE_ROLL
 from pool_env.sim.kernels.limits import MAX_SPEED, reachable_speed2_spin, speed_allowed
 from pool_env.sim.kernels.packing import SPIN_TAIL_FLOATS, SPIN_TAIL_INTS

@@ -11,7 +11,7 @@ Every ball moves with a constant acceleration between its anchor and its next tr
 * a capture circle: the squared distance to its centre less its squared radius is a
   quartic, solved by the bracketed :func:`~pool_env.sim.kernels.roots.first_contact`
   (a start inside captures now, in any direction); pocket jaws (facings, points, fall
-  lines): :mod:`~pool_env.sim.kernels.spin.jaws` (on a jaw table a rail crossing inside a
+  lines): :mod:`~pool_env.sim.kernels.spin.jaw_events` (on a jaw table a rail crossing inside a
   pocket's opening is no rail hit);
 * a pair of balls: the squared gap is a quartic in any mix of states
   (:func:`~pool_env.sim.kernels.roots.first_contact`), with the explicit degree drops: both
@@ -24,7 +24,7 @@ predicted over the window up to the earlier own event of its two balls, and re-p
 whenever either ball is re-anchored (an impact or a transition): that is how a prediction
 covers a piecewise path. Pairs are culled first by the bounding boxes of the two pieces,
 pockets by reach: a capture circle or a pocket's jaws whose box the piece's bounding box
-misses is not solved for (exact: :func:`~pool_env.sim.kernels.jaws.box_meets`).
+misses is not solved for (exact: :func:`~pool_env.sim.kernels.jaw_geometry.box_meets`).
 
 A ball at a rail or facing with no normal speed whose slip presses it in is an impact now
 (the loop's pressed-cushion rule then sets it rolling along the cushion).
@@ -36,7 +36,7 @@ import math
 
 from pool_env.sim.jit import kernel, level_method
 from pool_env.sim.kernels import level as interface
-from pool_env.sim.kernels.jaws import JAW_COLS, REACH_MARGIN, opening_of
+from pool_env.sim.kernels.jaw_geometry import JAW_COLS, REACH_MARGIN, opening_of
 from pool_env.sim.kernels.kinds import (
     CUSHION,
     EV_ARG,
@@ -56,7 +56,7 @@ from pool_env.sim.kernels.roots import (
     first_contact,
     quadratic_roots,
 )
-from pool_env.sim.kernels.spin.jaws import predict_jaws
+from pool_env.sim.kernels.spin.jaw_events import predict_jaws
 from pool_env.sim.kernels.spin.marker import SpinLevel
 from pool_env.sim.kernels.spin.params import S_SLIDE_DECEL, S_SPIN_DECEL
 from pool_env.sim.kernels.spin.state import (

@@ -14,7 +14,7 @@ accelerations bring it back before it has parted by more than ``CONTACT_TOL``,
 :func:`held`), whatever the restitution: with ``e = 1`` its bounces neither shrink nor end.
 The lump then meets the cushions it touches as one body (the roll level's
 ``lump_off_contacts``) and, on a jaw table, with the roll level's jam rule for lumps
-wedged between contacts (``jaws.unpress_lump``). A single ball meeting a cushion slowly
+wedged between contacts (``jaw_impacts.unpress_lump``). A single ball meeting a cushion slowly
 while wedged between contacts (:func:`wedged_ball`: a narrowing throat, its slip driving it
 in) is held there too: without the rule it re-hit both facings thousands of times at one
 instant and ended at the event cap.
@@ -36,7 +36,14 @@ from pool_env.sim.kernels.contact import (
     slide,
     wedged,
 )
-from pool_env.sim.kernels.jaws import J_FACING0, J_TIP0, JAW_COLS, jaw_normal, opening_of, throat_of
+from pool_env.sim.kernels.jaw_geometry import (
+    J_FACING0,
+    J_TIP0,
+    JAW_COLS,
+    jaw_normal,
+    opening_of,
+    throat_of,
+)
 from pool_env.sim.kernels.kinds import JAW, POINT
 from pool_env.sim.kernels.params import P_E_CUSHION, P_E_JAW, P_LENGTH, P_RADIUS, P_WIDTH
 from pool_env.sim.kernels.roots import APPROACH_RTOL, INF
@@ -92,7 +99,7 @@ def _lump_off_cushions(snap, changed, size, vx, vy, prm, pockets):
     """A lump's common velocity after it meets the cushions its balls touch, as one body.
 
     The roll level's rules for a stuck lump (``resolve.lump_off_contacts`` and, on a jaw
-    table, ``jaws.unpress_lump``): a lump wedged between contacts (pressing into them so
+    table, ``jaw_impacts.unpress_lump``): a lump wedged between contacts (pressing into them so
     that it cannot slide along any one of them without pressing into another) stops, the
     cushions taking its momentum; otherwise each touched rail, jaw facing or jaw point
     reflects the lump's normal velocity into it with its restitution (0 below ``V_ZENO``),
@@ -121,7 +128,7 @@ def wedged_ball(x, y, vx, vy, repeats, prm, pockets):
     """Whether a ball meeting a cushion is wedged there: the single ball's jam rule.
 
     The one-ball counterpart of the lump's (:func:`_lump_off_cushions`, after
-    ``jaws.unpress_lump``), on jaw tables: a ball meeting a cushion while it presses into
+    ``jaw_impacts.unpress_lump``), on jaw tables: a ball meeting a cushion while it presses into
     other contacts so that it cannot slide along any one of them without pressing into
     another (a ball in a narrowing throat, touching both facings) is held there. Without
     the rule its slip, turned by each facing's friction, drove it back in after every

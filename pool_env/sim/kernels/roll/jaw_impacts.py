@@ -1,7 +1,7 @@
 """Impacts with pocket jaws on the roll level (compiled): facings and points, and lumps.
 
 The jaws' geometry (facings, points, fall lines, where a centre lies) is the shared
-:mod:`~pool_env.sim.kernels.jaws`; what is here re-anchors balls that move by the roll
+:mod:`~pool_env.sim.kernels.jaw_geometry`; what is here re-anchors balls that move by the roll
 level's law.
 """
 
@@ -13,7 +13,7 @@ import numpy as np
 
 from pool_env.sim.jit import kernel
 from pool_env.sim.kernels.contact import lump_off_contacts, slide, wedged
-from pool_env.sim.kernels.jaws import J_FACING0, J_TIP0, jaw_normal, opening_of, throat_of
+from pool_env.sim.kernels.jaw_geometry import J_FACING0, J_TIP0, jaw_normal, opening_of, throat_of
 from pool_env.sim.kernels.params import (
     P_DECEL,
     P_E_CUSHION,

@@ -1,4 +1,4 @@
-"""Pocket jaws (compiled): events against facings, points and fall lines, and their impacts.
+"""Pocket jaw geometry, shared by the levels (compiled): facings, points, fall lines, events.
 
 The jaw array (``Table.pocket_geometry`` of a jaw table, one row per pocket, columns in
 :mod:`pool_env.sim.pockets`) holds every cushion piece already offset by ``R``, so each is

@@ -1,6 +1,6 @@
-"""Pocket jaws on the spin level (compiled): facings, points and fall lines on curved paths.
+"""Jaw events on the spin level (compiled): a curved path meeting facings, points, fall lines.
 
-The jaw rows of :mod:`pool_env.sim.kernels.jaws` (every piece already offset by ``R``, so
+The jaw rows of :mod:`pool_env.sim.kernels.jaw_geometry` (every piece already offset by ``R``, so
 the ball *centre* touches it) against a ball whose position is quadratic in time
 ``p(tau) = p0 + v tau + acc tau^2 / 2``:
 
@@ -23,7 +23,7 @@ relies on straight paths).
 from __future__ import annotations
 
 from pool_env.sim.jit import kernel
-from pool_env.sim.kernels.jaws import (
+from pool_env.sim.kernels.jaw_geometry import (
     J_FACING0,
     J_FNX,
     J_FNY,
@@ -72,7 +72,7 @@ def predict_jaws(
     """Fold every pocket's fall line, facings and points into ``best = (t, kind, arg)``.
 
     A pocket whose reach box the piece's bounding box ``box = (xl, yl, xh, yh)`` misses has
-    no event on the piece (:func:`~pool_env.sim.kernels.jaws.box_meets`) and is skipped:
+    no event on the piece (:func:`~pool_env.sim.kernels.jaw_geometry.box_meets`) and is skipped:
     culling by reach, exact.
 
     Ties at equal times keep the lower kind (a fall before a jaw contact, a facing before a
