@@ -39,9 +39,10 @@ if TYPE_CHECKING:  # the names below are imported on first use, by __getattr__
     from pool_env.game.kernels.actions import decode_shots, nearest_object_ball
     from pool_env.game.kernels.observe import encode_observations
     from pool_env.game.kernels.tips import onto_tip_circle
-    from pool_env.game.scenes import SCENES, check_layout, free_spot
+    from pool_env.game.scenes import SCENES, check_layout
     from pool_env.game.sections import PoolConfig, default_config
     from pool_env.game.shots import Shot, ShotConstraints
+    from pool_env.game.spots import free_spot
 
 #: Public names of the game layer and the fronts -> the module defining each.
 _LAZY: dict[str, str] = {
@@ -65,7 +66,7 @@ _LAZY: dict[str, str] = {
     "check_layout": "pool_env.game.scenes",
     "decode_shots": "pool_env.game.kernels.actions",
     "encode_observations": "pool_env.game.kernels.observe",
-    "free_spot": "pool_env.game.scenes",
+    "free_spot": "pool_env.game.spots",
     "nearest_object_ball": "pool_env.game.kernels.actions",
     "onto_tip_circle": "pool_env.game.kernels.tips",
 }

@@ -22,7 +22,7 @@ shot wins (the break and combinations included); potted on a foul it is re-spott
 other balls potted on a foul stay down. A player who fouls on three successive shots
 loses the rack. After a foul the incoming player has the
 cue ball in hand anywhere on the table. (Re-spotting and ball-in-hand placement are
-:func:`pool_env.game.scenes.free_spot`'s, not this file's.)
+:func:`pool_env.game.spots.free_spot`'s, not this file's.)
 
 The push-out (WPA 9-ball 1.7, 10-ball 4): if the break was legal, the shot after it may be
 declared a push-out by whoever plays it. Wrong ball first, no rail and no contact are then

@@ -111,7 +111,8 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
     """
     if name == "random":
         return RandomAgent(env, seed=seed)
-    rules = getattr(env.unwrapped, "config", None) is not None and env.unwrapped.config.ruleset.has_rack
+    config = getattr(env.unwrapped, "config", None)
+    rules = config is not None and config.ruleset.has_rack
     if name in ("ghost", "ghost-centre"):
         spin = name == "ghost"
         if rules:

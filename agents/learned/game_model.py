@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from pool_env.game.config import GameConfig
-from pool_env.game.games.wpa import IN_HAND
+from pool_env.game.games.wpa.rack_state import IN_HAND
 from pool_env.game.state import GameState
 from pool_env.game.step import StepResult, step
 

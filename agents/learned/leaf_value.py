@@ -23,7 +23,7 @@ from numpy.typing import NDArray
 
 from agents.learned.layout_value import LayoutValue, layout_features
 from agents.learned.set_value import SetValue
-from pool_env.game.games.wpa import FOUL, KEEPS, WINNER
+from pool_env.game.games.wpa.judge import FOUL, KEEPS, WINNER
 from pool_env.game.geometry import PocketMouths
 from pool_env.game.step import StepResult
 from pool_env.sim import Table

@@ -26,12 +26,7 @@ from stable_baselines3.common.vec_env.base_vec_env import VecEnvIndices, VecEnvS
 import pool_env  # noqa: F401  (registers the ids and their vector entry point)
 from pool_env import ENV_IDS, PoolVectorEnv
 from pool_env.envs.registration import VECTOR_ENTRY_POINT
-from pool_env.game.info import INFO_KEYS as STEP_INFO_KEYS
-from pool_env.game.info import RULE_KEYS, TIP_KEY
-
-#: ``PoolEnv``'s step info keys, in its order: every id's, the spin ids' tip, then the
-#: rules ids' own (9-ball's and 10-ball's push-out and option among them).
-INFO_KEYS = (*STEP_INFO_KEYS, TIP_KEY, *RULE_KEYS)
+from pool_env.game.info import info_keys
 
 #: Attributes that hold one value per table: ``get_attr`` returns each table's own.
 PER_TABLE = frozenset({"positions", "on_table", "shots", "np_random", "np_random_seed"})
@@ -54,6 +49,9 @@ class NativeVecEnv(VecEnv):
                 f"finished environments within the step), got {env.autoreset_mode}"
             )
         self.env = env  # before VecEnv.__init__, which reads render_mode through get_attr
+        # PoolEnv's step info keys, in its order: every id's, the spin ids' tip, the game's
+        # reward terms, then the game's own (9-ball's and 10-ball's push-out and option).
+        self._info_keys = info_keys(env.config.ruleset, env.config.spin)
         self._actions: NDArray[Any] | None = None
         super().__init__(env.num_envs, env.single_observation_space, env.single_action_space)
 
@@ -82,7 +80,7 @@ class NativeVecEnv(VecEnv):
         dones = terminated | truncated
         final = info.get("final_info", {})
         columns = []
-        keys = [key for key in INFO_KEYS if key in info or key in final]  # rule keys: rules ids
+        keys = [key for key in self._info_keys if key in info or key in final]
         for key in keys:  # each table's info is in the top level or, if it ended, final
             if key in info and key in final:
                 columns.append(np.where(info[f"_{key}"], info[key], final[key]).tolist())

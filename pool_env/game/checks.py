@@ -230,3 +230,37 @@ def check_options(options: object) -> dict[str, Any]:
     if not isinstance(options, Mapping):
         raise ValueError(f"options must be a dict or None, got {options!r}")
     return dict(options)
+
+
+#: The contact offset (fraction of R) beyond which a real tip miscues: about half a radius
+#: (pooltool and Dr. Dave's miscue-limit FAQ). The default tip limit is the axis offset
+#: that gives it (:func:`default_tip_limit`).
+MISCUE_CONTACT_OFFSET = 0.5
+
+
+def default_tip_limit(table: Table) -> float:
+    """The default tip limit of a spin table: the axis offset of a half-radius contact.
+
+    The tip's contact point lies ``1 / (1 + r_tip / R)`` of the axis offset from the ball's
+    centre line (:mod:`pool_env.sim.kernels.spin.strike`), so the axis offset of a contact
+    offset ``c`` is ``c (1 + r_tip / R)``: 0.685 for the default 10.6 mm tip (capped at 1).
+    """
+    return min(1.0, MISCUE_CONTACT_OFFSET * (1.0 + table.cue_tip_radius / table.ball_radius))
+
+
+def parse_tip_limit(table: Table, tip_limit: object) -> float | None:
+    """The tip limit of a spin table (``None``: :func:`default_tip_limit`); ``None`` on roll.
+
+    Raises:
+        ValueError: Unless a number in ``(0, 1]``, or when given for a roll table.
+    """
+    if not table.has_spin:
+        if tip_limit is not None:
+            raise ValueError("tip_limit needs a spin table: model='spin' (the spin ids)")
+        return None
+    if tip_limit is None:
+        return default_tip_limit(table)
+    limit = parse_float("tip_limit", tip_limit)
+    if not 0.0 < limit <= 1.0:
+        raise ValueError(f"tip_limit must lie in (0, 1] (a fraction of R), got {tip_limit!r}")
+    return limit

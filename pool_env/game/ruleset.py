@@ -33,136 +33,41 @@ package), made known by :func:`pool_env.game.registry.register_game`;
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.kernels.observe import encode_observations
-from pool_env.game.kernels.outcome import CUE, SPOT_TAKEN
+from pool_env.game.kernels.outcome import (
+    CLEARED,
+    CUE,
+    FIRST_BALL,
+    N_FLAGS,
+    N_HITS,
+    POTTED_BITS,
+    REWARD,
+    SCRATCH,
+    SPOT_TAKEN,
+    TERMINATED,
+    TRUNCATED,
+    settle_rows,
+)
 from pool_env.game.kernels.params import TAIL_SIZE
-from pool_env.game.scenes import ScenePlan, free_spot
 from pool_env.game.shots import Shot, ShotConstraints
+from pool_env.game.spots import free_spot
 from pool_env.game.state import GameState
-from pool_env.sim.result import ShotResult
+from pool_env.game.turns import (
+    Executed,
+    GameConfig,
+    Judged,
+    Outcome,
+    RulesSection,
+    Setup,
+    Turn,
+)
 from pool_env.sim.table import Table
-
-if TYPE_CHECKING:
-    from pool_env.game.config import GameConfig
-
-
-class Outcome(NamedTuple):
-    """The simulator's answer for the tables that shot; row ``k`` is ``tables[k]``.
-
-    Attributes:
-        final: ``(K, M, 2)`` final positions, columns ``balls``.
-        pocketed: ``(K, M)`` pocket of each ball, -1 for none.
-        first: ``(K, 2)`` result columns of the first ball-ball impact, -1 for none.
-        cushions: ``(K, M)`` each ball's cushion impacts after the first contact.
-        order: ``(K, M)`` the order the balls dropped, -1 if they did not.
-        n_events: ``(K,)`` simulator events, or ``None``: read from ``shot``.
-        capped: ``(K,)`` a shot reached the event cap, or ``None``: read from ``shot``.
-        balls: ``(M,)`` ball number of each column.
-        shot: The :class:`~pool_env.ShotResult` of a one-table step, else ``None``.
-        velocities: ``(K, N, 2)`` the shots' initial velocities (a rule may replay a shot).
-        spins: ``(K, N, 3)`` their angular velocities on a spin table, else ``None``.
-    """
-
-    final: NDArray[np.float64]
-    pocketed: NDArray[np.int64]
-    first: NDArray[np.int64]
-    cushions: NDArray[np.int64]
-    order: NDArray[np.int64]
-    n_events: NDArray[np.int64] | None
-    capped: NDArray[np.bool_] | None
-    balls: NDArray[np.intp]
-    shot: ShotResult | None
-    velocities: NDArray[np.float64]
-    spins: NDArray[np.float64] | None
-
-
-class Turn(NamedTuple):
-    """The one context a game's step methods take: who shoots, on what, under which config.
-
-    Attributes:
-        config: The fixed model (its sections, table and kernel parameters).
-        state: The tables, changed in place by the step.
-        tables: ``(K,)`` the tables that shoot (or that are observed or reset).
-    """
-
-    config: GameConfig
-    state: GameState
-    tables: NDArray[np.intp]
-
-
-class Executed(NamedTuple):
-    """What :meth:`Ruleset.shoot` returns.
-
-    Attributes:
-        shots: ``(K, 2)`` the executed ``(angle, speed)``; ``(K, 4)`` on a spin table: and
-            the executed tip ``(a, b)``.
-        states: ``(K, N, 2)`` initial velocities; ``(K, N, 5)`` on a spin table: and
-            angular velocities.
-        calls: What the game's own judge needs besides (the WPA games' calls), or ``None``.
-    """
-
-    shots: NDArray[np.float64]
-    states: NDArray[np.float64]
-    calls: Any
-
-
-class Judged(NamedTuple):
-    """What :meth:`Ruleset.judge` returns; row ``k`` is ``tables[k]``.
-
-    Attributes:
-        values: ``(K, 1 + T)`` floats: the reward (column
-            :data:`~pool_env.game.kernels.outcome.REWARD`), then each of the game's ``T``
-            reward terms scaled (:attr:`Ruleset.reward_terms`' order); the reward is their sum.
-        flags: ``(K, F)`` booleans, the shared columns first
-            (:mod:`pool_env.game.kernels.outcome`), then the game's.
-        hits: ``(K, H)`` integers, the shared columns first, then the game's.
-    """
-
-    values: NDArray[np.float64]
-    flags: NDArray[np.bool_]
-    hits: NDArray[np.int64]
-
-
-@dataclass(frozen=True)
-class RulesSection:
-    """A game's section of the config (:mod:`pool_env.game.sections`): its name alone here.
-
-    A game with options of its own subclasses it (as the WPA games' ``WpaRules``) and
-    names the subclass as its :attr:`Ruleset.section`.
-
-    Attributes:
-        game: The game's registered name (``"solitaire"``, ``"nine"``, ...).
-    """
-
-    game: str = "solitaire"
-
-
-class Setup(NamedTuple):
-    """What :meth:`Ruleset.configure` is given: the parsed sections it may check and read.
-
-    Attributes:
-        table: The parsed table.
-        scene: The parsed scene.
-        rules: The game's rules section, as given (the game checks it).
-        rewards: The reward scales by term, checked finite numbers.
-        end_on_miss: The task section's ``end_on_miss``.
-        players: 1 or 2, the front's.
-        action_width: The game's action columns (the tip columns follow on a spin table).
-    """
-
-    table: Table
-    scene: ScenePlan
-    rules: RulesSection
-    rewards: Mapping[str, float]
-    end_on_miss: bool
-    players: int
-    action_width: int
 
 
 class Ruleset:
@@ -235,8 +140,18 @@ class Ruleset:
     # -- one step -------------------------------------------------------------------------
 
     def shoot(self, turn: Turn, actions: NDArray[np.float64]) -> Executed:
-        """The shots the actions play (the cue ball in hand placed first), with noise."""
-        raise NotImplementedError
+        """The shots the actions play (the cue ball in hand placed first), with noise.
+
+        Here the shared decoding (:func:`pool_env.game.kernels.actions.executed_shots`):
+        aim and speed, relative and cut aim at the nearest ball on the table, each table's
+        noise, the strike of the table's level; no calls.
+        """
+        state = turn.state
+        shots, states = executed_shots(
+            turn.config.params, actions, turn.tables, state.positions, state.on_table,
+            state.ptrs,
+        )  # fmt: skip
+        return Executed(shots, states, None)
 
     def judge(self, turn: Turn, out: Outcome, executed: Executed) -> Judged:
         """Apply the outcomes to ``turn.state`` by the rules, re-spots finished."""
@@ -351,6 +266,41 @@ class Ruleset:
         return np.zeros(state.n_tables, dtype=np.int64)
 
 
+class Settled(NamedTuple):
+    """What :func:`settle_shots` found; row ``k`` is ``tables[k]``.
+
+    Attributes:
+        potted: ``(K, N)`` the object balls each shot potted (the cue ball's column False).
+        scratch: ``(K,)`` the cue ball dropped (it is back on the table already).
+        first: ``(K,)`` the first ball the cue ball hit, -1 for none.
+        bits: ``(K,)`` the potted object balls as bits (ball ``j``: bit ``j - 1``).
+    """
+
+    potted: NDArray[np.bool_]
+    scratch: NDArray[np.bool_]
+    first: NDArray[np.int64]
+    bits: NDArray[np.int64]
+
+
+def settle_shots(turn: Turn, out: Outcome) -> Settled:
+    """Apply the simulator's outcome to the tables: what a judge does before its rules.
+
+    The balls move to where they stopped, potted ones leave the table, each table's shot
+    is counted, and a scratched cue ball goes back on the head spot (or, when that is
+    covered, on the free point nearest it). One compiled call over every row
+    (:func:`pool_env.game.kernels.outcome.settle_rows`), the rare covered spot in Python.
+    """
+    config, state, tables = turn
+    potted, scratch, first, bits, taken = settle_rows(
+        config.params, config.table.pockets, tables, out.balls, state.positions,
+        state.on_table, state.shots, out.final, out.pocketed, out.first,
+    )  # fmt: skip
+    if taken.any():
+        for k in np.flatnonzero(taken).tolist():
+            place_free(config.table, state, int(tables[k]), CUE, None)
+    return Settled(potted, scratch, first, bits)
+
+
 def place_free(
     table: Table,
     state: GameState,
@@ -378,13 +328,25 @@ def place_cue_balls(turn: Turn, flags: NDArray[np.bool_]) -> None:
 
 
 __all__ = [
+    "CLEARED",
+    "FIRST_BALL",
+    "N_FLAGS",
+    "N_HITS",
+    "POTTED_BITS",
+    "REWARD",
+    "SCRATCH",
+    "SPOT_TAKEN",
+    "TERMINATED",
+    "TRUNCATED",
     "Executed",
     "Judged",
     "Outcome",
     "RulesSection",
     "Ruleset",
+    "Settled",
     "Setup",
     "Turn",
     "place_cue_balls",
     "place_free",
+    "settle_shots",
 ]

@@ -35,12 +35,7 @@ from pool_env.game.reset import option_layouts, reset
 from pool_env.game.ruleset import Judged, Outcome, Ruleset, Turn
 from pool_env.game.shot_features import shot_feature_batch
 from pool_env.game.state import GameState
-from pool_env.sim.batch import (
-    PARALLEL_FROM,
-    available_cpus,
-    simulate_batch,
-    simulate_batch_threads,
-)
+from pool_env.sim.batch import PARALLEL_FROM, available_cpus, run_batch_arrays
 from pool_env.sim.simulate import simulate_checked_arrays
 from pool_env.sim.table import Table
 
@@ -237,10 +232,7 @@ def _simulate(
     if parallel is None:
         parallel = n_shots >= PARALLEL_FROM
     threads = available_cpus() if parallel else 1
-    if threads > 1:
-        result = simulate_batch_threads(table, pos, vel, on, threads, angular_velocities=spin)
-    else:
-        result = simulate_batch(table, pos, vel, active=on, parallel=False, angular_velocities=spin)
+    result = run_batch_arrays(table, pos, vel, spin, on, threads)  # the state's arrays as they are
     return Outcome(
         result.positions, result.pocketed, result.first_contact,
         result.cushions_after_contact, result.pocket_order, result.n_events,

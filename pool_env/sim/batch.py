@@ -270,14 +270,41 @@ def simulate_batch_threads(
     active = as_active(active, n, positions.shape[1])
     max_events = check_max_events(max_events)
     threads = check_threads(threads)
-    parts = min(threads or available_cpus(), n)
-    if parts <= 1:
+    if min(threads or available_cpus(), n) <= 1:
         return simulate_batch(
             table, positions, velocities, active=active, max_events=max_events,
             angular_velocities=None if angular_velocities is None else ang,
         )  # fmt: skip
+    return run_batch_arrays(table, positions, velocities, ang, active, threads, max_events)
+
+
+def run_batch_arrays(
+    table: Table,
+    positions: NDArray[np.float64],
+    velocities: NDArray[np.float64],
+    angular: NDArray[np.float64] | None,
+    active: NDArray[np.bool_],
+    threads: int | None = 1,
+    max_events: int = DEFAULT_MAX_EVENTS,
+) -> BatchResult:
+    """The batch of arrays its caller vouches for: no argument checked again.
+
+    For the game layer's step, whose state holds the kernels' arrays already (C-ordered
+    float64 ``(B, N, 2)``, boolean ``(B, N)``, a checked table): each scene is still
+    validated inside the compiled call, so a bad one raises as :func:`simulate_batch`
+    does. ``angular`` is ``(B, N, 3)`` on a spin table, ``None`` for no spin; ``threads``
+    splits the batch as :func:`simulate_batch_threads` does (``None``: every CPU; one
+    part runs serially).
+    """
+    n, n_balls = positions.shape[:2]
+    ang = np.zeros((n, n_balls, 3)) if angular is None else angular
+    mass = np.full((n, n_balls), table.ball_mass)
+    parts = min(threads or available_cpus(), n)
+    if parts <= 1:
+        out = _batch_output(table, positions, velocities, ang, mass, active, max_events, False)
+        raise_batch_error(table, out.error, positions, velocities, ang, mass)
+        return batch_result(out)
     edges = np.linspace(0, n, parts + 1).astype(np.int64).tolist()
-    mass = as_batch_masses(table, None, n, positions.shape[1])
 
     def part(lo: int, hi: int) -> BatchOutput:
         return _batch_output(

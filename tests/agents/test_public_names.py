@@ -16,7 +16,7 @@ from pathlib import Path
 import pytest
 
 from pool_env.game import formulas as game_formulas
-from pool_env.game.kernels import encode, geometry, observe, tips, wpa
+from pool_env.game.kernels import encode, geometry, observe, tips
 from pool_env.sim import constants
 from pool_env.sim import formulas as sim_formulas
 from pool_env.sim.kernels import limits, params
@@ -28,7 +28,7 @@ ROOT = Path(__file__).resolve().parents[2]
 OWNERS = {
     sim_formulas: (collide, cushion, mathavan, strike, spin_params),
     constants: (limits, params),
-    game_formulas: (encode, geometry, observe, tips, wpa),
+    game_formulas: (encode, geometry, observe, tips),
 }
 
 

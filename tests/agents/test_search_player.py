@@ -19,7 +19,8 @@ from agents.learned.leaf_value import outcome_values
 from agents.learned.next_shots import best_next_values, next_shot_actions
 from agents.learned.search_player import SearchPlayer, SearchSettings, load_search_player
 from pool_env.game.codec import decode_observations, obs_layout
-from pool_env.game.games.wpa import FOUL, KEEPS, WINNER, rack_row
+from pool_env.game.games.wpa import rack_row
+from pool_env.game.games.wpa.judge import FOUL, KEEPS, WINNER
 from pool_env.game.geometry import pocket_mouths
 
 ENV_ID = "pool_env/NineBallGame-v1"

@@ -21,7 +21,7 @@ import pytest
 
 from pool_env import PoolEnv, PoolVectorEnv, default_config
 from pool_env.envs.registration import ENV_IDS, GAME_IDS
-from pool_env.game.config import DEFAULT_SPEED_RANGE, GameConfig, make_config
+from pool_env.game.config import DEFAULT_SPEED_RANGE, GameConfig, TaskConfig, make_config
 from pool_env.game.kernels import params as kp
 from pool_env.game.sections import KEYS
 
@@ -100,8 +100,11 @@ def test_the_two_player_fronts_default_to_the_game_ids(env_id: str) -> None:
         assert config.players == 2
         assert config.max_shots == config.shot_limit == duel.config.max_shots == steps
         for f in fields(GameConfig):
-            if f.name not in ("players", "max_shots", "shot_limit", "params", "source"):
+            if f.name not in ("players", "shot_limit", "params", "source", "task"):
                 assert _same(getattr(config, f.name), getattr(single, f.name)), f.name
+        for f in fields(TaskConfig):
+            if f.name != "max_shots":
+                assert _same(getattr(config.task, f.name), getattr(single.task, f.name)), f.name
         differ = set(np.flatnonzero(config.params != single.params).tolist())
         assert differ == {kp.PLAYERS, kp.SHOT_LIMIT}
 

@@ -18,7 +18,8 @@ import pool_env
 from pool_env import PoolEnv, Table, shoot
 from pool_env.envs.registration import TASKS, roll_id, spin_id
 from pool_env.game.config import default_tip_limit, make_config
-from pool_env.game.kernels.actions import executed_rule_shots, executed_shots, place_in_hand
+from pool_env.game.games.wpa.shots import executed_rule_shots, place_in_hand
+from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.state import generator_addresses
 
 LAYOUT = np.array([[0.8, 0.635], [1.1, 0.635]])  # a straight shot along +x, 0.3 m apart
@@ -224,7 +225,7 @@ def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str, widt
         params, pockets = env.config.params, env.config.table.pockets
         unplaced = place_in_hand(params, pockets, actions[:, :size], rows, positions, on, rack)
         shots = executed_rule_shots(params, pockets, actions[:, :size], rows, positions, on,
-                                    ptrs, rack)  # fmt: skip
+                                    ptrs, rack, unplaced)  # fmt: skip
         out.append((positions, unplaced, shots[0][:, :2], shots[2]))
     for got, want in zip(out[1], out[0], strict=True):
         np.testing.assert_array_equal(got, want)  # placement, aim, speed, the calls

@@ -38,7 +38,6 @@ MONEY = {"nine": 9, "ten": 10, "eight": 8}
 def _observe(state: RackState) -> np.ndarray:
     """The observation the env shows the shooter of ``state`` (a racked layout)."""
     config = CONFIGS[state.game]
-    n = config.n_balls
     game_state = config.new_state(1)
     game_state.positions[0] = break_scene(TABLE, state.game)
     game_state.on_table[0] = state.on_table

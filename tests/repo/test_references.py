@@ -1,7 +1,7 @@
 """Honest references: what the repository cites lives in the repository.
 
 Code, tests and pages cite files by path (``docs/physics.md``, ``pool_env/sim/table.py``,
-``game/rules.py`` under a package): each path must name a tracked file (or folder). The
+``game/step.py`` under a package): each path must name a tracked file (or folder). The
 design notes and research files the project started from lie outside it, so citing them
 is refused by name. ``results/`` and ``CHANGELOG.md`` are dated records, kept as written.
 """
@@ -109,7 +109,7 @@ def test_the_checks_find_what_they_look_for() -> None:
     files = set(_tracked())
     assert not _resolves("docs/no_such_page.md", "README.md", files, set())
     assert _resolves("docs/physics.md", "README.md", files, set())
-    assert _resolves("game/rules.py", "docs/architecture.md", files, set())  # under a package
+    assert _resolves("game/step.py", "docs/architecture.md", files, set())  # under a package
     assert PATH.search("see `pool_env/sim/nowhere.py`").group(1) == "pool_env/sim/nowhere.py"
     assert OUTSIDE.search("(PHYSICS.md section 4)") and OUTSIDE.search("research/SPIN.md")
 

@@ -2,24 +2,24 @@
 
 from __future__ import annotations
 
-from tools.mutant_catalogue.base import CONTACT, DUEL, GAMES, G, Mutant, W
+from tools.mutant_catalogue.base import CONTACT, DUEL, GAMES, Mutant, W
 
 MUTANTS: tuple[Mutant, ...] = (
     # -- ball in hand, the called pocket, re-spotting (actions.py, scenes.free_spot, rulesets) --
     Mutant(
         "placement-kitchen-half-table",
         "ball in hand",
-        G + "rulesets/wpa.py",
-        "out[kp.HEAD_X] = table.length / 4.0",
-        "out[kp.HEAD_X] = table.length / 2.0",
+        "pool_env/game/games/wpa/game.py",
+        "wp.HEAD_X: table.length / 4.0,",
+        "wp.HEAD_X: table.length / 2.0,",
         GAMES,
         "ball in hand behind the head string allowed up to the centre line, not L/4",
-        "WpaGame.rule_params HEAD_X: the head string at L/4 (place_in_hand's box)",
+        "WpaGame.configure HEAD_X: the head string at L/4 (place_in_hand's box)",
     ),
     Mutant(
         "placement-free-spot-kitchen-half-table",
         "ball in hand",
-        G + "scenes.py",
+        "pool_env/game/spots.py",
         "params[kp.X_HIGH] = table.length / 4.0",
         "params[kp.X_HIGH] = table.length / 2.0",
         GAMES,
@@ -29,7 +29,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "placement-ball-disc-radius",
         "ball in hand",
-        G + "scenes.py",
+        "pool_env/game/spots.py",
         "min_d2 = (reach - CLEARANCE / 2.0) ** 2",
         "min_d2 = (reach / 2.0) ** 2",
         GAMES,
@@ -39,7 +39,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "placement-respot-in-front",
         "ball in hand",
-        G + "scenes.py",
+        "pool_env/game/spots.py",
         "return cand[ok][int(np.argmin(dist))].copy()",
         "return cand[ok][int(np.argmax(dist))].copy()",
         GAMES,
@@ -49,7 +49,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "duel-ball-in-hand-anywhere",
         "ball in hand",
-        G + "kernels/actions.py",
+        "pool_env/game/games/wpa/shots.py",
         "x_high = params[HEAD_X] if rack[b, BEHIND] != 0 else params[X_HIGH]",
         "x_high = params[X_HIGH]",
         (*GAMES, *DUEL),
@@ -59,7 +59,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "placement-nearest-free-leaves-kitchen",
         "ball in hand",
-        G + "rulesets/wpa.py",
+        "pool_env/game/games/wpa/game.py",
         "place_free(table, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))",
         "place_free(table, state, b, CUE, target)",
         GAMES,
@@ -69,7 +69,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rack-in-hand-column",
         "ball in hand",
-        G + "kernels/actions.py",
+        "pool_env/game/games/wpa/shots.py",
         "if rack[b, IN_HAND] == 0:",
         "if rack[b, BEHIND] == 0:",
         (*GAMES, *DUEL),
@@ -79,7 +79,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rack-break-speed-on-ball-in-hand",
         "actions",
-        G + "kernels/actions.py",
+        "pool_env/game/games/wpa/shots.py",
         "if row[BREAKING] != 0:",
         "if row[IN_HAND] != 0:",
         (*GAMES, *DUEL),
@@ -89,8 +89,8 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "duel-called-pocket-magnitude",
         "rules",
-        G + "kernels/actions.py",
-        "calls[k, CALL_POCKET] = min(int(_unit(actions[k, 4]) * n_pockets), n_pockets - 1)",
+        "pool_env/game/games/wpa/shots.py",
+        "calls[k, CALL_POCKET] = min(int(unit(actions[k, 4]) * n_pockets), n_pockets - 1)",
         "calls[k, CALL_POCKET] = min(int(abs(actions[k, 4]) * n_pockets), n_pockets - 1)",
         (*GAMES, *DUEL),
         "the called-pocket action decoded from [0, 1] (its magnitude), not [-1, 1]",
@@ -99,9 +99,9 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "called-pocket-rounded",
         "rules",
-        G + "kernels/actions.py",
-        "int(_unit(actions[k, 4]) * n_pockets)",
-        "int(_unit(actions[k, 4]) * n_pockets + 0.5)",
+        "pool_env/game/games/wpa/shots.py",
+        "int(unit(actions[k, 4]) * n_pockets)",
+        "int(unit(actions[k, 4]) * n_pockets + 0.5)",
         (*GAMES, *DUEL),
         "the called-pocket bin rounded instead of floored: off by one in the upper half",
         "actions.executed_rule_shots: six equal bins over [-1, 1]",
@@ -121,7 +121,7 @@ MUTANTS: tuple[Mutant, ...] = (
         "duel-turn-kept",
         "rules",
         "pool_env/envs/multiagent.py",
-        "        self.agent_selection = AGENTS[int(self._state.rack[0, wpa.SHOOTER])]\n"
+        "        self.agent_selection = AGENTS[int(self.config.ruleset.shooters(self._state)[0])]\n"
         "        self._accumulate_rewards()",
         "        self._accumulate_rewards()",
         DUEL,
@@ -151,7 +151,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-tie-by-ball-number",
         "rules",
-        G + "contact.py",
+        "pool_env/game/games/wpa/first_contact.py",
         "return next((g for g in met if legal[g]), met[0])",
         "return met[0]",
         CONTACT,
@@ -161,7 +161,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "ten-called-ball-off-by-one",
         "rules",
-        G + "kernels/actions.py",
+        "pool_env/game/games/wpa/shots.py",
         "calls[k, CALL_BALL] = 1 + min(",
         "calls[k, CALL_BALL] = min(",
         GAMES,
@@ -171,8 +171,10 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "option-column-hand-back-strikes",
         "rules",
-        G + "kernels/actions.py",
+        "pool_env/game/games/wpa/shots.py",
+        "        if calls[k, CALL_HAND_BACK] != 0:  # the table goes back: nothing is struck\n"
         "            shots[k, :] = 0.0\n            continue",
+        "        if calls[k, CALL_HAND_BACK] != 0:  # the table goes back: nothing is struck\n"
         "            shots[k, :] = 0.0",
         (*GAMES, *DUEL),
         "handing the table back still strikes the cue ball",

@@ -36,7 +36,7 @@ class Mutant:
 
 K = "pool_env/sim/kernels/"
 G = "pool_env/game/"
-W = G + "kernels/wpa.py"
+W = G + "games/wpa/rules.py"
 
 # Focused subsets: each a few files that pin the physics or rules the mutant breaks.
 SIM = (

@@ -9,7 +9,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "reward-shaping-sign",
         "rewards",
-        G + "rules.py",
+        "pool_env/game/games/solitaire/rules.py",
         "+ params[W_SHAPING] * phi_change",
         "- params[W_SHAPING] * phi_change",
         (*DECISION, *REFERENCE),
@@ -18,7 +18,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "reward-scratch-with-pot",
         "rewards",
-        G + "rules.py",
+        "pool_env/game/games/solitaire/rules.py",
         "params[W_POT] * n_potted\n",
         "params[W_POT] * (0 if scratch else n_potted)\n",
         (*DECISION, *REFERENCE),
@@ -72,7 +72,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "env-end-on-scratch",
         "env",
-        G + "rules.py",
+        "pool_env/game/games/solitaire/rules.py",
         "missed = n_potted == 0 or scratch",
         "missed = n_potted == 0",
         DECISION,
@@ -81,7 +81,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "info-potted-bits-shift",
         "observations",
-        G + "rules.py",
+        "pool_env/game/kernels/outcome.py",
         "bits |= np.int64(1) << (j - 1)",
         "bits |= np.int64(1) << j",
         (*DECISION, *REFERENCE),
@@ -90,7 +90,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "scratch-spot-unchecked",
         "ball in hand",
-        G + "rules.py",
+        "pool_env/game/kernels/outcome.py",
         "if point_free(x, y, params, pockets, others, count, reach * reach):",
         "if True:",
         (*DECISION, *REFERENCE),
@@ -145,7 +145,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "vector-truncation",
         "vector",
-        G + "rules.py",
+        "pool_env/game/games/solitaire/rules.py",
         "truncated = limit > 0.0 and shots >= limit",
         "truncated = limit > 0.0 and shots > limit",
         (*VECTOR, "tests/game/test_game_actions.py"),
@@ -165,7 +165,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "settle-scratch-pocket-0",
         "vector",
-        G + "rules.py",
+        "pool_env/game/kernels/outcome.py",
         "if pocketed[k, c] >= 0:",
         "if pocketed[k, c] > 0:",
         (*VECTOR, *SB3),

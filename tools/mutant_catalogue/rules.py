@@ -1,11 +1,11 @@
-"""Mutants of the 9/8-ball rules, compiled (game/kernels/wpa.py, the rule columns of rules.py)."""
+"""Mutants of the WPA rules, compiled (game/games/wpa/: the rules, the judge, the rack state)."""
 
 from __future__ import annotations
 
-from tools.mutant_catalogue.base import DECISION, DUEL, GAMES, REFERENCE, G, Mutant, W
+from tools.mutant_catalogue.base import DECISION, DUEL, GAMES, REFERENCE, Mutant, W
 
 MUTANTS: tuple[Mutant, ...] = (
-    # -- the 9/8-ball rules, compiled (game/kernels/wpa.py, the rule columns of rules.py) --
+    # -- the WPA rules, compiled (game/games/wpa/rules.py, judge.py, rack_state.py) ----------
     # Killed through the env's rule cases (tests/game/test_games.py) and the physics-shot cases
     # of tests/game/test_wpa.py, both checked against the plain-Python reference
     # (tests/wpa_reference.py, never mutated: it is the test's oracle, not product code).
@@ -162,7 +162,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-group-of-last-pot",
         "rules",
-        G + "rules.py",
+        "pool_env/game/games/wpa/judge.py",
         "elif order[k, c] < first_order:",
         "elif first_order > n_cols or order[k, c] > first_order:",
         GAMES,
@@ -172,7 +172,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-outcome-drop-order",
         "rules",
-        G + "rules.py",
+        "pool_env/game/games/wpa/judge.py",
         "elif order[k, c] < first_order:",
         "elif first_dropped < 0:",
         GAMES,
@@ -212,7 +212,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-on-the-eight-too-early",
         "rules",
-        W,
+        "pool_env/game/games/wpa/rack_state.py",
         "if on_table[j] and group_of(j) == group:\n            return -1\n    return 8",
         "if not on_table[j] and group_of(j) == group:\n            return 8\n    return -1",
         GAMES,
@@ -222,7 +222,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-open-table-eight-legal",
         "rules",
-        W,
+        "pool_env/game/games/wpa/rack_state.py",
         "return j != 8",
         "return True",
         GAMES,
@@ -232,7 +232,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-stripes-include-eight",
         "rules",
-        W,
+        "pool_env/game/games/wpa/rack_state.py",
         "if 9 <= ball <= 15:",
         "if 8 <= ball <= 15:",
         GAMES,
@@ -242,7 +242,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-outcome-cue-rail-counted",
         "rules",
-        G + "rules.py",
+        "pool_env/game/games/wpa/judge.py",
         "if j != CUE:\n                    to_rail += 1",
         "to_rail += 1\n                if j != CUE:\n                    pass",
         GAMES,
@@ -252,17 +252,17 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-win-reward-sign",
         "rewards",
-        G + "rules.py",
-        "reward += params[W_WIN] if winner == shooter else -params[W_WIN]",
-        "reward += params[W_WIN] if winner != shooter else -params[W_WIN]",
+        "pool_env/game/games/wpa/judge.py",
+        "values[k, WIN] = params[W_WIN] if winner == shooter else -params[W_WIN]",
+        "values[k, WIN] = params[W_WIN] if winner != shooter else -params[W_WIN]",
         GAMES,
         "the rack's win reward given for a loss and the other way round",
-        "rules.judge_rules: reward_win",
+        "wpa.judge.judge_rules: the win term",
     ),
     Mutant(
         "info-first-ball-is-cue",
         "observations",
-        G + "rules.py",
+        "pool_env/game/kernels/outcome.py",
         "return j if i == CUE else i",
         "return i if i == CUE else j",
         (*DECISION, *REFERENCE, *GAMES),
@@ -283,7 +283,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-push-out-any-shot",
         "rules",
-        G + "rules.py",
+        "pool_env/game/games/wpa/judge.py",
         "pushed = calls[k, CALL_PUSH_OUT] != 0 and rack[b, wpa.PUSH_OUT] != 0",
         "pushed = calls[k, CALL_PUSH_OUT] != 0",
         GAMES,
@@ -343,7 +343,7 @@ MUTANTS: tuple[Mutant, ...] = (
     Mutant(
         "rules-ten-pocket-ignored",
         "rules",
-        G + "rules.py",
+        "pool_env/game/games/wpa/judge.py",
         "if j == called_ball and pocketed[k, c] == calls[k, CALL_POCKET]:",
         "if j == called_ball:",
         GAMES,

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from pool_env.game.kernels.layout import point_free
-from pool_env.game.kernels.params import REACH
+from pool_env.game.kernels.params import REACH, SPOT_X, SPOT_Y
 from pool_env.sim.jit import kernel
 
 CUE = 0  # the cue ball's row in every layout
@@ -84,3 +84,36 @@ def spot_ball(positions, on_table, ball, x, y, params, pockets, others):
         positions[ball, 0], positions[ball, 1] = x, y
         return True
     return False
+
+
+@kernel
+def settle_rows(params, pockets, tables, balls, positions, on_table, shots, final, pocketed,
+                first):  # fmt: skip
+    """What every judge does first, for all rows: the outcomes applied, the shots counted.
+
+    :func:`settle` on each table, its shot counted, and a scratched cue ball put back on
+    the head spot when it is free.
+
+    Returns:
+        ``(potted, scratch, first_hit, bits, spot_taken)``: ``(K, N)`` the object balls each
+        shot potted, ``(K,)`` the cue ball dropped, the first ball it hit (-1: none), the
+        potted bits, and the head spot was covered (the cue ball is on the table but not
+        yet placed: the caller finishes it).
+    """
+    n_shots, n_balls = pocketed.shape[0], on_table.shape[1]
+    potted = np.zeros((n_shots, n_balls), dtype=np.bool_)
+    scratch = np.zeros(n_shots, dtype=np.bool_)
+    spot_taken = np.zeros(n_shots, dtype=np.bool_)
+    first_hit = np.empty(n_shots, dtype=np.int64)
+    bits = np.zeros(n_shots, dtype=np.int64)
+    others = np.empty((n_balls, 2))
+    for k in range(n_shots):
+        b = tables[k]
+        _, bits[k], scratch[k] = settle(positions, on_table, b, balls, final, pocketed, k,
+                                        potted[k])  # fmt: skip
+        shots[b] += 1
+        first_hit[k] = first_ball(balls, first, k)
+        if scratch[k]:
+            spot_taken[k] = not spot_ball(positions[b], on_table[b], CUE, params[SPOT_X],
+                                          params[SPOT_Y], params, pockets, others)  # fmt: skip
+    return potted, scratch, first_hit, bits, spot_taken

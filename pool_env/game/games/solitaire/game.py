@@ -13,7 +13,6 @@ from numpy.typing import NDArray
 
 from pool_env.game.games.solitaire import params as sp
 from pool_env.game.games.solitaire.rules import judge
-from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.kernels.params import TAIL, TAIL_SIZE
 from pool_env.game.ruleset import (
     Executed,
@@ -47,15 +46,6 @@ class Solitaire(Ruleset):
                                              sp.W_SHAPING), strict=True):  # fmt: skip
             tail[index - TAIL] = setup.rewards[term]
         return tail
-
-    def shoot(self, turn: Turn, actions: NDArray[np.float64]) -> Executed:
-        """:func:`pool_env.game.kernels.actions.executed_shots`; no calls."""
-        state = turn.state
-        shots, states = executed_shots(
-            turn.config.params, actions, turn.tables, state.positions, state.on_table,
-            state.ptrs,
-        )  # fmt: skip
-        return Executed(shots, states, None)
 
     def judge(self, turn: Turn, out: Outcome, executed: Executed) -> Judged:
         """:func:`pool_env.game.games.solitaire.rules.judge`, then a covered head spot."""

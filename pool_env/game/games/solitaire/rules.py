@@ -6,7 +6,7 @@ table applies the rule, reading only the outcome and the table's state:
 
 * A potted object ball leaves the table (keeping its capture point as its position).
 * A potted cue ball (a scratch) goes back on the head spot, or, when the spot is taken
-  (the ruleset finishes that case with :func:`pool_env.game.scenes.free_spot`), on the
+  (the ruleset finishes that case with :func:`pool_env.game.spots.free_spot`), on the
   free point nearest to it.
 * Reward, as four terms (:data:`pool_env.game.games.solitaire.game.REWARD_TERMS`):
   ``pot`` per object ball potted, ``scratch`` for a scratch, ``no_contact`` when the cue

@@ -6,51 +6,32 @@ reward terms (:mod:`.section`), compiled rules (:mod:`.rules`, over the rack sta
 first contact (:mod:`.first_contact`), rack state at reset (:mod:`.rack`), observation
 (:mod:`.observe`), ``info`` keys (:mod:`.info`) and its tail of the kernel parameters
 (:mod:`.params`). The games register under ``"nine"``, ``"ten"`` and ``"eight"``
-(:mod:`pool_env.game.registry`). The names below are the package's public face, for
-players that read the rules' results.
+(:mod:`pool_env.game.registry`). The names below are the package's public face; a player
+that reads the rules' results reads their columns where they are defined (the judge's
+``FOUL``, ``KEEPS``, ``WINNER`` in :mod:`.judge`; the rack state's ``IN_HAND``,
+``SHOOTER`` in :mod:`.rack_state`).
 """
 
 from __future__ import annotations
 
 from pool_env.game.games.wpa.game import EIGHT, NINE, TEN, WpaGame
 from pool_env.game.games.wpa.info import OPTION_KEYS, RULE_KEYS
-from pool_env.game.games.wpa.judge import (
-    BALL_ON,
-    FOUL,
-    KEEPS,
-    LOSS,
-    PLAY,
-    RESPOT,
-    RESPOT_TAKEN,
-    WINNER,
-)
 from pool_env.game.games.wpa.rack import GROUP_NAMES, rack_dict, rack_row
-from pool_env.game.games.wpa.rack_state import IN_HAND, SHOOTER
 from pool_env.game.games.wpa.section import DEFAULT_BREAK_SPEED_RANGE, REWARD_TERMS, WpaRules
 
 #: The rulesets this package registers, by name.
 GAMES = {game.name: game for game in (NINE, EIGHT, TEN)}
 
 __all__ = [
-    "BALL_ON",
     "DEFAULT_BREAK_SPEED_RANGE",
     "EIGHT",
-    "FOUL",
     "GAMES",
     "GROUP_NAMES",
-    "IN_HAND",
-    "KEEPS",
-    "LOSS",
     "NINE",
     "OPTION_KEYS",
-    "PLAY",
-    "RESPOT",
-    "RESPOT_TAKEN",
     "REWARD_TERMS",
     "RULE_KEYS",
-    "SHOOTER",
     "TEN",
-    "WINNER",
     "WpaGame",
     "WpaRules",
     "rack_dict",

@@ -40,7 +40,7 @@ from pool_env.game.games.wpa.shots import (
     CALL_POCKET,
     CALL_PUSH_OUT,
     executed_rule_shots,
-    place_in_hand,
+    placed_rule_shots,
 )
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.outcome import CUE
@@ -151,25 +151,28 @@ class WpaGame(Ruleset):
     # -- one step -------------------------------------------------------------------------
 
     def shoot(self, turn: Turn, actions: NDArray[np.float64]) -> Executed:
-        """Each cue ball in hand placed, then :func:`.shots.executed_rule_shots`.
+        """Each cue ball in hand placed and every shot struck: :func:`.shots.placed_rule_shots`.
 
-        A requested placement on a covered point goes to the nearest free one (rare).
+        One compiled call; a requested placement on a covered point (rare) goes to the
+        nearest free one, and that row is decoded then.
         """
         config, state, tables = turn
         table, params = config.table, config.params
-        rack = state.rack
-        unplaced = place_in_hand(
-            params, table.pockets, actions, tables, state.positions, state.on_table, rack
+        rack, pockets = state.rack, table.pockets
+        shots, states, calls, unplaced = placed_rule_shots(
+            params, pockets, actions, tables, state.positions, state.on_table, state.ptrs, rack
         )
         if unplaced.any():  # the requested point is covered: the nearest free one
-            for k in np.flatnonzero(unplaced).tolist():
+            rows = np.flatnonzero(unplaced)
+            for k in rows.tolist():
                 b = int(tables[k])
                 target = state.positions[b, CUE].copy()
                 place_free(table, state, b, CUE, target, bool(rack[b, wpa.BEHIND]))
-        return Executed(*executed_rule_shots(
-            params, table.pockets, actions, tables, state.positions, state.on_table,
-            state.ptrs, rack,
-        ))  # fmt: skip
+            shots[rows], states[rows], calls[rows] = executed_rule_shots(
+                params, pockets, actions[rows], tables[rows], state.positions,
+                state.on_table, state.ptrs, rack, np.zeros(rows.size, dtype=np.bool_),
+            )  # fmt: skip
+        return Executed(shots, states, calls)
 
     def judge(self, turn: Turn, out: Outcome, executed: Executed) -> Judged:
         """The first contact settled (:func:`.first_contact.read_first`), then the rules.

@@ -69,7 +69,7 @@ def place_in_hand(params, pockets, actions, tables, positions, on_table, rack):
     Returns:
         ``(K,)`` booleans: the requested point is not free (on or next to a ball, in a
         pocket): the caller moves the cue ball to the free point nearest to it
-        (:func:`pool_env.game.scenes.free_spot`).
+        (:func:`pool_env.game.spots.free_spot`).
     """
     n_shots, n_balls = tables.shape[0], on_table.shape[1]
     unplaced = np.zeros(n_shots, dtype=np.bool_)
@@ -94,7 +94,28 @@ def place_in_hand(params, pockets, actions, tables, positions, on_table, rack):
 
 
 @kernel
-def executed_rule_shots(params, pockets, actions, tables, positions, on_table, ptrs, rack):
+def placed_rule_shots(params, pockets, actions, tables, positions, on_table, ptrs, rack):
+    """A step's one compiled call: each cue ball in hand placed, then the shots struck.
+
+    :func:`place_in_hand`, then :func:`executed_rule_shots` for every row whose placement
+    is free. A row whose requested point is covered (rare) is left undecoded, its shot
+    zero: the caller moves its cue ball to the free point nearest the requested one and
+    decodes it with :func:`executed_rule_shots` (each table draws its noise from its own
+    generator, so the order of the two calls changes no draw).
+
+    Returns:
+        ``(shots, velocities, calls, unplaced)``: as :func:`executed_rule_shots`, and the
+        ``(K,)`` rows left to the caller.
+    """
+    unplaced = place_in_hand(params, pockets, actions, tables, positions, on_table, rack)
+    shots, velocities, calls = executed_rule_shots(
+        params, pockets, actions, tables, positions, on_table, ptrs, rack, unplaced
+    )
+    return shots, velocities, calls, unplaced
+
+
+@kernel
+def executed_rule_shots(params, pockets, actions, tables, positions, on_table, ptrs, rack, skip):
     """The shots of the rules' actions, the cue ball placed: the calls, aim, strike.
 
     The action is ``(aim, speed, cue x, cue y, pocket)``, then the game's own columns
@@ -109,8 +130,8 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
     (``rack[PUSH_OUT]``), and when the shooter has the option (``rack[OPTION]``) hands the
     table back instead of shooting: that row plays no shot (zero speed, no noise drawn).
     The speed maps onto the break range on a break. Relative and cut aim refer to the
-    nearest ball the shooter may hit first (:func:`pool_env.game.kernels.wpa.legal_targets`),
-    not to the nearest ball.
+    nearest ball the shooter may hit first (:func:`.rack_state.legal_targets`), not to
+    the nearest ball.
 
     Args:
         params: The config's numbers.
@@ -121,6 +142,7 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
         on_table: ``(B, N)`` which balls are on each table.
         ptrs: ``(B, 3)`` generator addresses (noise as :func:`executed_shots`).
         rack: ``(B, N_RACK)`` rack states.
+        skip: ``(K,)`` rows left as they are (zero shots, no noise drawn).
 
     Returns:
         ``(shots, velocities, calls)``: as :func:`executed_shots`, and ``(K, N_CALLS)``
@@ -138,6 +160,9 @@ def executed_rule_shots(params, pockets, actions, tables, positions, on_table, p
     n_pockets, n_objects = pockets.shape[0], n_balls - 1
     ball_column, option_column = int(params[BALL_COLUMN]), int(params[OPTION_COLUMN])
     for k in range(n_shots):
+        if skip[k]:
+            shots[k, :] = 0.0
+            continue
         b = tables[k]
         row = rack[b]
         calls[k, CALL_POCKET] = min(int(unit(actions[k, 4]) * n_pockets), n_pockets - 1)

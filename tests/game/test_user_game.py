@@ -1,0 +1,130 @@
+"""A game from outside ``pool_env/``: ``tests/user_game/rotation.py`` (``docs/own_game.md``).
+
+The folder registers its game and its id with one call each and touches nothing in
+``pool_env/``; here it is played through every front the built-in games have: Gymnasium's
+checker, its rules as a table of cases, its reward terms, its ``info``, the vector env.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import gymnasium as gym
+import numpy as np
+import pytest
+from gymnasium.utils.env_checker import check_env
+
+import pool_env
+from pool_env import PoolEnv, PoolVectorEnv, Shot, encode_action
+from pool_env.game import registry
+from tests.user_game import rotation
+
+ROOT = Path(__file__).resolve().parents[2]
+R = pool_env.Table().ball_radius
+
+
+def _layout(first: int) -> np.ndarray:
+    """The nine balls: ``first`` straight between the cue ball and the far corner pocket.
+
+    The others lie in a row along the near long rail, out of the way.
+    """
+    pos = np.zeros((10, 2))
+    pos[0] = (1.6, 0.6)
+    direction = np.array([2.54, 1.27]) - pos[0]
+    pos[first] = pos[0] + 0.4 * direction / np.linalg.norm(direction)
+    others = [j for j in range(1, 10) if j != first]
+    for k, j in enumerate(others):
+        pos[j] = (0.15 + 0.09 * k, 0.1)
+    return pos
+
+
+def _angle_to(pos: np.ndarray, ball: int) -> float:
+    dx, dy = pos[ball] - pos[0]
+    return math.atan2(dy, dx)
+
+
+def _shoot(env: PoolEnv, pos: np.ndarray, angle: float, speed: float) -> tuple:
+    env.reset(seed=0, options={"positions": pos})
+    action = encode_action(env.config, Shot(angle, speed), env.positions)
+    return env.step(action)
+
+
+def test_the_game_and_its_id_come_from_a_folder_outside_pool_env() -> None:
+    assert rotation.Rotation.__module__ == "tests.user_game.rotation"
+    assert "rotation" not in registry.BUILTIN
+    assert registry.ruleset_for("rotation") is rotation.GAME
+    assert "rotation" in registry.game_names()
+    assert not any("user_game" in p.read_text() for p in (ROOT / "pool_env").rglob("*.py"))
+    env = gym.make(rotation.ID)
+    assert env.unwrapped.config.ruleset is rotation.GAME
+    assert env.spec.max_episode_steps == 30
+
+
+def test_gymnasiums_checker_passes_on_its_id() -> None:
+    check_env(gym.make(rotation.ID).unwrapped, skip_render_check=True)
+
+
+@pytest.mark.parametrize(
+    ("first", "end_on_foul", "reward", "foul", "terminated"),
+    [
+        (1, True, 1.0, False, False),  # the 1 first and potted: clean, it scores
+        (2, True, -1.0, True, True),  # the 2 first: a foul ends the rack
+        (2, False, -1.0, True, False),  # ... or not, with end_on_foul=False
+    ],
+)
+def test_the_rule_as_a_table_of_cases(
+    first: int, end_on_foul: bool, reward: float, foul: bool, terminated: bool
+) -> None:
+    env = PoolEnv(game="rotation", scene="nine_ball", end_on_foul=end_on_foul)
+    pos = _layout(first)
+    _, got, done, _, info = _shoot(env, pos, _angle_to(pos, first), 2.0)
+    assert info["first_contact"] == first and info["ball_on"] == 1
+    assert (got, info["foul"], done) == (reward, foul, terminated)
+    if not foul:
+        assert info["potted"] == (1,) and not env.on_table[1]
+    assert got == info["reward_pot"] + info["reward_foul"]
+
+
+def test_a_miss_and_a_scratch_are_fouls_and_the_cue_ball_comes_back() -> None:
+    env = PoolEnv(game="rotation", scene="nine_ball", aim="absolute")
+    pos = _layout(1)
+    _, reward, done, _, info = _shoot(env, pos, math.pi / 2, 0.5)  # up the table: no ball
+    assert info["first_contact"] == -1 and info["foul"] and done and reward == -1.0
+    corner = np.array([2.54, 0.0])  # the cue ball rolled into the near right corner
+    _, reward, done, _, info = _shoot(env, pos, math.atan2(*(corner - pos[0])[::-1]), 3.0)
+    assert info["scratch"] and info["foul"] and done
+    assert env.on_table[0]  # back on the table, on the head spot or the free point nearest
+
+
+def test_its_reward_terms_are_scaled_reported_and_refused_where_it_has_none() -> None:
+    env = PoolEnv(game="rotation", scene="nine_ball", reward_pot=3.0, reward_foul=-0.5)
+    pos = _layout(1)
+    _, reward, *_, info = _shoot(env, pos, _angle_to(pos, 1), 2.0)
+    assert (reward, info["reward_pot"], info["reward_foul"]) == (3.0, 3.0, 0.0)
+    with pytest.raises(ValueError, match=r"no reward term 'scratch' \(its terms: reward_pot"):
+        PoolEnv(game="rotation", scene="nine_ball", reward_scratch=-1.0)
+    with pytest.raises(ValueError, match="end_on_foul must be a bool"):
+        PoolEnv(game="rotation", scene="nine_ball", end_on_foul=1)
+    with pytest.raises(ValueError, match="break_speed_range is a rule of game 'nine'"):
+        PoolEnv(game="rotation", scene="nine_ball", rules={"break_speed_range": (1, 2)})
+
+
+def test_the_vector_env_plays_it_as_the_single_env_does() -> None:
+    vec = PoolVectorEnv(4, game="rotation", scene="nine_ball", model="spin")
+    singles = [PoolEnv(game="rotation", scene="nine_ball", model="spin") for _ in range(4)]
+    obs, _ = vec.reset(seed=[10, 11, 12, 13])
+    actions = np.random.default_rng(3).uniform(-1, 1, (4, 4))
+    obs, rewards, terminated, _, info = vec.step(actions)
+    for k, env in enumerate(singles):
+        env.reset(seed=10 + k)
+        one, reward, done, _, one_info = env.step(actions[k])
+        np.testing.assert_array_equal(obs[k], one)
+        assert (reward, done) == (rewards[k], terminated[k])
+        assert (one_info["foul"], one_info["ball_on"]) == (info["foul"][k], info["ball_on"][k])
+
+
+def test_the_docs_page_shows_the_folders_module_as_it_is() -> None:
+    page = (ROOT / "docs" / "own_game.md").read_text()
+    source = (ROOT / "tests" / "user_game" / "rotation.py").read_text()
+    assert f"```python\n{source}```" in page
