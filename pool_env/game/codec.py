@@ -360,8 +360,7 @@ def encode_ball(config: GameConfig, ball: int) -> float:
     Raises:
         ValueError: On a game that calls no ball, or a ball that is not one of its own.
     """
-    column = getattr(config.ruleset, "ball_column", -1)
-    if column < 0:
+    if config.ruleset.ball_column < 0:
         raise ValueError(f"game={config.game!r} calls no ball (10-ball does)")
     return ball_component(config.n_object_balls, ball)
 

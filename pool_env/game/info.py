@@ -149,10 +149,9 @@ def batch_info(
         info[f"_{key}"] = present.copy()
     if result.shots.shape[1] > 2:
         tips = np.full(n_envs, None, dtype=object)
-        for t, (side, vertical) in zip(
-            tables.tolist(), result.shots[rows, 2:].tolist(), strict=True
-        ):
-            tips[t] = (side, vertical)  # one by one: numpy would unpack the tuples
+        # fromiter keeps each tuple whole (an array or a list of tuples would be unpacked)
+        rows_tips = result.shots[rows, 2:].tolist()
+        tips[tables] = np.fromiter(map(tuple, rows_tips), dtype=object, count=len(rows_tips))
         info[TIP_KEY], info[f"_{TIP_KEY}"] = tips, present.copy()
     ruleset = result.ruleset
     values = result.values[rows]

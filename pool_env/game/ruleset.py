@@ -87,6 +87,7 @@ class Ruleset:
         reward_terms: The game's reward terms and their default scales, in the order of
             the judge's values; each step reports each term, scaled, as
             ``info["reward_<term>"]``, and the reward is their sum.
+        ball_column: The action column that calls a ball (10-ball), -1 for none.
     """
 
     name: str = ""
@@ -95,6 +96,7 @@ class Ruleset:
     info_keys: tuple[str, ...] = ()
     section: type[RulesSection] = RulesSection
     reward_terms: Mapping[str, float] = {}
+    ball_column: int = -1
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"

@@ -10,7 +10,6 @@ is one more entry in :data:`LEVELS` (and its kernel package).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -20,6 +19,7 @@ from numpy.typing import NDArray
 from pool_env.sim.inputs import raise_invalid
 from pool_env.sim.kernels import entries
 from pool_env.sim.kernels.roll import level as roll_level
+from pool_env.sim.kernels.roll.motion import struck_velocity
 from pool_env.sim.kernels.spin import level as spin_level
 from pool_env.sim.result import ShotResult, SpinShotResult
 from pool_env.sim.spin_inputs import raise_spin_invalid, strike
@@ -42,8 +42,9 @@ def _raise_roll_invalid(
 def _roll_strike(
     table: Table, speed: float, angle: float, a: float, b: float, elevation: float
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    # The arithmetic of the roll level's compiled strike: no squirt, no spin.
-    return np.array([speed * math.cos(angle), speed * math.sin(angle)]), np.zeros(3)
+    velocity = np.empty(2)
+    struck_velocity(speed, angle, velocity)  # the roll level's compiled strike itself
+    return velocity, np.zeros(3)
 
 
 @dataclass(frozen=True)

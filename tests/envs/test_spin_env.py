@@ -225,7 +225,7 @@ def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str, widt
         params, pockets = env.config.params, env.config.table.pockets
         unplaced = place_in_hand(params, pockets, actions[:, :size], rows, positions, on, rack)
         shots = executed_rule_shots(params, pockets, actions[:, :size], rows, positions, on,
-                                    ptrs, rack, unplaced)  # fmt: skip
+                                    ptrs, rack, np.zeros(200, np.bool_))  # fmt: skip
         out.append((positions, unplaced, shots[0][:, :2], shots[2]))
     for got, want in zip(out[1], out[0], strict=True):
         np.testing.assert_array_equal(got, want)  # placement, aim, speed, the calls

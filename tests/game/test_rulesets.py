@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
-import pool_env  # noqa: F401  (registers the ids)
+import pool_env
 from pool_env import PoolEnv
 from pool_env.game import registry
 from pool_env.game.config import GAMES, make_config
@@ -161,3 +161,21 @@ def test_a_new_ruleset_is_a_subclass_and_a_name(monkeypatch: pytest.MonkeyPatch)
     assert rewards["recorded"] == rewards["double"]
     assert len(recorder.seen) == 20
     np.testing.assert_array_equal(envs["double"].positions, envs["solitaire"].positions)
+
+
+@pytest.mark.parametrize("env_id", [i for i in pool_env.ENV_IDS if i.endswith("-v1")])
+def test_every_steps_reward_terms_sum_to_its_reward(env_id: str) -> None:
+    """Each term reported (``info["reward_<term>"]``) and their sum is the reward, exactly."""
+    shaping = {"reward_shaping": 0.5} if "Game" not in env_id else {}
+    env = gym.make(env_id, noise=(0.01, 0.05), **shaping)
+    terms = [f"reward_{t}" for t in env.unwrapped.config.ruleset.reward_terms]
+    env.reset(seed=7)
+    seen = set()
+    for _ in range(40):
+        _, reward, terminated, truncated, info = env.step(env.action_space.sample())
+        parts = [info[key] for key in terms]
+        assert reward == sum(parts), (reward, dict(zip(terms, parts, strict=True)))
+        seen.update(key for key, part in zip(terms, parts, strict=True) if part != 0.0)
+        if terminated or truncated:
+            env.reset()
+    assert seen, "no term was ever non-zero: the test could not tell a wrong term"
