@@ -17,8 +17,7 @@ from pool_env.envs.checks import check_render, check_seed
 from pool_env.game import step as game
 from pool_env.game.checks import check_actions
 from pool_env.game.config import GameConfig, PoolConfig, make_config
-from pool_env.game.info import potted_lookup, table_info
-from pool_env.game.kernels.outcome import TERMINATED, TRUNCATED
+from pool_env.game.info import potted_lookup, table_step
 from pool_env.game.sections import resolve
 from pool_env.game.state import GameState
 from pool_env.sim.result import ShotResult
@@ -146,10 +145,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         result = game.step(self.config, self._state, _ONE, actions, record=self._record)
         self._last_shot, self._shot_balls = result.shot, result.balls
         self._last_shots = result.shots  # read by last_strike: a new array every step
-        info = table_info(result, self._potted_lut)
-        reward = result.rewards.item()
-        flags = result.flags[0].tolist()
-        terminated, truncated = flags[TERMINATED], flags[TRUNCATED]
+        reward, terminated, truncated, info = table_step(result, self._potted_lut)
         if self.render_mode == "human":
             self.render()
         elif self.render_mode == "rgb_array_list":

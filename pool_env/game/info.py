@@ -6,8 +6,10 @@ and the array type set by the value (``bool``, ``int64``, ``float64``, or ``obje
 the tuple of potted balls). :func:`batch_info` builds that from a
 :class:`pool_env.game.step.StepResult` without a loop over tables, :func:`table_info` the
 single environment's dict; both read the same columns. The keys a game adds are its
-ruleset's (:meth:`~pool_env.game.ruleset.Ruleset.table_info`,
-:meth:`~pool_env.game.ruleset.Ruleset.batch_info`).
+ruleset's (:meth:`~pool_env.game.ruleset.Ruleset.info_columns`, and for one table
+:meth:`~pool_env.game.ruleset.Ruleset.info_row`), and every step reports each of the
+game's reward terms, scaled, as ``reward_<term>`` (as Gymnasium's MuJoCo envs report
+theirs): they sum to the step's reward.
 """
 
 from __future__ import annotations
@@ -18,7 +20,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.kernels.outcome import CLEARED, FIRST_BALL, POTTED_BITS, SCRATCH
+from pool_env.game.kernels.outcome import (
+    CLEARED,
+    FIRST_BALL,
+    POTTED_BITS,
+    REWARD,
+    SCRATCH,
+    TERMINATED,
+    TRUNCATED,
+)
 
 if TYPE_CHECKING:
     from pool_env.game.ruleset import Ruleset
@@ -89,32 +99,37 @@ def potted_tuples(
 
 
 def table_info(result: StepResult, lut: NDArray[np.object_] | None) -> dict[str, Any]:
-    """The ``info`` dict of a one-table result, with Python scalars.
+    """The ``info`` dict of a one-table result, with Python scalars (:func:`table_step`'s)."""
+    return table_step(result, lut)[3]
+
+
+def table_step(
+    result: StepResult, lut: NDArray[np.object_] | None
+) -> tuple[float, bool, bool, dict[str, Any]]:
+    """``(reward, terminated, truncated, info)`` of a one-table result, as Python values.
 
     Each result array's row is converted once; per-shot counts come from the
     :class:`~pool_env.ShotResult` itself (this runs on every :class:`pool_env.PoolEnv` step).
     """
     shot = result.shot
-    rows: dict[str, Any] = {}
+    rows = {"flags": result.flags[0].tolist(), "hits": result.hits[0].tolist(),
+            "shots": result.shots[0].tolist()}  # fmt: skip
     info: dict[str, Any] = {"potted": potted_tuples(result, slice(None), lut)[0]}
     for key, (name, column, _) in COLUMNS.items():
         if column is None:
             info[key] = getattr(shot, name) if shot is not None else getattr(result, name).item()
-            continue
-        row = rows.get(name)
-        if row is None:
-            row = rows[name] = getattr(result, name)[0].tolist()
-        info[key] = row[column]
-    if result.shots.shape[1] > 2:
-        shot_row = rows.get("shots") or result.shots[0].tolist()
+        else:
+            info[key] = rows[name][column]
+    shot_row = rows["shots"]
+    if len(shot_row) > 2:
         info[TIP_KEY] = (shot_row[2], shot_row[3])
     ruleset = result.ruleset
     values = result.values[0].tolist()
-    for k, key in enumerate(reward_keys(ruleset)):
-        info[key] = values[1 + k]
-    for key, column in ruleset.info_columns(result.hits[:1]).items():
-        info[key] = column.tolist()[0]
-    return info
+    info.update(zip(reward_keys(ruleset), values[1:], strict=True))
+    if ruleset.info_keys:
+        info.update(ruleset.info_row(rows["hits"]))
+    flags = rows["flags"]
+    return values[REWARD], flags[TERMINATED], flags[TRUNCATED], info
 
 
 def batch_info(
@@ -154,11 +169,10 @@ def batch_info(
         tips[tables] = np.fromiter(map(tuple, rows_tips), dtype=object, count=len(rows_tips))
         info[TIP_KEY], info[f"_{TIP_KEY}"] = tips, present.copy()
     ruleset = result.ruleset
-    values = result.values[rows]
+    terms = np.zeros((n_envs, result.values.shape[1] - 1))  # one array, a column a term
+    terms[tables] = result.values[rows, 1:]
     for k, key in enumerate(reward_keys(ruleset)):
-        column = np.zeros(n_envs)
-        column[tables] = values[:, 1 + k]
-        info[key], info[f"_{key}"] = column, present.copy()
+        info[key], info[f"_{key}"] = terms[:, k].copy(), present.copy()
     for key, game_column in ruleset.info_columns(result.hits[rows]).items():
         column = (np.full(n_envs, None, dtype=object) if game_column.dtype == object
                   else np.zeros(n_envs, dtype=game_column.dtype))  # fmt: skip

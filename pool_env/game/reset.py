@@ -46,14 +46,17 @@ def reset(
     if ruleset.has_rack and "rules" not in option_names:
         option_names = (*option_names, "rules")
     options = check_options(options)
-    given = options.pop("rules", None) if ruleset.has_rack else None
-    turn = Turn(config, state, tables)
+    keeps_state = ruleset.has_rack  # a game without state between shots starts from none
+    given = options.pop("rules", None) if keeps_state else None
     if options:
         positions, on_table = option_layouts(config, options, tables, state.n_tables, option_names)
-        ruleset.start(turn, given, False, on_table)  # checked before the layouts land
+        if keeps_state:  # checked before the layouts land
+            ruleset.start(Turn(config, state, tables), given, False, on_table)
         state.positions[tables], state.on_table[tables] = positions, on_table
     else:
-        ruleset.start(turn, given, True, np.ones((1, config.n_balls), dtype=np.bool_))
+        if keeps_state:
+            every_ball = np.ones((1, config.n_balls), dtype=np.bool_)
+            ruleset.start(Turn(config, state, tables), given, True, every_ball)
         _lay_out(config, state, tables)
         state.on_table[tables] = True
     state.shots[tables] = 0

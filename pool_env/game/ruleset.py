@@ -159,12 +159,16 @@ class Ruleset:
         """Apply the outcomes to ``turn.state`` by the rules, re-spots finished."""
         raise NotImplementedError
 
-    def observe(self, turn: Turn, viewers: NDArray[np.int64] | None) -> NDArray[np.float32]:
-        """``(B, obs)`` observations of every table: per ball ``(x, y, on_table)``."""
-        table = turn.config.table
-        return encode_observations(
-            turn.state.positions, turn.state.on_table, table.length, table.width
-        )
+    def observe(
+        self, config: GameConfig, state: GameState, viewers: NDArray[np.int64] | None
+    ) -> NDArray[np.float32]:
+        """``(B, obs)`` observations of every table: per ball ``(x, y, on_table)``.
+
+        Every table is observed (no ``Turn``: an observation is made twice a step, and
+        the context would cost a tenth of a cheap step's game layer).
+        """
+        table = config.table
+        return encode_observations(state.positions, state.on_table, table.length, table.width)
 
     def info_columns(self, hits: NDArray[np.int64]) -> dict[str, NDArray[Any]]:
         """The game's ``info`` keys as one array over ``hits``' rows each: none here.
@@ -174,6 +178,16 @@ class Ruleset:
         Gymnasium's vector layout.
         """
         return {}
+
+    def info_row(self, hits: list[int]) -> dict[str, Any]:
+        """The game's ``info`` keys of one table, as Python scalars (``PoolEnv.step``).
+
+        Here :meth:`info_columns` of that one row; a game may answer faster from the
+        list (the WPA games do). ``tests/envs/test_vector.py`` holds the two to the same
+        values: the vector env equals a ``SyncVectorEnv`` of ``PoolEnv``'s bit for bit.
+        """
+        columns = self.info_columns(np.array([hits], dtype=np.int64))
+        return {key: column.tolist()[0] for key, column in columns.items()}
 
     # -- views for players and the codec ---------------------------------------------------
 
@@ -324,9 +338,12 @@ def place_cue_balls(turn: Turn, flags: NDArray[np.bool_]) -> None:
 
     The cue ball of each ``SPOT_TAKEN`` row goes to the free point nearest the head spot.
     """
-    if flags[:, SPOT_TAKEN].any():
-        for k in np.flatnonzero(flags[:, SPOT_TAKEN]).tolist():
-            place_free(turn.config.table, turn.state, int(turn.tables[k]), CUE, None)
+    taken = flags[:, SPOT_TAKEN]
+    # One table (every PoolEnv step) reads its flag: numpy's any() costs a microsecond.
+    if not (taken[0] if taken.shape[0] == 1 else taken.any()):
+        return
+    for k in np.flatnonzero(taken).tolist():
+        place_free(turn.config.table, turn.state, int(turn.tables[k]), CUE, None)
 
 
 __all__ = [

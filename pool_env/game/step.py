@@ -43,7 +43,6 @@ __all__ = ["StepResult", "observe", "option_layouts", "reset", "step"]
 
 _NO_CONTACT = np.full((1, 2), -1, dtype=np.int64)
 _NO_CONTACT.setflags(write=False)
-_EVERY = np.zeros(0, dtype=np.intp)  # observe reads every table: the turn's tables unused
 
 
 class StepResult:
@@ -69,8 +68,8 @@ class StepResult:
         ruleset: The game's ruleset (it reads its own ``info`` columns).
     """
 
-    __slots__ = ("_capped", "_n_events", "balls", "flags", "hits", "pocketed", "ruleset",
-                 "shot", "shots", "tables", "values")  # fmt: skip
+    __slots__ = ("_capped", "_n_events", "balls", "flags", "hits", "pocketed", "rewards",
+                 "ruleset", "shot", "shots", "tables", "values")  # fmt: skip
 
     def __init__(
         self,
@@ -82,14 +81,10 @@ class StepResult:
     ) -> None:
         self.tables, self.shots = tables, shots
         self.values, self.flags, self.hits = judged
+        self.rewards = judged.values[:, REWARD]  # (K,) the sum of each row's terms
         self.ruleset = ruleset
         self.pocketed, self.balls, self.shot = outcome.pocketed, outcome.balls, outcome.shot
         self._n_events, self._capped = outcome.n_events, outcome.capped
-
-    @property
-    def rewards(self) -> NDArray[np.float64]:
-        """``(K,)`` the rewards: the sum of each row's reward terms."""
-        return self.values[:, REWARD]
 
     @property
     def terminated(self) -> NDArray[np.bool_]:
@@ -252,8 +247,8 @@ def observe(
     (:mod:`pool_env.game.shot_features`), on each viewer's reference ball.
     """
     ruleset = config.ruleset
-    obs = ruleset.observe(Turn(config, state, _EVERY), viewers)
-    if config.observation != "shots":
+    obs = ruleset.observe(config, state, viewers)
+    if config.task.observation != "shots":
         return obs
     refer = ruleset.aim_references(state, viewers)
     shots = shot_feature_batch(

@@ -183,9 +183,10 @@ def raise_batch_error(
     :data:`~pool_env.sim.kernels.packing.BatchOutput`); the message names the table by its
     row and says what :func:`pool_env.simulate` would say of it.
     """
-    bad = np.flatnonzero(error[:, 0] != validation.OK)
-    if not bad.size:
+    codes = error[:, 0]
+    if (codes == validation.OK).all():
         return
+    bad = np.flatnonzero(codes != validation.OK)
     b = int(bad[0])
     code, i, j = (int(v) for v in error[b])
     try:
@@ -304,7 +305,7 @@ def run_batch_arrays(
         out = _batch_output(table, positions, velocities, ang, mass, active, max_events, False)
         raise_batch_error(table, out.error, positions, velocities, ang, mass)
         return batch_result(out)
-    edges = np.linspace(0, n, parts + 1).astype(np.int64).tolist()
+    edges = [n * i // parts for i in range(parts + 1)]  # each table alone: any split is exact
 
     def part(lo: int, hi: int) -> BatchOutput:
         return _batch_output(

@@ -19,7 +19,6 @@ from hypothesis import strategies as st
 from pool_env import Table, obs_layout, shot_constraints
 from pool_env.game.config import make_config
 from pool_env.game.games.wpa import params as wp
-from pool_env.game.ruleset import Turn
 from pool_env.sim.layouts import break_scene
 from tests.profiles import examples
 from tests.rules_harness import SCENES, rack_row
@@ -43,7 +42,7 @@ def _observe(state: RackState) -> np.ndarray:
     game_state.on_table[0] = state.on_table
     game_state.rack[0] = rack_row(state)
     viewers = np.array([state.shooter], dtype=np.int64)
-    return config.ruleset.observe(Turn(config, game_state, _ONE), viewers)[0]
+    return config.ruleset.observe(config, game_state, viewers)[0]
 
 
 @st.composite

@@ -24,7 +24,7 @@ from pool_env.game.components import ball_component, pocket_component, unit_comp
 from pool_env.game.games.wpa import params as wp
 from pool_env.game.games.wpa import rack_state as wpa
 from pool_env.game.games.wpa.first_contact import read_first
-from pool_env.game.games.wpa.info import OPTION_KEYS, RULE_KEYS, info_columns
+from pool_env.game.games.wpa.info import OPTION_KEYS, RULE_KEYS, info_columns, info_row
 from pool_env.game.games.wpa.judge import RESPOT, RESPOT_TAKEN, judge_rules
 from pool_env.game.games.wpa.observe import (
     OPTION_FEATURES,
@@ -192,16 +192,18 @@ class WpaGame(Ruleset):
             executed.calls, crossed,
         ))  # fmt: skip
         flags, hits = judged.flags, judged.hits
-        if flags[:, RESPOT_TAKEN].any():
+        respot = flags[:, RESPOT_TAKEN]
+        if respot[0] if respot.shape[0] == 1 else respot.any():  # one table: no any() call
             foot = params[[wp.FOOT_X, wp.FOOT_Y]].copy()
             for k in np.flatnonzero(flags[:, RESPOT_TAKEN]).tolist():
                 place_free(table, state, int(tables[k]), int(hits[k, RESPOT]), foot)
         place_cue_balls(turn, flags)
         return judged
 
-    def observe(self, turn: Turn, viewers: NDArray[np.int64] | None) -> NDArray[np.float32]:
+    def observe(
+        self, config: GameConfig, state: GameState, viewers: NDArray[np.int64] | None
+    ) -> NDArray[np.float32]:
         """The rule observation from ``viewers``' seats (``None``: each table's shooter)."""
-        config, state = turn.config, turn.state
         if viewers is None:
             viewers = state.rack[:, wpa.SHOOTER]
         return encode_rule_observations(
@@ -212,6 +214,10 @@ class WpaGame(Ruleset):
     def info_columns(self, hits: NDArray[np.int64]) -> dict[str, NDArray[Any]]:
         """:data:`.info.RULE_KEYS` (and the option's keys) over ``hits``' rows."""
         return info_columns(hits, self.has_option)
+
+    def info_row(self, hits: list[int]) -> dict[str, Any]:
+        """The same keys for one table, from its row as a list: no array made."""
+        return info_row(hits, self.has_option)
 
     # -- views for players and the codec ---------------------------------------------------
 

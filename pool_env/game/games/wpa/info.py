@@ -27,6 +27,26 @@ _FOULS = np.array(FOUL_NAMES, dtype=object)
 _LOSSES = np.array(LOSS_NAMES, dtype=object)
 
 
+def info_row(hits: list[int], has_option: bool) -> dict[str, Any]:
+    """:func:`info_columns` of one table's row, as Python scalars.
+
+    No array is made: a ``PoolEnv`` step builds this dict on every shot.
+    """
+    foul = hits[FOUL]
+    row: dict[str, Any] = {
+        "foul": FOUL_NAMES[foul],
+        "legal": foul == 0,
+        "loss": LOSS_NAMES[hits[LOSS]],
+        "turn_over": foul != 0 or hits[KEEPS] == 0,
+        "ball_on": hits[BALL_ON],
+        "winner": hits[WINNER],
+    }
+    if has_option:
+        row["push_out"] = hits[PLAY] == PUSHED_OUT
+        row["handed_back"] = hits[PLAY] == HANDED_BACK
+    return row
+
+
 def info_columns(hits: NDArray[np.int64], has_option: bool) -> dict[str, NDArray[Any]]:
     """:data:`RULE_KEYS` (and :data:`OPTION_KEYS` with the option) over ``hits``' rows."""
     codes = hits[:, FOUL]
