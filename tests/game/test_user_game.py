@@ -128,3 +128,59 @@ def test_the_docs_page_shows_the_folders_module_as_it_is() -> None:
     page = (ROOT / "docs" / "own_game.md").read_text()
     source = (ROOT / "tests" / "user_game" / "rotation.py").read_text()
     assert f"```python\n{source}```" in page
+
+
+class _Drill(rotation.Rotation):
+    """Another game, for the registry's checks (never left registered)."""
+
+    name = "drill"
+
+
+@pytest.mark.parametrize(
+    ("game", "message"),
+    [
+        (object(), "a game is a pool_env.game.ruleset.Ruleset instance"),
+        (type("Bad", (_Drill,), {"name": "two words"})(), "must be an identifier"),
+        (type("Nine", (_Drill,), {"name": "nine"})(), "built-in game's"),
+        (type("Terms", (_Drill,), {"reward_terms": {"pot": "one"}})(), "reward_terms must map"),
+        (type("Width", (_Drill,), {"action_width": 1})(), "action_width must be an int >= 2"),
+    ],
+)
+def test_register_game_refuses_what_is_no_game(
+    game: object, message: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setattr(registry, "_games", dict(registry._games))
+    with pytest.raises(ValueError, match=message):
+        registry.register_game(game)  # type: ignore[arg-type]
+
+
+def test_a_name_is_taken_once_unless_replaced(monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(registry, "_games", dict(registry._games))
+    first = registry.register_game(_Drill())
+    with pytest.raises(ValueError, match="registered already"):
+        registry.register_game(_Drill())
+    second = registry.register_game(_Drill(), replace=True)
+    assert registry.ruleset_for("drill") is second is not first
+
+
+def test_an_installed_package_joins_through_its_entry_point(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    class Point:  # what importlib.metadata gives for [project.entry-points."pool_env.games"]
+        name = "drill"
+
+        @staticmethod
+        def load() -> object:
+            return {"drill": _Drill()}
+
+    seen: list[str] = []
+
+    def points(group: str) -> list[Point]:
+        seen.append(group)
+        return [Point()]
+
+    monkeypatch.setattr(registry, "_games", dict(registry._games))
+    monkeypatch.setattr(registry, "_entry_points_loaded", False)
+    monkeypatch.setattr(registry, "entry_points", points)
+    assert isinstance(registry.ruleset_for("drill"), _Drill)
+    assert seen == [registry.ENTRY_POINT_GROUP] and "drill" in registry.game_names()
