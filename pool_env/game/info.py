@@ -151,31 +151,44 @@ def batch_info(
     tables = result.tables[rows]
     if tables.size == 0:
         return {}
+    if tables.size == n_envs:  # every table, in order (the tables that shot ascend)
+        rows, spread = slice(None) if mask is None or mask.all() else rows, _copied
+    else:
+        spread = _spreader(tables, n_envs)
     present = np.zeros(n_envs, dtype=np.bool_)
     present[tables] = True
-    potted = np.full(n_envs, None, dtype=object)
-    potted[tables] = potted_tuples(result, rows, lut)
-    info: dict[str, Any] = {"potted": potted, "_potted": present}
+    info: dict[str, Any] = {"potted": spread(potted_tuples(result, rows, lut)), "_potted": present}
     for key, (name, column, dtype) in COLUMNS.items():
         source = getattr(result, name)
-        values = np.zeros(n_envs, dtype=dtype)
-        values[tables] = (source if column is None else source[:, column])[rows]
-        info[key] = values
+        info[key] = spread((source if column is None else source[:, column])[rows], dtype)
         info[f"_{key}"] = present.copy()
     if result.shots.shape[1] > 2:
-        tips = np.full(n_envs, None, dtype=object)
         # fromiter keeps each tuple whole (an array or a list of tuples would be unpacked)
         rows_tips = result.shots[rows, 2:].tolist()
-        tips[tables] = np.fromiter(map(tuple, rows_tips), dtype=object, count=len(rows_tips))
-        info[TIP_KEY], info[f"_{TIP_KEY}"] = tips, present.copy()
+        tips = np.fromiter(map(tuple, rows_tips), dtype=object, count=len(rows_tips))
+        info[TIP_KEY], info[f"_{TIP_KEY}"] = spread(tips), present.copy()
     ruleset = result.ruleset
-    terms = np.zeros((n_envs, result.values.shape[1] - 1))  # one array, a column a term
-    terms[tables] = result.values[rows, 1:]
+    terms = result.values[rows, 1:]
     for k, key in enumerate(reward_keys(ruleset)):
-        info[key], info[f"_{key}"] = terms[:, k].copy(), present.copy()
-    for key, game_column in ruleset.info_columns(result.hits[rows]).items():
-        column = (np.full(n_envs, None, dtype=object) if game_column.dtype == object
-                  else np.zeros(n_envs, dtype=game_column.dtype))  # fmt: skip
-        column[tables] = game_column
-        info[key], info[f"_{key}"] = column, present.copy()
+        info[key], info[f"_{key}"] = spread(terms[:, k], np.float64), present.copy()
+    for key, column in ruleset.info_columns(result.hits[rows]).items():
+        info[key], info[f"_{key}"] = spread(column), present.copy()
     return info
+
+
+def _copied(values: NDArray[Any], dtype: Any = None) -> NDArray[Any]:
+    """Every table's values, in table order: a fresh array (of ``dtype``, if given)."""
+    return np.array(values, dtype=dtype if dtype is not None else values.dtype)
+
+
+def _spreader(tables: NDArray[np.intp], n_envs: int) -> Any:
+    """Values of ``tables`` spread over ``n_envs`` (0, False or None elsewhere), fresh."""
+
+    def spread(values: NDArray[Any], dtype: Any = None) -> NDArray[Any]:
+        kind = dtype if dtype is not None else values.dtype
+        fill = np.dtype(kind).kind == "O"
+        out = np.full(n_envs, None, dtype=object) if fill else np.zeros(n_envs, kind)
+        out[tables] = values
+        return out
+
+    return spread
