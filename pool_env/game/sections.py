@@ -199,6 +199,12 @@ class PoolConfig:
         elif rules is not None:
             raise ValueError(f"rules must be a rules section or a mapping, got {rules!r}")
         name = values.pop("game", self.rules.game if game is _UNSET else game)
+        # The reward scales were rule keys before they had a section of their own
+        # (rules={"reward_foul": -2.0}): they are the rewards section's now.
+        scales = {k[len(REWARD_PREFIX) :]: values.pop(k) for k in list(values)
+                  if k.startswith(REWARD_PREFIX)}  # fmt: skip
+        if scales:
+            return self._with_rewards(scales)._with_rules({**values, "game": name}, _UNSET)
         section_type = ruleset_for(name).section
         current = self.rules if type(self.rules) is section_type else section_type()
         for key in values:

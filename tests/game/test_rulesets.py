@@ -179,3 +179,16 @@ def test_every_steps_reward_terms_sum_to_its_reward(env_id: str) -> None:
         if terminated or truncated:
             env.reset()
     assert seen, "no term was ever non-zero: the test could not tell a wrong term"
+
+
+def test_reward_scales_are_the_games_terms_wherever_they_are_given() -> None:
+    """``reward_foul=``, ``rewards={"foul": ...}`` and the old ``rules={"reward_foul": ...}``."""
+    for kwargs in ({"reward_foul": -2.0}, {"rewards": {"foul": -2.0}},
+                   {"rules": {"reward_foul": -2.0, "end_on_foul": True}}):  # fmt: skip
+        config = make_config(scene="nine_ball", game="nine", **kwargs)
+        assert config.rewards == {"pot": 1.0, "foul": -2.0, "win": 1.0}, kwargs
+        assert config.params[wp.W_FOUL] == -2.0
+    with pytest.raises(ValueError, match=r"game='nine' has no reward term 'scratch'"):
+        make_config(scene="nine_ball", game="nine", reward_scratch=-1.0)
+    with pytest.raises(ValueError, match="reward_pot must be finite, got nan"):
+        make_config(scene="one_ball", reward_pot=float("nan"))
