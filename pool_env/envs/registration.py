@@ -45,7 +45,7 @@ TASKS: dict[str, tuple[dict[str, Any], int]] = {
     # Break, then keep shooting until the table is clear: 50 shots is ~5 a ball.
     "NineBall": ({"scene": "nine_ball"}, 50),
     "EightBall": ({"scene": "eight_ball"}, 80),
-    # The games under their rules (pool_env.game.kernels.wpa), one agent at the table:
+    # The games under their rules (pool_env.game.games.wpa), one agent at the table:
     # fouls, ball in hand, called pockets (10-ball: and balls), the push-out (9-ball and
     # 10-ball), a break at break speed; the episode ends when the rack is won or lost
     # (end_on_foul=True: at the first foul or missed turn).

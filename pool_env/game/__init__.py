@@ -5,8 +5,9 @@ One copy serves both Gymnasium fronts (:class:`pool_env.PoolEnv` with B = 1 and
 (it borrows only Gymnasium's seeding, so that generators match ``Env.np_random``).
 
 Modules: :mod:`.config` (the fixed model, parsed once), :mod:`.state` (B tables in arrays),
-:mod:`.scenes` (starting layouts, re-spotting), :mod:`.rulesets` (the games, one strategy
-each, which the step asks wherever games differ), :mod:`.rules` (the compiled rules: what an
-outcome means), :mod:`.step` (one step, one path for every game), :mod:`.info` (the step's
-info), :mod:`.checks` (every argument check), and :mod:`.kernels` (the compiled parts).
+:mod:`.scenes` (starting layouts), :mod:`.ruleset` (a game's interface, which the step asks
+wherever games differ), :mod:`.registry` (every game by name), :mod:`.games` (the built-in
+games, a package each: their rules, what an outcome means), :mod:`.step` (one step, one
+path for every game), :mod:`.info` (the step's info), :mod:`.checks` (every argument
+check), and :mod:`.kernels` (the compiled parts every game shares).
 """

@@ -1,10 +1,9 @@
 """The action codec: the shot an action plays, and the action that plays a shot.
 
 :func:`decode_action` runs the decision process's own decoding on one table, noise off:
-the game's ruleset places the cue ball in hand and executes the shot
-(:meth:`~pool_env.game.ruleset.Ruleset.place`,
-:meth:`~pool_env.game.ruleset.Ruleset.execute`), as a step does. There is one decoder: what it
-returns is what a step executes before its noise. :func:`encode_action` inverts it: it
+the game's ruleset places the cue ball in hand and strikes the shot
+(:meth:`~pool_env.game.ruleset.Ruleset.shoot`), as a step does. There is one decoder: what
+it returns is what a step executes before its noise. :func:`encode_action` inverts it: it
 maps each part of a :class:`Shot` back onto its action component (the aim through the
 same reference ball, :func:`~pool_env.game.kernels.actions.nearest_object_ball` of the
 balls the rules let the cue ball hit first), so ``decode_action(encode_action(shot))`` is

@@ -5,7 +5,7 @@ from __future__ import annotations
 from tools.mutant_catalogue.base import CONTACT, DUEL, GAMES, Mutant, W
 
 MUTANTS: tuple[Mutant, ...] = (
-    # -- ball in hand, the called pocket, re-spotting (actions.py, scenes.free_spot, rulesets) --
+    # -- ball in hand, the called pocket, re-spotting (wpa/shots.py, spots.free_spot, wpa/game) --
     Mutant(
         "placement-kitchen-half-table",
         "ball in hand",
