@@ -52,14 +52,17 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
               (``"cut"``, ``"relative"``, ``"absolute"``), ``aim_range``, ``observation``
               (``"balls"``, or ``"shots"``: per pocket the ghost-ball shot appended),
               ``speed_range`` (m/s), ``tip_limit`` (spin, fraction of R),
-              ``end_on_miss``, ``max_shots``, ``reward_pot``,
-              ``reward_scratch``, ``reward_no_contact``, ``reward_shaping``;
+              ``end_on_miss``, ``max_shots``;
             * noise: ``noise`` (sigmas: rad, m/s and on a spin table the tip's, in R; or
               ``"fastfiz"`` / ``("fastfiz", k)``: the computer billiards championships'
               model times ``k``, :mod:`pool_env.game.noise`);
-            * rules: ``game`` (``"solitaire"``, ``"nine"``, ``"ten"``, ``"eight"``); the
-              WPA games add ``end_on_foul``, ``break_speed_range``, ``reward_foul``,
-              ``reward_win``.
+            * rules: ``game`` (``"solitaire"``, ``"nine"``, ``"ten"``, ``"eight"``, or a
+              game of :func:`pool_env.game.registry.register_game`); the WPA games add
+              ``end_on_foul`` and ``break_speed_range``;
+            * rewards: ``reward_<term>`` per term of the game (solitaire: ``reward_pot``,
+              ``reward_scratch``, ``reward_no_contact``, ``reward_shaping``; the WPA
+              games: ``reward_pot``, ``reward_foul``, ``reward_win``), or ``rewards`` (a
+              mapping of terms to scales).
 
             A section's name (``task``, ``rules``, ...) takes the section or a mapping of
             its keys.

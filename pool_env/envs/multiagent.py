@@ -173,6 +173,8 @@ class PoolDuelEnv(AECEnv):
         actions = check_actions(action, 1, single=True, width=self.config.action_size)
         result = game_step.step(self.config, self._state, _ONE, actions)
         info = table_info(result, self._lut)
+        for term in self.config.ruleset.reward_terms:  # the practice rewards: not a duel's
+            del info[f"reward_{term}"]
         winner = info["winner"]
         info["winner"] = None if winner < 0 else AGENTS[winner]
         self._clear_rewards()

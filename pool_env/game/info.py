@@ -151,7 +151,12 @@ def batch_info(
     tables = result.tables[rows]
     if tables.size == 0:
         return {}
-    if tables.size == n_envs:  # every table, in order (the tables that shot ascend)
+    if (
+        tables.size == n_envs
+        and tables[-1] == n_envs - 1
+        and tables[0] == 0
+        and (n_envs < 3 or bool((tables[1:] > tables[:-1]).all()))
+    ):  # every table, in order
         rows, spread = slice(None) if mask is None or mask.all() else rows, _copied
     else:
         spread = _spreader(tables, n_envs)
@@ -171,8 +176,9 @@ def batch_info(
     terms = result.values[rows, 1:]
     for k, key in enumerate(reward_keys(ruleset)):
         info[key], info[f"_{key}"] = spread(terms[:, k], np.float64), present.copy()
-    for key, column in ruleset.info_columns(result.hits[rows]).items():
-        info[key], info[f"_{key}"] = spread(column), present.copy()
+    if ruleset.info_keys:  # as table_step: a game's keys are the ones it declares
+        for key, column in ruleset.info_columns(result.hits[rows]).items():
+            info[key], info[f"_{key}"] = spread(column), present.copy()
     return info
 
 

@@ -17,6 +17,7 @@ where ``GAME`` is a ruleset (or a dict of them by name). ``docs/own_game.md`` bu
 from __future__ import annotations
 
 import importlib
+import warnings
 from collections.abc import Mapping
 from dataclasses import fields, is_dataclass
 from importlib.metadata import entry_points
@@ -39,7 +40,7 @@ _entry_points_loaded = False
 
 
 def register_game(ruleset: Ruleset, replace: bool = False) -> Ruleset:
-    """Make ``ruleset`` playable as ``game=ruleset.name`` on every front.
+    """Make ``ruleset`` playable as ``game=ruleset.name`` (``PoolEnv``, ``PoolVectorEnv``, ids).
 
     Args:
         ruleset: The game: a :class:`~pool_env.game.ruleset.Ruleset` instance whose
@@ -111,11 +112,21 @@ def _load_entry_points() -> None:
         return
     _entry_points_loaded = True
     for point in entry_points(group=ENTRY_POINT_GROUP):
-        loaded = point.load()
-        games = loaded.values() if isinstance(loaded, Mapping) else [loaded]
-        for ruleset in games:
-            if getattr(ruleset, "name", None) not in _games:
-                register_game(ruleset)
+        # One broken package must not break every game's lookup (an unknown keyword asks
+        # every game), nor hide the packages after it: it is named in a warning, and left.
+        try:
+            loaded = point.load()
+            games = loaded.values() if isinstance(loaded, Mapping) else [loaded]
+            for ruleset in games:
+                if getattr(ruleset, "name", None) not in _games:
+                    register_game(ruleset)
+        except Exception as exc:  # any failure of a third-party package
+            warnings.warn(
+                f"pool_env: the game of entry point {point.name!r} ({ENTRY_POINT_GROUP}) "
+                f"was not registered: {exc}",
+                RuntimeWarning,
+                stacklevel=2,
+            )
 
 
 def _check_game(ruleset: object) -> None:
@@ -131,18 +142,27 @@ def _check_game(ruleset: object) -> None:
         raise ValueError(
             f"game {name!r}: section must be a dataclass subclassing RulesSection, got {section!r}"
         )
-    clash = {f.name for f in fields(section)} & {f"reward_{t}" for t in ruleset.reward_terms}
-    if clash:
-        raise ValueError(f"game {name!r}: rules keys {sorted(clash)} clash with reward terms")
+    reserved = [f.name for f in fields(section) if f.name.startswith("reward_")]
+    if reserved:  # reward_<x> keywords set the rewards section
+        raise ValueError(f"game {name!r}: rules keys {reserved} take the reward_ prefix")
     terms = ruleset.reward_terms
     if not isinstance(terms, Mapping) or not all(
-        isinstance(t, str) and t.isidentifier() and isinstance(v, int | float)
-        for t, v in terms.items()
+        isinstance(t, str) and t.isidentifier() and _is_number(v) for t, v in terms.items()
     ):
         raise ValueError(
             f"game {name!r}: reward_terms must map term names to default scales, got {terms!r}"
         )
-    if not (isinstance(ruleset.rack_width, int) and ruleset.rack_width >= 0):
+    if not (_is_int(ruleset.rack_width) and ruleset.rack_width >= 0):
         raise ValueError(f"game {name!r}: rack_width must be an int >= 0")
-    if not (isinstance(ruleset.action_width, int) and ruleset.action_width >= 2):
+    if not (_is_int(ruleset.action_width) and ruleset.action_width >= 2):
         raise ValueError(f"game {name!r}: action_width must be an int >= 2 (aim and speed first)")
+    if type(ruleset).info_columns is not Ruleset.info_columns and not ruleset.info_keys:
+        raise ValueError(f"game {name!r} reports info_columns: name them in its info_keys")
+
+
+def _is_int(value: object) -> bool:
+    return isinstance(value, int) and not isinstance(value, bool)
+
+
+def _is_number(value: object) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)

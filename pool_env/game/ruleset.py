@@ -138,6 +138,7 @@ class Ruleset:
         """
         if given is not None:
             raise ValueError(f"game={self.name!r} takes no options['rules']")
+        turn.state.rack[turn.tables] = 0  # a game that keeps state starts from zeros
 
     # -- one step -------------------------------------------------------------------------
 

@@ -8,6 +8,7 @@ checker, its rules as a table of cases, its reward terms, its ``info``, the vect
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 
 import gymnasium as gym
@@ -18,6 +19,7 @@ from gymnasium.utils.env_checker import check_env
 import pool_env
 from pool_env import PoolEnv, PoolVectorEnv, Shot, encode_action
 from pool_env.game import registry
+from pool_env.game.ruleset import Executed, Judged, Outcome, RulesSection, Turn
 from tests.user_game import rotation
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -136,6 +138,12 @@ class _Drill(rotation.Rotation):
     name = "drill"
 
 
+@dataclass(frozen=True)
+class _PrefixedRules(RulesSection):
+    game: str = "drill"
+    reward_bonus: float = 0.0
+
+
 @pytest.mark.parametrize(
     ("game", "message"),
     [
@@ -144,6 +152,11 @@ class _Drill(rotation.Rotation):
         (type("Nine", (_Drill,), {"name": "nine"})(), "built-in game's"),
         (type("Terms", (_Drill,), {"reward_terms": {"pot": "one"}})(), "reward_terms must map"),
         (type("Width", (_Drill,), {"action_width": 1})(), "action_width must be an int >= 2"),
+        (type("Keys", (_Drill,), {"info_keys": ()})(), "name them in its info_keys"),
+        (
+            type("Prefix", (_Drill,), {"section": _PrefixedRules})(),
+            r"rules keys \['reward_bonus'\] take the reward_ prefix",
+        ),
     ],
 )
 def test_register_game_refuses_what_is_no_game(
@@ -184,3 +197,56 @@ def test_an_installed_package_joins_through_its_entry_point(
     monkeypatch.setattr(registry, "entry_points", points)
     assert isinstance(registry.ruleset_for("drill"), _Drill)
     assert seen == [registry.ENTRY_POINT_GROUP] and "drill" in registry.game_names()
+
+
+def test_a_broken_package_is_named_in_a_warning_and_the_others_still_join(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    class Broken:
+        name = "broken"
+
+        @staticmethod
+        def load() -> object:
+            raise ImportError("no module named 'missing_dependency'")
+
+    class Good:
+        name = "drill"
+
+        @staticmethod
+        def load() -> object:
+            return _Drill()
+
+    monkeypatch.setattr(registry, "_games", dict(registry._games))
+    monkeypatch.setattr(registry, "_entry_points_loaded", False)
+    monkeypatch.setattr(registry, "entry_points", lambda group: [Broken(), Good()])
+    with pytest.warns(RuntimeWarning, match="'broken'.*missing_dependency"):
+        names = registry.game_names()
+    assert "drill" in names and "broken" not in names
+
+
+class _Wide(rotation.Rotation):
+    """A column of its own before the tip, on the default shot; and a state of its own."""
+
+    name = "wide"
+    action_width = 3
+    rack_width = 1
+
+    def judge(self, turn: Turn, out: Outcome, executed: Executed) -> Judged:
+        turn.state.rack[turn.tables, 0] += 1  # counts its shots in its own state
+        return super().judge(turn, out, executed)
+
+
+def test_the_default_shot_reads_the_tip_after_the_games_columns_and_state_starts_at_zero(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    monkeypatch.setattr(registry, "_games", dict(registry._games))
+    registry.register_game(_Wide())
+    env = PoolEnv(game="wide", scene="nine_ball", model="spin")
+    assert env.action_space.shape == (5,)
+    env.reset(seed=0)
+    limit = env.config.tip_limit
+    _, _, _, _, info = env.step(np.array([0.0, 0.0, 0.9, 0.5, -0.25]))
+    assert info["tip"] == pytest.approx((0.5 * limit, -0.25 * limit))
+    assert env._state.rack[0, 0] == 1
+    env.reset(seed=1)
+    assert env._state.rack[0, 0] == 0  # the game's state starts from zeros

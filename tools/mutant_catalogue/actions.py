@@ -64,7 +64,7 @@ MUTANTS: tuple[Mutant, ...] = (
         "place_free(table, state, b, CUE, target)",
         GAMES,
         "a cue ball in hand on a covered point moved to a free point past the head string",
-        "WpaGame.place: the nearest free point behind the head string",
+        "WpaGame.shoot: the nearest free point behind the head string",
     ),
     Mutant(
         "rack-in-hand-column",

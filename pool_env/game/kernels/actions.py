@@ -33,6 +33,7 @@ from pool_env.game.kernels.params import (
     SPEED_HIGH,
     SPEED_LOW,
     SPIN,
+    TIP_COLUMN,
     TIP_LIMIT,
 )
 from pool_env.game.kernels.rng import standard_normal
@@ -198,7 +199,7 @@ def executed_shots(params, actions, tables, positions, on_table, ptrs):
     aims, speeds = decode_actions(
         actions, params[AIM_LOW], params[AIM_HIGH], params[SPEED_LOW], params[SPEED_HIGH]
     )
-    tips = decoded_tips(params, actions, 2)
+    tips = decoded_tips(params, actions, int(params[TIP_COLUMN]))  # after the game's columns
     shots, velocities = shot_arrays(params, n_shots, n_balls)
     for k in range(n_shots):
         b = tables[k]

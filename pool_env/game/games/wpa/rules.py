@@ -38,9 +38,9 @@ scratch on an 8-ball break), the cue ball may not first contact a ball whose bas
 behind the head string (``x < L / 4``; a ball on the line is playable) unless it crossed
 the head string first (``kitchen_ball_first``, :func:`kitchen_foul`). When the cue ball
 meets several balls at its first contact's instant (within
-:data:`pool_env.game.contact.SIMULTANEOUS`), the shooter gets the benefit: the contact is
-legal if any of them is a legal first ball (:func:`pool_env.game.contact.read_first`),
-whatever their numbers.
+:data:`pool_env.game.games.wpa.first_contact.SIMULTANEOUS`), the shooter gets the
+benefit: the contact is legal if any of them is a legal first ball
+(:func:`pool_env.game.games.wpa.first_contact.read_first`), whatever their numbers.
 
 8-ball (WPA rules 1, 3): the break is legal if a ball is potted or at least four object
 balls touch a cushion (any first contact). The table is open after the break; the first
