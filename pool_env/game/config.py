@@ -314,9 +314,9 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
     """
     source = resolve(config, overrides)
     table = checks.parse_table(source.table.table, source.table.model)
-    task = parse_task(source.task, table)
-    sigmas = checks.parse_noise(source.noise.sigmas, table)
     ruleset = ruleset_for(source.rules.game)
+    task = parse_task(source.task, table, ruleset.scenes)
+    sigmas = checks.parse_noise(source.noise.sigmas, table)
     if players not in (1, 2) or isinstance(players, bool):
         raise ValueError(f"players must be 1 or 2, got {players!r}")
     rewards = parse_rewards(ruleset, source.rewards.scales)
@@ -332,8 +332,14 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
     )  # fmt: skip
 
 
-def parse_task(task: TaskSection, table: Table) -> TaskConfig:
-    """The task section checked and parsed (``ValueError``, naming the first bad value)."""
+def parse_task(
+    task: TaskSection, table: Table, game_scenes: Mapping[str, Any] | None = None
+) -> TaskConfig:
+    """The task section checked and parsed (``ValueError``, naming the first bad value).
+
+    ``game_scenes`` are the game's own named scenes (:attr:`Ruleset.scenes`): a name of
+    theirs stands for its layout or callable.
+    """
     if task.aim not in AIM_MODES:
         raise ValueError(f"aim must be one of {list(AIM_MODES)}, got {task.aim!r}")
     if task.observation not in OBSERVATIONS:
@@ -341,7 +347,7 @@ def parse_task(task: TaskSection, table: Table) -> TaskConfig:
             f"observation must be one of {list(OBSERVATIONS)}, got {task.observation!r}"
         )
     return TaskConfig(
-        scene=plan_scene(task.scene, table, task.n_balls, task.rack_order),
+        scene=plan_scene(_own_scene(task.scene, game_scenes), table, task.n_balls, task.rack_order),
         aim=task.aim,  # type: ignore[arg-type]
         aim_range=checks.parse_range(
             "aim_range", task.aim_range or DEFAULT_AIM_RANGE[task.aim], None
@@ -371,3 +377,10 @@ def parse_rewards(ruleset: Ruleset, given: Mapping[str, Any]) -> dict[str, float
         term: checks.parse_float(f"reward_{term}", given.get(term, default))
         for term, default in ruleset.reward_terms.items()
     }
+
+
+def _own_scene(scene: Any, game_scenes: Mapping[str, Any] | None) -> Any:
+    """A game's own scene for its name, else ``scene`` as given."""
+    if isinstance(scene, str) and game_scenes and scene in game_scenes:
+        return game_scenes[scene]
+    return scene

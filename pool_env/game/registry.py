@@ -156,6 +156,9 @@ def _check_game(ruleset: object) -> None:
         raise ValueError(f"game {name!r}: rack_width must be an int >= 0")
     if not (_is_int(ruleset.action_width) and ruleset.action_width >= 2):
         raise ValueError(f"game {name!r}: action_width must be an int >= 2 (aim and speed first)")
+    scenes = ruleset.scenes
+    if not isinstance(scenes, Mapping) or not all(isinstance(k, str) for k in scenes):
+        raise ValueError(f"game {name!r}: scenes must map names to layouts or callables")
     if type(ruleset).info_columns is not Ruleset.info_columns and not ruleset.info_keys:
         raise ValueError(f"game {name!r} reports info_columns: name them in its info_keys")
 

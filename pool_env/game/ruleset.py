@@ -88,6 +88,9 @@ class Ruleset:
             the judge's values; each step reports each term, scaled, as
             ``info["reward_<term>"]``, and the reward is their sum.
         ball_column: The action column that calls a ball (10-ball), -1 for none.
+        scenes: The game's own starting layouts by name, each a fixed ``(N, 2)`` layout or
+            a callable ``(table, rng) -> (N, 2)`` (cue ball first), which ``scene=<name>``
+            picks on this game's tables (the shared ones are :data:`pool_env.SCENES`).
     """
 
     name: str = ""
@@ -97,6 +100,7 @@ class Ruleset:
     section: type[RulesSection] = RulesSection
     reward_terms: Mapping[str, float] = {}
     ball_column: int = -1
+    scenes: Mapping[str, Any] = {}
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"

@@ -250,3 +250,19 @@ def test_the_default_shot_reads_the_tip_after_the_games_columns_and_state_starts
     assert env._state.rack[0, 0] == 1
     env.reset(seed=1)
     assert env._state.rack[0, 0] == 0  # the game's state starts from zeros
+
+
+def test_its_own_scene_is_its_alone() -> None:
+    env = gym.make(rotation.ID).unwrapped
+    assert env.config.scene.spec is rotation.rotation_rack
+    table = env.config.table
+    rack = pool_env.sim.layouts.break_scene(table, "nine")[1:]
+    cues = []
+    for seed in range(5):
+        env.reset(seed=seed)
+        np.testing.assert_array_equal(env.positions[1:], rack)  # the rack as laid out
+        cues.append(env.positions[0])
+        assert env.positions[0, 0] <= table.length / 4  # the cue ball in the kitchen
+    assert len({tuple(c) for c in cues}) == 5  # drawn by each reset
+    with pytest.raises(ValueError, match="scene must be one of"):
+        PoolEnv(scene="rotation_rack")  # solitaire has no such scene

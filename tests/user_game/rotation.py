@@ -38,6 +38,8 @@ from pool_env.game.ruleset import (
     Turn,
     settle_shots,
 )
+from pool_env.sim import Table
+from pool_env.sim.layouts import break_scene
 
 
 @dataclass(frozen=True)
@@ -52,6 +54,18 @@ class RotationRules(RulesSection):
     game: str = "rotation"
     end_on_foul: bool = True
 
+
+def rotation_rack(table: Table, rng: np.random.Generator) -> NDArray[np.float64]:
+    """The game's own scene: the 9-ball rack, the cue ball anywhere in the kitchen."""
+    layout = break_scene(table, "nine")
+    margin = 2 * table.ball_radius  # off the rails
+    x = rng.uniform(margin, table.length / 4)
+    layout[0] = (x, rng.uniform(margin, table.width - margin))
+    return layout
+
+
+#: The game's own scenes, by name.
+SCENES = {"rotation_rack": rotation_rack}
 
 #: The reward terms and their default scales: ``reward_pot=...``, ``reward_foul=...``.
 REWARD_TERMS = {"pot": 1.0, "foul": -1.0}
@@ -68,6 +82,7 @@ class Rotation(Ruleset):
     section = RotationRules
     reward_terms = REWARD_TERMS
     info_keys = ("foul", "ball_on")
+    scenes = SCENES  # ``scene="rotation_rack"`` on its tables
 
     def configure(self, setup: Setup) -> NDArray[np.float64]:
         """One player on a table with pockets; the rule needs no kernel parameters."""
@@ -111,10 +126,10 @@ class Rotation(Ruleset):
 #: The game, registered: ``gym.make("pool_env/NineBall-v1", game="rotation")`` plays it.
 GAME = register_game(Rotation())
 
-#: Its own id: the 9-ball rack on the spin table, 30 shots at most.
+#: Its own id: its rack on the spin table, 30 shots at most.
 ID = "my_games/Rotation-v0"
 if ID not in gym.registry:
     gym.register(
         ID, entry_point="pool_env:PoolEnv", max_episode_steps=30,
-        kwargs={"game": "rotation", "scene": "nine_ball", "model": "spin"},
+        kwargs={"game": "rotation", "scene": "rotation_rack", "model": "spin"},
     )  # fmt: skip
