@@ -20,7 +20,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from pool_env.game.checks import check_actions
-from pool_env.game.components import ball_component, pocket_component, unit_component
+from pool_env.game.components import pocket_component, unit_component
 from pool_env.game.config import GameConfig
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.actions import (
@@ -359,9 +359,7 @@ def encode_ball(config: GameConfig, ball: int) -> float:
     Raises:
         ValueError: On a game that calls no ball, or a ball that is not one of its own.
     """
-    if config.ruleset.ball_column < 0:
-        raise ValueError(f"game={config.game!r} calls no ball (10-ball does)")
-    return ball_component(config.n_object_balls, ball)
+    return config.ruleset.encode_ball(config, ball)
 
 
 def _tip(

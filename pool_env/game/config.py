@@ -256,9 +256,9 @@ def kernel_params(
     task: TaskConfig,
     noise: tuple[float, ...] | None,
     shot_limit: int,
-    players: int = 1,
-    tail: NDArray[np.float64] | None = None,
-    action_width: int = 2,
+    players: int,
+    tail: NDArray[np.float64],
+    action_width: int,
 ) -> NDArray[np.float64]:
     """The read-only parameter array of :mod:`pool_env.game.kernels.params`.
 
@@ -268,8 +268,7 @@ def kernel_params(
         noise: The parsed sigmas, or ``None``.
         shot_limit: Shots after which an episode is truncated (0: never).
         players: 1 or 2.
-        tail: The game's tail (:meth:`~pool_env.game.ruleset.Ruleset.configure`;
-            ``None``: zeros).
+        tail: The game's tail (:meth:`~pool_env.game.ruleset.Ruleset.configure`).
         action_width: The game's action columns (the tip's follow).
     """
     params = placement(table)
@@ -289,8 +288,7 @@ def kernel_params(
     params[kp.SHOT_LIMIT] = shot_limit
     params[kp.PLAYERS] = players
     params[kp.TIP_COLUMN] = action_width
-    if tail is not None:
-        params[kp.TAIL :] = tail
+    params[kp.TAIL :] = tail
     params.setflags(write=False)
     return params
 

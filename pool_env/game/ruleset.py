@@ -87,7 +87,6 @@ class Ruleset:
         reward_terms: The game's reward terms and their default scales, in the order of
             the judge's values; each step reports each term, scaled, as
             ``info["reward_<term>"]``, and the reward is their sum.
-        ball_column: The action column that calls a ball (10-ball), -1 for none.
         scenes: The game's own starting layouts by name, each a fixed ``(N, 2)`` layout or
             a callable ``(table, rng) -> (N, 2)`` (cue ball first), which ``scene=<name>``
             picks on this game's tables (the shared ones are :data:`pool_env.SCENES`).
@@ -99,7 +98,6 @@ class Ruleset:
     info_keys: tuple[str, ...] = ()
     section: type[RulesSection] = RulesSection
     reward_terms: Mapping[str, float] = {}
-    ball_column: int = -1
     scenes: Mapping[str, Any] = {}
 
     def __repr__(self) -> str:
@@ -256,6 +254,14 @@ class Ruleset:
             f"game={self.name!r} has no cue ball in hand: the cue ball is placed in hand "
             "under rules (game='nine', 'ten', 'eight')"
         )
+
+    def encode_ball(self, config: GameConfig, ball: int) -> float:
+        """The action component that calls object ball ``ball``.
+
+        Raises:
+            ValueError: Here: this game calls no ball.
+        """
+        raise ValueError(f"game={self.name!r} calls no ball (10-ball does)")
 
     def decoded_shot(self, row: list[float], calls: Any, tip: tuple[float, float],
                      cue: tuple[float, float] | None) -> Shot:  # fmt: skip

@@ -32,7 +32,7 @@ from pool_env.game.games.wpa.observe import (
     encode_rule_observations,
     legal_balls,
 )
-from pool_env.game.games.wpa.rack import check_rack, rack_dict, rack_option, rack_row
+from pool_env.game.games.wpa.rack import check_rack, rack_dict, rack_of, rack_option
 from pool_env.game.games.wpa.section import REWARD_TERMS, WpaRules
 from pool_env.game.games.wpa.shots import (
     CALL_BALL,
@@ -329,6 +329,16 @@ class WpaGame(Ruleset):
             out[self.option_column] = 1.0 if shot.push_out or shot.pass_back else -1.0
         return config.rules.break_speed_range if row[wpa.BREAKING] else config.speed_range
 
+    def encode_ball(self, config: GameConfig, ball: int) -> float:
+        """The ball column's component that calls ``ball`` (10-ball): the middle of its bin.
+
+        Raises:
+            ValueError: In 9-ball and 8-ball (no ball is called), or for a ball not the game's.
+        """
+        if not self.calls_ball:
+            return super().encode_ball(config, ball)
+        return ball_component(self.n_objects, ball)
+
     def encode_placement(
         self, config: GameConfig, cue: Any, behind: bool, clip: bool
     ) -> tuple[float, float]:
@@ -369,16 +379,7 @@ class WpaGame(Ruleset):
 
     def state_row(self, config: GameConfig, given: Any) -> NDArray[np.int64]:
         """The rack row of ``given``: a row, a dict as ``PoolEnv.rack`` gives, or ``None``."""
-        if given is None:  # a reset's default for a given layout
-            return rack_option(config, None, rack_scene=False)
-        if isinstance(given, dict):
-            return rack_row(given)
-        row = np.array(given, dtype=np.int64)
-        if row.shape != (wpa.N_RACK,):
-            raise ValueError(
-                f"rack must be PoolEnv.rack's dict or a ({wpa.N_RACK},) row, got {given!r}"
-            )
-        return row
+        return rack_of(config, given)
 
     def shooters(self, state: GameState) -> NDArray[np.int64]:
         """``(B,)`` the player to shoot on each table (a copy)."""

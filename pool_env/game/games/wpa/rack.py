@@ -216,3 +216,23 @@ def rack_row(rack: dict[str, Any]) -> NDArray[np.int64]:
     row[wpa.PUSH_OUT] = int(bool(rack.get("push_out", False)))
     row[wpa.OPTION] = int(bool(rack.get("option", False)))
     return row
+
+
+def rack_of(config: GameConfig, given: Any) -> NDArray[np.int64]:
+    """The rack row of ``given``: a row, a dict as ``PoolEnv.rack`` gives, or ``None``.
+
+    ``None`` is a reset's default for a given layout (:func:`rack_option`).
+
+    Raises:
+        ValueError: On a row of another shape.
+    """
+    if given is None:
+        return rack_option(config, None, rack_scene=False)
+    if isinstance(given, dict):
+        return rack_row(given)
+    row = np.array(given, dtype=np.int64)
+    if row.shape != (wpa.N_RACK,):
+        raise ValueError(
+            f"rack must be PoolEnv.rack's dict or a ({wpa.N_RACK},) row, got {given!r}"
+        )
+    return row

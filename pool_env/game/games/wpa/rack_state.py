@@ -42,8 +42,6 @@ NO_LOSS, EIGHT_EARLY, EIGHT_WRONG_POCKET, EIGHT_ON_FOUL, THREE_FOULS = range(5)
 LOSS_NAMES: tuple[str | None, ...] = (
     None, "eight_early", "eight_wrong_pocket", "eight_on_foul", "three_fouls",
 )  # fmt: skip
-#: Balls of each game, the cue ball included.
-GAME_BALLS = {NINE: 10, EIGHT: 16, TEN: 11}
 
 
 @kernel
