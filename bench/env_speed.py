@@ -31,21 +31,21 @@ STEPS = {
     "pool_env/OneBallRoll-v1": 40_000,
     "pool_env/NineBallRoll-v1": 10_000,
     "pool_env/EightBallRoll-v1": 6_000,
-    "pool_env/NineBallGameRoll-v1": 6_000,
+    "pool_env/NineBallGameRoll-v2": 6_000,
     "pool_env/EightBallGameRoll-v1": 4_000,
     # the spin level (v1): ~2x the simulator's cost per shot
     "pool_env/Pool-v1": 10_000,
     "pool_env/OneBall-v1": 20_000,
     "pool_env/NineBall-v1": 5_000,
     "pool_env/EightBall-v1": 3_000,
-    "pool_env/NineBallGame-v1": 4_000,
+    "pool_env/NineBallGame-v2": 4_000,
     "pool_env/EightBallGame-v1": 2_000,
 }
 TARGETS = {
     "pool_env/OneBallRoll-v1": 20_000,
     "pool_env/NineBallRoll-v1": 3_000,
     "pool_env/OneBall-v1": 15_000,  # issue 23
-    "pool_env/NineBallGame-v1": 5_000,
+    "pool_env/NineBallGame-v2": 5_000,
 }
 
 

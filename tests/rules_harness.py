@@ -41,11 +41,14 @@ SCENES = {"nine": "nine_ball", "ten": "ten_ball", "eight": "eight_ball"}
 
 
 @cache
-def rules_config(game: str, players: int, table: Table) -> GameConfig:
-    """A rules config on ``table`` (absolute aim, speeds 0-10 m/s for easy actions)."""
+def rules_config(game: str, players: int, table: Table, push_out: bool = True) -> GameConfig:
+    """A rules config on ``table`` (absolute aim, speeds 0-10 m/s for easy actions).
+
+    ``push_out=False`` plays 9-ball without the push-out (``NineBallGame-v1``).
+    """
     return make_config(
         table=table, scene=SCENES[game], game=game, players=players, aim="absolute",
-        speed_range=(0.0, 10.0),
+        speed_range=(0.0, 10.0), push_out=None if push_out else False,
     )  # fmt: skip
 
 
@@ -124,7 +127,7 @@ def compiled_judge(
         The verdict as a dict (``foul``, ``legal``, ``ball_on`` (None for -1), ``respot``
         (a tuple), ``winner``, ``loss``, ``keeps``) and the rack after the shot.
     """
-    config = rules_config(state.game, players, table)
+    config = rules_config(state.game, players, table, state.offers_push_out)
     balls = np.asarray(numbers, dtype=np.int64)
     n = config.n_balls
     final = np.asarray(positions, dtype=np.float64).reshape(1, -1, 2)
@@ -168,6 +171,7 @@ def compiled_judge(
         winner=None if row[cw.WINNER] < 0 else int(row[cw.WINNER]),
         push_out=bool(row[cw.PUSH_OUT]),
         option=bool(row[cw.OPTION]),
+        offers_push_out=state.offers_push_out,
     )
     return verdict, after
 

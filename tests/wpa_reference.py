@@ -262,6 +262,8 @@ class RackState:
         winner: The player who won the rack, or None while it is being played.
         push_out: The shot may be declared a push-out (the one right after a legal break).
         option: The shooter may give the table back instead of shooting.
+        offers_push_out: The game is played with the push-out (False: 9-ball under the
+            rules option ``push_out=False``, as ``pool_env/NineBallGame-v1`` plays it).
     """
 
     game: Game
@@ -275,6 +277,7 @@ class RackState:
     winner: int | None = None
     push_out: bool = False
     option: bool = False
+    offers_push_out: bool = True
 
     def __post_init__(self) -> None:
         if self.game not in N_BALLS:
@@ -284,6 +287,8 @@ class RackState:
             or (self.push_out and self.option)
         ):  # fmt: skip
             raise ValueError("a push-out or an option comes in 9-ball or 10-ball, after the break")
+        if not self.offers_push_out and (self.game != "nine" or self.push_out or self.option):
+            raise ValueError("only 9-ball is played without the push-out, and then has none")
         if len(self.on_table) != N_BALLS[self.game] or not self.on_table[0]:
             raise ValueError(
                 f"on_table must have {N_BALLS[self.game]} flags for {self.game} (cue ball True)"
@@ -460,7 +465,10 @@ def _next_turn(state: RackState, foul: FoulReason | None, keeps: bool, **changes
         fouls=(fouls[0], fouls[1]),
         ball_in_hand=foul is not None,
         behind_head_string=behind,
-        push_out=state.breaking and foul is None and state.game in ROTATION,
+        push_out=state.breaking
+        and foul is None
+        and state.game in ROTATION
+        and state.offers_push_out,
         option=changes.pop("option", False),
         **changes,
     )

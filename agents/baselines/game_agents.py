@@ -59,7 +59,7 @@ class GameGhostBallAgent(BaselineAgent):
     (:meth:`best_chance`) as :mod:`agents.baselines.rule_play` decides.
 
     Args:
-        env: A game-id environment (``gym.make("pool_env/NineBallGameRoll-v1")``, wrapped or not).
+        env: A game-id environment (``gym.make("pool_env/NineBallGameRoll-v2")``, wrapped or not).
         arrival_speed: As :class:`GhostBallAgent`.
         spin: On a spin env, whether to use the tip (else centre ball).
         players: 2 when it plays against an opponent (the push-out is then worth playing),

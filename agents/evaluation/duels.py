@@ -36,7 +36,7 @@ from agents.policy import Policy, last_plan
 from pool_env.envs.multiagent import AGENTS, PoolDuelEnv
 from pool_env.game.noise import NoiseSpec
 
-ENV_ID = "pool_env/NineBallGame-v1"
+ENV_ID = "pool_env/NineBallGame-v2"
 #: The evaluation's execution noise (aim rad, speed m/s, tip fraction of R).
 NOISE = (0.003, 0.05, 0.05)
 

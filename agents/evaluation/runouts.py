@@ -124,7 +124,7 @@ def main(argv: list[str] | None = None) -> int:
     """Command-line entry point."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--agents", nargs="+", required=True, help="agents, as --agent takes")
-    parser.add_argument("--env", default="pool_env/NineBallGame-v1")
+    parser.add_argument("--env", default="pool_env/NineBallGame-v2")
     parser.add_argument("--racks", type=int, default=100)
     parser.add_argument("--seed", type=int, default=949000)
     parser.add_argument("--noise", default="fastfiz", help="as agents.evaluate's --noise")

@@ -1,6 +1,6 @@
 """A rotation player (9-ball, 10-ball) that looks one shot ahead and values what each shot leaves.
 
-:class:`LookaheadAgent` plays the spin 9-ball ids (``pool_env/NineBallGame-v1``) and the
+:class:`LookaheadAgent` plays the spin 9-ball ids (``pool_env/NineBallGame-v2``) and the
 two-player front (:class:`pool_env.envs.multiagent.PoolDuelEnv`) from the observation alone. On
 every shot it:
 
@@ -66,7 +66,7 @@ class LookaheadAgent(RackAgent):
     """Candidates played out on the true model, chosen by the value of what they leave.
 
     Args:
-        env: A spin rotation game id (``pool_env/NineBallGame-v1``, or ``TenBallGame-v1``
+        env: A spin rotation game id (``pool_env/NineBallGame-v2``, or ``TenBallGame-v1``
             with a value fitted on 9-ball: see the module doc), wrapped or not.
         value: The learned layout value (the shooter's chance to win, or to run out).
         objective: ``"duel"`` or ``"runout"`` (module doc).

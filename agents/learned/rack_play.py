@@ -124,7 +124,7 @@ class RackAgent(GameGhostBallAgent):
     """9-ball (and 10-ball) on the spin ids: the planner's candidates, chosen by a learned value.
 
     Args:
-        env: A spin rotation game id (``pool_env/NineBallGame-v1``; ``TenBallGame-v1``, where
+        env: A spin rotation game id (``pool_env/NineBallGame-v2``; ``TenBallGame-v1``, where
             a value fitted on 9-ball sees its features off their training range: up to ten
             balls left), wrapped or not.
         value: The learned value; ``None`` ranks by the planner's own score (the trivial
@@ -156,7 +156,7 @@ class RackAgent(GameGhostBallAgent):
         super().__init__(env, spin=True, players=players)
         if self.config.game not in ROTATION or self.ghost.spec.tip_limit is None:
             raise ValueError(
-                "RackAgent plays the spin rotation ids (pool_env/NineBallGame-v1, TenBallGame-v1)"
+                "RackAgent plays the spin rotation ids (pool_env/NineBallGame-v2, TenBallGame-v1)"
             )
         if break_arm is not None and not 0 <= break_arm < len(BREAK_ARMS):
             raise ValueError(f"break_arm must index BREAK_ARMS (0..{len(BREAK_ARMS) - 1})")

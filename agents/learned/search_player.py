@@ -112,7 +112,7 @@ class SearchPlayer(LookaheadAgent):
     """The anytime two-ply search player (module doc).
 
     Args:
-        env: A spin 9-ball id (``pool_env/NineBallGame-v1``), wrapped or not.
+        env: A spin 9-ball id (``pool_env/NineBallGame-v2``), wrapped or not.
         value: The logistic layout value (the first ply's leaves; and the second's unless
             ``leaf`` is given).
         objective: ``"runout"`` or ``"duel"``.
@@ -140,7 +140,7 @@ class SearchPlayer(LookaheadAgent):
             break_arm=None, seed=seed, players=players,
         )  # fmt: skip
         if self.config.game != "nine":
-            raise ValueError("SearchPlayer plays 9-ball (pool_env/NineBallGame-v1)")
+            raise ValueError("SearchPlayer plays 9-ball (pool_env/NineBallGame-v2)")
         self.settings = s
         if leaf is not None:
             self.leaf = leaf

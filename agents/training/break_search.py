@@ -95,7 +95,7 @@ def print_arms(rows: list[dict[str, Any]]) -> None:
 def main(argv: list[str] | None = None) -> int:
     """Command-line entry point."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--env", default="pool_env/NineBallGame-v1")
+    parser.add_argument("--env", default="pool_env/NineBallGame-v2")
     parser.add_argument("--racks", type=int, default=96)
     parser.add_argument("--seed", type=int, default=960000)
     parser.add_argument("--noise", default="fastfiz", help="as agents.evaluate's --noise")

@@ -195,7 +195,7 @@ def fit_set_value(
         lr: Adam's step size.
         weight_decay: L2 on every weight (Adam's).
         hold_out: The share of racks held out and reported on (0: none, all racks fit).
-        table: The table (default: ``pool_env/NineBallGame-v1``'s).
+        table: The table (default: ``pool_env/NineBallGame-v2``'s).
 
     Returns:
         The model of the best validation epoch, and a report: layouts and racks per split,

@@ -7,7 +7,7 @@ Usage (run from the repository root; one line)::
         --baselines ghost random --out results/nineball_rack_learning.png
 
 It reads the tables :mod:`agents.evaluation.evaluate` printed (``--out`` files or their logs, every
-row with its 95% interval) for the same racks of ``pool_env/NineBallGame-v1`` in run-out
+row with its 95% interval) for the same racks of ``pool_env/NineBallGame-v2`` in run-out
 mode, and draws each ``agent=racks`` point (a rack model, or ``rack-planner`` for the
 untrained candidates ranked by the planner's score) against the racks of training data
 it was fitted on, the baselines as horizontal lines. The evaluations are not re-run: the

@@ -44,7 +44,7 @@ from numpy.typing import NDArray
 from agents.learned.envs import make_env
 from agents.learned.rack_play import BREAK_ARMS, FEATURES, RackAgent, ValueNet, load_rack_agent
 
-ENV_ID = "pool_env/NineBallGame-v1"
+ENV_ID = "pool_env/NineBallGame-v2"
 #: The evaluation's run-out mode and execution noise (results/games.md, the spin ids).
 ENV_KWARGS: dict[str, Any] = {"end_on_foul": True, "noise": [0.003, 0.05, 0.05]}
 #: What potting the 9 is worth beyond its own pot: a won rack, not just one more ball.

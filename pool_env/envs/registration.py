@@ -54,33 +54,60 @@ TASKS: dict[str, tuple[dict[str, Any], int]] = {
     "EightBallGame": ({"scene": "eight_ball", "game": "eight"}, 150),
 }
 
+#: task -> its current version, where it is not 1. An id takes a new version when its
+#: spaces or dynamics change (Gymnasium's rule); the earlier versions stay registered and
+#: play as they did (:data:`EARLIER_VERSIONS`). 9-ball's push-out (and the opponent's
+#: option) added an action column and two observation entries: ``-v2``.
+VERSIONS: dict[str, int] = {"NineBallGame": 2}
 
-def spin_id(task: str) -> str:
-    """The id of ``task`` on the spin table: ``pool_env/<task>-v1``."""
-    return f"pool_env/{task}-v1"
-
-
-def roll_id(task: str) -> str:
-    """The id of ``task`` on the roll table: ``pool_env/<task>Roll-v1``."""
-    return f"pool_env/{task}Roll-v1"
-
-
-#: The spin table's ids, the realistic physics of every task (``model="spin"``).
-SPIN_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    spin_id(task): ({**kwargs, "model": "spin"}, steps) for task, (kwargs, steps) in TASKS.items()
+#: (task, earlier version) -> the keywords that play it as it was, over the task's own.
+#: ``NineBallGame-v1``: 9-ball before the push-out, bit for bit
+#: (``tests/envs/test_id_versions.py`` replays a trace of that time's code).
+EARLIER_VERSIONS: dict[tuple[str, int], dict[str, Any]] = {
+    ("NineBallGame", 1): {"push_out": False, "rack_order": "fixed"},
 }
 
-#: The roll table's ids (``model="roll"``, the default of ``make_config``).
+
+def spin_id(task: str, version: int | None = None) -> str:
+    """The id of ``task`` on the spin table: ``pool_env/<task>-v<N>`` (N: the current)."""
+    return f"pool_env/{task}-v{VERSIONS.get(task, 1) if version is None else version}"
+
+
+def roll_id(task: str, version: int | None = None) -> str:
+    """The id of ``task`` on the roll table: ``pool_env/<task>Roll-v<N>`` (N: the current)."""
+    return f"pool_env/{task}Roll-v{VERSIONS.get(task, 1) if version is None else version}"
+
+
+def _versions(task: str, kwargs: dict[str, Any]) -> dict[int, dict[str, Any]]:
+    """Every registered version of ``task``: version -> its keywords."""
+    earlier = {v: {**kwargs, **extra} for (t, v), extra in EARLIER_VERSIONS.items() if t == task}
+    return {**earlier, VERSIONS.get(task, 1): dict(kwargs)}
+
+
+#: The spin table's ids, the realistic physics of every task (``model="spin"``): every
+#: version.
+SPIN_IDS: dict[str, tuple[dict[str, Any], int]] = {
+    spin_id(task, v): ({**kw, "model": "spin"}, steps)
+    for task, (kwargs, steps) in TASKS.items()
+    for v, kw in _versions(task, kwargs).items()
+}
+
+#: The roll table's ids (``model="roll"``, the default of ``make_config``): every version.
 ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    roll_id(task): (dict(kwargs), steps) for task, (kwargs, steps) in TASKS.items()
+    roll_id(task, v): (kw, steps)
+    for task, (kwargs, steps) in TASKS.items()
+    for v, kw in _versions(task, kwargs).items()
 }
 
 #: Every supported id -> (make() keyword arguments, max_episode_steps).
 ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {**SPIN_IDS, **ROLL_IDS}
 
+#: The current version of every task's ids (spin and roll), the ones to use in new work.
+CURRENT_IDS: tuple[str, ...] = tuple(i for task in TASKS for i in (spin_id(task), roll_id(task)))
+
 #: The old names of the roll ids (``pool_env/<task>-v0`` -> ``pool_env/<task>Roll-v1``),
 #: registered with the same arguments; Gymnasium reports them out of date.
-LEGACY_IDS: dict[str, str] = {f"pool_env/{task}-v0": roll_id(task) for task in TASKS}
+LEGACY_IDS: dict[str, str] = {f"pool_env/{task}-v0": roll_id(task, 1) for task in TASKS}
 
 
 def register_envs() -> None:

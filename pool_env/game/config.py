@@ -145,7 +145,7 @@ class GameConfig:
     ruleset: Ruleset = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "ruleset", ruleset_for(self.rules.game))
+        object.__setattr__(self, "ruleset", ruleset_for(self.rules.game).variant(self.rules))
 
     @property
     def game(self) -> str:
@@ -319,6 +319,7 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
         raise ValueError(f"players must be 1 or 2, got {players!r}")
     rewards = parse_rewards(ruleset, source.rewards.scales)
     rules = ruleset.parse_section(source.rules)
+    ruleset = ruleset.variant(rules)
     setup = Setup(table, task.scene, rules, rewards, task.end_on_miss, players,
                   ruleset.action_width)  # fmt: skip
     tail = ruleset.configure(setup)

@@ -126,6 +126,14 @@ class Ruleset:
         """The rules section with its values checked and parsed (``ValueError`` if bad)."""
         return section
 
+    def variant(self, section: RulesSection) -> Ruleset:
+        """The ruleset that plays the parsed ``section`` (by default this one).
+
+        A game whose section has an option that changes its spaces returns the ruleset of
+        those spaces (WPA's ``push_out=False``: no option column, no option features).
+        """
+        return self
+
     def start(self, turn: Turn, given: Any, rack_scene: bool, on_table: NDArray[np.bool_]) -> None:
         """Set the game state ``turn.tables`` start from (``options["rules"]``: ``given``).
 

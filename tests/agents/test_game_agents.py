@@ -12,13 +12,14 @@ import pool_env  # noqa: F401  (registers the ids)
 from agents.baselines.game_agents import GameGhostBallAgent
 from agents.baselines.ghost_ball import GhostBallAgent
 from agents.evaluation.evaluate import format_table, make_agent, run_episodes
+from pool_env.envs.registration import roll_id
 from tests.game.test_games import KWARGS, layout, parked, straight_in
 
 CUT = {k: v for k, v in KWARGS.items() if k != "aim"}  # the default cut aim
 
 
 def _shoot(game: str, balls: dict, rules: dict | None = None) -> tuple[Any, dict, Any]:
-    env = gym.make(f"pool_env/{'Nine' if game == 'nine' else 'Eight'}BallGameRoll-v1", **CUT)
+    env = gym.make(roll_id("NineBallGame" if game == "nine" else "EightBallGame"), **CUT)
     obs, _ = env.reset(seed=0, options={**layout(game, balls), "rules": rules or {}})
     agent = GameGhostBallAgent(env)
     action, _ = agent.predict(obs)
@@ -51,7 +52,7 @@ def test_ghost_calls_the_pocket_of_its_shot_on_the_eight() -> None:
 
 
 def test_evaluate_makes_the_rules_agent_for_a_game_id() -> None:
-    env = gym.make("pool_env/NineBallGameRoll-v1")
+    env = gym.make("pool_env/NineBallGameRoll-v2")
     assert isinstance(make_agent("ghost", env), GameGhostBallAgent)
     assert type(make_agent("ghost", gym.make("pool_env/NineBallRoll-v1"))) is GhostBallAgent
     with pytest.raises(ValueError, match="game ids"):

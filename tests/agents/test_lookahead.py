@@ -39,7 +39,7 @@ from pool_env.game.geometry import (
     pocket_mouths,
 )
 
-ENV_ID = "pool_env/NineBallGame-v1"
+ENV_ID = "pool_env/NineBallGame-v2"
 P_BEST = LAYOUT_FEATURES.index("p_best")
 SIGMA = 0.003
 
@@ -338,4 +338,4 @@ def test_bad_settings_are_refused(kwargs, message) -> None:
 
 def test_the_agent_refuses_a_roll_table_id() -> None:
     with pytest.raises(ValueError, match="spin rotation"):
-        LookaheadAgent(gym.make("pool_env/NineBallGameRoll-v1"), _flat_value())
+        LookaheadAgent(gym.make("pool_env/NineBallGameRoll-v2"), _flat_value())

@@ -22,7 +22,7 @@ from pool_env.envs.vector import PoolVectorEnv
         ("pool_env/OneBallRoll-v1", {}),
         ("pool_env/PoolRoll-v1", {"max_shots": 4, "noise": (0.02, 0.2)}),
         ("pool_env/NineBallRoll-v1", {"aim": "relative"}),
-        ("pool_env/NineBallGameRoll-v1", {"noise": (0.003, 0.05)}),
+        ("pool_env/NineBallGameRoll-v2", {"noise": (0.003, 0.05)}),
         ("pool_env/EightBallGameRoll-v1", {"end_on_foul": True}),
     ],
 )

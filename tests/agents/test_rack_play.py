@@ -18,7 +18,7 @@ from agents.learned.rack_play import BREAK_ARMS, FEATURES, RackAgent, ValueNet, 
 from agents.training.racks import GAMMA, WIN_BONUS, fit, shot_reward
 
 MODEL = Path(__file__).resolve().parents[2] / "models" / "rack_value.npz"
-ENV_ID = "pool_env/NineBallGame-v1"
+ENV_ID = "pool_env/NineBallGame-v2"
 
 
 def _after_break(seed: int, **kwargs) -> tuple[gym.Env, RackAgent, np.ndarray]:
@@ -121,7 +121,7 @@ def test_a_break_arm_plays_its_speed_and_tip(arm: int) -> None:
     with pytest.raises(ValueError, match="break_arm"):
         RackAgent(env, break_arm=len(BREAK_ARMS))
     with pytest.raises(ValueError, match="spin rotation"):
-        RackAgent(gym.make("pool_env/NineBallGameRoll-v1"))
+        RackAgent(gym.make("pool_env/NineBallGameRoll-v2"))
     with pytest.raises(ValueError, match="spin rotation"):
         RackAgent(gym.make("pool_env/EightBallGame-v1"))
 

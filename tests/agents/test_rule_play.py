@@ -13,10 +13,11 @@ from agents.evaluation.duels import play_duels
 from agents.evaluation.evaluate import make_agent
 from agents.policy import last_plan
 from pool_env.envs.multiagent import AGENTS, PoolDuelEnv
+from pool_env.envs.registration import spin_id
 
 NOISE = (0.003, 0.05, 0.05)
-SPIN_IDS = ("NineBallGame-v1", "TenBallGame-v1", "EightBallGame-v1")
-ROLL_IDS = ("NineBallGameRoll-v1", "TenBallGameRoll-v1", "EightBallGameRoll-v1")
+SPIN_IDS = ("NineBallGame-v2", "TenBallGame-v1", "EightBallGame-v1")
+ROLL_IDS = ("NineBallGameRoll-v2", "TenBallGameRoll-v1", "EightBallGameRoll-v1")
 
 
 def _ball_on(on_table: np.ndarray) -> int:
@@ -161,7 +162,7 @@ def _blocked_layout(config) -> tuple[np.ndarray, np.ndarray]:
 
 def _duel(game: str) -> tuple[PoolDuelEnv, dict[str, GameGhostBallAgent]]:
     duel = PoolDuelEnv(game=game, model="spin", noise=NOISE)
-    env = gym.make(f"pool_env/{'Nine' if game == 'nine' else 'Ten'}BallGame-v1", noise=NOISE)
+    env = gym.make(spin_id("NineBallGame" if game == "nine" else "TenBallGame"), noise=NOISE)
     return duel, {seat: GameGhostBallAgent(env, players=2) for seat in AGENTS}
 
 

@@ -23,7 +23,7 @@ from pool_env.game.games.wpa import rack_row
 from pool_env.game.games.wpa.judge import FOUL, KEEPS, WINNER
 from pool_env.game.geometry import pocket_mouths
 
-ENV_ID = "pool_env/NineBallGame-v1"
+ENV_ID = "pool_env/NineBallGame-v2"
 ROOT = Path(__file__).resolve().parents[2]
 
 

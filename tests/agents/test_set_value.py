@@ -27,7 +27,7 @@ from agents.training.fit_set_value import (
 )
 from pool_env.game.geometry import pocket_mouths
 
-ENV_ID = "pool_env/NineBallGame-v1"
+ENV_ID = "pool_env/NineBallGame-v2"
 SIGMA = 0.0021817
 
 

@@ -16,6 +16,7 @@ import pool_env  # noqa: F401  (registers the ids)
 from agents import GhostBallAgent, SearchAgent, run_episodes
 from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
 from agents.evaluation.evaluate import main, make_agent, parse_noise, rack_ends
+from pool_env.envs.registration import spin_id
 from pool_env.sim.kernels import loop
 
 ONE = "pool_env/OneBall-v1"
@@ -127,7 +128,7 @@ def test_the_commands_take_the_model_by_name(capsys: pytest.CaptureFixture[str])
 
     assert main(["--env", ONE, "--agent", "random", "--episodes", "2", "--noise", "fastfiz:5"]) == 0
     assert "'noise': ('fastfiz', 5.0)" in capsys.readouterr().out
-    argv = ["--env", "pool_env/NineBallGameRoll-v1", "--agent", "random", "--opponent",
+    argv = ["--env", "pool_env/NineBallGameRoll-v2", "--agent", "random", "--opponent",
             "random", "--racks", "1", "--noise", "fastfiz"]  # fmt: skip
     assert duels.main(argv) == 0
     assert "noise fastfiz," in capsys.readouterr().out
@@ -156,7 +157,7 @@ def test_evaluate_runs_a_spin_id_with_tip_noise(capsys: pytest.CaptureFixture[st
     ],
 )
 def test_next_legal_ball_by_the_rules(game: str, left: list, potted: int, expected: list) -> None:
-    env = gym.make(f"pool_env/{'Nine' if game == 'nine' else 'Eight'}BallGame-v1")
+    env = gym.make(spin_id("NineBallGame" if game == "nine" else "EightBallGame"))
     agent = GameGhostBallAgent(env)
     n = env.unwrapped.config.n_balls
     after = np.zeros(n, dtype=bool)
@@ -165,7 +166,7 @@ def test_next_legal_ball_by_the_rules(game: str, left: list, potted: int, expect
 
 
 @pytest.mark.parametrize(
-    "name", ["pool_env/NineBallGame-v1", "pool_env/TenBallGame-v1", "pool_env/EightBallGame-v1"]
+    "name", ["pool_env/NineBallGame-v2", "pool_env/TenBallGame-v1", "pool_env/EightBallGame-v1"]
 )
 def test_both_agents_play_the_rules_ids_with_the_tip(name: str) -> None:
     env = gym.make(name, noise=(0.003, 0.05, 0.05))
@@ -186,7 +187,7 @@ def test_both_agents_play_the_rules_ids_with_the_tip(name: str) -> None:
 
 
 def test_rack_ends_count_every_rack_and_agree_with_the_run_outs() -> None:
-    env = gym.make("pool_env/NineBallGame-v1", noise=(0.003, 0.05, 0.05), end_on_foul=True)
+    env = gym.make("pool_env/NineBallGame-v2", noise=(0.003, 0.05, 0.05), end_on_foul=True)
     ends = rack_ends(make_agent("ghost", env), env, 12, 10_000)
     assert sum(ends.values()) == 12
     won = sum(count for (_, outcome), count in ends.items() if outcome == "won")

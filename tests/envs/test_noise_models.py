@@ -134,7 +134,7 @@ def test_the_parsed_sigmas_and_what_is_not_applied() -> None:
 
 
 @pytest.mark.parametrize(
-    "env_id", ["pool_env/OneBall-v1", "pool_env/NineBallGameRoll-v1", "pool_env/EightBallGame-v1"]
+    "env_id", ["pool_env/OneBall-v1", "pool_env/NineBallGameRoll-v2", "pool_env/EightBallGame-v1"]
 )
 def test_every_front_takes_the_model_by_name(env_id: str) -> None:
     single = gym.make(env_id, noise=("fastfiz", 5)).unwrapped.config
@@ -172,4 +172,4 @@ def test_bad_spellings_name_the_problem(noise: object, match: str) -> None:
         with pytest.raises(ValueError, match=match):
             PoolEnv(model=model, noise=noise)
     with pytest.raises(ValueError, match=match):
-        gym.make("pool_env/NineBallGame-v1", noise=noise)
+        gym.make("pool_env/NineBallGame-v2", noise=noise)

@@ -193,7 +193,7 @@ def test_bad_spin_arguments_raise(kwargs: dict, match: str) -> None:
 
 
 def test_bad_tip_actions_raise_and_change_nothing() -> None:
-    env = gym.make("pool_env/NineBallGame-v1")
+    env = gym.make("pool_env/NineBallGame-v2")
     env.reset(seed=0)
     before = env.unwrapped.positions
     for bad in ([0, 0, 0, 0, 0, 0, np.nan, 0], [0, 0, 0, 0, 0, 0, 0, np.nan], [0.0] * 7,

@@ -19,7 +19,7 @@ ONE = "pool_env/OneBall-v1"
     ("env_id", "kwargs"),
     [
         (ONE, {"noise": (0.003, 0.05, 0.02)}),
-        ("pool_env/NineBallGame-v1", {"noise": (0.003, 0.05, 0.02)}),
+        ("pool_env/NineBallGame-v2", {"noise": (0.003, 0.05, 0.02)}),
         ("pool_env/EightBallGame-v1", {"end_on_foul": True}),
     ],
 )
@@ -81,7 +81,7 @@ def test_agents_make_env_and_factory_take_a_spin_id() -> None:
 
     env = make_env(ONE, {"tip_limit": 0.5})
     assert env.unwrapped.config.tip_limit == 0.5 and env.action_space.shape == (4,)
-    assert EnvFactory("pool_env/NineBallGame-v1")().action_space.shape == (8,)
+    assert EnvFactory("pool_env/NineBallGame-v2")().action_space.shape == (8,)
     assert EnvFactory("pool_env/TenBallGame-v1")().action_space.shape == (9,)
 
 

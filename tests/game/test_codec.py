@@ -15,8 +15,8 @@ IDS = [
     "pool_env/OneBallRoll-v1",
     "pool_env/OneBall-v1",
     "pool_env/Pool-v1",
-    "pool_env/NineBallGameRoll-v1",
-    "pool_env/NineBallGame-v1",
+    "pool_env/NineBallGameRoll-v2",
+    "pool_env/NineBallGame-v2",
     "pool_env/EightBallGame-v1",
 ]
 

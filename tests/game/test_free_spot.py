@@ -57,7 +57,7 @@ def test_ball_in_hand_next_to_a_ball_on_the_rail_stays_by_it_from_a_normal_step(
     # cue ball in hand is placed on (1.0, R). It used to land near (1.74, 0.82) and hit the
     # 9 first: a foul the agent did not play. Now it goes where the 1's circle meets the
     # rail line, and a shot straight along +x misses the 1 (no contact, nothing else near).
-    env = gym.make("pool_env/NineBallGameRoll-v1", **KWARGS)
+    env = gym.make("pool_env/NineBallGameRoll-v2", **KWARGS)
     balls = {0: (0.3, 0.3), 1: (1.0, R + 0.01), 9: parked(1)}
     env.reset(seed=0, options={**layout("nine", balls), "rules": {"ball_in_hand": True}})
     u = (1.0 - R) / (L - 2 * R) * 2 - 1

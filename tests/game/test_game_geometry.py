@@ -245,7 +245,7 @@ def test_the_geometry_module_is_public() -> None:
 
 
 def test_placement_and_pocket_components_decode_to_what_was_asked() -> None:
-    env = gym.make("pool_env/NineBallGame-v1").unwrapped
+    env = gym.make("pool_env/NineBallGame-v2").unwrapped
     env.reset(seed=2)
     rack = {**env.rack, "break": False, "ball_in_hand": True, "behind_head_string": False}
     config = env.config

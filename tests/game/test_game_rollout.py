@@ -11,8 +11,8 @@ from pool_env.game.candidate_actions import candidates_state, rollout_actions
 from pool_env.game.state import new_state
 from pool_env.game.step import step
 
-IDS = ["pool_env/OneBallRoll-v1", "pool_env/OneBall-v1", "pool_env/NineBallGameRoll-v1",
-       "pool_env/NineBallGame-v1", "pool_env/EightBallGameRoll-v1"]  # fmt: skip
+IDS = ["pool_env/OneBallRoll-v1", "pool_env/OneBall-v1", "pool_env/NineBallGameRoll-v2",
+       "pool_env/NineBallGame-v2", "pool_env/EightBallGameRoll-v1"]  # fmt: skip
 
 
 @pytest.mark.parametrize("env_id", IDS)

@@ -39,7 +39,7 @@ from tests.rules_harness import compiled_judge, same_verdict
 from tests.wpa_reference import N_BALLS, OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
 
 IDS = {
-    "nine": "pool_env/NineBallGameRoll-v1",
+    "nine": "pool_env/NineBallGameRoll-v2",
     "ten": "pool_env/TenBallGameRoll-v1",
     "eight": "pool_env/EightBallGameRoll-v1",
 }
@@ -368,13 +368,16 @@ def outcomes(draw: st.DrawFn) -> tuple:
     breaking = draw(st.booleans())
     # The push-out and the option (9-ball, 10-ball): the shot after the break, no ball in hand.
     offer = "none"
-    if game != "eight" and not breaking and not in_hand:
+    # push_out=False plays 9-ball without them (NineBallGame-v1)
+    offers = game == "ten" or (game == "nine" and draw(st.booleans()))
+    if offers and not breaking and not in_hand:
         offer = draw(st.sampled_from(["none", "push_out", "option"]))
     state = RackState(
         game=game, on_table=tuple(on), shooter=draw(st.integers(0, 1)),
         breaking=breaking, fouls=(draw(st.integers(0, 2)), draw(st.integers(0, 2))),
         groups=groups, ball_in_hand=in_hand, behind_head_string=in_hand and draw(st.booleans()),
         push_out=offer == "push_out", option=offer == "option",
+        offers_push_out=offers or game == "eight",
     )  # fmt: skip
     first_row = draw(st.integers(-1, m - 1))
     first = None if first_row <= 0 else (0, first_row)

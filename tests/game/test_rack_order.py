@@ -30,7 +30,7 @@ TABLE = Table()
 SCENES = {"nine": "nine_ball", "ten": "ten_ball", "eight": "eight_ball"}
 FIXED = {"nine": rack_nine_ball, "ten": rack_ten_ball, "eight": rack_eight_ball}
 IDS = {
-    "nine": "pool_env/NineBallGame-v1",
+    "nine": "pool_env/NineBallGame-v2",
     "ten": "pool_env/TenBallGame-v1",
     "eight": "pool_env/EightBallGame-v1",
 }

@@ -334,6 +334,15 @@ def test_a_legal_break_offers_the_push_out_in_the_rotation_games(game: str, offe
     assert not after.push_out and after.ball_in_hand and after.shooter == 1
 
 
+def test_nine_ball_without_the_push_out_offers_none_after_a_legal_break() -> None:
+    """``push_out=False`` (9-ball as ``NineBallGame-v1``): the breaker simply shoots on."""
+    state = replace(RackState.new_rack("nine"), offers_push_out=False)
+    _, after = judge(state, shot(first=1, potted=(2,), to_rail=4))
+    assert not after.push_out and not after.option and after.shooter == 0
+    verdict, after = judge(after, shot(first=1, rail=False), push_out=True)  # no push-out
+    assert verdict.foul == "no_rail" and not verdict.push_out and after.shooter == 1
+
+
 @pytest.mark.parametrize("game", ["nine", "ten"])
 @pytest.mark.parametrize(
     "outcome",

@@ -108,7 +108,7 @@ def test_the_first_rows_shot_pots_its_ball_on_the_roll_table() -> None:
 
 def test_under_the_rules_the_rows_aim_at_the_ball_on() -> None:
     """9-ball: the reference is the lowest ball, though another ball is nearer the cue."""
-    env = gym.make("pool_env/NineBallGameRoll-v1", observation="shots")
+    env = gym.make("pool_env/NineBallGameRoll-v2", observation="shots")
     table = env.unwrapped.config.table
     pos = np.zeros((10, 2))
     on = np.zeros(10, dtype=bool)
@@ -138,14 +138,14 @@ def test_every_front_gives_the_same_features() -> None:
     on[[0, 1, 4, 9]] = True
     duel = PoolDuelEnv("nine", observation="shots", model="roll")
     duel.reset(seed=3, options={"positions": pos, "on_table": on})
-    game = gym.make("pool_env/NineBallGameRoll-v1", observation="shots")
+    game = gym.make("pool_env/NineBallGameRoll-v2", observation="shots")
     obs, _ = game.reset(seed=3, options={"positions": pos, "on_table": on})
     assert rows(game, obs)[0, COLUMN["valid"]] == 1.0
     np.testing.assert_array_equal(duel.observe(duel.agent_selection), obs)
 
 
 @pytest.mark.parametrize(
-    "env_id", ["pool_env/OneBall-v1", "pool_env/NineBallGame-v1", "pool_env/EightBallGameRoll-v1"]
+    "env_id", ["pool_env/OneBall-v1", "pool_env/NineBallGame-v2", "pool_env/EightBallGameRoll-v1"]
 )
 def test_the_shots_observation_passes_the_env_checker(env_id: str) -> None:
     env = gym.make(env_id, observation="shots")

@@ -70,7 +70,7 @@ def _rules(kernel: str) -> bool:
     [
         ("pool_env/OneBallRoll-v1", False, False),
         ("pool_env/NineBall-v1", True, False),
-        ("pool_env/NineBallGameRoll-v1", False, True),
+        ("pool_env/NineBallGameRoll-v2", False, True),
     ],
 )
 def test_a_first_shot_compiles_only_its_model_and_its_rules(

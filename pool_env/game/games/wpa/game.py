@@ -93,6 +93,7 @@ class WpaGame(Ruleset):
         self.action_width = 5 + int(calls_ball) + int(has_option)
         self.info_keys = RULE_KEYS + (OPTION_KEYS if has_option else ())
         self.features = RULE_FEATURES + (OPTION_FEATURES if has_option else ())
+        self._without_option: WpaGame | None = None
 
     # -- configuration and reset ----------------------------------------------------------
 
@@ -100,11 +101,37 @@ class WpaGame(Ruleset):
         """The :class:`WpaRules` checked (``ValueError``, naming the first bad one)."""
         if not isinstance(section, WpaRules):
             raise ValueError(f"game={self.name!r} takes a WpaRules section, got {section!r}")
+        rotation = self.code != wpa.EIGHT
+        push_out = (
+            rotation if section.push_out is None else parse_bool("push_out", section.push_out)
+        )
+        if push_out and not rotation:
+            raise ValueError(f"push_out=True: game={self.name!r} has no push-out")
+        if not push_out and self.code == wpa.TEN:
+            raise ValueError(
+                "push_out=False: 10-ball's option also follows a pot without its call; only "
+                "9-ball is played without the push-out (as pool_env/NineBallGame-v1)"
+            )
         return WpaRules(
             game=section.game,
             end_on_foul=parse_bool("end_on_foul", section.end_on_foul),
             break_speed_range=parse_range("break_speed_range", section.break_speed_range, 0.0),
+            push_out=push_out,
         )
+
+    def variant(self, section: RulesSection) -> WpaGame:
+        """This game, or its twin without the option when the parsed section says so.
+
+        The option's column and features are part of the spaces, so the game without the
+        push-out (``push_out=False``: 9-ball as ``-v1`` plays it) is a ruleset of its own.
+        """
+        if not self.has_option or getattr(section, "push_out", True):
+            return self
+        if self._without_option is None:
+            self._without_option = WpaGame(
+                self.name, self.code, self.n_objects, self.calls_ball, has_option=False
+            )
+        return self._without_option
 
     def configure(self, setup: Setup) -> NDArray[np.float64]:
         """Refuse a scene of other balls, ``end_on_miss`` and a table without pockets.

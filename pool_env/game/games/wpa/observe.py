@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from pool_env.game.games.wpa.params import VARIANT
+from pool_env.game.games.wpa.params import OPTION_COLUMN, VARIANT
 from pool_env.game.games.wpa.rack_state import (
     BEHIND,
     BREAKING,
@@ -21,7 +21,6 @@ from pool_env.game.games.wpa.rack_state import (
     PUSH_OUT,
     SHOOTER,
     legal_targets,
-    rotation,
 )
 from pool_env.game.kernels.observe import encode_observations
 from pool_env.sim.jit import kernel
@@ -39,9 +38,9 @@ OPTION_FEATURES: tuple[str, ...] = ("push_out", "option")
 
 
 @kernel
-def n_rule_features(game):
-    """The rule features of ``game``: :data:`RULE_FEATURES`, and the rotation games' options."""
-    return N_RULE_FEATURES + (len(OPTION_FEATURES) if rotation(game) else 0)
+def n_rule_features(has_option):
+    """The rule features: :data:`RULE_FEATURES`, and the option's where the game has it."""
+    return N_RULE_FEATURES + (len(OPTION_FEATURES) if has_option else 0)
 
 
 @kernel
@@ -73,7 +72,8 @@ def encode_rule_observations(params, positions, on_table, rack, viewers, length,
     b, n = on_table.shape
     balls = encode_observations(positions, on_table, length, width)
     game = int(params[VARIANT])
-    out = np.zeros((b, 3 * n + n - 1 + n_rule_features(game)), dtype=np.float32)
+    has_option = params[OPTION_COLUMN] >= 0  # 9-ball and 10-ball, unless push_out=False
+    out = np.zeros((b, 3 * n + n - 1 + n_rule_features(has_option)), dtype=np.float32)
     out[:, : 3 * n] = balls
     legal = np.empty(n, dtype=np.bool_)
     for k in range(b):
@@ -90,7 +90,7 @@ def encode_rule_observations(params, positions, on_table, rack, viewers, length,
         out[k, base + 4] = min(row[FOULS_0 + viewer], 2) * 0.5
         out[k, base + 5] = min(row[FOULS_0 + 1 - viewer], 2) * 0.5
         out[k, base + 6] = 1.0 if row[SHOOTER] == viewer else 0.0
-        if rotation(game):
+        if has_option:
             to_shoot = row[SHOOTER] == viewer
             out[k, base + 7] = 1.0 if to_shoot and row[PUSH_OUT] != 0 else 0.0
             out[k, base + 8] = 1.0 if to_shoot and row[OPTION] != 0 else 0.0

@@ -25,8 +25,14 @@ class WpaRules(RulesSection):
         end_on_foul: A foul, or a legal shot that does not keep the table, ends the
             episode (run-out mode); else play goes on (practice mode).
         break_speed_range: Speeds (m/s) of ``action[1] = -1`` and ``+1`` on a break.
+        push_out: The shot after a legal break may be a push-out, the opponent then having
+            the option. ``None``: the game's rule (yes in 9-ball and 10-ball; 8-ball has
+            none). ``False`` (9-ball only) plays 9-ball as ``pool_env/NineBallGame-v1``
+            did before the push-out came, with the action and observation of that time
+            (no option column, no option features).
     """
 
     game: str = "nine"
     end_on_foul: bool = False
     break_speed_range: tuple[float, float] = DEFAULT_BREAK_SPEED_RANGE
+    push_out: bool | None = None

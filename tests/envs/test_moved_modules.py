@@ -1,0 +1,29 @@
+"""Public modules that moved keep their old import path for a release, with a warning."""
+
+from __future__ import annotations
+
+import importlib
+import sys
+
+import pytest
+
+#: Old path -> where the module lives now (the fronts moved into pool_env.envs on 2026-12-04).
+MOVED = {f"pool_env.{name}": f"pool_env.envs.{name}" for name in
+         ("env", "vector", "multiagent", "record", "registration")}  # fmt: skip
+
+
+@pytest.mark.parametrize(("old", "new"), list(MOVED.items()))
+def test_an_old_path_warns_and_is_the_new_module(old: str, new: str) -> None:
+    sys.modules.pop(old, None)
+    with pytest.warns(DeprecationWarning, match=f"{old} moved to {new}"):
+        module = importlib.import_module(old)
+    assert module is importlib.import_module(new)  # the same classes, not copies
+
+
+def test_the_old_names_still_import() -> None:
+    sys.modules.pop("pool_env.multiagent", None)
+    with pytest.warns(DeprecationWarning, match="pool_env.multiagent moved"):
+        from pool_env.multiagent import PoolDuelEnv
+    from pool_env.envs import multiagent
+
+    assert PoolDuelEnv is multiagent.PoolDuelEnv
