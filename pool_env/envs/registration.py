@@ -34,6 +34,9 @@ VECTOR_ENTRY_POINT = "pool_env.envs.vector:PoolVectorEnv"
 # and saved configs keep working; Gymnasium's warning on them is now true (a newer spelling
 # exists). ``model=`` stays an argument of every id: ``gym.make("pool_env/OneBall-v1",
 # model="roll")`` is ``pool_env/OneBallRoll-v1`` under the spin id's name.
+# A task whose spaces or dynamics change takes the next version on both tables
+# (:data:`VERSIONS`); its earlier versions stay registered, playing as they did
+# (:data:`EARLIER_VERSIONS`), and Gymnasium reports them out of date.
 
 #: task -> (make() keyword arguments, max_episode_steps), the model left out.
 TASKS: dict[str, tuple[dict[str, Any], int]] = {
