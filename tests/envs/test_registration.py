@@ -29,7 +29,7 @@ def test_every_id_is_registered_with_its_time_limit() -> None:
     for env_id, (kwargs, max_steps) in ENV_IDS.items():
         spec = gym.spec(env_id)
         assert spec.max_episode_steps == max_steps
-        assert spec.kwargs == kwargs
+        assert spec.kwargs == {"id_defaults": kwargs}  # apart from the caller's keywords
         assert spec.entry_point == "pool_env.envs.env:PoolEnv"
 
 
@@ -46,8 +46,8 @@ def test_each_task_has_a_spin_id_and_a_roll_id_and_nothing_else() -> None:
     assert set(IDS) == {spin_id(t) for t in TASKS} | {roll_id(t) for t in TASKS}
     assert len(IDS) == 2 * len(TASKS) == 14
     for task in TASKS:
-        assert gym.spec(spin_id(task)).kwargs["model"] == "spin"
-        assert gym.spec(roll_id(task)).kwargs.get("model", "roll") == "roll"
+        assert gym.spec(spin_id(task)).kwargs["id_defaults"]["model"] == "spin"
+        assert gym.spec(roll_id(task)).kwargs["id_defaults"].get("model", "roll") == "roll"
 
 
 @pytest.mark.parametrize("env_id", IDS)
