@@ -7,6 +7,7 @@ many. What stays here is Gymnasium's API, the generator, and rendering.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -43,7 +44,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             ``None``: :func:`pool_env.default_config`).
         render_mode: ``"rgb_array"``, ``"rgb_array_list"``, ``"human"`` or ``None``.
         render_width: Frame width in pixels.
-        **overrides: Keys of the config, each overriding its section's:
+        id_defaults: The registered id's keywords, which ``gym.make`` passes (its scene,
+            model, game...): they apply only when no ``config`` is given
+            (:func:`pool_env.game.sections.resolve`).
+        **overrides: Keys of the config, each overriding its section's (and the config's,
+            when one is given):
 
             * table: ``table`` (a :class:`~pool_env.Table` or a dict of its
               arguments), ``model`` (``"roll"`` or ``"spin"``);
@@ -93,6 +98,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         *,
         render_mode: str | None = None,
         render_width: int = 800,
+        id_defaults: Mapping[str, Any] | None = None,
         **overrides: Any,
     ) -> None:
         self.render_width = check_render(render_mode, self.metadata["render_modes"], render_width)
@@ -101,7 +107,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             from pool_env.render import RENDER_FPS
 
             self.metadata = {**self.metadata, "render_fps": RENDER_FPS[render_mode]}
-        self.config: GameConfig = make_config(resolve(config, overrides), 1)
+        self.config: GameConfig = make_config(resolve(config, overrides, id_defaults), 1)
         config = self.config
         n = config.n_balls
         self.observation_space = gym.spaces.Box(-1.0, 1.0, (config.observation_size,), np.float32)

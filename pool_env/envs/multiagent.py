@@ -23,7 +23,11 @@ vertical offsets end the action.
 Every default is the game's roll id's (``pool_env/NineBallGameRoll-v1``, ...):
 its registered arguments, :func:`pool_env.game.config.make_config`'s defaults for the rest
 (``"cut"`` aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as
-the shot limit of the rack (both players' shots).
+the shot limit of the rack (both players' shots). As on every front
+(:func:`pool_env.game.sections.resolve`), a ``config`` given replaces these defaults
+whole (its game is played: ``PoolDuelEnv(config=<a 10-ball config>)`` plays 10-ball), and
+the keywords override either. ``end_on_foul`` is refused: it is the one-agent run-out
+mode, and in a rack of two players a foul passes the table to the opponent.
 
 Observation of each agent: the game ids' observation
 (:func:`pool_env.game.kernels.observe.encode_rule_observations`) from that agent's seat:
@@ -52,7 +56,7 @@ from pool_env.envs.seeding import seed_table
 from pool_env.extras import require
 from pool_env.game import step as game_step
 from pool_env.game.checks import check_actions, check_options
-from pool_env.game.config import GameConfig, PoolConfig, default_config, make_config
+from pool_env.game.config import GameConfig, PoolConfig, make_config
 from pool_env.game.info import potted_lookup, table_info
 from pool_env.game.kernels.outcome import TRUNCATED
 from pool_env.game.sections import resolve
@@ -74,16 +78,17 @@ class PoolDuelEnv(AECEnv):
     """Two agents play one rack of 9-ball, 10-ball or 8-ball (see the module docstring).
 
     Args:
-        game: ``"nine"``, ``"ten"`` or ``"eight"``.
-        config: The sectioned config (:class:`pool_env.PoolConfig`); ``None``: the game
-            id's (its scene and model), truncated after the id's ``max_episode_steps``
-            shots of both players.
+        game: ``"nine"``, ``"ten"`` or ``"eight"``; ``None``: the ``config``'s game, or
+            ``"nine"`` without one. Beside a ``config``, a keyword override of its game.
+        config: The sectioned config (:class:`pool_env.PoolConfig`), played as it is;
+            ``None``: the game id's defaults (its scene and model), truncated after the
+            id's ``max_episode_steps`` shots of both players.
         **overrides: Keyword overrides of the config, as :class:`pool_env.PoolEnv` takes
             them (``table``, ``aim``, ``speed_range``, ``noise`` drawn from the generator
             seeded by ``reset(seed=...)``, ``break_speed_range``, ``max_shots``, ...).
 
     Raises:
-        ValueError: On an unknown game or a bad argument.
+        ValueError: On an unknown game or a bad argument (``end_on_foul=True`` among them).
     """
 
     metadata: ClassVar[dict[str, Any]] = {
@@ -94,16 +99,21 @@ class PoolDuelEnv(AECEnv):
 
     def __init__(
         self,
-        game: str = "nine",
+        game: str | None = None,
         config: PoolConfig | None = None,
         **overrides: Any,
     ) -> None:
         super().__init__()
-        if game not in _GAME_IDS:
+        if game is not None and game not in _GAME_IDS:
             raise ValueError(f"game must be one of {sorted(_GAME_IDS)}, got {game!r}")
-        registered, steps = _GAME_IDS[game]
-        base = default_config(**registered, max_shots=steps) if config is None else config
-        self.config: GameConfig = make_config(resolve(base, {**overrides, "game": game}), 2)
+        if config is None:  # the game id's defaults, as gym.make would pass them
+            name = game or "nine"
+            registered, steps = _GAME_IDS[name]
+            defaults = {**registered, "game": name, "max_shots": steps}
+            source = resolve(None, overrides, defaults)
+        else:  # the config whole; a game given is the caller's override of its game
+            source = resolve(config, overrides if game is None else {"game": game, **overrides})
+        self.config: GameConfig = make_config(source, 2)
         self.possible_agents = list(AGENTS)
         self._action_space = spaces.Box(-1.0, 1.0, (self.config.action_size,), np.float32)
         self._observation_space = spaces.Box(-1.0, 1.0, (self.config.observation_size,), np.float32)

@@ -124,7 +124,10 @@ def register_envs() -> None:
                 id=env_id,
                 entry_point=ENTRY_POINT,
                 vector_entry_point=VECTOR_ENTRY_POINT,
-                kwargs=kwargs,
+                # One keyword, so that the env tells the id's defaults from the caller's own
+                # keywords (Gymnasium merges the two): a config= given replaces them whole
+                # (pool_env.game.sections.resolve).
+                kwargs={"id_defaults": kwargs},
                 max_episode_steps=max_steps,
             )
 

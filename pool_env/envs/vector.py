@@ -7,6 +7,7 @@ Gymnasium's vector API: autoreset, per-table seeding, the batched info layout, r
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -79,7 +80,9 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     id's), ``autoreset_mode``, ``parallel`` (split each batch of shots over the CPUs, one
     Python thread each running the GIL-free compiled loop,
     :func:`pool_env.sim.batch.simulate_batch_threads`; ``None``: from 64 tables on), and every
-    ``PoolEnv`` argument (``scene``, ``aim``, ``noise``, ``end_on_miss``, ...).
+    ``PoolEnv`` argument (``config``, ``id_defaults``, ``scene``, ``aim``, ``noise``,
+    ``end_on_miss``, ...), by ``PoolEnv``'s precedence: the caller's keywords over the
+    caller's config, which replaces the id's defaults.
     ``reset(options=...)`` takes ``positions`` (``(N, 2)`` for every table reset, or
     ``(num_envs, N, 2)``) with an optional ``on_table``, and ``reset_mask``.
 
@@ -121,6 +124,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         render_mode: str | None = None,
         render_width: int = 800,
         config: PoolConfig | None = None,
+        id_defaults: Mapping[str, Any] | None = None,
         **overrides: Any,
     ) -> None:
         if num_envs is None or parse_count("num_envs", num_envs) is None:
@@ -131,9 +135,8 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         self.metadata = {**type(self).metadata, "autoreset_mode": self.autoreset_mode}
         self.parallel = parallel
         self.max_episode_steps = parse_count("max_episode_steps", max_episode_steps)
-        self.config: GameConfig = make_config(resolve(config, overrides), 1).with_shot_limit(
-            self.max_episode_steps
-        )
+        source = resolve(config, overrides, id_defaults)
+        self.config: GameConfig = make_config(source, 1).with_shot_limit(self.max_episode_steps)
         config = self.config
 
         self.num_envs = int(num_envs)

@@ -10,17 +10,22 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from pool_env.game.noise import NOISE_MODELS
+from pool_env.game.noise import MAX_NORMAL_DRAW, MAX_SIGMA_ANGLE, NOISE_MODELS
+from pool_env.sim.constants import MAX_SPEED
+from pool_env.sim.inputs import max_speed, speed_limits
+from pool_env.sim.levels import level_of
+from pool_env.sim.spin_inputs import reachable_spin_speed
 from pool_env.sim.table import MODELS, Table
 
 
-def parse_table(table: Table | dict[str, Any] | None, model: str | None = None) -> Table:
-    """A :class:`Table`, the ``Table(**dict)`` of a dict (a config file), or the default.
+def parse_table(table: Table | Mapping[str, Any] | None, model: str | None = None) -> Table:
+    """A :class:`Table`, the ``Table(**mapping)`` of a dict (a config file), or the default.
 
     Args:
         table: The table, its keyword arguments, or ``None`` (the default table).
@@ -42,15 +47,13 @@ def parse_table(table: Table | dict[str, Any] | None, model: str | None = None) 
                 f"model={table.model!r}, or a Table(model={model!r}, ...)"
             )
         return table
-    if isinstance(table, dict):
-        if model is not None:
-            if table.get("model", model) != model:
-                raise ValueError(
-                    f"model={model!r} but table['model'] is {table['model']!r}: give one model"
-                )
-            table = {**table, "model": model}
+    if isinstance(table, Mapping):
+        if model is not None and table.get("model", model) != model:
+            raise ValueError(
+                f"model={model!r} but table['model'] is {table['model']!r}: give one model"
+            )
         try:
-            return Table(**table)
+            return Table(**{**table, **({} if model is None else {"model": model})})
         except TypeError as exc:
             raise ValueError(f"table: {exc}") from None
     raise ValueError(
@@ -101,6 +104,12 @@ def parse_noise(value: object, table: Table) -> tuple[float, ...] | None:
     ):
         name, multiple = _noise_model(value)
         sigmas = NOISE_MODELS[name](table, multiple)
+        if sigmas[0] > MAX_SIGMA_ANGLE:
+            k_max = MAX_SIGMA_ANGLE / NOISE_MODELS[name](table, 1.0)[0]
+            raise ValueError(
+                f"noise={value!r}: k must lie in [0, {k_max:.6g}]: beyond it the angle's "
+                f"sigma passes pi rad, and the executed aim is uniform over the circle"
+            )
         return None if not any(sigmas) else sigmas
     try:
         sigmas = tuple(parse_float("noise", v) for v in value)  # type: ignore[union-attr]
@@ -116,6 +125,11 @@ def parse_noise(value: object, table: Table) -> tuple[float, ...] | None:
         )
     if min(sigmas) < 0.0:
         raise ValueError(f"noise sigmas must be >= 0, got {value!r}")
+    if sigmas[0] > MAX_SIGMA_ANGLE:
+        raise ValueError(
+            f"noise={value!r}: the angle's sigma must lie in [0, pi] rad: beyond it the "
+            "executed aim is uniform over the circle"
+        )
     if len(sigmas) == 3 and sigmas[2] != 0.0 and not table.has_spin:
         raise ValueError(
             f"noise {value!r} has a tip sigma, but a roll table has no cue tip: use "
@@ -264,3 +278,100 @@ def parse_tip_limit(table: Table, tip_limit: object) -> float | None:
     if not 0.0 < limit <= 1.0:
         raise ValueError(f"tip_limit must lie in (0, 1] (a fraction of R), got {tip_limit!r}")
     return limit
+
+
+#: Relative margin kept below the speed ceiling: the kernels compute a strike's energy at its
+#: own speed, not scaled from a unit strike as :func:`strike_speed_limit` does, a few
+#: roundings (~1e-16 each) apart.
+_ROUNDING_MARGIN = 1e-12
+
+
+def strike_speed_limit(table: Table, tip_limit: float | None) -> float:
+    """The fastest cue ball speed (m/s) a strike on ``table`` may have at any tip it allows.
+
+    The simulator refuses a shot whose speed, or on a spin table whose energy with the
+    spin the tip gives, passes its limits (:func:`pool_env.sim.inputs.max_speed`; the
+    spin's surface speed too). A strike scales with its speed, so the limit is the
+    table's over the strike of unit speed at the largest tip offset ``tip_limit`` (the
+    executed tip never leaves that circle; the spin grows with the offset alone).
+
+    Args:
+        table: The table.
+        tip_limit: The tip limit (fraction of R), ``None`` on a roll table.
+    """
+    velocity, angular = level_of(table).strike(table, 1.0, 0.0, tip_limit or 0.0, 0.0, 0.0)
+    unit = float(np.hypot(*velocity))
+    if table.has_spin:
+        unit = reachable_spin_speed(table, velocity[None], angular[None])
+    limit = max_speed(table) / unit
+    surface = table.ball_radius * float(np.sqrt(angular @ angular))
+    if surface > 0.0:
+        limit = min(limit, MAX_SPEED / surface)
+    return limit * (1.0 - _ROUNDING_MARGIN)
+
+
+@dataclass(frozen=True)
+class SpeedCeiling:
+    """What a speed range's top may be: the fastest strike less the noise's largest draw.
+
+    Built once per config (:func:`pool_env.game.config.make_config`), which checks the
+    task's ``speed_range`` with it; a game checks its own ranges (the WPA break's) with
+    the same, so no step can ask the simulator for a strike it refuses.
+
+    Attributes:
+        table: The table.
+        tip_limit: The tip limit (fraction of R), ``None`` on a roll table.
+        sigma_speed: The noise's speed sigma (m/s; 0 without noise).
+        noise: The ``noise`` as the user gave it, for the messages.
+        strike: :func:`strike_speed_limit` of the table and tip limit (m/s).
+    """
+
+    table: Table
+    tip_limit: float | None
+    sigma_speed: float
+    noise: object
+    strike: float = field(init=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "strike", strike_speed_limit(self.table, self.tip_limit))
+
+    @property
+    def top(self) -> float:
+        """The largest top speed (m/s) a range may have with this noise."""
+        return self.strike - MAX_NORMAL_DRAW * self.sigma_speed
+
+    def check(self, name: str, given: object, high: float) -> None:
+        """Refuse a range ``name`` (``given`` as written) whose top ``high`` passes :attr:`top`.
+
+        Raises:
+            ValueError: Naming the range when it passes the strike limit itself, else the
+                noise, with the largest value each may have here.
+        """
+        spin = (f"; here at the tip limit {self.tip_limit:.6g} R, the spin's energy counted"
+                if self.tip_limit else "")  # fmt: skip
+        where = f"the simulator takes on this table ({speed_limits(self.table)}{spin})"
+        if high > self.strike:
+            raise ValueError(
+                f"{name}={given!r}: its top speed must be at most {self.strike:.6g} m/s, the "
+                f"fastest strike {where}"
+            )
+        if high > self.top:
+            reach = high + MAX_NORMAL_DRAW * self.sigma_speed
+            largest = (self.strike - high) / MAX_NORMAL_DRAW
+            raise ValueError(
+                f"noise={self.noise!r}: its speed sigma {self.sigma_speed:.6g} m/s, whose "
+                f"draws reach {MAX_NORMAL_DRAW} sigma, could take {name}'s top speed "
+                f"{high:g} m/s to {reach:.6g} m/s, beyond the {self.strike:.6g} m/s "
+                f"{where}: the speed sigma must be at most {largest:.6g} m/s here"
+                + self._model_bound(largest)
+            )
+
+    def _model_bound(self, largest: float) -> str:
+        """For a named noise model, the largest multiple ``k`` the speed sigma allows."""
+        named = self.noise if isinstance(self.noise, str) else None
+        if isinstance(self.noise, tuple | list) and self.noise and isinstance(self.noise[0], str):
+            named = self.noise[0]
+        if named not in NOISE_MODELS:
+            return ""
+        unit = NOISE_MODELS[named](self.table, 1.0)[1]
+        return f" (({named!r}, k) with k at most {largest / unit:.6g})"

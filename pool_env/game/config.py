@@ -18,6 +18,7 @@ from numpy.typing import NDArray
 
 from pool_env.game import checks
 from pool_env.game.checks import default_tip_limit, parse_tip_limit
+from pool_env.game.frozen import FrozenMap
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.outcome import CUE
 from pool_env.game.registry import BUILTIN, ruleset_for
@@ -315,13 +316,17 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
     ruleset = ruleset_for(source.rules.game)
     task = parse_task(source.task, table, ruleset.scenes)
     sigmas = checks.parse_noise(source.noise.sigmas, table)
+    speeds = checks.SpeedCeiling(table, task.tip_limit, sigmas[1] if sigmas else 0.0,
+                                 source.noise.sigmas)  # fmt: skip
+    speeds.check("speed_range", source.task.speed_range, task.speed_range[1])
     if players not in (1, 2) or isinstance(players, bool):
         raise ValueError(f"players must be 1 or 2, got {players!r}")
-    rewards = parse_rewards(ruleset, source.rewards.scales)
+    rewards = FrozenMap(parse_rewards(ruleset, source.rewards.scales))  # read, never changed
     rules = ruleset.parse_section(source.rules)
     ruleset = ruleset.variant(rules)
-    setup = Setup(table, task.scene, rules, rewards, task.end_on_miss, players,
-                  ruleset.action_width)  # fmt: skip
+    # The section as given (Setup's contract): the game checks it, naming values as written.
+    setup = Setup(table, task.scene, source.rules, rewards, task.end_on_miss, players,
+                  ruleset.action_width, speeds)  # fmt: skip
     tail = ruleset.configure(setup)
     shots = task.max_shots or 0
     params = kernel_params(table, task, sigmas, shots, players, tail, ruleset.action_width)

@@ -35,6 +35,20 @@ How it maps onto the env's action:
   a named model describes a cue whatever the table).
 * As every sigma here, the draws are the env's: the executed speed is clipped at 0 and the
   executed tip onto the miscue circle (:mod:`pool_env.game.kernels.actions`).
+
+The largest scale that means something, for any sigmas (numbers or a model times ``k``):
+
+* The speed's: the executed speed is the action's plus ``sigma_speed`` times a standard
+  normal draw, and the simulator refuses a strike beyond its speed limits
+  (:class:`pool_env.game.checks.SpeedCeiling`). The draws are bounded: numpy's ziggurat
+  sampler, which the kernels run (:func:`pool_env.game.kernels.rng.standard_normal`),
+  returns at most :data:`MAX_NORMAL_DRAW` in size, so a config is refused when its top
+  speed plus that many sigmas could pass the limit, and no step can then fail on it.
+* The angle's: at most :data:`MAX_SIGMA_ANGLE` (pi). Beyond it the executed direction is
+  uniform over the circle to within 1.4% (a wrapped Gaussian's density varies by
+  ``2 exp(-sigma^2 / 2)``): the aim no longer means anything. For FastFiz's model that is
+  ``k <= 1440``; its speed sigma reaches the speed limit first (``k`` of a few hundred on
+  the default table: the message of a refusal gives the figure).
 """
 
 from __future__ import annotations
@@ -62,6 +76,16 @@ FASTFIZ_TIP = 0.0005
 
 #: The multiples of the model the championships ran (x1 "low", x5 "high").
 FASTFIZ_LEVELS: tuple[float, ...] = (1.0, 5.0)
+
+#: The largest standard normal draw, in size, of numpy's ziggurat sampler (the kernels' own
+#: copy, :func:`pool_env.game.kernels.rng.standard_normal`): 12.2258, rounded up. A draw
+#: is either inside the ziggurat, below its base strip's edge ``r = 3.6542``, or in the
+#: tail, ``r + x`` with ``x = -log(1 - u1) / r`` accepted only if ``x^2 < -2 log(1 - u2)``;
+#: ``u2`` is a double below 1, at most ``1 - 2^-53``, so ``x < sqrt(2 * 53 ln 2) = 8.5717``.
+MAX_NORMAL_DRAW = 12.23
+
+#: The largest angle sigma (rad) that still means an aim error (the module docstring).
+MAX_SIGMA_ANGLE = math.pi
 
 
 def fastfiz_sigmas(table: Table, multiple: float = 1.0) -> tuple[float, ...]:

@@ -9,9 +9,20 @@ the section itself, or a mapping of its fields (``task={"scene": "one_ball"}``).
 names are both a section and its main field: ``table`` (a :class:`~pool_env.Table` or
 a dict of its arguments) and ``noise`` (the sigmas, or a noise model by name).
 
-The sections hold the arguments as given; :func:`pool_env.game.config.make_config`
-checks and parses them into the :class:`~pool_env.game.config.GameConfig` the decision
-process runs on, which keeps its :class:`PoolConfig` as ``source``.
+The sections hold the arguments as given, frozen (:func:`pool_env.game.frozen.freeze`: an
+array or a dict given is copied, so that changing it afterwards changes no config);
+:func:`pool_env.game.config.make_config` checks and parses them into the
+:class:`~pool_env.game.config.GameConfig` the decision process runs on, which keeps its
+:class:`PoolConfig` as ``source``.
+
+Precedence, the one rule of every front (:func:`resolve`): the keywords a caller passes
+override the config it passes, which replaces the registered id's defaults whole. A
+Gymnasium id registers its defaults as one keyword, ``id_defaults``
+(:mod:`pool_env.envs.registration`), so that a front tells them from the caller's own:
+``gym.make("pool_env/OneBall-v1", config=cfg)`` plays ``cfg`` as it is (the id gives its
+name and its ``TimeLimit``), ``gym.make("pool_env/OneBall-v1", config=cfg, noise=x)``
+plays ``cfg`` with that noise, and ``gym.make("pool_env/OneBall-v1", noise=x)`` the id's
+defaults with it.
 
 The rules section belongs to the game: each ruleset names its own section type
 (:attr:`pool_env.game.ruleset.Ruleset.section`), so ``end_on_foul`` exists where a
@@ -28,6 +39,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
+from pool_env.game.frozen import FrozenMap, freeze_fields
 from pool_env.game.noise import NoiseSpec
 from pool_env.game.registry import every_game, ruleset_for
 from pool_env.game.ruleset import RulesSection
@@ -50,8 +62,11 @@ class TableSection:
         model: ``"roll"`` or ``"spin"`` (the spin ids set it), or ``None``: the table's own.
     """
 
-    table: Table | dict[str, Any] | None = None
+    table: Table | Mapping[str, Any] | None = None
     model: str | None = None
+
+    def __post_init__(self) -> None:
+        freeze_fields(self)
 
 
 @dataclass(frozen=True)
@@ -88,6 +103,9 @@ class TaskSection:
     end_on_miss: bool = False
     max_shots: int | None = None
 
+    def __post_init__(self) -> None:
+        freeze_fields(self)
+
 
 @dataclass(frozen=True)
 class NoiseSection:
@@ -103,6 +121,9 @@ class NoiseSection:
 
     sigmas: NoiseSpec | None = None
 
+    def __post_init__(self) -> None:
+        freeze_fields(self)
+
 
 @dataclass(frozen=True)
 class RewardsSection:
@@ -115,7 +136,12 @@ class RewardsSection:
             ``pot``, ``foul`` and ``win``. The keyword ``reward_<term>`` sets one.
     """
 
-    scales: Mapping[str, float] = field(default_factory=dict)
+    scales: Mapping[str, float] = field(default_factory=FrozenMap)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.scales, Mapping):
+            raise ValueError(f"rewards must map term names to scales, got {self.scales!r}")
+        freeze_fields(self)
 
     def __hash__(self) -> int:
         return hash(tuple(sorted(self.scales.items())))
@@ -138,6 +164,14 @@ class PoolConfig:
     noise: NoiseSection = field(default_factory=NoiseSection)
     rules: RulesSection = field(default_factory=RulesSection)
     rewards: RewardsSection = field(default_factory=RewardsSection)
+
+    def __post_init__(self) -> None:
+        for name, section_type in _WHOLE.items():
+            if not isinstance(getattr(self, name), section_type):
+                raise ValueError(
+                    f"{name} must be a {section_type.__name__}, got {getattr(self, name)!r}"
+                )
+        object.__setattr__(self, "rules", game_section(self.rules))
 
     def override(self, **overrides: Any) -> PoolConfig:
         """This config with ``overrides`` applied (see the module docstring).
@@ -167,6 +201,10 @@ class PoolConfig:
             return self._with_rewards({name[len(REWARD_PREFIX) :]: value})
         if name == "players":  # the front's: PoolEnv has one agent, PoolDuelEnv two
             raise ValueError("players is not an argument of PoolEnv: see pool_env.envs.multiagent")
+        if name in _WHOLE and name not in KEYS:  # a section's name, given neither form
+            raise ValueError(
+                f"{name} must be a {_WHOLE[name].__name__} or a mapping of its keys, got {value!r}"
+            )
         if name not in KEYS:
             if _is_rule_key(name):
                 return self._with_rules({name: value}, _UNSET)
@@ -191,13 +229,14 @@ class PoolConfig:
     def _with_rules(self, rules: Any, game: Any) -> PoolConfig:
         values: dict[str, Any] = {}
         if isinstance(rules, RulesSection):
-            if game is not _UNSET and game != rules.game:
-                raise ValueError(f"game={game!r} but rules is {rules!r}: give one game")
+            _one_game(game, rules, rules.game)
             return replace(self, rules=rules)
         if isinstance(rules, Mapping):
             values = dict(rules)
         elif rules is not None:
             raise ValueError(f"rules must be a rules section or a mapping, got {rules!r}")
+        if "game" in values:
+            _one_game(game, rules, values["game"])
         name = values.pop("game", self.rules.game if game is _UNSET else game)
         # The reward scales were rule keys before they had a section of their own
         # (rules={"reward_foul": -2.0}): they are the rewards section's now.
@@ -219,15 +258,65 @@ class PoolConfig:
         return replace(self, rules=replace(current, game=name, **values))
 
 
-def resolve(config: PoolConfig | None, overrides: dict[str, Any]) -> PoolConfig:
-    """``config`` (``None``: the default) with ``overrides``: what every front is given.
+def resolve(
+    config: PoolConfig | None,
+    overrides: Mapping[str, Any],
+    id_defaults: Mapping[str, Any] | None = None,
+) -> PoolConfig:
+    """The config a front plays: every front's one precedence rule (the module docstring).
+
+    The caller's keywords (``overrides``) override the caller's ``config``; the defaults of
+    the registered id (``id_defaults``, which ``gym.make`` passes) apply only when no
+    ``config`` is given, in its place: a config is whole, every field of it a value its
+    author chose (``end_on_miss=False`` as much as ``True``), so none of it is overridden
+    by what an id registers.
+
+    Args:
+        config: The caller's config, or ``None``: the default, with ``id_defaults``.
+        overrides: The caller's keywords (:meth:`PoolConfig.override`).
+        id_defaults: The registered id's keywords (``None``: no id).
 
     Raises:
         ValueError: On a ``config`` that is no :class:`PoolConfig`, or a bad override.
     """
     if config is not None and not isinstance(config, PoolConfig):
         raise ValueError(f"config must be a pool_env.PoolConfig or None, got {config!r}")
-    return (config or PoolConfig()).override(**overrides)
+    if id_defaults is not None and not isinstance(id_defaults, Mapping):
+        raise ValueError(f"id_defaults must be a mapping of config keys, got {id_defaults!r}")
+    if config is None:
+        config = PoolConfig().override(**(id_defaults or {}))
+    return config.override(**overrides)
+
+
+def game_section(rules: RulesSection) -> RulesSection:
+    """``rules`` as a section of its game's own type (:attr:`Ruleset.section`).
+
+    A bare :class:`~pool_env.game.ruleset.RulesSection` names the game alone:
+    ``RulesSection(game="nine")`` is 9-ball at its rules' defaults, ``WpaRules(game="nine")``.
+
+    Raises:
+        ValueError: On an unknown game, or a section of another game's type (its options
+            would be dropped unread: ``WpaRules(game="solitaire", end_on_foul=True)``).
+    """
+    if not isinstance(rules, RulesSection):
+        raise ValueError(f"rules must be a rules section or a mapping, got {rules!r}")
+    section_type = ruleset_for(rules.game).section
+    if type(rules) is section_type:
+        return rules
+    if type(rules) is RulesSection:
+        return section_type(game=rules.game)
+    owners = [repr(g) for g, r in every_game().items() if r.section is type(rules)]
+    whose = f"the rules section of game {' or '.join(owners)}" if owners else "no game's"
+    raise ValueError(
+        f"rules={rules!r}: game={rules.game!r} takes a {section_type.__name__} (keys "
+        f"{sorted(_field_names(section_type))}), and {type(rules).__name__} is {whose}"
+    )
+
+
+def _one_game(game: Any, rules: Any, named: Any) -> None:
+    """Refuse ``game=`` beside a ``rules`` that names another game, whatever its form."""
+    if game is not _UNSET and game != named:
+        raise ValueError(f"game={game!r} but rules={rules!r} names game {named!r}: give one game")
 
 
 def default_config(**overrides: Any) -> PoolConfig:

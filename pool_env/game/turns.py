@@ -13,6 +13,8 @@ from typing import Any, NamedTuple, Protocol
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.checks import SpeedCeiling
+from pool_env.game.frozen import freeze_fields
 from pool_env.game.scenes import ScenePlan
 from pool_env.game.state import GameState
 from pool_env.sim.result import ShotResult
@@ -150,11 +152,20 @@ class RulesSection:
     A game with options of its own subclasses it (as the WPA games' ``WpaRules``) and
     names the subclass as its :attr:`Ruleset.section`.
 
+    A bare ``RulesSection(game=name)`` names the game alone: a config takes it as the
+    game's own section at its defaults (:func:`pool_env.game.sections.game_section`).
+    Every field is frozen when the section is made (:func:`pool_env.game.frozen.freeze`:
+    a list or array given is copied), so a subclass that defines its own
+    ``__post_init__`` calls this one.
+
     Attributes:
         game: The game's registered name (``"solitaire"``, ``"nine"``, ...).
     """
 
     game: str = "solitaire"
+
+    def __post_init__(self) -> None:
+        freeze_fields(self)
 
 
 class Setup(NamedTuple):
@@ -168,6 +179,8 @@ class Setup(NamedTuple):
         end_on_miss: The task section's ``end_on_miss``.
         players: 1 or 2, the front's.
         action_width: The game's action columns (the tip columns follow on a spin table).
+        speeds: What a speed range's top may be on this table with this noise: a game
+            checks its own ranges with it (``speeds.check(name, given, high)``).
     """
 
     table: Table
@@ -177,3 +190,4 @@ class Setup(NamedTuple):
     end_on_miss: bool
     players: int
     action_width: int
+    speeds: SpeedCeiling

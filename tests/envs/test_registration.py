@@ -38,7 +38,7 @@ def test_every_id_is_registered_with_its_time_limit() -> None:
     for env_id, (kwargs, max_steps) in ENV_IDS.items():
         spec = gym.spec(env_id)
         assert spec.max_episode_steps == max_steps
-        assert spec.kwargs == kwargs
+        assert spec.kwargs == {"id_defaults": kwargs}  # apart from the caller's keywords
         assert spec.entry_point == "pool_env.envs.env:PoolEnv"
 
 
@@ -57,8 +57,8 @@ def test_each_task_has_a_spin_id_and_a_roll_id_and_nothing_else() -> None:
     assert set(CURRENT_IDS) == current and len(current) == 2 * len(TASKS) == 14
     assert set(IDS) == current | earlier and len(IDS) == 16  # 9-ball's -v1 and -v2
     for task in TASKS:
-        assert gym.spec(spin_id(task)).kwargs["model"] == "spin"
-        assert gym.spec(roll_id(task)).kwargs.get("model", "roll") == "roll"
+        assert gym.spec(spin_id(task)).kwargs["id_defaults"]["model"] == "spin"
+        assert gym.spec(roll_id(task)).kwargs["id_defaults"].get("model", "roll") == "roll"
 
 
 @pytest.mark.parametrize("env_id", CURRENT_IDS)

@@ -134,7 +134,11 @@ class WpaGame(Ruleset):
         return self._without_option
 
     def configure(self, setup: Setup) -> NDArray[np.float64]:
-        """Refuse a scene of other balls, ``end_on_miss`` and a table without pockets.
+        """Refuse what the game cannot play; give its tail of the kernel parameters.
+
+        Refused: a scene of other balls, ``end_on_miss``, a table without pockets,
+        ``end_on_foul`` with two players, and a ``break_speed_range`` whose top speed (with
+        the noise) the simulator cannot strike (:class:`~pool_env.game.checks.SpeedCeiling`).
 
         The tail: the game code, the rule options, the head string and foot spot, the
         action's own columns and the reward scales (:mod:`pool_env.game.games.wpa.params`).
@@ -150,6 +154,17 @@ class WpaGame(Ruleset):
         if table.n_pockets == 0:
             raise ValueError(f"game={self.name!r} needs a table with pockets")
         rules = self.parse_section(setup.rules)
+        if rules.end_on_foul and setup.players == 2:
+            # The run-out mode ends one agent's episode at its foul; in a rack of two
+            # players a foul passes the table to the opponent, and the rack goes on.
+            raise ValueError(
+                "end_on_foul=True is the one-agent run-out mode: in a two-player rack "
+                "(PoolDuelEnv, VersusPolicyEnv) a foul passes the table to the opponent "
+                "with ball in hand, and the rack goes on; leave end_on_foul=False"
+            )
+        setup.speeds.check(
+            "break_speed_range", setup.rules.break_speed_range, rules.break_speed_range[1]
+        )
         tail = np.zeros(kp.TAIL_SIZE)
         values = {
             wp.VARIANT: self.code,
