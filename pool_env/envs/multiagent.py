@@ -93,7 +93,9 @@ class PoolDuelEnv(AECEnv):
 
     metadata: ClassVar[dict[str, Any]] = {
         "render_modes": [],
-        "name": "pool_duel_v0",
+        # PettingZoo's name carries the version: v1 since 9-ball's push-out and option (one
+        # action column, two observation entries); push_out=False plays v0's 9-ball.
+        "name": "pool_duel_v1",
         "is_parallelizable": False,
     }
 

@@ -5,6 +5,8 @@ and time limit. A change of any of them under the same id fails here: register t
 task under its next version (``pool_env.envs.registration.VERSIONS``), keep the old version
 playing as it did (``EARLIER_VERSIONS``) and add the new id to the record
 (``python -m tests.envs.test_id_versions --add``, which never rewrites a recorded id).
+The two-player duel is recorded under its PettingZoo name, whose suffix is its version
+(``pool_duel_v1``: with the push-out).
 
 ``data/nine_v1_trace.npz`` is 9-ball as ``pool_env/NineBallGame-v1`` and its roll twin played
 before the push-out (commit ``097e0ad``; ``data/nine_v1_trace.py`` says how it was made):
@@ -30,6 +32,9 @@ from pool_env.envs.registration import CURRENT_IDS, EARLIER_VERSIONS, ENV_IDS, L
 DATA = Path(__file__).parent / "data"
 RECORD = DATA / "id_spaces.json"
 EVERY_ID = [*ENV_IDS, *LEGACY_IDS]
+#: The duel's games: its PettingZoo name (``metadata["name"]``, which carries the version)
+#: with each game is recorded too.
+DUEL_GAMES = ("nine", "ten", "eight")
 
 
 def _box(space: gym.spaces.Box) -> dict[str, Any]:
@@ -62,6 +67,19 @@ def spaces_of(env_id: str) -> dict[str, Any]:
         env.close()
 
 
+def duel_spaces_of(game: str) -> tuple[str, dict[str, Any]]:
+    """The duel's record key (its versioned name and the game) and its spaces."""
+    from pool_env.envs.multiagent import PoolDuelEnv
+
+    duel = PoolDuelEnv(game)
+    agent = duel.possible_agents[0]
+    key = f"{duel.metadata['name']}/{game}"
+    return key, {
+        "action": _box(duel.action_space(agent)),
+        "observation": _box(duel.observation_space(agent)),
+    }
+
+
 def _record() -> dict[str, Any]:
     return json.loads(RECORD.read_text())
 
@@ -78,8 +96,19 @@ def test_an_ids_spaces_are_the_recorded_ones(env_id: str) -> None:
     )
 
 
+@pytest.mark.parametrize("game", DUEL_GAMES)
+def test_the_duels_spaces_are_the_recorded_ones_under_its_name(game: str) -> None:
+    pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
+    key, spaces = duel_spaces_of(game)
+    assert key in _record(), f"{key} is not recorded: a new name (version) of the duel?"
+    assert spaces == _record()[key], (
+        f"the duel's spaces changed under {key}: bump the version in its metadata name"
+    )
+
+
 def test_the_record_holds_no_id_that_is_gone() -> None:
-    assert set(_record()) == set(EVERY_ID)
+    duels = {k for k in _record() if k.startswith("pool_duel_")}
+    assert set(_record()) - duels == set(EVERY_ID)
 
 
 @pytest.mark.parametrize(("task", "version"), list(EARLIER_VERSIONS))
@@ -125,6 +154,11 @@ def _add_new_ids() -> list[str]:
     added = [env_id for env_id in EVERY_ID if env_id not in record]
     for env_id in added:
         record[env_id] = spaces_of(env_id)
+    for game in DUEL_GAMES:
+        key, spaces = duel_spaces_of(game)
+        if key not in record:
+            record[key] = spaces
+            added.append(key)
     RECORD.write_text(json.dumps(record, indent=1, sort_keys=True) + "\n")
     return added
 
