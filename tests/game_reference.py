@@ -213,7 +213,7 @@ class ReferenceEnv:
         info = {
             "potted": tuple(sorted(potted)), "scratch": scratch, "first_contact": first,
             "n_events": result.n_events, "hit_event_cap": result.hit_event_cap,
-            "angle": angle, "speed": speed, "is_success": cleared,
+            "angle": _wrapped(angle), "speed": speed, "is_success": cleared,
             # each reward term, scaled: 0.0 (not -0.0) where it did not happen
             "reward_pot": w[0] * len(potted) if potted else 0.0,
             "reward_scratch": w[1] if scratch else 0.0,
@@ -242,3 +242,9 @@ class ReferenceEnv:
             else:
                 out += [0.0, 0.0, 0.0]
         return np.array(out, dtype=np.float32)
+
+
+def _wrapped(angle: float) -> float:
+    """The reported direction: ``angle`` in ``[-pi, pi)`` (the shot is struck as aimed)."""
+    wrapped = (angle + math.pi) % (2.0 * math.pi) - math.pi
+    return wrapped if wrapped < math.pi else -math.pi

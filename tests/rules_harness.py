@@ -27,6 +27,7 @@ from pool_env.game.games.wpa.judge import (
     judge_rules,
 )
 from pool_env.game.games.wpa.params import VARIANT as GAME_CODE
+from pool_env.game.kernels.outcome import TERMINATED
 from pool_env.game.games.wpa.shots import (
     CALL_BALL,
     CALL_HAND_BACK,
@@ -41,14 +42,17 @@ SCENES = {"nine": "nine_ball", "ten": "ten_ball", "eight": "eight_ball"}
 
 
 @cache
-def rules_config(game: str, players: int, table: Table, push_out: bool = True) -> GameConfig:
+def rules_config(
+    game: str, players: int, table: Table, push_out: bool = True, end_on_foul: bool = False
+) -> GameConfig:
     """A rules config on ``table`` (absolute aim, speeds 0-10 m/s for easy actions).
 
-    ``push_out=False`` plays 9-ball without the push-out (``NineBallGame-v1``).
+    ``push_out=False`` plays 9-ball without the push-out (``NineBallGame-v1``);
+    ``end_on_foul`` is run-out mode.
     """
     return make_config(
         table=table, scene=SCENES[game], game=game, players=players, aim="absolute",
-        speed_range=(0.0, 10.0), push_out=None if push_out else False,
+        speed_range=(0.0, 10.0), push_out=None if push_out else False, end_on_foul=end_on_foul,
     )  # fmt: skip
 
 
@@ -99,6 +103,7 @@ def compiled_judge(
     called_ball: int | None = None,
     push_out: bool = False,
     hand_back: bool = False,
+    end_on_foul: bool = False,
 ) -> tuple[dict[str, Any], RackState]:
     """Judge a shot with the compiled rules from a reference state.
 
@@ -122,12 +127,14 @@ def compiled_judge(
         called_ball: 10-ball: the called ball (None: none).
         push_out: A push-out declared (the rules read it only where the rack offers one).
         hand_back: The option used (the rules read it only where the rack offers it).
+        end_on_foul: Run-out mode (the episode's end is ``terminated``).
 
     Returns:
         The verdict as a dict (``foul``, ``legal``, ``ball_on`` (None for -1), ``respot``
-        (a tuple), ``winner``, ``loss``, ``keeps``) and the rack after the shot.
+        (a tuple), ``winner``, ``loss``, ``keeps``, ``terminated``) and the rack after the
+        shot.
     """
-    config = rules_config(state.game, players, table, state.offers_push_out)
+    config = rules_config(state.game, players, table, state.offers_push_out, end_on_foul)
     balls = np.asarray(numbers, dtype=np.int64)
     n = config.n_balls
     final = np.asarray(positions, dtype=np.float64).reshape(1, -1, 2)
@@ -140,7 +147,7 @@ def compiled_judge(
         met = [int(balls[first_contact[1]]), *simultaneous]
         chosen = shooters_benefit(int(config.params[GAME_CODE]), rack[0], on[0], met)
         first[0, 1] = int(np.flatnonzero(balls == chosen)[0])
-    _, _, hits = judge_rules(
+    _, flags, hits = judge_rules(
         config.params, table.pockets, np.zeros(1, np.intp), balls, pos, on,
         np.zeros(1, np.int64), rack, final, np.array([pocketed], np.int64), first,
         np.array([cushions], np.int64), np.array([order], np.int64),
@@ -157,6 +164,7 @@ def compiled_judge(
         "keeps": bool(h[KEEPS]),
         "push_out": h[PLAY] == cw.PUSHED_OUT,
         "handed_back": h[PLAY] == cw.HANDED_BACK,
+        "terminated": bool(flags[0, TERMINATED]),
     }
     row = rack[0]
     after = RackState(

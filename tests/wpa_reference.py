@@ -28,7 +28,7 @@ The push-out (WPA 9-ball 1.7, 10-ball 4): if the break was legal, the shot after
 declared a push-out by whoever plays it. Wrong ball first, no rail and no contact are then
 no fouls (a scratch is); potted balls stay down and count for nothing, but the 9 (10) is
 spotted. After a legal push-out the other player may take the table as it lies or give it
-back to the one who pushed.
+back to the one who pushed. One agent (run-out mode, :func:`run_out_ends`) shoots on.
 
 10-ball (WPA 10-ball rules): 9-ball's rotation, break and three-foul rule on ten balls,
 with every shot after the break called (a ball and a pocket). The shot continues the inning
@@ -446,6 +446,17 @@ def judge(
     if state.game in ROTATION:
         return _judge_rotation(state, shot, called_pocket, called_ball, push_out and state.push_out)
     return _judge_eight(state, shot, called_pocket)
+
+
+def run_out_ends(verdict: Verdict) -> bool:
+    """Whether the judged shot ends a one-agent run-out (``end_on_foul=True``).
+
+    The rack decided, a foul, or a legal shot after which the shooter would not go on; but
+    one agent shoots on after its legal push-out (the opponent's option needs an opponent).
+    """
+    if verdict.winner is not None or verdict.foul is not None:
+        return True
+    return not (verdict.shooter_continues or verdict.push_out)
 
 
 def _next_turn(state: RackState, foul: FoulReason | None, keeps: bool, **changes) -> RackState:

@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from pool_env.game.checks import check_actions
 from pool_env.game.components import pocket_component, unit_component
-from pool_env.game.config import GameConfig
+from pool_env.game.config import GameConfig, make_config
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.actions import (
     nearest_object_ball,
@@ -37,6 +37,7 @@ from pool_env.game.kernels.encode import encode_shots as kernel_encode_shots
 from pool_env.game.kernels.encode import reference_balls as kernel_reference_balls
 from pool_env.game.kernels.tips import onto_tip_circle
 from pool_env.game.ruleset import Turn
+from pool_env.game.sections import PoolConfig
 from pool_env.game.shots import Shot, ShotConstraints
 from pool_env.game.state import GameState
 from pool_env.sim import Table
@@ -222,7 +223,35 @@ def decode_observations(
     return positions, per_ball[..., 2] > 0.5
 
 
-def obs_layout(config: GameConfig) -> dict[str, slice]:
+def game_config(source: Any, caller: str) -> GameConfig:
+    """The parsed config of ``source``: what :func:`obs_layout` and the like take.
+
+    Args:
+        source: A :class:`~pool_env.game.config.GameConfig` (``env.unwrapped.config``), a
+            :class:`~pool_env.PoolConfig` (what :func:`pool_env.default_config` returns:
+            parsed here, as an env of one agent parses it) or an env, wrapped or not (its
+            ``unwrapped.config``: ``PoolEnv``, ``PoolVectorEnv``, the two-player fronts).
+        caller: The public function's name, for the message.
+
+    Raises:
+        ValueError: On anything else, saying what it takes; on a ``PoolConfig`` that does
+            not parse, naming its bad key.
+    """
+    if isinstance(source, GameConfig):
+        return source
+    if isinstance(source, PoolConfig):
+        return make_config(source)
+    config = getattr(getattr(source, "unwrapped", source), "config", None)
+    if isinstance(config, GameConfig):
+        return config
+    raise ValueError(
+        f"{caller} takes a GameConfig (env.unwrapped.config), a PoolConfig "
+        f"(pool_env.default_config()) or a pool_env env, got {type(source).__name__} "
+        f"{source!r:.80}"
+    )
+
+
+def obs_layout(config: GameConfig | PoolConfig | Any) -> dict[str, slice]:
     """Where each part of the env's observation lies: a slice per part, by name.
 
     Every game has ``"balls"`` (``(x, y, on_table)`` per ball, the cue ball first); the
@@ -241,7 +270,17 @@ def obs_layout(config: GameConfig) -> dict[str, slice]:
         >>> layout = obs_layout(env.unwrapped.config)
         >>> layout["balls"], layout["legal"], layout["ball_in_hand"]
         (slice(0, 30, None), slice(30, 39, None), slice(39, 40, None))
+        >>> obs_layout(env) == layout  # the env itself, or pool_env.default_config(...)
+        True
+
+    Args:
+        config: The env's config (``env.unwrapped.config``), a :class:`~pool_env.PoolConfig`
+            (:func:`pool_env.default_config`) or the env, wrapped or not.
+
+    Raises:
+        ValueError: On anything else (:func:`game_config`).
     """
+    config = game_config(config, "obs_layout")
     layout = config.ruleset.obs_layout(config.n_balls)
     if config.shot_features_width:
         end = config.observation_size
@@ -249,7 +288,7 @@ def obs_layout(config: GameConfig) -> dict[str, slice]:
     return layout
 
 
-def shot_constraints(config: GameConfig, observation: ArrayLike) -> ShotConstraints:
+def shot_constraints(config: GameConfig | PoolConfig | Any, observation: ArrayLike) -> ShotConstraints:
     """What the next shot may do, as the observation's viewer sees it (the game's rules).
 
     The legal first balls, ball in hand and its placement box, the break (and its speed
@@ -257,15 +296,54 @@ def shot_constraints(config: GameConfig, observation: ArrayLike) -> ShotConstrai
     :meth:`~pool_env.game.ruleset.Ruleset.constraints`. Agents ask this rather than
     restate the rules.
 
+    The observation must be one of this config's game: of its size, every entry in
+    ``[-1, 1]``, each ball's ``on_table`` entry 0 or 1 with a potted ball at ``(0, 0)``
+    and the cue ball on, and under rules every flag 0 or 1 (the successive fouls 0, 1/2
+    or 1), a legal first ball on the table, and with one player the agent to shoot. An
+    observation of another game of the same size (15-ball solitaire's against 9-ball's)
+    fails these in all but contrived layouts.
+
+    Args:
+        config: The env's config (``env.unwrapped.config``), a :class:`~pool_env.PoolConfig`
+            (:func:`pool_env.default_config`) or the env, wrapped or not.
+        observation: One observation of that env.
+
     Raises:
-        ValueError: On an observation of another size.
+        ValueError: On another config (:func:`game_config`), or an observation that is
+            not one of the config's game, saying which entry.
     """
+    config = game_config(config, "shot_constraints")
     obs = np.asarray(observation)
     if obs.shape != (config.observation_size,):
         raise ValueError(
             f"observation must have shape ({config.observation_size},), got {obs.shape}"
         )
+    if obs.dtype.kind not in "fiu":
+        raise ValueError(f"observation must be real numbers, got dtype {obs.dtype}")
+    _check_balls(config, obs)
     return config.ruleset.constraints(config, obs)
+
+
+def _check_balls(config: GameConfig, obs: NDArray[Any]) -> None:
+    """Refuse an observation whose entries, or ball part, no env of ``config`` gives."""
+    game = config.rules.game
+    if not np.all(np.abs(obs) <= 1.0):  # NaN too
+        k = int(np.flatnonzero(~(np.abs(obs) <= 1.0))[0])
+        raise ValueError(
+            f"observation[{k}] = {float(obs[k])!r} lies outside [-1, 1]: not an observation of "
+            f"this env (game={game!r})"
+        )
+    balls = obs[config.ruleset.obs_layout(config.n_balls)["balls"]].reshape(-1, 3)
+    on = balls[:, 2]
+    off = on == 0.0
+    bad = ~(off | (on == 1.0)) | (off & ((balls[:, 0] != 0.0) | (balls[:, 1] != 0.0)))
+    if bad.any() or off[0]:
+        j = 0 if off[0] else int(np.flatnonzero(bad)[0])
+        raise ValueError(
+            f"observation entries {3 * j}..{3 * j + 2} {balls[j].tolist()} are no ball "
+            f"{j} of game={game!r} (x, y, on_table: on_table 0 or 1, a potted ball at "
+            "(0, 0), the cue ball on): not an observation of this env"
+        )
 
 
 def reference_balls(positions: ArrayLike, refer: ArrayLike) -> NDArray[np.int64]:

@@ -41,8 +41,12 @@ def pocket_component(n_pockets: int, pocket: int) -> float:
     Raises:
         ValueError: If the table has no pocket ``pocket``.
     """
-    if not 0 <= pocket < n_pockets:
-        raise ValueError(f"pocket must be in 0..{n_pockets - 1}, got {pocket!r}")
+    if (
+        isinstance(pocket, bool | np.bool_)
+        or not isinstance(pocket, int | np.integer)
+        or not 0 <= pocket < n_pockets
+    ):
+        raise ValueError(f"pocket must be an integer in 0..{n_pockets - 1}, got {pocket!r}")
     return (2.0 * pocket + 1.0) / n_pockets - 1.0
 
 
@@ -53,9 +57,9 @@ def ball_component(n_objects: int, ball: int) -> float:
         ValueError: If ``ball`` is not one of the ``n_objects`` object balls.
     """
     if (
-        isinstance(ball, bool)
+        isinstance(ball, bool | np.bool_)
         or not isinstance(ball, int | np.integer)
         or not (1 <= ball <= n_objects)
     ):
-        raise ValueError(f"the called ball must be in 1..{n_objects}, got {ball!r}")
+        raise ValueError(f"the called ball must be an integer in 1..{n_objects}, got {ball!r}")
     return (2.0 * (ball - 1) + 1.0) / n_objects - 1.0

@@ -11,6 +11,25 @@ restating a game's rules.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+
+def _index(name: str, value: Any, low: int) -> int:
+    """``value`` as an ``int`` if it is an integer (not a bool) ``>= low``, else ValueError."""
+    if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
+        raise ValueError(f"Shot.{name} must be an integer >= {low}, got {value!r}")
+    if value < low:
+        raise ValueError(f"Shot.{name} must be an integer >= {low}, got {value!r}")
+    return int(value)
+
+
+def _flag(name: str, value: Any) -> bool:
+    """``value`` as a ``bool`` if it is one (not a number that reads as one), else ValueError."""
+    if not isinstance(value, bool | np.bool_):
+        raise ValueError(f"Shot.{name} must be True or False, got {value!r}")
+    return bool(value)
 
 
 @dataclass(frozen=True)
@@ -24,10 +43,10 @@ class Shot:
         tip: The cue tip's axis offset ``(side, vertical)`` in fractions of R (spin
             tables; ``(0.0, 0.0)`` on a roll table).
         cue: Rules, cue ball in hand: where it is placed (m); ``None`` otherwise.
-        pocket: Rules: the called pocket (index into ``table.pockets``): the 8's in 8-ball,
-            the called ball's in 10-ball.
-        ball: 10-ball: the called ball (``None`` when encoding: the ball on); ``None`` in
-            the other games.
+        pocket: Rules: the called pocket (an integer index into ``table.pockets``): the 8's
+            in 8-ball, the called ball's in 10-ball.
+        ball: 10-ball: the called ball (an integer, ``None`` when encoding: the ball on);
+            ``None`` in the other games.
         push_out: 9-ball and 10-ball: the shot is declared a push-out (only on the shot
             right after a legal break: :attr:`ShotConstraints.push_out`).
         pass_back: 9-ball and 10-ball: the incoming player uses the option to hand the
@@ -43,6 +62,21 @@ class Shot:
     ball: int | None = None
     push_out: bool = False
     pass_back: bool = False
+
+    def __post_init__(self) -> None:
+        """Refuse a call that is no index (``pocket=2.5``, ``pocket=True``) or flag.
+
+        The ranges (a pocket of the table, a ball of the game) are the encoder's to check
+        (:func:`pool_env.encode_action`): a shot does not know its table.
+
+        Raises:
+            ValueError: Naming the field and what it takes.
+        """
+        object.__setattr__(self, "pocket", _index("pocket", self.pocket, 0))
+        if self.ball is not None:
+            object.__setattr__(self, "ball", _index("ball", self.ball, 1))
+        object.__setattr__(self, "push_out", _flag("push_out", self.push_out))
+        object.__setattr__(self, "pass_back", _flag("pass_back", self.pass_back))
 
 
 @dataclass(frozen=True)

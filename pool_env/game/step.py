@@ -3,7 +3,9 @@
 ``step(config, state, tables, actions)`` plays one shot on each of ``tables``:
 
 1. place each cue ball in hand and decode each action into a shot with execution noise
-   (the game's ruleset: :meth:`~pool_env.game.ruleset.Ruleset.shoot`);
+   (the game's ruleset: :meth:`~pool_env.game.ruleset.Ruleset.shoot`), what these change
+   saved first (:meth:`~pool_env.game.state.GameState.hold`) and put back if the step
+   fails before 3;
 2. simulate the shots to rest (:mod:`pool_env.sim`: one table through its single-shot
    entry, whose fixed cost is a third of the batch call's; several through the batch);
 3. apply the outcomes by the rules (:meth:`~pool_env.game.ruleset.Ruleset.judge`): balls
@@ -151,9 +153,16 @@ def step(
 ) -> StepResult:
     """Play one shot on each of ``tables`` and apply the outcomes to ``state``.
 
+    Transactional: until the rules apply the outcomes nothing is kept. The game's
+    :meth:`~pool_env.game.ruleset.Ruleset.shoot` may move only the cue balls (placing a
+    ball in hand, which only a game with a rack state has) and draw the noise; when it
+    or the simulator raises (a shot the simulator refuses),
+    :meth:`~pool_env.game.state.GameState.undo` puts both back on every table, and the
+    error propagates with the state as it was. The judge must not fail.
+
     Args:
         config: The fixed model.
-        state: The tables, updated in place.
+        state: The tables, updated in place (unchanged when this raises).
         tables: ``(K,)`` distinct tables that shoot.
         actions: ``(K, config.action_size)`` checked actions
             (:func:`pool_env.game.checks.check_actions`).
@@ -165,9 +174,21 @@ def step(
     """
     ruleset = config.ruleset
     turn = Turn(config, state, tables)
-    executed = ruleset.shoot(turn, actions)
-    velocities, spins = split_states(executed.states)
-    out = _simulate(config.table, state, tables, velocities, spins, record, parallel)
+    # Before the simulation, a step changes the generators (noise drawn) and the cue
+    # balls in hand (placed), which a game keeps in its rack state; without either there
+    # is nothing to save, and a cheap step pays nothing.
+    saves = config.noise is not None or ruleset.rack_width > 0
+    held = state.hold(tables) if saves else None
+    try:
+        executed = ruleset.shoot(turn, actions)
+        velocities, spins = split_states(executed.states)
+        out = _simulate(config.table, state, tables, velocities, spins, record, parallel)
+    except BaseException:
+        # A shot the simulator refuses (or an interrupt) changes nothing: the cue balls
+        # placed in hand and the noise drawn are put back, on every table of the batch.
+        if saves:
+            state.undo(tables, held)
+        raise
     judged = ruleset.judge(turn, out, executed)
     return StepResult(tables, judged, executed.shots, out, ruleset)
 

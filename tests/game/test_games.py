@@ -36,7 +36,16 @@ from tests.game.test_wpa import (
 )
 from tests.profiles import examples
 from tests.rules_harness import compiled_judge, same_verdict
-from tests.wpa_reference import N_BALLS, OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
+from tests.wpa_reference import (
+    N_BALLS,
+    OPEN,
+    SOLIDS,
+    STRIPES,
+    RackState,
+    ShotOutcome,
+    judge,
+    run_out_ends,
+)
 
 IDS = {
     "nine": "pool_env/NineBallGameRoll-v2",
@@ -446,12 +455,14 @@ def test_compiled_rules_equal_the_reference_on_random_outcomes(case: tuple) -> N
         order,
         called,
         players=1,
+        end_on_foul=True,
         **extra,
     )  # one player: the same verdict, the shooter kept, never the option
     assert {k: one[k] for k in ("foul", "winner", "loss", "push_out")} == {
         k: got[k] for k in ("foul", "winner", "loss", "push_out")
     }
     assert one_after.shooter == state.shooter and not one_after.option
+    assert one["terminated"] == run_out_ends(verdict)  # run-out mode ends as the reference
 
 
 def _eight_state(on: set[int], groups: tuple[int, int]) -> RackState:
@@ -680,16 +691,22 @@ def test_the_eight_potted_without_a_call_loses_the_rack() -> None:
 # --- the push-out, the option and 10-ball's called ball: the action's own columns ------------
 
 
-def test_a_push_out_through_the_env_needs_no_contact_and_passes_the_turn() -> None:
+def test_a_push_out_through_the_env_needs_no_contact_and_the_agent_shoots_on() -> None:
     env = make("nine", end_on_foul=True)
     env.reset(seed=0, options={**layout("nine", NINE_MISS), "rules": {"push_out": True}})
     push = fit(env, action(math.pi / 2, 0.3))
     push[env.unwrapped.config.ruleset.option_column] = 1.0  # declared
     _, reward, terminated, _, info = env.step(push)
     assert info["push_out"] and info["legal"] and info["foul"] is None and info["turn_over"]
-    assert reward == 0.0 and terminated  # run-out mode: the turn is over
+    # Run-out mode: the turn is over as two players count it, but one agent shoots on (the
+    # option needs an opponent): the episode goes on, the agent to shoot, no ball in hand.
+    assert reward == 0.0 and not terminated
+    rack = env.unwrapped.rack
+    assert not rack["option"] and not rack["push_out"] and not rack["ball_in_hand"]
+    assert rack["shooter"] == 0 and rack["fouls"] == (0, 0)
+    *_, terminated, _, info = env.step(fit(env, action(math.pi / 2, 0.3)))  # shoots on
+    assert info["foul"] == "no_contact" and not info["push_out"] and terminated
     # One player: no option; the same shot, not declared, is the no-contact foul.
-    assert not env.unwrapped.rack["option"] and not env.unwrapped.rack["push_out"]
     env.reset(seed=0, options={**layout("nine", NINE_MISS), "rules": {"push_out": True}})
     *_, info = env.step(fit(env, action(math.pi / 2, 0.3)))
     assert info["foul"] == "no_contact" and not info["push_out"]

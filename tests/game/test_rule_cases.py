@@ -15,7 +15,15 @@ from dataclasses import replace
 import pytest
 
 from pool_env import Table
-from tests.wpa_reference import OPEN, SOLIDS, STRIPES, RackState, ShotOutcome, judge
+from tests.wpa_reference import (
+    OPEN,
+    SOLIDS,
+    STRIPES,
+    RackState,
+    ShotOutcome,
+    judge,
+    run_out_ends,
+)
 
 TABLE = Table(pockets="circles")
 R = TABLE.ball_radius
@@ -381,6 +389,31 @@ def test_the_money_ball_potted_on_a_push_out_is_spotted_and_the_rest_stay_down(
     assert verdict.winner is None and verdict.respot == (money,)
     assert not verdict.shooter_continues and after.option and after.shooter == 1
     assert after.on_table[money] and not after.on_table[4]
+
+
+@pytest.mark.parametrize("game", ["nine", "ten"])
+@pytest.mark.parametrize(
+    ("outcome", "push_out", "ends"),
+    [
+        (shot(first=-1, rail=False), True, False),  # a legal push-out: one agent shoots on
+        (shot(first=1, potted=(4, 9)), True, False),  # its pots count for nothing, still on
+        (shot(first=-1, scratch=True), True, True),  # a push-out scratch is a foul
+        (shot(first=1), False, True),  # a legal shot that pots nothing: the turn is over
+        (shot(first=-1, rail=False), False, True),  # the same miss, not declared: a foul
+    ],
+    ids=["push-out", "push-out-pots", "push-out-scratch", "safety", "no-contact"],
+)
+def test_a_run_out_goes_on_after_a_legal_push_out(
+    game: str, outcome: ShotOutcome, push_out: bool, ends: bool
+) -> None:
+    # Run-out mode (one agent, end_on_foul=True) ends at a foul or a legal shot that does
+    # not keep the table; the push-out passes the turn only to an opponent, who has the
+    # option: alone, the agent shoots on (docs/environments/specification.md, "One player").
+    state = ROTATION_GAMES[game](push_out=True)
+    called = {"called_pocket": 0, "called_ball": 1} if game == "ten" else {}
+    verdict, _ = judge(state, outcome, push_out=push_out, **called)
+    assert verdict.push_out == push_out
+    assert run_out_ends(verdict) == ends
 
 
 @pytest.mark.parametrize("game", ["nine", "ten"])

@@ -71,6 +71,14 @@ def decode_actions(actions, aim_low, aim_high, speed_low, speed_high):
 
 
 @kernel
+def wrap_angle(angle):
+    """``angle`` in ``[-pi, pi)``: the one direction of the executed shot and the encoder."""
+    wrapped = (angle + math.pi) % (2.0 * math.pi) - math.pi
+    # An angle a hair below -pi gives exactly pi after rounding: it is -pi then.
+    return wrapped if wrapped < math.pi else -math.pi
+
+
+@kernel
 def nearest_object_ball(positions, on_table, cue):
     """The reference ball of relative and cut aim: the object ball nearest to the cue ball.
 
@@ -212,6 +220,8 @@ def executed_shots(params, actions, tables, positions, on_table, ptrs):
 def strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity):
     """One shot: aim (at the nearest of ``targets`` unless absolute), noise, strike.
 
+    The executed direction is reported in ``[-pi, pi)`` (:func:`wrap_angle`).
+
     Args:
         params: The config's numbers.
         aim: Decoded aim parameter.
@@ -239,7 +249,9 @@ def strike(params, aim, speed, tip, positions, targets, ptrs, shot, velocity):
             side = side + params[SIGMA_TIP] * standard_normal(ptrs)
             vertical = vertical + params[SIGMA_TIP] * standard_normal(ptrs)
             side, vertical = onto_tip_circle(side, vertical, params[TIP_LIMIT])
-    shot[0], shot[1] = angle, speed
+    # The direction is reported (info["angle"], last_strike, decode_action) in [-pi, pi);
+    # the strike keeps the angle as aimed (the same direction), so play is unchanged.
+    shot[0], shot[1] = wrap_angle(angle), speed
     spin = params[SPIN] != 0.0
     if spin:
         shot[2], shot[3] = side, vertical

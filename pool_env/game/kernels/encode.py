@@ -12,7 +12,7 @@ import math
 
 import numpy as np
 
-from pool_env.game.kernels.actions import nearest_object_ball
+from pool_env.game.kernels.actions import nearest_object_ball, wrap_angle
 from pool_env.sim.jit import kernel
 
 #: :func:`aim_parameter` status: the parameter lies in the aim range.
@@ -23,12 +23,6 @@ AIM_OUT_OF_RANGE = 1
 AIM_AWAY = 2
 #: Cut aim with no reference ball: every action aims along +x, the direction does not.
 AIM_NO_REFERENCE = 3
-
-
-@kernel
-def wrap_angle(angle):
-    """``angle`` in ``[-pi, pi)``."""
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
 @kernel

@@ -29,6 +29,7 @@ from pool_env.game.games.wpa.judge import RESPOT, RESPOT_TAKEN, judge_rules
 from pool_env.game.games.wpa.observe import (
     OPTION_FEATURES,
     RULE_FEATURES,
+    check_rule_observation,
     encode_rule_observations,
     legal_balls,
 )
@@ -285,9 +286,14 @@ class WpaGame(Ruleset):
         """The viewer's legal first balls, ball in hand and its box, the break, the calls.
 
         And in 9-ball and 10-ball whether the viewer may push out, or hand the table back.
+
+        Raises:
+            ValueError: On an observation whose rule part is not this game's
+                (:func:`.observe.check_rule_observation`).
         """
         obs = np.asarray(observation)
         layout = self.obs_layout(config.n_balls)
+        check_rule_observation(self.name, self.code, config.players, obs, layout)
         names = RULE_FEATURES[:4] + (OPTION_FEATURES if self.has_option else ())
         flag = {name: bool(obs[layout[name]][0] > 0.5) for name in names}
         first = tuple(int(j) for j in np.flatnonzero(obs[layout["legal"]] > 0.5) + 1)

@@ -5,7 +5,9 @@ in which order, the cushions each ball touched after the first contact, the call
 ball, push-out, handing the table back) and hands it to
 :func:`pool_env.game.games.wpa.rules.judge_rack` (the one copy of the rules, whose
 docstring lists them and every simplification) on the rack state each table keeps in
-``GameState.rack``. Practice reward, as three terms
+``GameState.rack``. Run-out mode (``end_on_foul``) ends the episode at a foul or a legal
+shot that does not keep the table, but for one agent's legal push-out: it shoots on.
+Practice reward, as three terms
 (:data:`pool_env.game.games.wpa.game.REWARD_TERMS`): ``pot`` per object ball potted on a
 legal shot that counts its pots (not a push-out; in 10-ball, the break or a call made; a
 re-spotted ball and the 8 of 8-ball not counted), ``foul`` for a foul, ``win`` for winning
@@ -175,7 +177,10 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
                 pockets, others,
             )  # fmt: skip
         turn_over = foul != wpa.NO_FOUL or not keeps
-        flags[k, TERMINATED] = winner >= 0 or (params[END_ON_FOUL] != 0.0 and turn_over)
+        # One player shoots on after its legal push-out (the option needs an opponent), so
+        # the run-out goes on though the turn, as two players count it, is over.
+        run_ends = turn_over and not (pushed and foul == wpa.NO_FOUL and players == 1)
+        flags[k, TERMINATED] = winner >= 0 or (params[END_ON_FOUL] != 0.0 and run_ends)
         flags[k, TRUNCATED] = limit > 0.0 and shots[b] >= limit
         flags[k, CLEARED] = winner >= 0 and winner == shooter
         flags[k, SCRATCH] = scratch

@@ -6,7 +6,10 @@ the legal-ball flags and the rule features, from the viewer's seat.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
+from numpy.typing import NDArray
 
 from pool_env.game.games.wpa.params import OPTION_COLUMN, VARIANT
 from pool_env.game.games.wpa.rack_state import (
@@ -111,3 +114,55 @@ def legal_balls(game, on_table, rack, viewers):
     for k in range(on_table.shape[0]):
         legal_targets(game, rack[k], on_table[k], viewers[k], out[k])
     return out
+
+
+#: The values each rule feature takes (:func:`encode_rule_observations`): the successive
+#: fouls / 2, capped at 1; every other feature is a flag.
+FEATURE_VALUES: dict[str, tuple[float, ...]] = {"fouls": (0.0, 0.5, 1.0),
+                                                "opponent_fouls": (0.0, 0.5, 1.0)}  # fmt: skip
+
+
+def check_rule_observation(
+    name: str, game: int, players: int, obs: NDArray[Any], layout: dict[str, slice]
+) -> None:
+    """Refuse an observation whose rule part :func:`encode_rule_observations` never gives.
+
+    The legal-ball flags 0 or 1, each set only for a ball on the table; each feature one of
+    its values (:data:`FEATURE_VALUES`, else 0 or 1); the open table only in 8-ball; with
+    one player the agent always to shoot and no opponent's fouls; the push-out and the
+    option only for the viewer to shoot. ``obs``'s ball part is checked already.
+
+    Args:
+        name: The game's name, for the message.
+        game: Its code.
+        players: 1 or 2.
+        obs: One observation of the right size.
+        layout: The game's observation layout.
+
+    Raises:
+        ValueError: Naming the first entry that no observation of the game holds.
+    """
+
+    def refuse(index: int, what: str) -> None:
+        raise ValueError(
+            f"observation[{index}] = {float(obs[index])!r} ({what}) is not what game={name!r} "
+            "observes: not an observation of this env"
+        )
+
+    legal, start = obs[layout["legal"]], layout["legal"].start
+    on = obs[layout["balls"]][5::3]  # balls 1..N-1
+    for j in np.flatnonzero(~((legal == 0.0) | ((legal == 1.0) & (on == 1.0)))).tolist():
+        refuse(start + j, f"ball {j + 1} may be hit first: a flag, set only for a ball on")
+    feature = {key: float(obs[where][0]) for key, where in layout.items()
+               if key not in ("balls", "legal", "shots")}  # fmt: skip
+    for key, value in feature.items():
+        if value not in FEATURE_VALUES.get(key, (0.0, 1.0)):
+            refuse(layout[key].start, f"{key}: one of {FEATURE_VALUES.get(key, (0.0, 1.0))}")
+    if game != EIGHT and feature["open_table"] != 0.0:
+        refuse(layout["open_table"].start, "open_table: 8-ball's")
+    if players == 1 and (feature["to_shoot"] != 1.0 or feature["opponent_fouls"] != 0.0):
+        key = "to_shoot" if feature["to_shoot"] != 1.0 else "opponent_fouls"
+        refuse(layout[key].start, f"{key}: one player always shoots, and has no opponent")
+    for key in ("push_out", "option"):
+        if feature.get(key, 0.0) == 1.0 and feature["to_shoot"] != 1.0:
+            refuse(layout[key].start, f"{key}: only for the viewer to shoot")

@@ -78,10 +78,11 @@ Simplifications, all deliberate:
 * One foul reason is reported per shot, the first that applies in the order scratch,
   kitchen_ball_first, no_contact, wrong_ball_first, no_rail (on a break: scratch,
   kitchen_ball_first, then illegal_break).
-* With one player (practice), the shooter never changes: after a foul the agent itself is
-  the incoming player, with ball in hand; a lost rack (three fouls, the 8 lost) is a
-  win of the absent opponent, player 1. The agent may push out, and then shoots on: the
-  opponent's option needs an opponent, so one player never has it.
+* With one player (practice and run-out), the shooter never changes: after a foul the
+  agent itself is the incoming player, with ball in hand; a lost rack (three fouls, the 8
+  lost) is a win of the absent opponent, player 1. The agent may push out, and then shoots
+  on: the opponent's option needs an opponent, so one player never has it, and a legal
+  push-out does not end a run-out (:mod:`pool_env.game.games.wpa.judge`).
 * The option is decided by the incoming player's next action, in its option component
   (``> 0``: hand the table back); the push-out is declared in the same component of the
   shot right after a legal break. Either declaration where the rules offer none is
