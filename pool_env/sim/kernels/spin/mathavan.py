@@ -83,6 +83,21 @@ _TINY = 1e-16  # pooltool's threshold for a vanishing slip
 
 
 @kernel
+def _add(total, carry, x):
+    """One step of Neumaier's compensated sum: ``total + carry`` is the sum to ~1 rounding.
+
+    An impact sums up to ``20 N`` increments (``N`` up to 10^6); a plain sum would drift by
+    ~``N`` roundings of it, enough to move an elastic impact's energy past rounding.
+    """
+    t = total + x
+    if abs(total) >= abs(x):
+        carry += (total - t) + x
+    else:
+        carry += (x - t) + total
+    return t, carry
+
+
+@kernel
 def _table_friction(ux, uy, mu_s, k2):
     """A ball's table friction ``(x, y)`` per unit normal impulse, its reaction up ``k2 >= 0``."""
     mag = math.sqrt(ux * ux + uy * uy)
@@ -163,23 +178,35 @@ def ball_ball_mathavan(
     approach = (v1x - v2x) * nx + (v1y - v2y) * ny
     if not approach > 0.0:
         return
-    # Local components (x = (ny, -nx), y = n, z up).
-    vix, viy = v1x * ny - v1y * nx, v1x * nx + v1y * ny
-    vjx, vjy = v2x * ny - v2y * nx, v2x * nx + v2y * ny
-    wix, wiy, wiz = w1x * ny - w1y * nx, w1x * nx + w1y * ny, w1z
-    wjx, wjy, wjz = w2x * ny - w2y * nx, w2x * nx + w2y * ny, w2z
+    # Local components (x = (ny, -nx), y = n, z up): the state at the impact's start.
+    vix0, viy0 = v1x * ny - v1y * nx, v1x * nx + v1y * ny
+    vjx0, vjy0 = v2x * ny - v2y * nx, v2x * nx + v2y * ny
+    wix0, wiy0, wiz0 = w1x * ny - w1y * nx, w1x * nx + w1y * ny, w1z
+    wjx0, wjy0, wjz0 = w2x * ny - w2y * nx, w2x * nx + w2y * ny, w2z
+    # The changes over the impact, summed from zero with compensation (``_add``; ``c*`` the
+    # carries) and added to the start state at each step, not into it: thousands of small
+    # steps then round neither a fast ball's velocity nor the sums (a heavy ball's rounding
+    # alone would move the energy by ~N eps of it).
+    dvix = dviy = dvjx = dvjy = dwix = dwiy = dwiz = dwjx = dwjy = dwjz = 0.0
+    cvix = cviy = cvjx = cvjy = cwix = cwiy = cwiz = cwjx = cwjy = cwjz = cwork = 0.0
     # Ball-ball friction from the pre-impact slip: tangential relative velocity + R (w1+w2) x n.
-    ucx, ucz = vix - vjx - R * (wiz + wjz), R * (wix + wjx)
+    ucx, ucz = vix0 - vjx0 - R * (wiz0 + wjz0), R * (wix0 + wjx0)
     mu_b = ball_friction(friction_mode, mu_const, math.sqrt(ucx * ucx + ucz * ucz))
     reduced = m1 * m2 / (m1 + m2)
-    v_rel = vjy - viy
+    v_rel0 = vjy0 - viy0
+    v_rel = v_rel0
     dp = (1.0 + e_b) * reduced * abs(v_rel) / steps
     ci, cj = 2.5 / (m1 * R), 2.5 / (m2 * R)
     inv1, inv2 = 1.0 / m1, 1.0 / m2  # the loop multiplies: ~1000 steps per impact
     work, work_end, compressed = 0.0, math.inf, False
     for _ in range(20 * int(steps)):
-        if compressed and not work < work_end:
+        if compressed and not work + cwork < work_end:
             break
+        vix, viy = vix0 + (dvix + cvix), viy0 + (dviy + cviy)
+        vjx, vjy = vjx0 + (dvjx + cvjx), vjy0 + (dvjy + cvjy)
+        wix, wiy, wiz = wix0 + (dwix + cwix), wiy0 + (dwiy + cwiy), wiz0 + (dwiz + cwiz)
+        wjx, wjy, wjz = wjx0 + (dwjx + cwjx), wjy0 + (dwjy + cwjy), wjz0 + (dwjz + cwjz)
+        ucx, ucz = vix - vjx - R * (wiz + wjz), R * (wix + wjx)
         # The step's impulses per unit normal impulse, directions from its start.
         uc = math.sqrt(ucx * ucx + ucz * ucz)
         f1 = f2 = fix = fiy = fjx = fjy = 0.0
@@ -204,31 +231,35 @@ def ball_ball_mathavan(
             if v_rel + a * h >= 0.0:
                 h, last = -v_rel / a, True
         else:
-            rest = work_end - work  # the work left: h (v_rel + a h / 2) = rest
+            rest = work_end - (work + cwork)  # the work left: h (v_rel + a h / 2) = rest
             if h * (v_rel + 0.5 * a * h) >= rest:
                 disc = math.sqrt(v_rel * v_rel + 2.0 * a * rest)
                 h = 2.0 * rest / (v_rel + disc) if v_rel > 0.0 else (disc - v_rel) / a
                 last = True
         g = lam * h
         dp1, dp2, dpix, dpiy, dpjx, dpjy = f1 * g, f2 * g, fix * g, fiy * g, fjx * g, fjy * g
-        vix += (dp1 + dpix) * inv1
-        viy += (dpiy - h) * inv1
-        vjx += (dpjx - dp1) * inv2
-        vjy += (h + dpjy) * inv2
-        wix += ci * (dp2 + dpiy)
-        wiy -= ci * dpix
-        wiz -= ci * dp1
-        wjx += cj * (dp2 + dpjy)
-        wjy -= cj * dpjx
-        wjz -= cj * dp1
-        ucx, ucz = vix - vjx - R * (wiz + wjz), R * (wix + wjx)
-        before, v_rel = v_rel, vjy - viy
-        work += 0.5 * h * abs(before + v_rel)  # no sign change within a step
+        dvix, cvix = _add(dvix, cvix, (dp1 + dpix) * inv1)
+        dviy, cviy = _add(dviy, cviy, (dpiy - h) * inv1)
+        dvjx, cvjx = _add(dvjx, cvjx, (dpjx - dp1) * inv2)
+        dvjy, cvjy = _add(dvjy, cvjy, (h + dpjy) * inv2)
+        dwix, cwix = _add(dwix, cwix, ci * (dp2 + dpiy))
+        dwiy, cwiy = _add(dwiy, cwiy, -ci * dpix)
+        dwiz, cwiz = _add(dwiz, cwiz, -ci * dp1)
+        dwjx, cwjx = _add(dwjx, cwjx, cj * (dp2 + dpjy))
+        dwjy, cwjy = _add(dwjy, cwjy, -cj * dpjx)
+        dwjz, cwjz = _add(dwjz, cwjz, -cj * dp1)
+        before, v_rel = v_rel, v_rel0 + ((dvjy + cvjy) - (dviy + cviy))
+        work, cwork = _add(work, cwork, 0.5 * h * abs(before + v_rel))  # no sign change in a step
+        work_sum = work + cwork
         if last:
             if compressed:
                 break
             compressed = True
-            work_end = (1.0 + e_b * e_b) * work
+            work_end = (1.0 + e_b * e_b) * work_sum
+    vix, viy = vix0 + (dvix + cvix), viy0 + (dviy + cviy)
+    vjx, vjy = vjx0 + (dvjx + cvjx), vjy0 + (dvjy + cvjy)
+    wix, wiy, wiz = wix0 + (dwix + cwix), wiy0 + (dwiy + cwiy), wiz0 + (dwiz + cwiz)
+    wjx, wjy, wjz = wjx0 + (dwjx + cwjx), wjy0 + (dwjy + cwjy), wjz0 + (dwjz + cwjz)
     # Back to the table frame: a = a_x (ny, -nx) + a_y (nx, ny).
     out[0], out[1] = vix * ny + viy * nx, -vix * nx + viy * ny
     out[2], out[3], out[4] = wix * ny + wiy * nx, -wix * nx + wiy * ny, wiz
