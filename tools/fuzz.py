@@ -16,7 +16,9 @@ with random tips and elevations, and random initial angular velocities
 (:mod:`tools.fuzz_spin`); every invariant then includes the spin (energy with the
 rotational part, and M, the motion states and transitions).
 
-Every invariant is checked on every shot. The termination target is no event-cap hit on a
+Every invariant is checked on every shot, and a shot the simulator refuses (a ``ValueError``
+from a table and a draw it accepted) is a violation (R): every draw is meant to be a real
+shot. The termination target is no event-cap hit on a
 damped table (``mu_roll >= 1e-3``, both restitutions below 1); an undamped table (elastic,
 or nearly frictionless) can legitimately need any number of events, and its cap hits are
 listed.
@@ -82,15 +84,20 @@ def random_table(rng: np.random.Generator, **spin: object) -> tuple[Table, float
     )
     if spin:
         spin = fuzz_spin.spin_table_kwargs(spin, DEFAULT.ball_radius * scale)
+    e_ball = float(rng.choice([1.0, 0.95, rng.uniform(0, 1), 0.0]))
+    e_jaw = float(rng.choice([e_cushion, rng.uniform(0, 1), 0.0]))
+    if spin:
+        e_cushion = fuzz_spin.model_restitution(spin, e_cushion)
+        e_jaw = fuzz_spin.model_restitution(spin, e_jaw)
     table = Table(
         length=DEFAULT.length * scale,
         width=DEFAULT.width * scale,
         ball_radius=DEFAULT.ball_radius * scale,
         mu_roll=mu_roll,
-        e_ball=float(rng.choice([1.0, 0.95, rng.uniform(0, 1), 0.0])),
+        e_ball=e_ball,
         e_cushion=e_cushion,
         pockets=DEFAULT.pockets * scale if pockets == "circles" else pockets,
-        e_jaw=float(rng.choice([e_cushion, rng.uniform(0, 1), 0.0])),
+        e_jaw=e_jaw,
         **spin,  # type: ignore[arg-type]
     )
     return table, scale
@@ -240,8 +247,11 @@ def main() -> None:
             break
         try:
             result = run()
-        except ValueError as exc:  # a strike the spin level refuses (listed, not a failure)
+        except ValueError as exc:  # R: the table and the draw were accepted, the shot not
             refused.append(f"shot {shot}: {exc}")
+            kinds.update("R")
+            failures.append(f"shot {shot}: ['R: refused: {exc}']")
+            print(failures[-1], flush=True)
             continue
         events.append(result.n_events)
         damped = is_damped(table)
@@ -274,9 +284,10 @@ def main() -> None:
         f"Command: `python -m tools.fuzz --shots {args.shots} --seed {args.seed}"
         f"{' --model spin' if args.model == 'spin' else ''}`",
         "",
-        f"- shots: {args.shots}; shots with any violation (G, P, E, T, O, M, D): {len(failures)}",
+        f"- shots: {args.shots}; shots with any violation (G, P, E, T, O, M, D, R): "
+        f"{len(failures)}",
         f"- shots with a violation, by kind: {dict(sorted(kinds.items()))}",
-        f"- shots refused by a ValueError (not simulated): {len(refused)}",
+        f"- shots refused by a ValueError (R, not simulated): {len(refused)}",
         *[f"  - {s}" for s in refused[:5]],
         f"- damped tables (mu_roll >= 1e-3, e_ball < 1, e_cushion < 1): {damped_shots} "
         f"shots, {damped_caps} event-cap hits",

@@ -16,6 +16,16 @@ Spin draws (each documented range of :class:`pool_env.Table`, its edges included
 * ``cushion_friction``: 0.2, uniform in [0, 1], or 0;
 * ``cushion_height``: the WPA default, ``R`` (contact at the equator), or uniform in
   ``[R, 2R)`` (up to a hair below the top of the ball);
+* ``cushion_model``: Han's (default) or Stronge's (one table in two), Stronge's with
+  ``cushion_omega_ratio`` 1.8 (default) or uniform in ``(1, 2)``; on a Stronge table the
+  drawn ``e_cushion`` and ``e_jaw`` are mapped affinely from ``[0, 1]`` onto the model's
+  range ``[1 / cushion_omega_ratio, 1]`` (:func:`model_restitution`), so elastic stays 1;
+* ``ball_model``: the frictional impulse (default) or Mathavan's (one table in two), with
+  ``mathavan_steps`` 1000 (default, one in two), log-uniform over 1-10^4 (45%) or
+  10^4-10^5 (5%; the cost of an impact grows with it, so the tail stops below the accepted
+  10^6);
+* elastic tables come from the roll fuzz's draws (``e_ball = 1`` one table in four,
+  ``e_cushion = 1`` one in four, both one in sixteen), on every model;
 * a single struck ball (four shots in five): half by :func:`pool_env.shoot` with a tip
   ``(a, b)`` inside the safe range (contact offset up to half a radius) or anywhere in
   ``[-1, 1]^2`` (one time in three), and an elevation of 0, uniform in ``[0, pi/2)``, or
@@ -61,6 +71,11 @@ def random_spin_parameters(rng: np.random.Generator) -> dict[str, object]:
         else ("pooltool" if u < 0.5 else (float(rng.uniform(0, 0.3)) if u < 0.8 else 0.0))
     )
     height = rng.random()
+    stronge, ratio, mathavan = rng.random() < 0.5, rng.random(), rng.random() < 0.5
+    u = rng.random()
+    steps = (
+        1000 if u < 0.5 else int(10 ** rng.uniform(0, 4) if u < 0.95 else 10 ** rng.uniform(4, 5))
+    )
     return {
         "model": "spin",
         "mu_slide": 0.2 if rng.random() < 0.5 else float(10 ** rng.uniform(-2, 0)),
@@ -68,7 +83,23 @@ def random_spin_parameters(rng: np.random.Generator) -> dict[str, object]:
         "ball_friction": friction,
         "cushion_friction": float(rng.choice([0.2, rng.uniform(0, 1), 0.0])),
         "cushion_height": None if height < 0.5 else (1.0 if height < 0.6 else rng.uniform(1, 2)),
+        "cushion_model": "stronge" if stronge else "han",
+        "cushion_omega_ratio": 1.8 if ratio < 0.5 else float(rng.uniform(1.0, 2.0)),
+        "ball_model": "mathavan" if mathavan else "frictional",
+        "mathavan_steps": steps,
     }
+
+
+def model_restitution(spin: dict[str, object], e: float) -> float:
+    """A drawn cushion or jaw restitution ``e`` in ``[0, 1]``, within the cushion model's range.
+
+    Stronge's model needs ``e >= 1 / cushion_omega_ratio``: ``[0, 1]`` maps affinely onto
+    ``[1 / ratio, 1]`` (elastic stays elastic); Han's takes ``e`` as drawn.
+    """
+    if spin.get("cushion_model") != "stronge":
+        return e
+    floor = 1.0 / float(spin["cushion_omega_ratio"])  # type: ignore[arg-type]
+    return min(1.0, floor + (1.0 - floor) * e)
 
 
 def spin_table_kwargs(spin: dict[str, object], radius: float) -> dict[str, object]:

@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from pool_env.sim.kernels.spin.collide import ALCIATORE_A, ALCIATORE_B
 from pool_env.sim.kernels.spin.params import (
     FRICTIONAL_BALLS,
     HAN_CUSHION,
@@ -42,7 +43,10 @@ def check_models(table: Any) -> dict[str, Any]:
         ValueError: An unknown model name; ``cushion_omega_ratio`` outside ``(1, 2)``; with
             Stronge's model, ``e_cushion`` or ``e_jaw`` below ``1 / cushion_omega_ratio``
             (the model's range, :mod:`~pool_env.sim.kernels.spin.stronge`); or
-            ``mathavan_steps`` not an integer in ``[1, MAX_MATHAVAN_STEPS]``.
+            ``mathavan_steps`` not an integer in ``[1, MAX_MATHAVAN_STEPS]``; with
+            Mathavan's model, ``mu_slide`` times the largest ball-ball friction above 1 (the
+            table's friction could then stall the impact,
+            :mod:`~pool_env.sim.kernels.spin.mathavan`).
     """
     for name, models in (("cushion_model", CUSHION_MODELS), ("ball_model", BALL_MODELS)):
         value = getattr(table, name)
@@ -64,4 +68,13 @@ def check_models(table: Any) -> dict[str, Any]:
         raise ValueError(f"mathavan_steps must be an integer, got {steps!r}")
     if not 1 <= steps <= MAX_MATHAVAN_STEPS:
         raise ValueError(f"mathavan_steps must lie in [1, {MAX_MATHAVAN_STEPS}], got {steps!r}")
+    if table.ball_model == "mathavan":
+        friction = table.ball_friction
+        mu_b = ALCIATORE_A + ALCIATORE_B if isinstance(friction, str) else float(friction)
+        if table.mu_slide * mu_b > 1.0:
+            raise ValueError(
+                "Mathavan's ball-ball model needs mu_slide * ball_friction <= 1 (the largest "
+                f"ball-ball friction, {mu_b!r} for ball_friction={friction!r}), got "
+                f"mu_slide={table.mu_slide!r}: the product is {table.mu_slide * mu_b!r}"
+            )
     return {"cushion_omega_ratio": ratio, "mathavan_steps": int(steps)}

@@ -6,7 +6,7 @@ length, y along the width. A ball centre lives in ``[R, L - R] x [R, W - R]``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 
 import numpy as np
 from numpy.typing import NDArray
@@ -62,6 +62,21 @@ __all__ = ["CORNER_MOUTH", "SIDE_MOUTH", "JawSpec", "PocketJaws", "Table", "stan
 MODELS = ("roll", "spin")
 #: The model levels whose balls carry spin (angular velocities, a cue tip, elevation).
 SPIN_MODELS = ("spin",)
+#: The parameters only the spin level reads. A roll table keeps each at its default: a
+#: value set there would change nothing, so ``Table`` refuses it.
+SPIN_ONLY = (
+    "mu_slide",
+    "spin_decel",
+    "ball_friction",
+    "cushion_friction",
+    "cushion_height",
+    "cue_tip_radius",
+    "cue_end_mass",
+    "cushion_model",
+    "cushion_omega_ratio",
+    "ball_model",
+    "mathavan_steps",
+)
 #: ``u_sp / R`` of the default spin deceleration, 0.444: pooltool 0.6.0's ``4/9`` to three
 #: digits (its code has ``10 * 2 / 5 / 9``; ``Table.preset("pooltool-0.6")`` takes that).
 SPIN_FRICTION_RATIO = 0.444
@@ -184,7 +199,9 @@ class Table:
             and ``cue_end_mass`` positive, ``ball_friction`` and ``cushion_friction``
             non-negative, ``cushion_height`` in ``[R, 2R)``); an unknown ``cushion_model``
             or ``ball_model``, ``cushion_omega_ratio`` outside ``(1, 2)``, a restitution
-            below Stronge's range, or ``mathavan_steps`` not an integer in range.
+            below Stronge's range, or ``mathavan_steps`` not an integer in range; on the
+            roll table (``model="roll"``), a spin-only parameter (:data:`SPIN_ONLY`) away
+            from its default.
 
     Examples:
         >>> from pool_env import Table
@@ -277,10 +294,11 @@ class Table:
         if not isinstance(self.model, str) or self.model not in MODELS:
             raise ValueError(f"model must be 'roll' or 'spin', got {self.model!r}")
         r, g = self.ball_radius, self.g
+        defaults = self._spin_defaults()
         low, high = limits.MIN_DECELERATION, limits.MAX_DECELERATION
         setter(self, "mu_slide", positive("mu_slide", self.mu_slide))
         within("the sliding deceleration mu_slide * g", self.mu_slide * g, low, high, "m/s^2")
-        spin_decel = 2.5 * SPIN_FRICTION_RATIO * g if self.spin_decel is None else self.spin_decel
+        spin_decel = defaults["spin_decel"] if self.spin_decel is None else self.spin_decel
         setter(self, "spin_decel", within("spin_decel", spin_decel, low, high, "rad/s^2"))
         friction = self.ball_friction
         if isinstance(friction, str):
@@ -296,9 +314,7 @@ class Table:
             setter(self, "ball_friction", mu_ball)
             mode = CONSTANT_FRICTION if mu_ball > 0.0 else FRICTIONLESS
         setter(self, "cushion_friction", _non_negative("cushion_friction", self.cushion_friction))
-        height = (
-            2.0 * NOSE_HEIGHT_FRACTION * r if self.cushion_height is None else self.cushion_height
-        )
+        height = defaults["cushion_height"] if self.cushion_height is None else self.cushion_height
         height = real_number("cushion_height", height)
         if not r <= height < 2.0 * r:
             raise ValueError(f"cushion_height must lie in [R, 2R) = [{r}, {2 * r}), got {height!r}")
@@ -307,7 +323,7 @@ class Table:
             "cue_tip_radius", self.cue_tip_radius, limits.MIN_LENGTH, limits.MAX_LENGTH, "m"
         )
         setter(self, "cue_tip_radius", tip)
-        end_mass = self.ball_mass / 30.0 if self.cue_end_mass is None else self.cue_end_mass
+        end_mass = defaults["cue_end_mass"] if self.cue_end_mass is None else self.cue_end_mass
         setter(
             self,
             "cue_end_mass",
@@ -315,6 +331,15 @@ class Table:
         )
         for name, value in check_models(self).items():
             setter(self, name, value)
+        if not self.has_spin:
+            meaningless = [n for n in SPIN_ONLY if getattr(self, n) != defaults[n]]
+            if meaningless:
+                given = ", ".join(f"{n}={getattr(self, n)!r}" for n in meaningless)
+                raise ValueError(
+                    f"{given}: spin parameters apply to model='spin' only; the roll table "
+                    f"(model={self.model!r}, the default) does not read them. Pass "
+                    "model='spin', or leave them at their defaults"
+                )
         spin = np.empty(N_SPIN_PARAMS, dtype=np.float64)
         spin[: params.shape[0]] = params
         spin[S_SLIDE_DECEL] = self.mu_slide * g
@@ -333,6 +358,14 @@ class Table:
         spin.setflags(write=False)
         setter(self, "spin_params", spin)
 
+    def _spin_defaults(self) -> dict[str, object]:
+        """Each spin-only parameter's default on this table (some follow ``g``, ``R``, mass)."""
+        out: dict[str, object] = {f.name: f.default for f in fields(self) if f.name in SPIN_ONLY}
+        out["spin_decel"] = 2.5 * SPIN_FRICTION_RATIO * self.g
+        out["cushion_height"] = 2.0 * NOSE_HEIGHT_FRACTION * self.ball_radius
+        out["cue_end_mass"] = self.ball_mass / 30.0
+        return out
+
     @classmethod
     def preset(cls, name: str, **overrides: object) -> Table:
         """A table with a named preset's parameters (:data:`pool_env.sim.presets.PRESETS`).
@@ -342,15 +375,27 @@ class Table:
         cushions, the frictional inelastic ball-ball impulse with its friction rule), on
         the spin level (see :mod:`pool_env.sim.presets` for each value and its source).
 
+        The preset is a spin table: ``model="roll"`` over it is refused, as its spin-only
+        values (Stronge's cushions, pooltool's friction rule, ...) would mean nothing there;
+        a roll table of pooltool's size is ``Table(length=1.9812, width=0.9906, ...)``.
+
         Args:
             name: The preset's name.
             **overrides: ``Table`` keywords over the preset's (e.g. ``pockets="none"``).
 
         Raises:
-            ValueError: An unknown preset, or a value ``Table`` refuses.
+            ValueError: An unknown preset or keyword (each named, with the valid ones), or a
+                value ``Table`` refuses.
         """
         if name not in PRESETS:
             raise ValueError(f"unknown preset {name!r}; the presets are {sorted(PRESETS)}")
+        keywords = sorted(f.name for f in fields(cls) if f.init)
+        unknown = sorted(set(overrides) - set(keywords))
+        if unknown:
+            raise ValueError(
+                f"unknown Table keyword(s) {unknown} for preset {name!r}; the keywords are "
+                f"{keywords}"
+            )
         return cls(**{**PRESETS[name], **overrides})  # type: ignore[arg-type]
 
     @property
@@ -379,10 +424,7 @@ class Table:
     def _spin_repr(self) -> str:
         if not self.has_spin:
             return ""
-        names = ("mu_slide", "spin_decel", "ball_friction", "cushion_friction")
-        names += ("cushion_height", "cue_tip_radius", "cue_end_mass", "cushion_model")
-        names += ("cushion_omega_ratio", "ball_model", "mathavan_steps")
-        return ", model='spin', " + ", ".join(f"{n}={getattr(self, n)!r}" for n in names)
+        return ", model='spin', " + ", ".join(f"{n}={getattr(self, n)!r}" for n in SPIN_ONLY)
 
     def __repr__(self) -> str:
         return (

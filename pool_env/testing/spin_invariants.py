@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.sim.kernels.spin.collide import ALCIATORE_A, ALCIATORE_B
 from pool_env.sim.result import KIND_NAMES, SpinShotResult
 from pool_env.sim.table import Table
 
@@ -237,3 +238,27 @@ def lump_cloth_impulse(
     idx = np.asarray(rows)
     energy = rows_energy(table, state[idx], t - seg_t[idx], masses)
     return 2.0 / 7.0 * float(np.sqrt(10.0 * masses.sum() * energy))
+
+
+def mathavan_cloth_impulse(table: Table, masses: NDArray, before: NDArray, after: NDArray) -> float:
+    """The largest cloth impulse a pair impact of Mathavan's model may take (N s).
+
+    In Mathavan's model (:mod:`~pool_env.sim.kernels.spin.mathavan`) the pressed ball's
+    cloth friction acts during the impact: at most ``k = mu_s mu_b`` times the normal impulse
+    ``P`` (``mu_b`` the largest ball-ball friction). Each ball's momentum change along the line
+    of centres is ``P`` less at most that friction, so ``P <= |dp_b| / (1 - k)`` for either
+    ball ``b`` and the pair's momentum changes by at most ``k min_b |dp_b| / (1 - k)``.
+
+    Args:
+        table: A spin table with ``ball_model="mathavan"`` (``Table`` keeps ``k <= 1``).
+        masses: The two balls' masses, shape ``(2,)`` or ``(2, 1)``.
+        before: Their velocities before the impact, shape ``(2, 2)``.
+        after: Their velocities after it.
+    """
+    friction = table.ball_friction
+    mu_b = ALCIATORE_A + ALCIATORE_B if isinstance(friction, str) else float(friction)
+    k = table.mu_slide * mu_b
+    if k >= 1.0:
+        return float("inf")
+    change = np.linalg.norm(np.reshape(masses, (-1, 1)) * (after - before), axis=1)
+    return k * float(change.min()) / (1.0 - k)

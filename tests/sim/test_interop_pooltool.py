@@ -373,6 +373,76 @@ def test_require_needs_an_extra_or_an_install_step() -> None:
         require("no_such_mod", None, "this test", install="do this")
 
 
+# --- from_system on a pooltool-shaped stand-in (no pooltool needed) --------------------------
+
+
+class _StandInSystem:
+    """The parts of a ``pooltool.System`` that ``from_system`` reads (a 2.54 x 1.27 m table)."""
+
+    def __init__(self, balls: dict[str, tuple[float, float, float]], b: float = 0.0) -> None:
+        def segment(x: float, y: float) -> SimpleNamespace:
+            return SimpleNamespace(p1=np.array([x, y, 0.0365]))
+
+        linear = {"3": segment(0.0, 0.0), "18": segment(0.0, 0.0), "12": segment(1.27, 0.0),
+                  "9": segment(0.0, 2.54)}  # fmt: skip
+        self.table = SimpleNamespace(cushion_segments=SimpleNamespace(linear=linear),
+                                     has_pockets=False)  # fmt: skip
+        params = SimpleNamespace(**PT_BALL)
+        self.balls = {
+            name: SimpleNamespace(
+                id=name, params=params,
+                state=SimpleNamespace(s=0, rvw=np.array([xyz, [0.0] * 3, [0.0] * 3])),
+            )
+            for name, xyz in balls.items()
+        }  # fmt: skip
+        specs = SimpleNamespace(tip_radius=PT_TIP_RADIUS, end_mass=PT_END_MASS, M=0.567)
+        self.cue = SimpleNamespace(cue_ball_id="cue", V0=1.0, phi=90.0, theta=0.0, a=0.0, b=b,
+                                   specs=specs)  # fmt: skip
+
+
+@pytest.fixture
+def stand_in(monkeypatch: pytest.MonkeyPatch) -> None:
+    """``from_system`` reads ``_StandInSystem`` as its ``pooltool.System``."""
+    fake = SimpleNamespace(System=_StandInSystem)
+    monkeypatch.setattr("pool_env.interop.pooltool.read_system.load_pooltool", lambda: fake)
+
+
+R_PT = PT_BALL["R"]
+
+
+@pytest.mark.usefixtures("stand_in")
+def test_a_ball_off_the_cloth_is_refused_by_name_and_height() -> None:
+    """A ball above (airborne) or below the cloth plane ``z = R`` is refused, not flattened."""
+    on = {"cue": (0.6, 0.5, R_PT), "1": (0.6, 1.2, R_PT)}
+    scene = ip.from_system(_StandInSystem(on))
+    assert scene.ids == ("cue", "1")
+    for z in (R_PT + 0.01, R_PT - 1e-6, 0.0):
+        with pytest.raises(ValueError, match=rf"ball '1' is at height z={z!r} m, off the cloth"):
+            ip.from_system(_StandInSystem({**on, "1": (0.6, 1.2, z)}))
+    # Rounding of the plane is read as on it (HEIGHT_RTOL of R).
+    ip.from_system(_StandInSystem({**on, "1": (0.6, 1.2, R_PT * (1 + 1e-12))}))
+    system = _StandInSystem(on)
+    system.balls["1"].state.rvw[1][2] = 0.3  # a vertical velocity alone: in motion
+    with pytest.raises(ValueError, match="ball '1' is in motion"):
+        ip.from_system(system)
+
+
+@pytest.mark.usefixtures("stand_in")
+def test_a_roll_scene_ports_no_spin_parameter() -> None:
+    """``model="roll"`` ports no spin parameter (the roll table refuses them), the rest.
+
+    A spin scene keeps them.
+    """
+    on = {"cue": (0.6, 0.5, R_PT), "1": (0.6, 1.2, R_PT)}
+    roll = ip.from_system(_StandInSystem(on), model="roll").table
+    spin = ip.from_system(_StandInSystem(on)).table
+    assert roll.model == "roll" and roll.mu_slide == Table().mu_slide
+    assert roll.cue_tip_radius == Table().cue_tip_radius != spin.cue_tip_radius == PT_TIP_RADIUS
+    assert roll.e_cushion == spin.e_cushion == PT_BALL["e_c"]
+    with pytest.raises(ValueError, match="model='spin'"):  # b = 0.2: draw, the roll level has none
+        ip.from_system(_StandInSystem(on, b=0.2), model="roll")
+
+
 # --- with pooltool ---------------------------------------------------------------------------
 
 

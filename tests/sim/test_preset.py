@@ -58,8 +58,16 @@ def test_interops_models_are_the_presets():
 def test_overrides_and_unknown_names():
     table = Table.preset("pooltool-0.6", pockets="none", e_cushion=0.9)
     assert (table.pocket_model, table.e_cushion, table.ball_mass) == ("none", 0.9, 0.170097)
-    with pytest.raises(ValueError, match=r"unknown preset 'pooltool-0\.5'"):
+    with pytest.raises(ValueError, match=r"unknown preset 'pooltool-0\.5'.*pooltool-0\.6"):
         Table.preset("pooltool-0.5")
+    with pytest.raises(ValueError, match=r"unknown Table keyword\(s\) \['foo'\].*'pockets'"):
+        Table.preset("pooltool-0.6", foo=1)
+
+
+def test_the_preset_is_a_spin_table_only():
+    """Its cushion model, friction rule and other spin values mean nothing on the roll level."""
+    with pytest.raises(ValueError, match=r"ball_friction='pooltool'.*model='spin' only"):
+        Table.preset("pooltool-0.6", model="roll")
 
 
 _PROBE = """

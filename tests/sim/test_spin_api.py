@@ -6,6 +6,7 @@ anything that needs spin.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -112,6 +113,44 @@ def test_roll_table_refuses_spin() -> None:
     assert shoot(t, pos, 0.0, 1.0, tip=(0.0, 0.0)).positions.tolist() == (
         shoot(t, pos, 0.0, 1.0).positions.tolist()
     )
+
+
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        {"cushion_model": "stronge", "ball_model": "mathavan"},
+        {"mu_slide": 0.3},
+        {"spin_decel": 5.0},
+        {"ball_friction": 0.05},
+        {"cushion_friction": 0.0},
+        {"cushion_height": 0.03},
+        {"cue_tip_radius": 0.011},
+        {"cue_end_mass": 0.01},
+        {"cushion_omega_ratio": 1.5},
+        {"mathavan_steps": 10},
+    ],
+)
+def test_the_roll_table_refuses_spin_only_parameters(kwargs) -> None:
+    """A spin-only value away from its default means nothing on the roll table: refused.
+
+    The message names each parameter as given and the model it applies to.
+    """
+    for table_kwargs in (kwargs, {"model": "roll", **kwargs}):
+        with pytest.raises(ValueError, match="apply to model='spin' only") as info:
+            Table(**table_kwargs)
+        for name, value in kwargs.items():
+            assert f"{name}={value!r}" in str(info.value)
+    Table(model="spin", **kwargs)  # the spin table reads them
+
+
+def test_the_roll_table_takes_spin_only_defaults_and_round_trips() -> None:
+    """Each default, given explicitly, is accepted; ``replace`` of a roll table works."""
+    table = Table(mu_slide=0.2, spin_decel=None, ball_friction="alciatore", mathavan_steps=1000,
+                  cushion_model="han", ball_model="frictional")  # fmt: skip
+    assert dataclasses.replace(table, length=2.0).length == 2.0
+    scaled = Table(ball_radius=0.03, ball_mass=0.2, g=9.7)  # defaults that follow R, m, g
+    assert dataclasses.replace(scaled, e_ball=0.9).e_ball == 0.9
+    assert repr(table) == repr(Table())
 
 
 @pytest.mark.parametrize(

@@ -20,6 +20,7 @@ from pool_env import Table
 from pool_env.sim.inputs import max_speed
 from pool_env.sim.kernels.limits import MAX_SPEED
 from pool_env.sim.spin_inputs import reachable_spin_speed
+from pool_env.sim.spin_models import BALL_MODELS, CUSHION_MODELS
 from tests.profiles import examples
 from tools.fuzz import cases, shot_problems
 from tools.fuzz_spin import admitted
@@ -55,3 +56,20 @@ def test_admitted_scales_a_draw_to_the_bound() -> None:
     vel[0, 0], ang[1, 2] = 10.0, 0.0
     factor = admitted(table, vel, ang, masses)
     assert factor * 10.0 * 1e3 == pytest.approx(0.999 * max_speed(table), rel=1e-12)
+
+
+def test_the_spin_fuzz_draws_every_model_elastic_tables_included() -> None:
+    """Every accepted cushion and ball model is drawn, on elastic tables too (issue 49).
+
+    Mathavan's at several step counts; elastic: ``e_ball = 1`` and ``e_cushion = 1``.
+    """
+    tables = [case[0] for case in islice(cases(11, "spin"), 300)]
+    assert {t.cushion_model for t in tables} == set(CUSHION_MODELS)
+    assert {t.ball_model for t in tables} == set(BALL_MODELS)
+    steps = {t.mathavan_steps for t in tables if t.ball_model == "mathavan"}
+    assert 1000 in steps and len(steps) > 20 and min(steps) < 100
+    for name, models in (("cushion_model", CUSHION_MODELS), ("ball_model", BALL_MODELS)):
+        for model in models:
+            assert any(
+                getattr(t, name) == model and t.e_ball == 1.0 and t.e_cushion == 1.0 for t in tables
+            ), (name, model)

@@ -17,12 +17,17 @@ from pool_env.interop.pooltool.cue_params import cue_from_pooltool
 from pool_env.interop.pooltool.frame import xy_from_pooltool
 from pool_env.interop.pooltool.loader import load_pooltool
 from pool_env.interop.pooltool.scene import Scene
-from pool_env.sim.table import Table
+from pool_env.sim.table import SPIN_ONLY, Table
 
 #: pooltool's motion state of a pocketed ball (``pooltool.constants.pocketed``).
 _POCKETED = 4
 #: pooltool's motion state of a ball at rest (``pooltool.constants.stationary``).
 _STATIONARY = 0
+#: How far (relative to ``R``) a ball's centre may sit from the cloth plane ``z = R`` and
+#: still be read as on it: rounding only (pooltool places and keeps a resting ball at
+#: ``z = R`` exactly). A ball higher or lower is airborne or sunk: this simulator has no
+#: height, so it is refused rather than flattened.
+HEIGHT_RTOL = 1e-9
 
 
 def _corners(table: Any) -> tuple[float, float, float, float, float]:
@@ -72,7 +77,9 @@ def from_system(
         system: The ``pooltool.System``: its balls at rest (pocketed balls are left out),
             its cue's ball on the table.
         model: The :class:`Table` model, ``"spin"`` (the level that plays a cue's english,
-            draw and elevation) or ``"roll"`` (a centre hit, flat cue only).
+            draw and elevation) or ``"roll"`` (a centre hit, flat cue only; pooltool's spin
+            parameters, such as its sliding friction and cue tip, are then not ported, as
+            the roll table reads none of them).
         pockets: The :class:`Table` pockets; ``None``: ``"jaws"`` if pooltool's table has
             pockets, else ``"none"``.
         table_options: More :class:`Table` keywords, over the ported ones (e.g.
@@ -83,7 +90,9 @@ def from_system(
 
     Raises:
         ModuleNotFoundError: pooltool is not installed (the message says how to install it).
-        ValueError: Not a ``pooltool.System``; a ball in motion; no ball or the cue ball
+        ValueError: Not a ``pooltool.System``; a ball in motion (a vertical velocity
+            included) or off the cloth plane (its centre's height ``z`` not ``R`` to within
+            :data:`HEIGHT_RTOL` of ``R``: airborne or sunk); no ball or the cue ball
             pocketed or missing; balls whose shared parameters differ; a cue stroke out of
             range (:func:`cue_from_pooltool`); or a table or layout this package refuses
             (off the table, overlapping, in a pocket).
@@ -102,6 +111,13 @@ def from_system(
                 f"ball {ball.id!r} is in motion (state {int(ball.state.s)}): port a System "
                 "at rest, before its shot or after pooltool.simulate"
             )
+        z, radius = float(np.asarray(ball.state.rvw)[0][2]), float(ball.params.R)
+        if not abs(z - radius) <= HEIGHT_RTOL * radius:
+            raise ValueError(
+                f"ball {ball.id!r} is at height z={z!r} m, off the cloth (its centre belongs "
+                f"at z = R = {radius!r} m): this simulator keeps every ball on the cloth and "
+                "cannot port an airborne or sunk ball"
+            )
     ids = tuple(str(b.id) for b in on_table)
     cue_id = system.cue.cue_ball_id
     if cue_id not in ids:
@@ -112,6 +128,8 @@ def from_system(
     options: dict[str, Any] = table_options_from_pooltool(
         params, length, width, height, specs.tip_radius, specs.end_mass
     )
+    if model == "roll":  # the roll level reads no spin parameter: port none
+        options = {k: v for k, v in options.items() if k not in SPIN_ONLY}
     options["model"] = model
     options["pockets"] = pockets
     if pockets is None:
