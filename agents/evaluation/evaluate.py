@@ -46,9 +46,9 @@ from agents.evaluation.episodes import run_episodes
 from agents.evaluation.metrics import Estimate
 from agents.learned.envs import make_env
 from agents.learned.lookahead import load_lookahead_agent
+from agents.learned.player_file import load_search_player
 from agents.learned.pretrained import load_model, model_config
 from agents.learned.rack_play import RackAgent, load_rack_agent, rack_model_config
-from agents.learned.search_player import load_search_player
 from agents.policy import Policy, last_plan
 from pool_env import Table
 from pool_env.extras import require
@@ -57,6 +57,7 @@ from pool_env.game.noise import NOISE_MODELS, NoiseSpec
 
 __all__ = [
     "BASELINES",
+    "check_player_files",
     "evaluate_agent",
     "format_table",
     "load_model",
@@ -147,6 +148,30 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
         f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1', a model .zip "
         "or a rack model .npz"
     )
+
+
+def check_player_files(
+    parser: argparse.ArgumentParser,
+    names: list[str],
+    env_id: str,
+    env_kwargs: dict[str, Any] | None,
+    players: int | None = None,
+) -> None:
+    """Load each player file (``.yaml``) among ``names`` once: a bad one is a usage error.
+
+    Run before anything is played, so that a command exits at once with one line naming
+    the file and the key (``parser.error``, status 2) rather than a traceback later.
+    """
+    for name in names:
+        if not name.endswith(".yaml"):
+            continue
+        env = make_env(env_id, env_kwargs)
+        try:
+            load_search_player(name, env, players=players)
+        except ValueError as err:
+            parser.error(str(err))
+        finally:
+            env.close()
 
 
 def evaluate_agent(
@@ -336,6 +361,7 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(str(err))
     if args.aim:
         kwargs["aim"] = args.aim
+    check_player_files(parser, args.agent, args.env, kwargs or None)
     rows, times = {}, {}
     for name in args.agent:
         agent, label = None, name

@@ -18,7 +18,11 @@ for more when the ball on is the 9, and with the cue ball in hand), fitted by
 from __future__ import annotations
 
 import math
+import zipfile
+import zlib
+from collections.abc import Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -229,9 +233,54 @@ class LayoutValue:
 
     @classmethod
     def load(cls, path: str | Path) -> LayoutValue:
-        """Read a model written by :meth:`save`."""
-        with np.load(path) as data:
-            return cls(data["weights"])
+        """Read a model written by :meth:`save`.
+
+        Raises:
+            ValueError: Naming ``path``, as :func:`load_arrays`, or on weights that do not fit.
+        """
+        weights = load_arrays(path, ("weights",))["weights"]
+        try:
+            return cls(weights)
+        except ValueError as err:
+            raise ValueError(f"{path}: {err}") from None
+
+
+#: What reading an ``.npz`` raises on a file that is not one, or a damaged one.
+_UNREADABLE = (OSError, ValueError, EOFError, zipfile.BadZipFile, zlib.error)
+
+
+def load_arrays(
+    path: str | Path, names: Sequence[str], optional: Sequence[str] = ()
+) -> dict[str, NDArray[Any]]:
+    """The arrays ``names`` (and those of ``optional`` it holds) of the ``.npz`` at ``path``.
+
+    The layout values (:class:`LayoutValue`, :class:`~agents.learned.set_value.SetValue`)
+    are read through here, so that a missing, damaged or foreign file is one
+    ``ValueError`` naming it, whatever numpy or zipfile raise.
+
+    Raises:
+        ValueError: Naming ``path``: not a readable ``.npz`` archive (missing, a plain
+            ``.npy``, damaged, pickled objects), or without one of ``names``.
+    """
+    arrays: dict[str, NDArray[Any]] = {}
+    try:
+        # Opened here, so that the file is closed whatever numpy or zipfile make of it.
+        with open(path, "rb") as handle:
+            magic = handle.read(6)
+            handle.seek(0)
+            if magic.startswith(b"PK"):  # a zip file, as np.savez writes
+                with np.load(handle) as data:  # a damaged member shows only when read
+                    files = list(data.files)
+                    arrays = {name: data[name] for name in (*names, *optional) if name in files}
+    except _UNREADABLE as err:
+        raise ValueError(f"{path} is not a readable .npz archive ({err})") from None
+    if not magic.startswith(b"PK"):
+        what = "a single .npy array" if magic == b"\x93NUMPY" else "not a zip file"
+        raise ValueError(f"{path} is not an .npz archive of named arrays ({what})")
+    missing = [name for name in names if name not in arrays]
+    if missing:
+        raise ValueError(f"{path} has no arrays {missing} (it holds {files})")
+    return arrays
 
 
 def fit_layout_value(

@@ -27,7 +27,8 @@ a second ply. On every shot, within ``budget`` seconds of wall time:
    the tip; saved in the player's config (``models/search_player.yaml``).
 
 The leaf value is the logistic layout value or the set network
-(:mod:`agents.learned.set_value`), named in the config. The numba kernels split large
+(:mod:`agents.learned.set_value`), named in the player file
+(:mod:`agents.learned.player_file`, which checks it). The numba kernels split large
 batches over both cores (the step's own threshold).
 """
 
@@ -35,8 +36,8 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, fields
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -45,16 +46,22 @@ from numpy.typing import NDArray
 from agents.baselines.aiming import shot_to_action
 from agents.baselines.rule_play import rule_action
 from agents.learned.layout_value import LayoutValue, ball_on
-from agents.learned.leaf_value import LeafValue, SetLeaf
+from agents.learned.leaf_value import LeafValue
 from agents.learned.lookahead import LookaheadAgent
 from agents.learned.next_shots import best_next_values
-from agents.learned.set_value import SetValue
+from pool_env.game.checks import parse_float
 from pool_env.game.geometry import points_free
+from pool_env.sim import Table
+from pool_env.sim.layouts import foot_spot
 
 
 @dataclass(frozen=True)
 class SearchSettings:
     """The search's knobs (their reasons are in ``models/search_player.yaml``).
+
+    Each is checked when the settings are made (:func:`check_setting`: counts are integers,
+    numbers finite, each within its range); the break's spot and aim are checked against
+    the table when a player takes them (:func:`check_break`).
 
     Attributes:
         budget: Wall-clock seconds per shot.
@@ -73,6 +80,9 @@ class SearchSettings:
         break_cut: The break's aim off a full hit on the 1 (radians, counter-clockwise).
         break_speed: The break's speed action in ``[-1, 1]`` (the break speed range).
         break_tip: The break's tip ``(side, vertical)`` in fractions of the tip limit.
+
+    Raises:
+        ValueError: Naming the first setting that is not of its type or out of its range.
     """
 
     budget: float = 1.0
@@ -90,22 +100,105 @@ class SearchSettings:
     break_tip: tuple[float, float] = (0.0, 0.0)
 
     def __post_init__(self) -> None:
-        if not self.budget > 0.0:
-            raise ValueError(f"budget must be > 0 seconds, got {self.budget!r}")
-        counts = ("samples", "finalists", "round_samples", "next_samples", "hand_samples")
-        for name in counts:
-            if int(getattr(self, name)) < 1:
-                raise ValueError(f"{name} must be >= 1, got {getattr(self, name)!r}")
-        if self.min_rounds < 0 or self.hand_spots < 0:
-            raise ValueError("min_rounds and hand_spots must be >= 0")
-        if not -1.0 <= self.break_speed <= 1.0:
-            raise ValueError(f"break_speed must lie in [-1, 1], got {self.break_speed!r}")
-        if len(self.break_tip) != 2 or max(abs(float(t)) for t in self.break_tip) > 1.0:
-            raise ValueError(f"break_tip must be two fractions in [-1, 1], got {self.break_tip}")
+        for name in SETTINGS:  # frozen: the checked values (a tuple for the tip) set back
+            object.__setattr__(self, name, check_setting(name, getattr(self, name), name))
 
 
 #: The config keys of :class:`SearchSettings`.
 SETTINGS = tuple(f.name for f in fields(SearchSettings))
+#: The counts among the settings, with their least values.
+COUNTS = {"samples": 1, "finalists": 1, "round_samples": 1, "next_samples": 1,
+          "min_rounds": 0, "hand_spots": 0, "hand_samples": 1}  # fmt: skip
+#: The numbers among the settings: whether a finite value is in range, and the range said.
+#: The break's spot and aim are bounded by the table (:func:`check_break`).
+NUMBERS: dict[str, tuple[Callable[[float], bool], str]] = {
+    "budget": (lambda x: x > 0.0, "> 0 (seconds)"),
+    "prune_z": (lambda x: x >= 0.0, ">= 0 (standard errors)"),
+    "break_y": (lambda x: True, "(metres; the table bounds it)"),
+    "break_cut": (lambda x: True, "(radians; the table bounds it)"),
+    "break_speed": (lambda x: -1.0 <= x <= 1.0, "in [-1, 1]"),
+}
+
+
+def check_setting(name: str, value: object, label: str) -> int | float | tuple[float, float]:
+    """A setting's value of its type (an ``int``, a ``float`` or the tip's pair), checked.
+
+    Args:
+        name: The setting (:data:`SETTINGS`).
+        value: Its value as given.
+        label: What the message calls it (``"samples"``; a player file's
+            ``"settings.samples"``).
+
+    Raises:
+        ValueError: Naming ``label``, its type and range, and ``value``: a count that is not
+            an integer (``2.7``, ``True``) or below its least value, a number that is not
+            finite, a bool or a string, or out of range.
+    """
+    if name in COUNTS:
+        least = COUNTS[name]
+        whole = isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
+        if not whole or value < least:  # type: ignore[operator]
+            raise ValueError(f"{label} must be an integer >= {least}, got {value!r}")
+        return int(value)  # type: ignore[arg-type]
+    if name == "break_tip":
+        what = f"{label} must be two finite numbers (side, vertical) in [-1, 1], got {value!r}"
+        if isinstance(value, str | bytes) or not isinstance(value, Sequence) or len(value) != 2:
+            raise ValueError(what)
+        try:
+            side, vertical = (parse_float(label, v) for v in value)
+        except ValueError:
+            raise ValueError(what) from None
+        if max(abs(side), abs(vertical)) > 1.0:
+            raise ValueError(what)
+        return side, vertical
+    in_range, said = NUMBERS[name]
+    try:
+        number = parse_float(label, value)
+    except ValueError:
+        number = math.nan
+    if not (math.isfinite(number) and in_range(number)):
+        raise ValueError(f"{label} must be a finite number {said}, got {value!r}")
+    return number
+
+
+def break_bounds(table: Table, break_y: float) -> tuple[float, float]:
+    """How far off the head spot the break may place the cue ball, and aim off a full hit.
+
+    The cue ball's centre stays a radius off the side rails; from that spot the aim keeps
+    the 1 (on the foot spot) in the cue ball's path: its centre within two radii of the line.
+
+    Returns:
+        ``(y_max, cut_max)``: ``|break_y| <= y_max`` (m), ``|break_cut| <= cut_max`` (rad).
+    """
+    r = table.ball_radius
+    spot = np.array([table.length / 4.0, table.width / 2.0 + break_y])
+    distance = float(np.hypot(*(foot_spot(table) - spot)))
+    return table.width / 2.0 - r, math.asin(min(2.0 * r / distance, 1.0))
+
+
+def check_break(settings: SearchSettings, table: Table, prefix: str = "") -> None:
+    """Refuse a break that leaves the table or misses the 1 (:func:`break_bounds`).
+
+    Args:
+        settings: The settings.
+        table: The table the player plays on.
+        prefix: Put before the settings' names in the message (``"settings."``).
+
+    Raises:
+        ValueError: Naming ``break_y`` or ``break_cut``, the range on ``table`` and the value.
+    """
+    y_max, cut_max = break_bounds(table, settings.break_y)
+    if abs(settings.break_y) > y_max:
+        raise ValueError(
+            f"{prefix}break_y must lie in [{-y_max:.4f}, {y_max:.4f}] m on this table (the "
+            f"cue ball on the head string, on the cloth), got {settings.break_y!r}"
+        )
+    if abs(settings.break_cut) > cut_max:
+        raise ValueError(
+            f"{prefix}break_cut must lie in [{-cut_max:.4f}, {cut_max:.4f}] rad with break_y "
+            f"{settings.break_y!r} on this table (the cue ball must meet the 1), got "
+            f"{settings.break_cut!r}"
+        )
 
 
 class SearchPlayer(LookaheadAgent):
@@ -120,6 +213,10 @@ class SearchPlayer(LookaheadAgent):
         leaf: The leaf value (``None``: the logistic's).
         seed: Seed of the noise samples and of the random spots.
         players: As :class:`~agents.baselines.game_agents.GameGhostBallAgent`.
+
+    Raises:
+        ValueError: On a game other than 9-ball, or a break that leaves the table or
+            misses the 1 (:func:`check_break`).
     """
 
     KIND = "search"
@@ -141,6 +238,7 @@ class SearchPlayer(LookaheadAgent):
         )  # fmt: skip
         if self.config.game != "nine":
             raise ValueError("SearchPlayer plays 9-ball (pool_env/NineBallGame-v2)")
+        check_break(s, self.config.table)
         self.settings = s
         if leaf is not None:
             self.leaf = leaf
@@ -310,47 +408,3 @@ class SearchPlayer(LookaheadAgent):
                 group, self.settings.next_samples,
             )  # fmt: skip
         return out
-
-
-def load_search_player(path: str | Path, env: Any, players: int | None = None) -> SearchPlayer:
-    """The :class:`SearchPlayer` the config (``kind: search``) at ``path`` describes.
-
-    The config names the logistic layout values (``layout_value``: the chance to run out,
-    ``duel_value``: to win against an opponent; ``.npz`` paths relative to the repository
-    root or to the config), optionally a set network (``set_value``), and the
-    :class:`SearchSettings`. The objective is the run-out alone, or the duel when the
-    player is told it plays an opponent (``players=2``, as the duels build it).
-
-    Raises:
-        ValueError: On an unknown setting.
-        FileNotFoundError: If a named model is missing.
-    """
-    import yaml
-
-    path = Path(path)
-    if not path.is_file():
-        raise FileNotFoundError(f"no search player config {path}")
-    config = yaml.safe_load(path.read_text()) or {}
-    if config.get("kind") != "search":
-        raise ValueError(f"{path} is not a search player's config (kind: search)")
-    base = path.parent
-
-    def resolve(name: str) -> Path:
-        candidate = Path(name)
-        return candidate if candidate.is_file() else base / candidate.name
-
-    unknown = set(config.get("settings", {})) - set(SETTINGS)
-    if unknown:
-        raise ValueError(f"unknown search settings {sorted(unknown)}: use {list(SETTINGS)}")
-    raw = dict(config.get("settings", {}))
-    if "break_tip" in raw:
-        raw["break_tip"] = tuple(float(t) for t in raw["break_tip"])
-    settings = SearchSettings(**raw)
-    duel = (players if players is not None else env.unwrapped.config.players) == 2
-    value = LayoutValue.load(resolve(config["duel_value" if duel else "layout_value"]))
-    objective = "duel" if duel else "runout"
-    player = SearchPlayer(env, value, objective, settings, players=players)
-    if config.get("set_value") and not duel:  # the set network predicts run-outs
-        net = SetValue.load(resolve(config["set_value"]))
-        player.leaf = SetLeaf(net, player.config.table, player.mouths, player.sigma)
-    return player

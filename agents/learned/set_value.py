@@ -40,7 +40,9 @@ from agents.learned.layout_value import (
     clear_tolerances,
     design,
     layout_features,
+    load_arrays,
 )
+from pool_env.game.checks import parse_float
 from pool_env.game.geometry import PocketMouths, ghost_shots
 from pool_env.sim import Table
 
@@ -285,14 +287,17 @@ class SetValue:
         """Read a model written by :meth:`save`.
 
         Raises:
-            ValueError: If it was saved with other features than this code computes.
+            ValueError: Naming ``path``: as :func:`~agents.learned.layout_value.load_arrays`,
+                or if it was saved with other features than this code computes, or on
+                weights that do not fit.
         """
-        with np.load(path) as data:
-            for key, names in (
-                ("row_features", ROW_FEATURES),
-                ("context_features", CONTEXT_FEATURES),
-            ):
-                if tuple(data[key].tolist()) != names:
-                    raise ValueError(f"{path}: saved with {key} {data[key].tolist()}, not {names}")
-            sigma = float(data["sigma"]) if "sigma" in data else None
+        keys = ("row_features", "context_features")
+        data = load_arrays(path, (*WEIGHT_NAMES, *keys), optional=("sigma",))
+        for key, names in zip(keys, (ROW_FEATURES, CONTEXT_FEATURES), strict=True):
+            if tuple(data[key].tolist()) != names:
+                raise ValueError(f"{path}: saved with {key} {data[key].tolist()}, not {names}")
+        try:
+            sigma = parse_float("sigma", data["sigma"]) if "sigma" in data else None
             return cls({k: data[k] for k in WEIGHT_NAMES}, sigma=sigma)
+        except ValueError as err:
+            raise ValueError(f"{path}: {err}") from None

@@ -17,7 +17,8 @@ from agents.learned.game_model import GameModel
 from agents.learned.layout_value import LAYOUT_FEATURES, LayoutValue, design
 from agents.learned.leaf_value import outcome_values
 from agents.learned.next_shots import best_next_values, next_shot_actions
-from agents.learned.search_player import SearchPlayer, SearchSettings, load_search_player
+from agents.learned.player_file import load_search_player
+from agents.learned.search_player import SearchPlayer, SearchSettings
 from pool_env.game.codec import decode_observations, obs_layout
 from pool_env.game.games.wpa import rack_row
 from pool_env.game.games.wpa.judge import FOUL, KEEPS, WINNER
@@ -177,12 +178,17 @@ def test_the_break_places_the_cue_ball_on_the_head_string_and_hits_the_1() -> No
 @pytest.mark.parametrize(
     ("kwargs", "message"),
     [
-        ({"budget": 0.0}, "budget"),
-        ({"samples": 0}, "samples must be >= 1"),
-        ({"finalists": 0}, "finalists must be >= 1"),
-        ({"hand_spots": -1}, "hand_spots"),
-        ({"break_speed": 1.5}, "break_speed"),
-        ({"break_tip": (0.0, 2.0)}, "break_tip"),
+        ({"budget": 0.0}, "budget must be a finite number > 0"),
+        ({"budget": float("inf")}, "budget must be a finite number > 0"),
+        ({"samples": 0}, "samples must be an integer >= 1"),
+        ({"samples": 2.7}, "samples must be an integer >= 1"),  # failed on the 2nd shot
+        ({"finalists": True}, "finalists must be an integer >= 1"),
+        ({"hand_spots": -1}, "hand_spots must be an integer >= 0"),
+        ({"prune_z": float("nan")}, "prune_z must be a finite number >= 0"),
+        ({"break_cut": float("nan")}, "break_cut must be a finite number"),  # failed at the break
+        ({"break_speed": 1.5}, "break_speed must be a finite number in"),
+        ({"break_tip": (0.0, 2.0)}, "break_tip must be two finite numbers"),
+        ({"break_tip": "ab"}, "break_tip must be two finite numbers"),
     ],
 )
 def test_bad_settings_are_refused(kwargs, message) -> None:
@@ -190,17 +196,30 @@ def test_bad_settings_are_refused(kwargs, message) -> None:
         replace(SearchSettings(), **kwargs)
 
 
+@pytest.mark.parametrize(
+    ("kwargs", "message"),
+    [
+        ({"break_y": 5.0}, r"break_y must lie in \[-0.6064, 0.6064\] m"),  # off the table
+        ({"break_cut": 0.5}, r"break_cut must lie in \[-0.0450, 0.0450\] rad"),  # misses the 1
+    ],
+)
+def test_a_break_off_the_table_or_past_the_1_is_refused_by_the_player(kwargs, message) -> None:
+    settings = SearchSettings(**kwargs)  # the table bounds them: the player checks them
+    with pytest.raises(ValueError, match=message):
+        SearchPlayer(_env(), _value(), settings=settings)
+
+
 def test_the_player_refuses_other_games_and_bad_configs(tmp_path) -> None:
     with pytest.raises(ValueError, match="9-ball"):
         SearchPlayer(gym.make("pool_env/TenBallGame-v1"), _value())
     bad = tmp_path / "bad.yaml"
     bad.write_text("kind: lookahead\n")
-    with pytest.raises(ValueError, match="kind: search"):
+    with pytest.raises(ValueError, match="kind must be 'search'"):
         load_search_player(bad, _env())
-    bad.write_text("kind: search\nlayout_value: models/runout_value.npz\nsettings: {depth: 3}\n")
-    with pytest.raises(ValueError, match="unknown search settings"):
+    bad.write_text("kind: search\nlayout_value: x.npz\nsettings: {depth: 3}\n")
+    with pytest.raises(ValueError, match=r"unknown key settings\.depth"):
         load_search_player(bad, _env())
-    with pytest.raises(FileNotFoundError):
+    with pytest.raises(ValueError, match="not found"):  # tests/agents/test_player_files.py
         load_search_player(tmp_path / "missing.yaml", _env())
 
 

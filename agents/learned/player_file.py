@@ -1,0 +1,184 @@
+"""The search player's file (``models/search_player.yaml``): its schema, checked at load.
+
+A player file is a YAML mapping of :data:`KEYS`: ``kind: search``, the ``.npz`` models the
+player values its outcomes with, and its ``settings`` (:class:`SearchSettings`, each key
+one of :data:`~agents.learned.search_player.SETTINGS`). :func:`read_player_file` refuses,
+with one ``ValueError`` that names the file and the key (dotted below the top level,
+``settings.samples``) or the model path as written, and the valid type, range or choices:
+
+- a file that is missing, not YAML, or not a mapping;
+- an unknown key at any level (a misspelt ``setvalue`` is not ignored);
+- a value of the wrong type (a count that is not an integer, ``2.7`` or ``true``; a
+  number that is a bool, a string, NaN or infinite) or out of its range (a budget
+  <= 0, a break off the table for the player's table, :func:`check_break`);
+- a model path that is not a string, is missing, or is not a readable ``.npz`` of the
+  arrays the model needs (:func:`~agents.learned.layout_value.load_arrays`).
+
+**Paths**: a relative model path is read from the player file's folder
+(``layout_value: runout_value.npz`` beside ``models/search_player.yaml`` is
+``models/runout_value.npz``, whatever the current directory); an absolute path as it
+stands. Nothing else is tried: a path that names no file is an error showing the path as
+written and where it was looked for.
+"""
+
+from __future__ import annotations
+
+import difflib
+import reprlib
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, TypeVar
+
+from agents.learned.layout_value import LayoutValue
+from agents.learned.leaf_value import SetLeaf
+from agents.learned.search_player import (
+    SETTINGS,
+    SearchPlayer,
+    SearchSettings,
+    check_break,
+    check_setting,
+)
+from agents.learned.set_value import SetValue
+from pool_env.extras import require
+from pool_env.sim import Table
+
+#: The keys of a player file and what each holds.
+KEYS = {
+    "kind": "search (the only kind)",
+    "layout_value": "the path of the run-out layout value (a LayoutValue .npz)",
+    "duel_value": "the path of the duel layout value (a LayoutValue .npz)",
+    "set_value": "the path of the set network (a SetValue .npz), the run-out leaf value",
+    "settings": "the search's settings (a mapping; defaults for those left out)",
+}
+
+Model = TypeVar("Model", LayoutValue, SetValue)
+
+
+@dataclass(frozen=True)
+class PlayerFile:
+    """A checked player file: its models read, its settings made.
+
+    Attributes:
+        path: The file, as given.
+        layout_value: The run-out layout value.
+        duel_value: The duel layout value (``None`` if the file names none).
+        set_value: The set network (``None`` if the file names none).
+        settings: The search's settings.
+    """
+
+    path: Path
+    layout_value: LayoutValue
+    duel_value: LayoutValue | None
+    set_value: SetValue | None
+    settings: SearchSettings
+
+
+def read_player_file(path: str | Path, table: Table, duel: bool = False) -> PlayerFile:
+    """Read and check the player file at ``path`` (module doc), its models too.
+
+    Args:
+        path: The ``.yaml`` file.
+        table: The table the player will play on (the break is checked against it).
+        duel: The player will play an opponent: ``duel_value`` is required.
+
+    Raises:
+        ValueError: ``player file '<path>': ...`` naming the key or the model path as
+            written, and what it must be (module doc).
+    """
+    try:
+        return _read(Path(path), table, duel)
+    except ValueError as err:
+        raise ValueError(f"player file {str(path)!r}: {err}") from None
+
+
+def load_search_player(path: str | Path, env: Any, players: int | None = None) -> SearchPlayer:
+    """The :class:`SearchPlayer` the player file at ``path`` describes.
+
+    The objective is the run-out alone (``layout_value``'s leaves, or ``set_value``'s
+    when the file names it), or the duel when the player is told it plays an opponent
+    (``players=2``, as the duels build it; ``duel_value``'s leaves).
+
+    Raises:
+        ValueError: As :func:`read_player_file`, or from :class:`SearchPlayer` (an env
+            that is not 9-ball).
+    """
+    duel = (players if players is not None else env.unwrapped.config.players) == 2
+    file = read_player_file(path, env.unwrapped.config.table, duel=duel)
+    value = file.duel_value if duel else file.layout_value
+    assert value is not None  # read_player_file requires it for a duel
+    player = SearchPlayer(env, value, "duel" if duel else "runout", file.settings,
+                          players=players)  # fmt: skip
+    if file.set_value is not None and not duel:  # the set network predicts run-outs
+        player.leaf = SetLeaf(file.set_value, player.config.table, player.mouths, player.sigma)
+    return player
+
+
+def _read(path: Path, table: Table, duel: bool) -> PlayerFile:
+    """:func:`read_player_file`'s checks; messages without the file's name."""
+    yaml = require("yaml", "train", "a player file")
+    if not path.is_file():
+        raise ValueError(f"not found (looked for {path.absolute()})")
+    try:
+        config = yaml.safe_load(path.read_text())
+    except (OSError, UnicodeDecodeError, yaml.YAMLError) as err:
+        raise ValueError(f"cannot be read as YAML: {' '.join(str(err).split())}") from None
+    _check_keys(config, KEYS, "", "the file")
+    if config.get("kind") != "search":
+        raise ValueError(f"kind must be 'search', got {config.get('kind')!r}")
+    raw = config.get("settings", {})
+    _check_keys(raw, SETTINGS, "settings.", "settings")
+    values = {name: check_setting(name, v, f"settings.{name}") for name, v in raw.items()}
+    settings = SearchSettings(**values)  # type: ignore[arg-type]
+    check_break(settings, table, "settings.")
+    base = path.parent  # the file's own values first, then the models it names
+    layout_value = _model(config, "layout_value", base, LayoutValue.load, required="")
+    against = " to play an opponent (players=2)" if duel else None
+    duel_value = _model(config, "duel_value", base, LayoutValue.load, required=against)
+    set_value = _model(config, "set_value", base, SetValue.load, required=None)
+    return PlayerFile(path, layout_value, duel_value, set_value, settings)
+
+
+def _check_keys(mapping: object, keys: Iterable[str], prefix: str, what: str) -> None:
+    """Refuse a value that is not a mapping, or a key that is not one of ``keys``."""
+    keys = list(keys)
+    if not isinstance(mapping, Mapping):
+        raise ValueError(
+            f"{what} must be a mapping of {', '.join(keys)}, got {reprlib.repr(mapping)}"
+        )
+    for key in mapping:
+        if key not in keys:
+            close = difflib.get_close_matches(str(key), keys, n=1)
+            hint = f" (did you mean {prefix}{close[0]}?)" if close else ""
+            raise ValueError(f"unknown key {prefix}{key}{hint}: the keys are {', '.join(keys)}")
+
+
+def _model(
+    config: Mapping[str, Any],
+    key: str,
+    base: Path,
+    load: Callable[[Path], Model],
+    required: str | None,
+) -> Model | None:
+    """The model ``config[key]`` names, its path read from ``base`` (module doc).
+
+    ``required``: ``None`` if the key may be left out (or null), else why it may not
+    (``""``: always).
+    """
+    written = config.get(key)
+    if written is None:
+        if required is not None:
+            raise ValueError(f"{key} is required{required}: {KEYS[key]}")
+        return None
+    if not isinstance(written, str) or not written.strip():
+        raise ValueError(f"{key} must be the path of an .npz (a string), got {written!r}")
+    found = base / written  # an absolute path stays as it is
+    if not found.is_file():
+        raise ValueError(
+            f"{key} {written!r} not found (looked for {found.absolute()}: a relative path is "
+            "read from the player file's folder)"
+        )
+    try:
+        return load(found)
+    except ValueError as err:
+        raise ValueError(f"{key} {written!r}: {err}") from None
