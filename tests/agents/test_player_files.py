@@ -28,7 +28,7 @@ from agents.learned.player_file import load_search_player, read_player_file
 from agents.learned.search_player import SearchSettings
 from agents.learned.set_value import SetValue
 
-ENV_ID = "pool_env/NineBallGame-v1"
+ENV_ID = "pool_env/NineBallGame-v2"
 ROOT = Path(__file__).resolve().parents[2]
 MODELS = ROOT / "models"
 #: A good player file, the models beside it (the fixture copies them there).
