@@ -288,7 +288,9 @@ def obs_layout(config: GameConfig | PoolConfig | Any) -> dict[str, slice]:
     return layout
 
 
-def shot_constraints(config: GameConfig | PoolConfig | Any, observation: ArrayLike) -> ShotConstraints:
+def shot_constraints(
+    config: GameConfig | PoolConfig | Any, observation: ArrayLike
+) -> ShotConstraints:
     """What the next shot may do, as the observation's viewer sees it (the game's rules).
 
     The legal first balls, ball in hand and its placement box, the break (and its speed

@@ -1,5 +1,8 @@
-"""What the codec and the shot views take: configs in every form, observations of the game,
-integer calls, and the executed direction in [-pi, pi)."""
+"""What the codec and the shot views take, and what they report.
+
+Configs in every form, observations of the config's game, integer calls, and the executed
+direction in [-pi, pi).
+"""
 
 from __future__ import annotations
 
@@ -22,7 +25,7 @@ from pool_env import (
 )
 from pool_env.game.codec import encode_ball, encode_pocket
 
-NINE = "pool_env/NineBallGame-v1"
+NINE = "pool_env/NineBallGame-v2"
 
 
 # --- obs_layout and shot_constraints take a config in every form, or refuse -----------------
@@ -48,9 +51,9 @@ def test_obs_layout_and_shot_constraints_take_a_config_in_every_form() -> None:
 def test_obs_layout_and_shot_constraints_refuse_anything_else_saying_what_they_take(
     given: Any,
 ) -> None:
-    with pytest.raises(ValueError, match="obs_layout takes a GameConfig .* PoolConfig"):
+    with pytest.raises(ValueError, match=r"obs_layout takes a GameConfig .* PoolConfig"):
         obs_layout(given)
-    with pytest.raises(ValueError, match="shot_constraints takes a GameConfig .* env"):
+    with pytest.raises(ValueError, match=r"shot_constraints takes a GameConfig .* env"):
         shot_constraints(given, np.zeros(48))
 
 
@@ -131,9 +134,9 @@ def test_encoding_refuses_a_call_out_of_range_or_not_an_integer() -> None:
     with pytest.raises(ValueError, match=r"the called ball must be an integer in 1\.\.10"):
         encode_action(ten.config, Shot(0.0, 9.0, ball=11), *args)
     for bad in (2.5, True, np.bool_(False)):
-        with pytest.raises(ValueError, match="pocket must be an integer in 0..5"):
+        with pytest.raises(ValueError, match=r"pocket must be an integer in 0\.\.5"):
             encode_pocket(ten.config, bad)  # type: ignore[arg-type]
-        with pytest.raises(ValueError, match="the called ball must be an integer in 1..10"):
+        with pytest.raises(ValueError, match=r"the called ball must be an integer in 1\.\.10"):
             encode_ball(ten.config, bad)  # type: ignore[arg-type]
     assert encode_pocket(ten.config, np.int64(5)) == pytest.approx(5.0 / 6.0)
 
