@@ -80,7 +80,6 @@ def test_shot_constraints_names_the_entry_that_no_observation_of_the_game_holds(
         layout["balls"].start + 5: (0.5, "no ball 1"),  # on_table of ball 1: a flag
         layout["legal"].start + 1: (0.5, "ball 2 may be hit first"),
         layout["fouls"].start: (0.25, "fouls"),
-        layout["to_shoot"].start: (0.0, "one player always shoots"),
         layout["open_table"].start: (1.0, "open_table: 8-ball's"),
     }
     for index, (value, message) in cases.items():
@@ -88,6 +87,10 @@ def test_shot_constraints_names_the_entry_that_no_observation_of_the_game_holds(
         bad[index] = value
         with pytest.raises(ValueError, match=message):
             shot_constraints(env, bad)
+    pushing = obs.copy()  # the push-out offered to a viewer who does not shoot
+    pushing[layout["push_out"].start], pushing[layout["to_shoot"].start] = 1.0, 0.0
+    with pytest.raises(ValueError, match="push_out: only for the viewer to shoot"):
+        shot_constraints(env, pushing)
     potted = obs.copy()  # a ball off the table reads (0, 0, 0): here flagged legal
     potted[3:6] = 0.0
     with pytest.raises(ValueError, match="ball 1 may be hit first"):
