@@ -246,5 +246,7 @@ class ReferenceEnv:
 
 def _wrapped(angle: float) -> float:
     """The reported direction: ``angle`` in ``[-pi, pi)`` (the shot is struck as aimed)."""
+    if -math.pi <= angle < math.pi:
+        return angle
     wrapped = (angle + math.pi) % (2.0 * math.pi) - math.pi
     return wrapped if wrapped < math.pi else -math.pi

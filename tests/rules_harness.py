@@ -27,7 +27,6 @@ from pool_env.game.games.wpa.judge import (
     judge_rules,
 )
 from pool_env.game.games.wpa.params import VARIANT as GAME_CODE
-from pool_env.game.kernels.outcome import TERMINATED
 from pool_env.game.games.wpa.shots import (
     CALL_BALL,
     CALL_HAND_BACK,
@@ -35,6 +34,7 @@ from pool_env.game.games.wpa.shots import (
     CALL_PUSH_OUT,
     N_CALLS,
 )
+from pool_env.game.kernels.outcome import TERMINATED
 from pool_env.sim.table import Table
 from tests.wpa_reference import RackState
 

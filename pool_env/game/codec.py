@@ -288,7 +288,9 @@ def obs_layout(config: GameConfig | PoolConfig | Any) -> dict[str, slice]:
     return layout
 
 
-def shot_constraints(config: GameConfig | PoolConfig | Any, observation: ArrayLike) -> ShotConstraints:
+def shot_constraints(
+    config: GameConfig | PoolConfig | Any, observation: ArrayLike
+) -> ShotConstraints:
     """What the next shot may do, as the observation's viewer sees it (the game's rules).
 
     The legal first balls, ball in hand and its placement box, the break (and its speed
@@ -299,7 +301,8 @@ def shot_constraints(config: GameConfig | PoolConfig | Any, observation: ArrayLi
     The observation must be one of this config's game: of its size, every entry in
     ``[-1, 1]``, each ball's ``on_table`` entry 0 or 1 with a potted ball at ``(0, 0)``
     and the cue ball on, and under rules every flag 0 or 1 (the successive fouls 0, 1/2
-    or 1), a legal first ball on the table, and with one player the agent to shoot. An
+    or 1), a legal first ball on the table, the push-out and the option for the viewer
+    to shoot only. An
     observation of another game of the same size (15-ball solitaire's against 9-ball's)
     fails these in all but contrived layouts.
 

@@ -89,9 +89,7 @@ class GameState:
 
     def undo(self, tables: NDArray[np.intp], held: dict[int, Any] | None) -> None:
         """Put back what :meth:`hold` saved of ``tables`` (``held``: what it returned)."""
-        restore_shooters(
-            self.positions, self.words_at, tables, self.saved_cue, self.saved_words
-        )
+        restore_shooters(self.positions, self.words_at, tables, self.saved_cue, self.saved_words)
         for b, bits in (held or {}).items():
             self.generators[b].bit_generator.state = bits  # type: ignore[union-attr]
 

@@ -16,15 +16,15 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from pool_env.game.codec import encode_placement
 from pool_env.game import step as game_step
+from pool_env.game.codec import encode_placement
 
 NOISE = (0.003, 0.05)  # the noise is drawn before the simulator runs
 
 #: Rules ids (a break with the cue ball in hand behind the head string, then ball in hand
 #: after fouls) and solitaire (no ball in hand: the noise only).
 IDS = [
-    "pool_env/NineBallGame-v1",
+    "pool_env/NineBallGame-v2",
     "pool_env/EightBallGameRoll-v1",
     "pool_env/TenBallGame-v1",
     "pool_env/OneBall-v1",
@@ -101,7 +101,7 @@ def test_a_refused_placement_on_a_covered_point_is_undone(
 ) -> None:
     # Ball in hand asked onto the 1 (covered): the step moves the cue ball to the nearest
     # free point in Python, after the compiled placement; both are undone.
-    env = gym.make("pool_env/NineBallGameRoll-v1", noise=NOISE)
+    env = gym.make("pool_env/NineBallGameRoll-v2", noise=NOISE)
     env.reset(seed=0, options={"rules": {"ball_in_hand": True}})
     raw = env.unwrapped
     action = np.zeros(env.action_space.shape)
@@ -118,7 +118,7 @@ def test_a_refused_placement_on_a_covered_point_is_undone(
 
 @pytest.mark.parametrize(
     ("env_id", "kwargs"),
-    [("pool_env/NineBallGame-v1", {}), ("pool_env/PoolRoll-v1", {"end_on_miss": True})],
+    [("pool_env/NineBallGame-v2", {}), ("pool_env/PoolRoll-v1", {"end_on_miss": True})],
 )
 def test_a_batch_with_a_refused_table_leaves_every_table_unchanged(
     env_id: str, kwargs: dict[str, Any], monkeypatch: pytest.MonkeyPatch

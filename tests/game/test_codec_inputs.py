@@ -1,5 +1,8 @@
-"""What the codec and the shot views take: configs in every form, observations of the game,
-integer calls, and the executed direction in [-pi, pi)."""
+"""What the codec and the shot views take, and what they report.
+
+Configs in every form, observations of the config's game, integer calls, and the executed
+direction in [-pi, pi).
+"""
 
 from __future__ import annotations
 
@@ -22,7 +25,7 @@ from pool_env import (
 )
 from pool_env.game.codec import encode_ball, encode_pocket
 
-NINE = "pool_env/NineBallGame-v1"
+NINE = "pool_env/NineBallGame-v2"
 
 
 # --- obs_layout and shot_constraints take a config in every form, or refuse -----------------
@@ -48,9 +51,9 @@ def test_obs_layout_and_shot_constraints_take_a_config_in_every_form() -> None:
 def test_obs_layout_and_shot_constraints_refuse_anything_else_saying_what_they_take(
     given: Any,
 ) -> None:
-    with pytest.raises(ValueError, match="obs_layout takes a GameConfig .* PoolConfig"):
+    with pytest.raises(ValueError, match=r"obs_layout takes a GameConfig .* PoolConfig"):
         obs_layout(given)
-    with pytest.raises(ValueError, match="shot_constraints takes a GameConfig .* env"):
+    with pytest.raises(ValueError, match=r"shot_constraints takes a GameConfig .* env"):
         shot_constraints(given, np.zeros(48))
 
 
@@ -77,7 +80,6 @@ def test_shot_constraints_names_the_entry_that_no_observation_of_the_game_holds(
         layout["balls"].start + 5: (0.5, "no ball 1"),  # on_table of ball 1: a flag
         layout["legal"].start + 1: (0.5, "ball 2 may be hit first"),
         layout["fouls"].start: (0.25, "fouls"),
-        layout["to_shoot"].start: (0.0, "one player always shoots"),
         layout["open_table"].start: (1.0, "open_table: 8-ball's"),
     }
     for index, (value, message) in cases.items():
@@ -85,6 +87,10 @@ def test_shot_constraints_names_the_entry_that_no_observation_of_the_game_holds(
         bad[index] = value
         with pytest.raises(ValueError, match=message):
             shot_constraints(env, bad)
+    pushing = obs.copy()  # the push-out offered to a viewer who does not shoot
+    pushing[layout["push_out"].start], pushing[layout["to_shoot"].start] = 1.0, 0.0
+    with pytest.raises(ValueError, match="push_out: only for the viewer to shoot"):
+        shot_constraints(env, pushing)
     potted = obs.copy()  # a ball off the table reads (0, 0, 0): here flagged legal
     potted[3:6] = 0.0
     with pytest.raises(ValueError, match="ball 1 may be hit first"):
@@ -131,9 +137,9 @@ def test_encoding_refuses_a_call_out_of_range_or_not_an_integer() -> None:
     with pytest.raises(ValueError, match=r"the called ball must be an integer in 1\.\.10"):
         encode_action(ten.config, Shot(0.0, 9.0, ball=11), *args)
     for bad in (2.5, True, np.bool_(False)):
-        with pytest.raises(ValueError, match="pocket must be an integer in 0..5"):
+        with pytest.raises(ValueError, match=r"pocket must be an integer in 0\.\.5"):
             encode_pocket(ten.config, bad)  # type: ignore[arg-type]
-        with pytest.raises(ValueError, match="the called ball must be an integer in 1..10"):
+        with pytest.raises(ValueError, match=r"the called ball must be an integer in 1\.\.10"):
             encode_ball(ten.config, bad)  # type: ignore[arg-type]
     assert encode_pocket(ten.config, np.int64(5)) == pytest.approx(5.0 / 6.0)
 

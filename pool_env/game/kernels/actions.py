@@ -72,7 +72,13 @@ def decode_actions(actions, aim_low, aim_high, speed_low, speed_high):
 
 @kernel
 def wrap_angle(angle):
-    """``angle`` in ``[-pi, pi)``: the one direction of the executed shot and the encoder."""
+    """``angle`` as a direction in ``[-pi, pi)``: itself there (exactly), else wrapped.
+
+    The executed shot's reported direction and the encoder's offsets. An angle inside the
+    range is returned as it is: ``(angle + pi) % 2 pi - pi`` would round it.
+    """
+    if -math.pi <= angle < math.pi:
+        return angle
     wrapped = (angle + math.pi) % (2.0 * math.pi) - math.pi
     # An angle a hair below -pi gives exactly pi after rounding: it is -pi then.
     return wrapped if wrapped < math.pi else -math.pi

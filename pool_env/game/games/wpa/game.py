@@ -293,7 +293,7 @@ class WpaGame(Ruleset):
         """
         obs = np.asarray(observation)
         layout = self.obs_layout(config.n_balls)
-        check_rule_observation(self.name, self.code, config.players, obs, layout)
+        check_rule_observation(self.name, self.code, obs, layout)
         names = RULE_FEATURES[:4] + (OPTION_FEATURES if self.has_option else ())
         flag = {name: bool(obs[layout[name]][0] > 0.5) for name in names}
         first = tuple(int(j) for j in np.flatnonzero(obs[layout["legal"]] > 0.5) + 1)

@@ -123,7 +123,7 @@ FEATURE_VALUES: dict[str, tuple[float, ...]] = {"fouls": (0.0, 0.5, 1.0),
 
 
 def check_rule_observation(
-    name: str, game: int, players: int, obs: NDArray[Any], layout: dict[str, slice]
+    name: str, game: int, obs: NDArray[Any], layout: dict[str, slice]
 ) -> None:
     """Refuse an observation whose rule part :func:`encode_rule_observations` never gives.
 
@@ -135,7 +135,6 @@ def check_rule_observation(
     Args:
         name: The game's name, for the message.
         game: Its code.
-        players: 1 or 2.
         obs: One observation of the right size.
         layout: The game's observation layout.
 
@@ -160,9 +159,6 @@ def check_rule_observation(
             refuse(layout[key].start, f"{key}: one of {FEATURE_VALUES.get(key, (0.0, 1.0))}")
     if game != EIGHT and feature["open_table"] != 0.0:
         refuse(layout["open_table"].start, "open_table: 8-ball's")
-    if players == 1 and (feature["to_shoot"] != 1.0 or feature["opponent_fouls"] != 0.0):
-        key = "to_shoot" if feature["to_shoot"] != 1.0 else "opponent_fouls"
-        refuse(layout[key].start, f"{key}: one player always shoots, and has no opponent")
     for key in ("push_out", "option"):
         if feature.get(key, 0.0) == 1.0 and feature["to_shoot"] != 1.0:
             refuse(layout[key].start, f"{key}: only for the viewer to shoot")
