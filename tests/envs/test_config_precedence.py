@@ -19,13 +19,14 @@ from hypothesis import strategies as st
 
 from pool_env import PoolConfig, PoolEnv, PoolVectorEnv, Table, default_config
 from pool_env.envs.registration import ENV_IDS, GAME_IDS
+from tests.profiles import examples
 
 RACKS = {"nine": "nine_ball", "ten": "ten_ball", "eight": "eight_ball"}
 OBJECT_BALLS = {"nine": 9, "ten": 10, "eight": 15}
 #: Action columns before a spin table's two tip columns.
 WIDTHS = {"solitaire": 2, "nine": 6, "ten": 7, "eight": 5}
 SETTINGS = settings(
-    max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow]
+    max_examples=examples(20), deadline=None, suppress_health_check=[HealthCheck.too_slow]
 )  # fmt: skip
 
 
