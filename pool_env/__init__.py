@@ -106,8 +106,15 @@ __all__ = [
 ]
 
 
+#: The fronts' modules that moved into pool_env.envs: ``pool_env.<name>`` is their deprecated
+#: alias (:mod:`pool_env._moved`), as an attribute of the package too.
+_MOVED_MODULES = ("env", "vector", "multiagent", "record", "registration")
+
+
 def __getattr__(name: str) -> Any:
     """Import a name of the game layer or a front on its first use (PEP 562)."""
+    if name in _MOVED_MODULES:  # the import binds it on the package, with its warning
+        return importlib.import_module(f"pool_env.{name}")
     if name not in _LAZY:
         raise AttributeError(f"module 'pool_env' has no attribute {name!r}")
     value = getattr(importlib.import_module(_LAZY[name]), name)

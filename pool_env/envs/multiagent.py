@@ -42,7 +42,7 @@ None while the rack is undecided).
 from __future__ import annotations
 
 import copy
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from typing import Any, ClassVar
 
 import gymnasium as gym
@@ -72,6 +72,13 @@ _GAME_IDS: dict[str, tuple[dict[str, Any], int]] = {
     if "game" in kwargs
 }
 _OPTIONS = ("positions", "on_table", "rules")
+
+
+def _rules_game(rules: Any) -> str | None:
+    """The game a ``rules=`` argument names (a section or a mapping), if it names one."""
+    if isinstance(rules, Mapping):
+        return rules.get("game")
+    return getattr(rules, "game", None)
 
 
 class PoolDuelEnv(AECEnv):
@@ -109,10 +116,15 @@ class PoolDuelEnv(AECEnv):
         if game is not None and game not in _GAME_IDS:
             raise ValueError(f"game must be one of {sorted(_GAME_IDS)}, got {game!r}")
         if config is None:  # the game id's defaults, as gym.make would pass them
-            name = game or "nine"
+            # The game named, by game= or by the rules given (a conflict of the two is the
+            # config's to refuse: game= goes in as the caller's override, not a default).
+            name = game or _rules_game(overrides.get("rules")) or "nine"
+            if name not in _GAME_IDS:
+                raise ValueError(f"game must be one of {sorted(_GAME_IDS)}, got {name!r}")
             registered, steps = _GAME_IDS[name]
             defaults = {**registered, "game": name, "max_shots": steps}
-            source = resolve(None, overrides, defaults)
+            source = resolve(None, overrides if game is None else {"game": game, **overrides},
+                             defaults)  # fmt: skip
         else:  # the config whole; a game given is the caller's override of its game
             source = resolve(config, overrides if game is None else {"game": game, **overrides})
         self.config: GameConfig = make_config(source, 2)
@@ -234,6 +246,11 @@ class VersusPolicyEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         self.opponent = opponent
         self.action_space = self.duel.action_space(AGENTS[0])
         self.observation_space = self.duel.observation_space(AGENTS[0])
+
+    @property
+    def config(self) -> GameConfig:
+        """The duel's config (``pool_env.obs_layout(env)`` and the like read it)."""
+        return self.duel.config
 
     def reset(
         self, *, seed: int | None = None, options: dict[str, Any] | None = None

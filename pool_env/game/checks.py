@@ -107,8 +107,9 @@ def parse_noise(value: object, table: Table) -> tuple[float, ...] | None:
         if sigmas[0] > MAX_SIGMA_ANGLE:
             k_max = MAX_SIGMA_ANGLE / NOISE_MODELS[name](table, 1.0)[0]
             raise ValueError(
-                f"noise={value!r}: k must lie in [0, {k_max:.6g}]: beyond it the angle's "
-                f"sigma passes pi rad, and the executed aim is uniform over the circle"
+                f"noise={value!r}: k must be at most {k_max:.6g}, where the angle's sigma "
+                f"reaches pi rad (beyond, the executed aim is uniform over the circle); the "
+                f"speed ranges may allow less (the speed sigma's bound is checked next)"
             )
         return None if not any(sigmas) else sigmas
     try:

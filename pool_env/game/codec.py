@@ -81,7 +81,7 @@ def _quiet(config: GameConfig) -> NDArray[np.float64]:
 
 
 def decode_action(
-    config: GameConfig,
+    config: GameConfig | PoolConfig | Any,
     action: ArrayLike,
     positions: ArrayLike,
     on_table: ArrayLike | None = None,
@@ -106,6 +106,7 @@ def decode_action(
     Raises:
         ValueError: On a malformed action (or NaN), layout or rack.
     """
+    config = game_config(config, "decode_action")
     actions = check_actions(action, 1, single=True, width=config.action_size)
     state = _table(config, positions, on_table, rack)
     ruleset = config.ruleset
@@ -139,7 +140,7 @@ def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> floa
 
 
 def encode_shots(
-    config: GameConfig,
+    config: GameConfig | PoolConfig | Any,
     positions: ArrayLike,
     refer: ArrayLike,
     angles: ArrayLike,
@@ -172,6 +173,7 @@ def encode_shots(
         ValueError: On shapes that do not fit together, a tip on a roll table, or a tip
             beyond the tip limit.
     """
+    config = game_config(config, "encode_shots")
     pos = np.ascontiguousarray(positions, dtype=np.float64)
     ref = np.ascontiguousarray(refer, dtype=np.bool_)
     ang = np.ascontiguousarray(angles, dtype=np.float64)
@@ -230,7 +232,8 @@ def game_config(source: Any, caller: str) -> GameConfig:
         source: A :class:`~pool_env.game.config.GameConfig` (``env.unwrapped.config``), a
             :class:`~pool_env.PoolConfig` (what :func:`pool_env.default_config` returns:
             parsed here, as an env of one agent parses it) or an env, wrapped or not (its
-            ``unwrapped.config``: ``PoolEnv``, ``PoolVectorEnv``, the two-player fronts).
+            ``unwrapped.config``: ``PoolEnv``, ``PoolVectorEnv``, the two-player fronts;
+            a ``SyncVectorEnv`` of them: its first env's).
         caller: The public function's name, for the message.
 
     Raises:
@@ -244,6 +247,9 @@ def game_config(source: Any, caller: str) -> GameConfig:
     config = getattr(getattr(source, "unwrapped", source), "config", None)
     if isinstance(config, GameConfig):
         return config
+    envs = getattr(source, "envs", None)  # Gymnasium's SyncVectorEnv: its envs share one
+    if isinstance(envs, list | tuple) and envs:
+        return game_config(envs[0], caller)
     raise ValueError(
         f"{caller} takes a GameConfig (env.unwrapped.config), a PoolConfig "
         f"(pool_env.default_config()) or a pool_env env, got {type(source).__name__} "
@@ -367,7 +373,7 @@ def reference_balls(positions: ArrayLike, refer: ArrayLike) -> NDArray[np.int64]
 
 
 def encode_action(
-    config: GameConfig,
+    config: GameConfig | PoolConfig | Any,
     shot: Shot,
     positions: ArrayLike,
     on_table: ArrayLike | None = None,
@@ -398,6 +404,7 @@ def encode_action(
             pocket that does not exist; on a part that is not a finite number (with or
             without ``clip``: no edge is nearest to NaN); or a malformed layout or rack.
     """
+    config = game_config(config, "encode_action")
     _check_finite(shot)
     state = _table(config, positions, on_table, rack)
     out = np.zeros(config.action_size)
@@ -409,7 +416,7 @@ def encode_action(
 
 
 def encode_placement(
-    config: GameConfig, cue: ArrayLike, behind: bool = False, clip: bool = False
+    config: GameConfig | PoolConfig | Any, cue: ArrayLike, behind: bool = False, clip: bool = False
 ) -> tuple[float, float]:
     """The action components (``action[2]``, ``action[3]``) that place the cue ball in hand.
 
@@ -422,24 +429,27 @@ def encode_placement(
     Raises:
         ValueError: On a solitaire config, or a point outside the box (without ``clip``).
     """
+    config = game_config(config, "encode_placement")
     return config.ruleset.encode_placement(config, cue, behind, clip)
 
 
-def encode_pocket(config: GameConfig, pocket: int) -> float:
+def encode_pocket(config: GameConfig | PoolConfig | Any, pocket: int) -> float:
     """The action component (``action[4]``) that calls ``pocket``: the middle of its bin.
 
     Raises:
         ValueError: If the table has no pocket ``pocket``.
     """
+    config = game_config(config, "encode_pocket")
     return pocket_component(config.table.n_pockets, pocket)
 
 
-def encode_ball(config: GameConfig, ball: int) -> float:
+def encode_ball(config: GameConfig | PoolConfig | Any, ball: int) -> float:
     """The action component that calls object ball ``ball`` (10-ball): the middle of its bin.
 
     Raises:
         ValueError: On a game that calls no ball, or a ball that is not one of its own.
     """
+    config = game_config(config, "encode_ball")
     return config.ruleset.encode_ball(config, ball)
 
 

@@ -246,6 +246,18 @@ class PoolConfig:
             return self._with_rewards(scales)._with_rules({**values, "game": name}, _UNSET)
         section_type = ruleset_for(name).section
         current = self.rules if type(self.rules) is section_type else section_type()
+        if current is not self.rules:  # another game's section: its options cannot carry over
+            set_options = {
+                f.name: getattr(self.rules, f.name)
+                for f in fields(self.rules)
+                if f.name != "game" and getattr(self.rules, f.name) != f.default
+            }
+            if set_options:
+                raise ValueError(
+                    f"game={name!r} replaces game {self.rules.game!r}, whose rules options "
+                    f"{set_options} it has not: leave them out, or keep game "
+                    f"{self.rules.game!r}"
+                )  # fmt: skip
         for key in values:
             if key not in {f.name for f in fields(section_type)}:
                 owners = [g for g, r in every_game().items() if key in _field_names(r.section)]

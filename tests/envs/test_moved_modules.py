@@ -27,3 +27,14 @@ def test_the_old_names_still_import() -> None:
     from pool_env.envs import multiagent
 
     assert PoolDuelEnv is multiagent.PoolDuelEnv
+
+
+@pytest.mark.parametrize("name", [old.split(".")[1] for old in MOVED])
+def test_an_old_module_is_an_attribute_of_the_package_too(name: str) -> None:
+    import pool_env
+
+    sys.modules.pop(f"pool_env.{name}", None)
+    pool_env.__dict__.pop(name, None)
+    with pytest.warns(DeprecationWarning, match=f"pool_env.{name} moved"):
+        module = getattr(pool_env, name)
+    assert module is importlib.import_module(f"pool_env.envs.{name}")

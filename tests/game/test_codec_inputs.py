@@ -23,7 +23,8 @@ from pool_env import (
     obs_layout,
     shot_constraints,
 )
-from pool_env.game.codec import encode_ball, encode_pocket
+from pool_env.game.codec import encode_ball, encode_placement, encode_pocket
+from pool_env.game.config import make_config
 
 NINE = "pool_env/NineBallGame-v2"
 
@@ -182,3 +183,25 @@ def test_absolute_aim_at_plus_pi_is_reported_as_minus_pi() -> None:
     env.reset(seed=0, options={"positions": LEFTWARD})
     info = env.step(np.array([1.0, 0.0]))[4]  # +1 maps to +pi: the same direction as -pi
     assert info["angle"] == -math.pi
+
+
+def test_every_codec_function_takes_the_config_in_every_form() -> None:
+    """encode_action, decode_action and the encoders read what obs_layout reads."""
+    from pool_env.envs.multiagent import VersusPolicyEnv
+
+    source = default_config(game="eight", scene="eight_ball")
+    parsed = make_config(source)
+    positions = np.array([[0.5 + 0.1 * i, 0.3 + 0.05 * (i % 5)] for i in range(16)])
+    shot = Shot(0.1, 2.0, pocket=3)
+    want = encode_action(parsed, shot, positions)
+    for form in (source, gym.make("pool_env/EightBallGameRoll-v1"), PoolEnv(config=source)):
+        np.testing.assert_array_equal(encode_action(form, shot, positions), want)
+        assert decode_action(form, want, positions).pocket == 3
+        assert encode_pocket(form, 3) == encode_pocket(parsed, 3)
+        assert encode_placement(form, (0.4, 0.5)) == encode_placement(parsed, (0.4, 0.5))
+    versus = VersusPolicyEnv(game="eight")
+    assert obs_layout(versus) == obs_layout(versus.duel.config)
+    sync = gym.make_vec("pool_env/NineBallGameRoll-v2", 2, vectorization_mode="sync")
+    assert obs_layout(sync) == obs_layout(sync.envs[0].unwrapped.config)
+    with pytest.raises(ValueError, match="encode_action takes a GameConfig"):
+        encode_action({"game": "eight"}, shot, positions)

@@ -11,6 +11,7 @@ from __future__ import annotations
 import copy
 import math
 import pickle
+import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -199,8 +200,37 @@ def test_noise_whose_draws_could_pass_the_ceiling_is_refused_naming_it() -> None
 
 
 def test_an_angle_sigma_past_half_a_turn_is_refused() -> None:
-    with pytest.raises(ValueError, match=r"noise=\('fastfiz', 5000\): k must lie in \[0, 1440\]"):
+    with pytest.raises(ValueError, match=r"noise=\('fastfiz', 5000\): k must be at most 1440"):
         PoolEnv(noise=("fastfiz", 5000))
+    # The message does not promise 1440: at the default speeds the speed sigma bounds k lower,
+    # and that bound, named in its own message, is one k accepted and the next refused.
+    with pytest.raises(ValueError, match=r"k at most (\d+\.?\d*)") as refused:
+        PoolEnv(noise=("fastfiz", 1440))
+    largest = float(re.search(r"k at most (\d+\.?\d*)", str(refused.value)).group(1))
+    assert 100 < largest < 1440
+    PoolEnv(noise=("fastfiz", 0.999 * largest))
     with pytest.raises(ValueError, match=r"the angle's sigma must lie in \[0, pi\]"):
         PoolEnv(noise=(3.5, 0.1))
     assert PoolEnv(noise=(math.pi, 0.1)).config.noise == (math.pi, 0.1)
+
+
+def test_a_two_player_front_refuses_a_game_its_rules_contradict() -> None:
+    pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
+    from pool_env.envs.multiagent import PoolDuelEnv, VersusPolicyEnv
+
+    with pytest.raises(ValueError, match=r"game='eight' but rules=.* names game 'ten'"):
+        PoolDuelEnv("eight", rules={"game": "ten"}, scene="ten_ball")
+    with pytest.raises(ValueError, match=r"game='nine' but rules=.* names game 'eight'"):
+        VersusPolicyEnv(game="nine", rules=WpaRules(game="eight"), scene="eight_ball")
+    # The rules alone name the game: its id's defaults (scene, shot limit) follow it.
+    assert PoolDuelEnv(rules={"game": "ten"}).config.n_object_balls == 10
+
+
+def test_another_games_rules_options_are_refused_not_dropped() -> None:
+    nine = default_config(game="nine", scene="nine_ball", end_on_foul=True)
+    with pytest.raises(ValueError, match=r"game='solitaire' replaces game 'nine'.*end_on_foul"):
+        PoolEnv(config=nine, game="solitaire", scene="random")
+    # A game with the same rules section keeps them; defaults carry over without a word.
+    assert PoolEnv(config=nine, game="eight", scene="eight_ball").config.rules.end_on_foul
+    plain = default_config(game="nine", scene="nine_ball")
+    assert PoolEnv(config=plain, game="solitaire", scene="random").config.rules.game == "solitaire"
