@@ -46,8 +46,11 @@ GONE = Path("gone", "runout_value.npz").as_posix()
 
 
 def _settings(line: str) -> str:
-    """:data:`GOOD` with one more line under ``settings``."""
-    return GOOD + f"  {line}\n"
+    """:data:`GOOD` with ``line`` under ``settings``, in place of the line of its key."""
+    key = line.split(":")[0]
+    return "".join(ln for ln in GOOD.splitlines(True) if not ln.startswith(f"  {key}:")) + (
+        f"  {line}\n"
+    )
 
 
 def _swap(key: str, value: str) -> str:
@@ -100,6 +103,20 @@ BAD = [
     ("a NaN break tip", _settings("break_tip: [0.0, .nan]"), "settings.break_tip must be two"),
     ("a break tip string", _settings("break_tip: ab"), "settings.break_tip must be two"),
     ("a break tip past 1", _settings("break_tip: [0.0, 1.5]"), "settings.break_tip must be two"),
+    # YAML keeps the last of two equal keys: the file must say each once, at any level.
+    ("a setting twice, flow style",
+     GOOD.split("settings:")[0] + "settings: {samples: 8, samples: 2}\n",
+     "duplicate key settings.samples (twice on line 5)"),
+    ("a setting twice, block style", GOOD + "  samples: 2\n",
+     "duplicate key settings.samples (lines 7 and 8)"),
+    ("a model path twice", GOOD + "layout_value: duel_value.npz\n",
+     "duplicate key layout_value (lines 2 and 8)"),
+    ("a directory as the model", _swap("layout_value", "folder"),
+     "layout_value 'folder' is a directory, not a file"),
+    ("weights as strings", _swap("layout_value", "text.npz"), "array 'weights' must hold real"),
+    ("weights as complex numbers", _swap("duel_value", "complex.npz"),
+     "got dtype complex128"),
+    ("weights as bools", _swap("layout_value", "bool.npz"), "got dtype bool"),
 ]  # fmt: skip
 
 
@@ -117,6 +134,10 @@ def folder(tmp_path: Path) -> Path:
     np.savez(tmp_path / "short.npz", weights=np.zeros(3))
     (tmp_path / "corrupt.npz").write_bytes(b"not an archive at all")
     (tmp_path / "truncated.npz").write_bytes((MODELS / "duel_value.npz").read_bytes()[:60])
+    weights = LayoutValue.load(MODELS / "runout_value.npz").weights  # of the right size
+    for name, dtype in (("text", str), ("complex", complex), ("bool", bool)):
+        np.savez(tmp_path / f"{name}.npz", weights=weights.astype(dtype))
+    (tmp_path / "folder").mkdir()
     np.save(tmp_path / "plain.npy", np.zeros(12))
     (tmp_path / "plain.npy").rename(tmp_path / "plain.npz")
     return tmp_path
@@ -157,6 +178,11 @@ def test_a_missing_model_shows_where_it_was_looked_for(folder: Path, env: gym.En
 def test_a_missing_player_file_is_a_value_error(tmp_path: Path, env: gym.Env) -> None:
     with pytest.raises(ValueError, match=r"player file 'nothere\.yaml': not found \(looked for"):
         load_search_player("nothere.yaml", env)
+
+
+def test_a_directory_as_the_player_file_is_a_value_error(folder: Path, env: gym.Env) -> None:
+    with pytest.raises(ValueError, match=r"': is a directory, not a file \("):
+        load_search_player(folder, env)
 
 
 def test_a_duel_needs_the_duel_value(folder: Path, env: gym.Env) -> None:
