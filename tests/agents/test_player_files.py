@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from agents.evaluation.duels import main as duels_main
-from agents.evaluation.evaluate import check_player_files, make_agent
+from agents.evaluation.evaluate import check_agents, make_agent
 from agents.evaluation.evaluate import main as evaluate_main
 from agents.evaluation.runouts import main as runouts_main
 from agents.learned.layout_value import LayoutValue
@@ -291,5 +291,45 @@ def test_the_commands_turn_a_bad_player_file_into_a_usage_error(
 def test_a_good_player_file_passes_the_commands_check(folder: Path) -> None:
     parser = argparse.ArgumentParser()
     good = str(_write(folder, GOOD))
-    check_player_files(parser, ["ghost", good], ENV_ID, None)  # no exit
-    check_player_files(parser, [good], ENV_ID, {"noise": "fastfiz"}, players=2)
+    check_agents(parser, ["ghost", good], ENV_ID, None)  # no exit
+    check_agents(parser, [good], ENV_ID, {"noise": "fastfiz"}, players=2)
+    upper = folder / "PLAYER.YML"  # a player file whatever the suffix's case
+    upper.write_text(GOOD)
+    check_agents(parser, [str(upper), "const:0,1,0,0,0,0,0,0"], ENV_ID, None)
+    env = gym.make(ENV_ID)
+    assert make_agent(str(upper), env).settings == SearchSettings(budget=0.5, samples=4)
+
+
+#: (id, the agent as written, what the error line must say beside it).
+BAD_AGENTS = [
+    ("a missing .yml", "gone.yml", "a search player file not found"),
+    ("a missing .YAML", "GONE.YAML", "a search player file not found"),
+    ("a missing .zip", "gone.zip", "an SB3 model not found"),
+    ("a missing .npz", "gone.npz", "a rack or lookahead model not found"),
+    ("a directory", "{folder}", "is a directory, not a file"),
+    ("a directory with a model's suffix", "{folder}/folder.npz", "is a directory, not a file"),
+    ("a misspelt name", "gohst", "(did you mean ghost?): an agent is one of random, const,"),
+    ("an unknown suffix", "model.pt", "or a file (any case): an SB3 model .zip, a rack or "
+     "lookahead model .npz, a search player file .yaml/.yml"),
+    ("a const of letters", "const:a,b", "takes the env's 8 action numbers, each in [-1, 1]"),
+    ("a const out of range", "const:0,2,0,0,0,0,0,0", "takes the env's 8 action numbers"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("agent", "says"), [b[1:] for b in BAD_AGENTS], ids=[b[0] for b in BAD_AGENTS]
+)
+def test_the_commands_turn_a_bad_agent_into_a_usage_error(
+    folder: Path, capsys: pytest.CaptureFixture[str], agent: str, says: str
+) -> None:
+    (folder / "folder.npz").mkdir()
+    agent = agent.format(folder=folder)
+    commands = [
+        (evaluate_main, ["--env", ENV_ID, "--agent", "ghost", agent, "--episodes", "1"]),
+        (duels_main, ["--agent", agent, "--opponent", "ghost", "--racks", "1"]),
+        (duels_main, ["--agent", "ghost", "--opponent", "random", agent, "--racks", "1"]),
+        (runouts_main, ["--agents", "ghost", agent, "--racks", "1"]),
+    ]
+    for main, argv in commands:
+        line = _usage_error(main, argv, capsys)
+        assert f"agent {agent!r}" in line and says in line
