@@ -87,8 +87,14 @@ BAD = [
     ("a count that is a float", _settings("finalists: 2.7"), "settings.finalists must be an"),
     ("a whole float count", _settings("round_samples: 8.0"), "settings.round_samples must be an"),
     ("a count that is a bool", _settings("next_samples: true"), "settings.next_samples must be"),
-    ("a zero count", _settings("hand_samples: 0"), "settings.hand_samples must be an integer >= 1"),
+    ("a zero count", _settings("hand_samples: 0"),
+     "settings.hand_samples must be an integer in [1, 16]"),
     ("a negative count", _settings("min_rounds: -1"), "settings.min_rounds must be an int"),
+    ("a count past its bound", _settings("samples: 1000000000000"),
+     "settings.samples must be an integer in [1, 512] (first ply: ~100 candidates x samples "
+     "tables, ~5 KB each: a shot well under 1 GB), got 1000000000000"),
+    ("hand spots past their bound", _settings("hand_spots: 201"),
+     "settings.hand_spots must be an integer in [0, 200]"),
     ("an infinite budget", _settings("budget: .inf"), "settings.budget must be a finite num"),
     ("a negative budget", _settings("budget: -1.0"), "settings.budget must be a finite number > 0"),
     ("a NaN budget", _settings("budget: .nan"), "settings.budget must be a finite number"),
@@ -286,6 +292,21 @@ def test_the_commands_turn_a_bad_player_file_into_a_usage_error(
     for main, argv in commands:
         line = _usage_error(main, argv, capsys)
         assert "error: player file" in line and "settings.budget must be a finite" in line
+
+
+@pytest.mark.parametrize(
+    ("line", "says"),
+    [
+        ("samples: 1000000000000", "settings.samples must be an integer in [1, 512]"),
+        ("samples: 2\n  samples: 3", "duplicate key settings.samples (lines 7 and 8)"),
+    ],
+)
+def test_a_huge_count_or_a_key_twice_is_a_usage_error_before_playing(
+    folder: Path, capsys: pytest.CaptureFixture[str], line: str, says: str
+) -> None:
+    bad = str(_write(folder, _settings(line)))
+    line = _usage_error(evaluate_main, ["--env", ENV_ID, "--agent", bad, "--episodes", "1"], capsys)
+    assert f"error: player file {bad!r}: {says}" in line
 
 
 def test_a_good_player_file_passes_the_commands_check(folder: Path) -> None:
