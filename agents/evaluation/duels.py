@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation.evaluate import check_player_files, make_agent, parse_noise
+from agents.evaluation.evaluate import check_agents, make_agent, parse_noise
 from agents.evaluation.metrics import wilson
 from agents.learned.envs import make_env
 from agents.policy import Policy, last_plan
@@ -188,7 +188,7 @@ def main(argv: list[str] | None = None) -> int:
         noise = parse_noise(args.noise)
     except ValueError as err:
         parser.error(str(err))
-    check_player_files(parser, [args.agent, *args.opponent], args.env, {"noise": noise}, 2)
+    check_agents(parser, [args.agent, *args.opponent], args.env, {"noise": noise}, 2)
     print(f"{args.agent}, {args.env}, noise {noise}, racks seeds {args.seed}..")
     print("| opponent | won | lost | drawn | win rate [95%] | side: shots, pots/shot, fouls/shot, "
           "scratch/shot, break scratches, breaks kept |")  # fmt: skip

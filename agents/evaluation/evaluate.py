@@ -31,6 +31,7 @@ the computer billiards championships') and ``--noise fastfiz:5`` (five times it)
 from __future__ import annotations
 
 import argparse
+import difflib
 import time
 from collections import Counter
 from pathlib import Path
@@ -57,7 +58,9 @@ from pool_env.game.noise import NOISE_MODELS, NoiseSpec
 
 __all__ = [
     "BASELINES",
-    "check_player_files",
+    "FILE_KINDS",
+    "agent_kind",
+    "check_agents",
     "evaluate_agent",
     "format_table",
     "load_model",
@@ -73,6 +76,27 @@ BASELINES = (
     "random", "const", "best-const", "ghost", "ghost-centre", "search", "rack-planner",
     "first-row",
 )  # fmt: skip
+
+#: The files an agent may be, by suffix (any case): what each holds.
+FILE_KINDS = {
+    ".zip": "an SB3 model",
+    ".npz": "a rack or lookahead model",
+    ".yaml": "a search player file",
+    ".yml": "a search player file",
+}
+
+
+def agent_kind(name: str) -> str | None:
+    """What ``name`` names: a baseline (``"baseline"``), a file's suffix, or ``None``.
+
+    A file's suffix is read in any case (``X.YAML`` is a player file); a baseline is one of
+    :data:`BASELINES` or ``const:a0,a1[,...]``.
+    """
+    if name in BASELINES or name.startswith("const:"):
+        return "baseline"
+    suffix = Path(name).suffix.lower()
+    return suffix if suffix in FILE_KINDS else None
+
 
 #: Statistics printed, with their labels; rates are shown as percentages.
 COLUMNS: tuple[tuple[str, str, bool], ...] = (
@@ -125,51 +149,88 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
         return SearchAgent(env, seed=seed)
     if name == "best-const":
         return best_constant_agent(env)
-    if name.startswith("const"):  # "const" (full hit, hardest) or "const:a0,a1[,...]"
+    if name == "const" or name.startswith("const:"):  # full hit, hardest; or "const:a0,a1"
         _, _, values = name.partition(":")
         width = int(env.action_space.shape[0])
         default = (0.0, 1.0) + (0.0,) * (width - 2)  # a spin env: centre ball
-        action = tuple(float(v) for v in values.split(",")) if values else default
+        try:
+            action = tuple(float(v) for v in values.split(",")) if values else default
+        except ValueError:
+            action = ()
+        if len(action) != width or not all(-1.0 <= a <= 1.0 for a in action):  # NaN too
+            raise ValueError(
+                f"agent {name!r}: const:a0,a1[,...] takes the env's {width} action numbers, "
+                "each in [-1, 1]"
+            )
         return ConstantAgent(env, action)
     if name == "first-row":  # row 0 of the env's "shots" observation, played exactly
         return ShotRowAgent(env)
     if name == "rack-planner":  # the rack agent's candidates ranked by the planner's score
         return RackAgent(env, players=players)
-    if name.endswith(".zip"):
+    kind = agent_kind(name)
+    if kind == ".zip":
         return load_model(name)
-    if name.endswith(".yaml"):  # a search player's config (learned.search_player)
+    if kind in (".yaml", ".yml"):  # a search player's config (learned.search_player)
         return load_search_player(name, env, players=players)
-    if name.endswith(".npz"):  # a learned rack value (learned.rack_play, learned.lookahead)
+    if kind == ".npz":  # a learned rack value (learned.rack_play, learned.lookahead)
         config = rack_model_config(name)
         if config.get("kind") == "lookahead":
             return load_lookahead_agent(name, env, config, players=players)
         return load_rack_agent(name, env, players=players)
-    raise ValueError(
-        f"unknown agent {name!r}: use one of {list(BASELINES)}, 'const:a0,a1', a model .zip "
-        "or a rack model .npz"
+    raise _unknown_agent(name)
+
+
+def _unknown_agent(name: str) -> ValueError:
+    """The error for a name that is no agent: the names and the file kinds listed."""
+    close = difflib.get_close_matches(name, BASELINES, n=1)
+    hint = f" (did you mean {close[0]}?)" if close else ""
+    suffixes: dict[str, list[str]] = {}
+    for suffix, what in FILE_KINDS.items():
+        suffixes.setdefault(what, []).append(suffix)
+    files = ", ".join(f"{what} {'/'.join(ends)}" for what, ends in suffixes.items())
+    return ValueError(
+        f"unknown agent {name!r}{hint}: an agent is one of {', '.join(BASELINES)}, "
+        f"const:a0,a1[,...], or a file (any case): {files}"
     )
 
 
-def check_player_files(
+def check_agents(
     parser: argparse.ArgumentParser,
     names: list[str],
     env_id: str,
     env_kwargs: dict[str, Any] | None,
     players: int | None = None,
 ) -> None:
-    """Load each player file (``.yaml``) among ``names`` once: a bad one is a usage error.
+    """Check every agent among ``names`` before anything is played: a bad one is a usage error.
 
-    Run before anything is played, so that a command exits at once with one line naming
-    the file and the key (``parser.error``, status 2) rather than a traceback later.
+    A name must be a baseline (:func:`agent_kind`) or a file of a known kind
+    (:data:`FILE_KINDS`) that exists; a ``const:`` action and a player file (``.yaml``,
+    ``.yml``) are built once, so that their own checks run. A command so exits at once
+    with one line naming the value as written (``parser.error``, status 2) rather than a
+    traceback later.
     """
     for name in names:
-        if not name.endswith(".yaml"):
-            continue
-        env = make_env(env_id, env_kwargs)
         try:
-            load_search_player(name, env, players=players)
+            _check_agent(name, env_id, env_kwargs, players)
         except ValueError as err:
             parser.error(str(err))
+
+
+def _check_agent(
+    name: str, env_id: str, env_kwargs: dict[str, Any] | None, players: int | None
+) -> None:
+    """:func:`check_agents` for one name. Raises ``ValueError`` naming it."""
+    kind, path = agent_kind(name), Path(name)
+    if kind != "baseline" and path.is_dir():
+        raise ValueError(f"agent {name!r} is a directory, not a file ({path.absolute()})")
+    if kind is None:
+        raise _unknown_agent(name)
+    if kind != "baseline" and not path.is_file():
+        raise ValueError(f"agent {name!r}: {FILE_KINDS[kind]} not found ({path.absolute()})")
+    if kind in (".yaml", ".yml") or name.startswith("const:"):  # cheap: their checks run
+        env = make_env(env_id, env_kwargs)
+        try:
+            make_agent(name, env, players=players)
         finally:
             env.close()
 
@@ -193,7 +254,7 @@ def evaluate_agent(
         >>> print(summary["pots_per_shot"], summary["scratch_rate"])
         1.000 [0.839, 1.000] 0.100 [0.028, 0.301]
     """
-    if agent is None and name.endswith(".zip") and env_kwargs is None and wrapper is None:
+    if agent is None and agent_kind(name) == ".zip" and env_kwargs is None and wrapper is None:
         config = model_config(name)
         env_kwargs, wrapper = config.get("env_kwargs"), config.get("wrapper")
     env = make_env(env_id, env_kwargs, wrapper)
@@ -319,7 +380,7 @@ def main(argv: list[str] | None = None) -> int:
         nargs="+",
         default=["random", "ghost"],
         help="random, const[:a0,a1,...], best-const, ghost, ghost-centre, search, "
-        "rack-planner, a model .zip or a rack model .npz",
+        "rack-planner, first-row, a model .zip, a rack model .npz or a player file .yaml/.yml",
     )
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=10_000)
@@ -361,7 +422,7 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(str(err))
     if args.aim:
         kwargs["aim"] = args.aim
-    check_player_files(parser, args.agent, args.env, kwargs or None)
+    check_agents(parser, args.agent, args.env, kwargs or None)
     rows, times = {}, {}
     for name in args.agent:
         agent, label = None, name

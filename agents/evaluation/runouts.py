@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation.evaluate import check_player_files, make_agent, parse_noise
+from agents.evaluation.evaluate import check_agents, make_agent, parse_noise
 from agents.evaluation.metrics import Z95, Estimate, wilson
 from agents.learned.envs import make_env
 
@@ -138,7 +138,7 @@ def main(argv: list[str] | None = None) -> int:
         kwargs["noise"] = parse_noise(args.noise)
     if args.rack_order is not None:
         kwargs["rack_order"] = args.rack_order
-    check_player_files(parser, args.agents, args.env, {**kwargs, "end_on_foul": True})
+    check_agents(parser, args.agents, args.env, {**kwargs, "end_on_foul": True})
     results = []
     for name in args.agents:
         start = time.perf_counter()

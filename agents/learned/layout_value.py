@@ -250,17 +250,20 @@ _UNREADABLE = (OSError, ValueError, EOFError, zipfile.BadZipFile, zlib.error)
 
 
 def load_arrays(
-    path: str | Path, names: Sequence[str], optional: Sequence[str] = ()
+    path: str | Path, names: Sequence[str], optional: Sequence[str] = (), text: Sequence[str] = ()
 ) -> dict[str, NDArray[Any]]:
     """The arrays ``names`` (and those of ``optional`` it holds) of the ``.npz`` at ``path``.
 
     The layout values (:class:`LayoutValue`, :class:`~agents.learned.set_value.SetValue`)
     are read through here, so that a missing, damaged or foreign file is one
-    ``ValueError`` naming it, whatever numpy or zipfile raise.
+    ``ValueError`` naming it, whatever numpy or zipfile raise. Every array but those of
+    ``text`` (saved names) must hold real numbers: weights saved as strings, bools or
+    complex numbers would otherwise be cast to floats without a word.
 
     Raises:
         ValueError: Naming ``path``: not a readable ``.npz`` archive (missing, a plain
-            ``.npy``, damaged, pickled objects), or without one of ``names``.
+            ``.npy``, damaged, pickled objects), without one of ``names``, or an array
+            (not of ``text``) whose dtype is not a real floating or integer type.
     """
     arrays: dict[str, NDArray[Any]] = {}
     try:
@@ -280,6 +283,12 @@ def load_arrays(
     missing = [name for name in names if name not in arrays]
     if missing:
         raise ValueError(f"{path} has no arrays {missing} (it holds {files})")
+    for name, array in arrays.items():
+        if name not in text and array.dtype.kind not in "fiu":  # not bool, complex, str
+            raise ValueError(
+                f"{path} array {name!r} must hold real numbers (a float or integer dtype), "
+                f"got dtype {array.dtype}"
+            )
     return arrays
 
 

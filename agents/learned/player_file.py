@@ -6,13 +6,15 @@ one of :data:`~agents.learned.search_player.SETTINGS`). :func:`read_player_file`
 with one ``ValueError`` that names the file and the key (dotted below the top level,
 ``settings.samples``) or the model path as written, and the valid type, range or choices:
 
-- a file that is missing, not YAML, or not a mapping;
-- an unknown key at any level (a misspelt ``setvalue`` is not ignored);
+- a file that is missing, a directory, not YAML, or not a mapping;
+- an unknown key at any level (a misspelt ``setvalue`` is not ignored), or a key given
+  twice in one mapping (YAML would keep the last one silently);
 - a value of the wrong type (a count that is not an integer, ``2.7`` or ``true``; a
   number that is a bool, a string, NaN or infinite) or out of its range (a budget
   <= 0, a break off the table for the player's table, :func:`check_break`);
-- a model path that is not a string, is missing, or is not a readable ``.npz`` of the
-  arrays the model needs (:func:`~agents.learned.layout_value.load_arrays`).
+- a model path that is not a string, is missing or a directory, or is not a readable
+  ``.npz`` of the real-number arrays the model needs
+  (:func:`~agents.learned.layout_value.load_arrays`).
 
 **Paths**: a relative model path is read from the player file's folder
 (``layout_value: runout_value.npz`` beside ``models/search_player.yaml`` is
@@ -25,7 +27,7 @@ from __future__ import annotations
 
 import difflib
 import reprlib
-from collections.abc import Callable, Iterable, Mapping
+from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar
@@ -117,10 +119,9 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
 def _read(path: Path, table: Table, duel: bool) -> PlayerFile:
     """:func:`read_player_file`'s checks; messages without the file's name."""
     yaml = require("yaml", "train", "a player file")
-    if not path.is_file():
-        raise ValueError(f"not found (looked for {path.absolute()})")
+    _check_file(path, "")
     try:
-        config = yaml.safe_load(path.read_text())
+        config = _load_unique(yaml, path.read_text())
     except (OSError, UnicodeDecodeError, yaml.YAMLError) as err:
         raise ValueError(f"cannot be read as YAML: {' '.join(str(err).split())}") from None
     _check_keys(config, KEYS, "", "the file")
@@ -137,6 +138,59 @@ def _read(path: Path, table: Table, duel: bool) -> PlayerFile:
     duel_value = _model(config, "duel_value", base, LayoutValue.load, required=against)
     set_value = _model(config, "set_value", base, SetValue.load, required=None)
     return PlayerFile(path, layout_value, duel_value, set_value, settings)
+
+
+def _check_file(path: Path, what: str, why: str = "") -> None:
+    """Refuse a ``path`` that names no file: ``what`` (the key and path as written) first."""
+    if path.is_dir():
+        raise ValueError(f"{what}is a directory, not a file ({path.absolute()})")
+    if not path.is_file():
+        raise ValueError(f"{what}not found (looked for {path.absolute()}{why})")
+
+
+def _load_unique(yaml: Any, text: str) -> Any:
+    """``yaml.safe_load(text)``, refusing a key given twice in one mapping, at any level.
+
+    PyYAML keeps the last of two equal keys without a word; a player file that says
+    ``samples`` twice is a mistake to show, not a value to pick.
+
+    Raises:
+        ValueError: ``duplicate key settings.samples (lines 7 and 9)``.
+        yaml.YAMLError: On text that is not YAML.
+    """
+
+    class UniqueKeyLoader(yaml.SafeLoader):  # type: ignore[name-defined,misc]
+        def construct_document(self, node: Any) -> Any:
+            _check_unique(yaml, self, node, "")
+            return super().construct_document(node)
+
+    loader = UniqueKeyLoader(text)
+    try:
+        return loader.get_single_data()
+    finally:
+        loader.dispose()
+
+
+def _check_unique(yaml: Any, loader: Any, node: Any, prefix: str) -> None:
+    """Walk the composed ``node``: a mapping's keys (as YAML reads them) must be distinct."""
+    if isinstance(node, yaml.SequenceNode):
+        for k, item in enumerate(node.value):
+            _check_unique(yaml, loader, item, f"{prefix.rstrip('.')}[{k}].")
+    if not isinstance(node, yaml.MappingNode):
+        return
+    seen: dict[Any, int] = {}
+    for key_node, value_node in node.value:
+        key = loader.construct_object(key_node, deep=True)
+        if key == "<<" or not isinstance(key, Hashable):  # a merge, or YAML's own error
+            continue
+        line = key_node.start_mark.line + 1
+        if key in seen:
+            where = (
+                f"twice on line {line}" if seen[key] == line else f"lines {seen[key]} and {line}"
+            )
+            raise ValueError(f"duplicate key {prefix}{key} ({where}): give each key once")
+        seen[key] = line
+        _check_unique(yaml, loader, value_node, f"{prefix}{key}.")
 
 
 def _check_keys(mapping: object, keys: Iterable[str], prefix: str, what: str) -> None:
@@ -173,11 +227,9 @@ def _model(
     if not isinstance(written, str) or not written.strip():
         raise ValueError(f"{key} must be the path of an .npz (a string), got {written!r}")
     found = base / written  # an absolute path stays as it is
-    if not found.is_file():
-        raise ValueError(
-            f"{key} {written!r} not found (looked for {found.absolute()}: a relative path is "
-            "read from the player file's folder)"
-        )
+    _check_file(
+        found, f"{key} {written!r} ", ": a relative path is read from the player file's folder"
+    )
     try:
         return load(found)
     except ValueError as err:

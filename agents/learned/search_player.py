@@ -59,9 +59,10 @@ from pool_env.sim.layouts import foot_spot
 class SearchSettings:
     """The search's knobs (their reasons are in ``models/search_player.yaml``).
 
-    Each is checked when the settings are made (:func:`check_setting`: counts are integers,
-    numbers finite, each within its range); the break's spot and aim are checked against
-    the table when a player takes them (:func:`check_break`).
+    Each is checked when the settings are made (:func:`check_setting`: counts are integers
+    within their bounds, :data:`COUNTS`; numbers finite, each within its range); the
+    break's spot and aim are checked against the table when a player takes them
+    (:func:`check_break`).
 
     Attributes:
         budget: Wall-clock seconds per shot.
@@ -106,9 +107,24 @@ class SearchSettings:
 
 #: The config keys of :class:`SearchSettings`.
 SETTINGS = tuple(f.name for f in fields(SearchSettings))
-#: The counts among the settings, with their least values.
-COUNTS = {"samples": 1, "finalists": 1, "round_samples": 1, "next_samples": 1,
-          "min_rounds": 0, "hand_spots": 0, "hand_samples": 1}  # fmt: skip
+_SECOND = "second ply: finalists x round_samples x 90 x next_samples tables"
+_HAND = "ball in hand: (18 + hand_spots) x 90 x hand_samples tables"
+#: The counts among the settings: their least and greatest values, and why the greatest.
+#: A shot plays batches of simulated tables, each about 5 KB of arrays (4.8 KB measured:
+#: the model's state and the step's arrays); the greatest value of each count, the others
+#: at their defaults, keeps a batch under about 60,000 tables (~0.3 GB, well under 1 GB).
+#: The counts multiply: raising several together multiplies the batch. A next-shot search
+#: plays at most 90 candidates per layout (:mod:`agents.learned.next_shots`); a shot has
+#: about 45 candidates (100 taken as the most).
+COUNTS: dict[str, tuple[int, int, str]] = {
+    "samples": (1, 512, "first ply: ~100 candidates x samples tables"),
+    "finalists": (1, 16, _SECOND),
+    "round_samples": (1, 32, _SECOND),
+    "next_samples": (1, 16, _SECOND),
+    "min_rounds": (0, 100, "rounds played whatever the budget: a bound on time"),
+    "hand_spots": (0, 200, _HAND),
+    "hand_samples": (1, 16, _HAND),
+}
 #: The numbers among the settings: whether a finite value is in range, and the range said.
 #: The break's spot and aim are bounded by the table (:func:`check_break`).
 NUMBERS: dict[str, tuple[Callable[[float], bool], str]] = {
@@ -131,14 +147,18 @@ def check_setting(name: str, value: object, label: str) -> int | float | tuple[f
 
     Raises:
         ValueError: Naming ``label``, its type and range, and ``value``: a count that is not
-            an integer (``2.7``, ``True``) or below its least value, a number that is not
+            an integer (``2.7``, ``True``) or out of its range (:data:`COUNTS`: a bound that
+            keeps a shot's arrays well under 1 GB), a number that is not
             finite, a bool or a string, or out of range.
     """
     if name in COUNTS:
-        least = COUNTS[name]
+        least, most, why = COUNTS[name]
+        memory = "" if name == "min_rounds" else ", ~5 KB each: a shot well under 1 GB"
         whole = isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
-        if not whole or value < least:  # type: ignore[operator]
-            raise ValueError(f"{label} must be an integer >= {least}, got {value!r}")
+        if not whole or not least <= value <= most:  # type: ignore[operator]
+            raise ValueError(
+                f"{label} must be an integer in [{least}, {most}] ({why}{memory}), got {value!r}"
+            )
         return int(value)  # type: ignore[arg-type]
     if name == "break_tip":
         what = f"{label} must be two finite numbers (side, vertical) in [-1, 1], got {value!r}"

@@ -292,7 +292,7 @@ class SetValue:
                 weights that do not fit.
         """
         keys = ("row_features", "context_features")
-        data = load_arrays(path, (*WEIGHT_NAMES, *keys), optional=("sigma",))
+        data = load_arrays(path, (*WEIGHT_NAMES, *keys), optional=("sigma",), text=keys)
         for key, names in zip(keys, (ROW_FEATURES, CONTEXT_FEATURES), strict=True):
             if tuple(data[key].tolist()) != names:
                 raise ValueError(f"{path}: saved with {key} {data[key].tolist()}, not {names}")

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 
 from agents.evaluation.duels import main as duels_main
-from agents.evaluation.evaluate import check_player_files, make_agent
+from agents.evaluation.evaluate import check_agents, make_agent
 from agents.evaluation.evaluate import main as evaluate_main
 from agents.evaluation.runouts import main as runouts_main
 from agents.learned.layout_value import LayoutValue
@@ -46,8 +46,11 @@ GONE = Path("gone", "runout_value.npz").as_posix()
 
 
 def _settings(line: str) -> str:
-    """:data:`GOOD` with one more line under ``settings``."""
-    return GOOD + f"  {line}\n"
+    """:data:`GOOD` with ``line`` under ``settings``, in place of the line of its key."""
+    key = line.split(":")[0]
+    return "".join(ln for ln in GOOD.splitlines(True) if not ln.startswith(f"  {key}:")) + (
+        f"  {line}\n"
+    )
 
 
 def _swap(key: str, value: str) -> str:
@@ -84,8 +87,14 @@ BAD = [
     ("a count that is a float", _settings("finalists: 2.7"), "settings.finalists must be an"),
     ("a whole float count", _settings("round_samples: 8.0"), "settings.round_samples must be an"),
     ("a count that is a bool", _settings("next_samples: true"), "settings.next_samples must be"),
-    ("a zero count", _settings("hand_samples: 0"), "settings.hand_samples must be an integer >= 1"),
+    ("a zero count", _settings("hand_samples: 0"),
+     "settings.hand_samples must be an integer in [1, 16]"),
     ("a negative count", _settings("min_rounds: -1"), "settings.min_rounds must be an int"),
+    ("a count past its bound", _settings("samples: 1000000000000"),
+     "settings.samples must be an integer in [1, 512] (first ply: ~100 candidates x samples "
+     "tables, ~5 KB each: a shot well under 1 GB), got 1000000000000"),
+    ("hand spots past their bound", _settings("hand_spots: 201"),
+     "settings.hand_spots must be an integer in [0, 200]"),
     ("an infinite budget", _settings("budget: .inf"), "settings.budget must be a finite num"),
     ("a negative budget", _settings("budget: -1.0"), "settings.budget must be a finite number > 0"),
     ("a NaN budget", _settings("budget: .nan"), "settings.budget must be a finite number"),
@@ -100,6 +109,20 @@ BAD = [
     ("a NaN break tip", _settings("break_tip: [0.0, .nan]"), "settings.break_tip must be two"),
     ("a break tip string", _settings("break_tip: ab"), "settings.break_tip must be two"),
     ("a break tip past 1", _settings("break_tip: [0.0, 1.5]"), "settings.break_tip must be two"),
+    # YAML keeps the last of two equal keys: the file must say each once, at any level.
+    ("a setting twice, flow style",
+     GOOD.split("settings:")[0] + "settings: {samples: 8, samples: 2}\n",
+     "duplicate key settings.samples (twice on line 5)"),
+    ("a setting twice, block style", GOOD + "  samples: 2\n",
+     "duplicate key settings.samples (lines 7 and 8)"),
+    ("a model path twice", GOOD + "layout_value: duel_value.npz\n",
+     "duplicate key layout_value (lines 2 and 8)"),
+    ("a directory as the model", _swap("layout_value", "folder"),
+     "layout_value 'folder' is a directory, not a file"),
+    ("weights as strings", _swap("layout_value", "text.npz"), "array 'weights' must hold real"),
+    ("weights as complex numbers", _swap("duel_value", "complex.npz"),
+     "got dtype complex128"),
+    ("weights as bools", _swap("layout_value", "bool.npz"), "got dtype bool"),
 ]  # fmt: skip
 
 
@@ -117,6 +140,10 @@ def folder(tmp_path: Path) -> Path:
     np.savez(tmp_path / "short.npz", weights=np.zeros(3))
     (tmp_path / "corrupt.npz").write_bytes(b"not an archive at all")
     (tmp_path / "truncated.npz").write_bytes((MODELS / "duel_value.npz").read_bytes()[:60])
+    weights = LayoutValue.load(MODELS / "runout_value.npz").weights  # of the right size
+    for name, dtype in (("text", str), ("complex", complex), ("bool", bool)):
+        np.savez(tmp_path / f"{name}.npz", weights=weights.astype(dtype))
+    (tmp_path / "folder").mkdir()
     np.save(tmp_path / "plain.npy", np.zeros(12))
     (tmp_path / "plain.npy").rename(tmp_path / "plain.npz")
     return tmp_path
@@ -157,6 +184,11 @@ def test_a_missing_model_shows_where_it_was_looked_for(folder: Path, env: gym.En
 def test_a_missing_player_file_is_a_value_error(tmp_path: Path, env: gym.Env) -> None:
     with pytest.raises(ValueError, match=r"player file 'nothere\.yaml': not found \(looked for"):
         load_search_player("nothere.yaml", env)
+
+
+def test_a_directory_as_the_player_file_is_a_value_error(folder: Path, env: gym.Env) -> None:
+    with pytest.raises(ValueError, match=r"': is a directory, not a file \("):
+        load_search_player(folder, env)
 
 
 def test_a_duel_needs_the_duel_value(folder: Path, env: gym.Env) -> None:
@@ -262,8 +294,63 @@ def test_the_commands_turn_a_bad_player_file_into_a_usage_error(
         assert "error: player file" in line and "settings.budget must be a finite" in line
 
 
+@pytest.mark.parametrize(
+    ("line", "says"),
+    [
+        ("samples: 1000000000000", "settings.samples must be an integer in [1, 512]"),
+        ("samples: 2\n  samples: 3", "duplicate key settings.samples (lines 7 and 8)"),
+    ],
+)
+def test_a_huge_count_or_a_key_twice_is_a_usage_error_before_playing(
+    folder: Path, capsys: pytest.CaptureFixture[str], line: str, says: str
+) -> None:
+    bad = str(_write(folder, _settings(line)))
+    line = _usage_error(evaluate_main, ["--env", ENV_ID, "--agent", bad, "--episodes", "1"], capsys)
+    assert f"error: player file {bad!r}: {says}" in line
+
+
 def test_a_good_player_file_passes_the_commands_check(folder: Path) -> None:
     parser = argparse.ArgumentParser()
     good = str(_write(folder, GOOD))
-    check_player_files(parser, ["ghost", good], ENV_ID, None)  # no exit
-    check_player_files(parser, [good], ENV_ID, {"noise": "fastfiz"}, players=2)
+    check_agents(parser, ["ghost", good], ENV_ID, None)  # no exit
+    check_agents(parser, [good], ENV_ID, {"noise": "fastfiz"}, players=2)
+    upper = folder / "PLAYER.YML"  # a player file whatever the suffix's case
+    upper.write_text(GOOD)
+    check_agents(parser, [str(upper), "const:0,1,0,0,0,0,0,0"], ENV_ID, None)
+    env = gym.make(ENV_ID)
+    assert make_agent(str(upper), env).settings == SearchSettings(budget=0.5, samples=4)
+
+
+#: (id, the agent as written, what the error line must say beside it).
+BAD_AGENTS = [
+    ("a missing .yml", "gone.yml", "a search player file not found"),
+    ("a missing .YAML", "GONE.YAML", "a search player file not found"),
+    ("a missing .zip", "gone.zip", "an SB3 model not found"),
+    ("a missing .npz", "gone.npz", "a rack or lookahead model not found"),
+    ("a directory", "{folder}", "is a directory, not a file"),
+    ("a directory with a model's suffix", "{folder}/folder.npz", "is a directory, not a file"),
+    ("a misspelt name", "gohst", "(did you mean ghost?): an agent is one of random, const,"),
+    ("an unknown suffix", "model.pt", "or a file (any case): an SB3 model .zip, a rack or "
+     "lookahead model .npz, a search player file .yaml/.yml"),
+    ("a const of letters", "const:a,b", "takes the env's 8 action numbers, each in [-1, 1]"),
+    ("a const out of range", "const:0,2,0,0,0,0,0,0", "takes the env's 8 action numbers"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("agent", "says"), [b[1:] for b in BAD_AGENTS], ids=[b[0] for b in BAD_AGENTS]
+)
+def test_the_commands_turn_a_bad_agent_into_a_usage_error(
+    folder: Path, capsys: pytest.CaptureFixture[str], agent: str, says: str
+) -> None:
+    (folder / "folder.npz").mkdir()
+    agent = agent.format(folder=folder)
+    commands = [
+        (evaluate_main, ["--env", ENV_ID, "--agent", "ghost", agent, "--episodes", "1"]),
+        (duels_main, ["--agent", agent, "--opponent", "ghost", "--racks", "1"]),
+        (duels_main, ["--agent", "ghost", "--opponent", "random", agent, "--racks", "1"]),
+        (runouts_main, ["--agents", "ghost", agent, "--racks", "1"]),
+    ]
+    for main, argv in commands:
+        line = _usage_error(main, argv, capsys)
+        assert f"agent {agent!r}" in line and says in line

@@ -180,10 +180,13 @@ def test_the_break_places_the_cue_ball_on_the_head_string_and_hits_the_1() -> No
     [
         ({"budget": 0.0}, "budget must be a finite number > 0"),
         ({"budget": float("inf")}, "budget must be a finite number > 0"),
-        ({"samples": 0}, "samples must be an integer >= 1"),
-        ({"samples": 2.7}, "samples must be an integer >= 1"),  # failed on the 2nd shot
-        ({"finalists": True}, "finalists must be an integer >= 1"),
-        ({"hand_spots": -1}, "hand_spots must be an integer >= 0"),
+        ({"samples": 0}, r"samples must be an integer in \[1, 512\]"),
+        ({"samples": 2.7}, r"samples must be an integer in \[1, 512\]"),  # failed on the 2nd shot
+        ({"finalists": True}, "finalists must be an integer in \\[1, 16\\]"),
+        ({"samples": 10**12}, r"samples must be an integer in \[1, 512\] \(first ply"),  # PiB
+        ({"round_samples": 33}, r"round_samples must be an integer in \[1, 32\]"),
+        ({"min_rounds": 101}, r"min_rounds must be an integer in \[0, 100\]"),
+        ({"hand_spots": -1}, "hand_spots must be an integer in \\[0, 200\\]"),
         ({"prune_z": float("nan")}, "prune_z must be a finite number >= 0"),
         ({"break_cut": float("nan")}, "break_cut must be a finite number"),  # failed at the break
         ({"break_speed": 1.5}, "break_speed must be a finite number in"),
