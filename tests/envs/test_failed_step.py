@@ -74,6 +74,18 @@ def _make(env_id: str, bit_generator: Any, seed: int) -> Any:
 
 @pytest.mark.parametrize("bit_generator", BIT_GENERATORS, ids=["pcg64", "dxsm", "mt19937"])
 @pytest.mark.parametrize("env_id", IDS)
+def _refused_step_changes_nothing(
+    env: Any, action: np.ndarray, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Step ``env`` with the simulator refusing the shot: it raises, and nothing changed."""
+    before = _everything(env)
+    with monkeypatch.context() as patch:
+        patch.setattr(game_step, "simulate_checked_arrays", _refuse)
+        with pytest.raises(ValueError, match="refuses this shot"):
+            env.step(action)
+    assert _everything(env) == before
+
+
 def test_a_refused_step_changes_nothing_and_the_next_plays_as_on_a_fresh_env(
     env_id: str, bit_generator: Any, monkeypatch: pytest.MonkeyPatch
 ) -> None:
@@ -81,12 +93,7 @@ def test_a_refused_step_changes_nothing_and_the_next_plays_as_on_a_fresh_env(
     rng = np.random.default_rng(0)
     for _ in range(4):  # a break, then shots with (or without) ball in hand
         action = rng.uniform(-1.0, 1.0, env.action_space.shape).astype(np.float32)
-        before = _everything(env)
-        with monkeypatch.context() as patch:
-            patch.setattr(game_step, "simulate_checked_arrays", _refuse)
-            with pytest.raises(ValueError, match="refuses this shot"):
-                env.step(action)
-        assert _everything(env) == before
+        _refused_step_changes_nothing(env, action, monkeypatch)
         got, want = env.step(action), fresh.step(action)
         assert np.array_equal(got[0], want[0]) and got[1:4] == want[1:4]
         assert got[4] == want[4]
@@ -107,11 +114,7 @@ def test_a_refused_placement_on_a_covered_point_is_undone(
     action = np.zeros(env.action_space.shape)
     action[2:4] = encode_placement(raw.config, raw.positions[1])
     before = _everything(env)
-    with monkeypatch.context() as patch:
-        patch.setattr(game_step, "simulate_checked_arrays", _refuse)
-        with pytest.raises(ValueError, match="refuses this shot"):
-            env.step(action)
-    assert _everything(env) == before
+    _refused_step_changes_nothing(env, action, monkeypatch)
     env.step(action)  # played now: the cue ball was placed next to the 1
     assert not np.array_equal(raw.positions[0], np.array(before["positions"][0][0]))
 
