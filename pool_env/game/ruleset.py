@@ -158,6 +158,10 @@ class Ruleset:
         Here the shared decoding (:func:`pool_env.game.kernels.actions.executed_shots`):
         aim and speed, relative and cut aim at the nearest ball on the table, each table's
         noise, the strike of the table's level; no calls.
+
+        It may change only the cue balls in hand (placed) and the tables' generators (the
+        noise drawn): the step saves both before and puts them back if the simulator then
+        refuses a shot (:mod:`pool_env.game.kernels.undo`), so a failed step changes nothing.
         """
         state = turn.state
         shots, states = executed_shots(

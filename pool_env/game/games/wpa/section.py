@@ -23,7 +23,8 @@ class WpaRules(RulesSection):
     Attributes:
         game: ``"nine"``, ``"ten"`` or ``"eight"``.
         end_on_foul: A foul, or a legal shot that does not keep the table, ends the
-            episode (run-out mode); else play goes on (practice mode).
+            episode (run-out mode), but for a legal push-out, after which the agent shoots
+            on; else play goes on (practice mode).
         break_speed_range: Speeds (m/s) of ``action[1] = -1`` and ``+1`` on a break.
         push_out: The shot after a legal break may be a push-out, the opponent then having
             the option. ``None``: the game's rule (yes in 9-ball and 10-ball; 8-ball has
