@@ -49,7 +49,7 @@ from agents.learned.layout_value import LayoutValue, ball_on
 from agents.learned.leaf_value import LeafValue
 from agents.learned.lookahead import LookaheadAgent
 from agents.learned.next_shots import best_next_values
-from pool_env.game.checks import parse_float
+from pool_env.game.checks import is_integer, parse_float
 from pool_env.game.geometry import points_free
 from pool_env.sim import Table
 from pool_env.sim.layouts import foot_spot
@@ -154,8 +154,7 @@ def check_setting(name: str, value: object, label: str) -> int | float | tuple[f
     if name in COUNTS:
         least, most, why = COUNTS[name]
         memory = "" if name == "min_rounds" else ", ~5 KB each: a shot well under 1 GB"
-        whole = isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
-        if not whole or not least <= value <= most:  # type: ignore[operator]
+        if not is_integer(value) or not least <= value <= most:  # type: ignore[operator]
             raise ValueError(
                 f"{label} must be an integer in [{least}, {most}] ({why}{memory}), got {value!r}"
             )

@@ -170,11 +170,16 @@ def parse_bool(name: str, value: object) -> bool:
     return bool(value)
 
 
+def is_integer(value: object) -> bool:
+    """Whether ``value`` is a Python or numpy integer, and not a bool (which is an ``int``)."""
+    return isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
+
+
 def parse_count(name: str, value: object) -> int | None:
     """A positive integer, or ``None``."""
     if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < 1:
+    if not is_integer(value) or value < 1:  # type: ignore[operator]
         raise ValueError(f"{name} must be a positive integer or None, got {value!r}")
     return int(value)
 

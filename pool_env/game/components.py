@@ -8,8 +8,7 @@ refused (or clipped) by one rule with one message.
 
 from __future__ import annotations
 
-import numpy as np
-
+from pool_env.game.checks import is_integer
 from pool_env.game.kernels.encode import to_unit
 
 
@@ -41,11 +40,7 @@ def pocket_component(n_pockets: int, pocket: int) -> float:
     Raises:
         ValueError: If the table has no pocket ``pocket``.
     """
-    if (
-        isinstance(pocket, bool | np.bool_)
-        or not isinstance(pocket, int | np.integer)
-        or not 0 <= pocket < n_pockets
-    ):
+    if not is_integer(pocket) or not 0 <= pocket < n_pockets:
         raise ValueError(f"pocket must be an integer in 0..{n_pockets - 1}, got {pocket!r}")
     return (2.0 * pocket + 1.0) / n_pockets - 1.0
 
@@ -56,10 +51,6 @@ def ball_component(n_objects: int, ball: int) -> float:
     Raises:
         ValueError: If ``ball`` is not one of the ``n_objects`` object balls.
     """
-    if (
-        isinstance(ball, bool | np.bool_)
-        or not isinstance(ball, int | np.integer)
-        or not (1 <= ball <= n_objects)
-    ):
+    if not is_integer(ball) or not 1 <= ball <= n_objects:
         raise ValueError(f"the called ball must be an integer in 1..{n_objects}, got {ball!r}")
     return (2.0 * (ball - 1) + 1.0) / n_objects - 1.0

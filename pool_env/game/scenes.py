@@ -41,6 +41,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from pool_env.game.checks import is_integer
 from pool_env.game.kernels import params as kp
 from pool_env.game.kernels.layout import free_points
 from pool_env.sim.layouts import break_scene, head_spot, rack_spots
@@ -139,9 +140,7 @@ def n_object_balls(scene: str, n_balls: int | None) -> int:
             f"scene must be one of {sorted(SCENES)}, a layout or a callable, got {scene!r}"
         )
     fixed = SCENES[scene]
-    if n_balls is not None and (
-        isinstance(n_balls, bool) or not isinstance(n_balls, int | np.integer)
-    ):
+    if n_balls is not None and not is_integer(n_balls):
         raise ValueError(f"n_balls must be an integer or None, got {n_balls!r}")
     if fixed is not None:
         if n_balls is not None and n_balls != fixed:

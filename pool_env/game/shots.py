@@ -13,23 +13,14 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-import numpy as np
+from pool_env.game.checks import is_integer, parse_bool
 
 
 def _index(name: str, value: Any, low: int) -> int:
     """``value`` as an ``int`` if it is an integer (not a bool) ``>= low``, else ValueError."""
-    if isinstance(value, bool | np.bool_) or not isinstance(value, int | np.integer):
-        raise ValueError(f"Shot.{name} must be an integer >= {low}, got {value!r}")
-    if value < low:
+    if not is_integer(value) or value < low:
         raise ValueError(f"Shot.{name} must be an integer >= {low}, got {value!r}")
     return int(value)
-
-
-def _flag(name: str, value: Any) -> bool:
-    """``value`` as a ``bool`` if it is one (not a number that reads as one), else ValueError."""
-    if not isinstance(value, bool | np.bool_):
-        raise ValueError(f"Shot.{name} must be True or False, got {value!r}")
-    return bool(value)
 
 
 @dataclass(frozen=True)
@@ -75,8 +66,8 @@ class Shot:
         object.__setattr__(self, "pocket", _index("pocket", self.pocket, 0))
         if self.ball is not None:
             object.__setattr__(self, "ball", _index("ball", self.ball, 1))
-        object.__setattr__(self, "push_out", _flag("push_out", self.push_out))
-        object.__setattr__(self, "pass_back", _flag("pass_back", self.pass_back))
+        object.__setattr__(self, "push_out", parse_bool("Shot.push_out", self.push_out))
+        object.__setattr__(self, "pass_back", parse_bool("Shot.pass_back", self.pass_back))
 
 
 @dataclass(frozen=True)

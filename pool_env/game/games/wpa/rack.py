@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
+from pool_env.game.checks import is_integer
 from pool_env.game.games.wpa import rack_state as wpa
 
 if TYPE_CHECKING:
@@ -27,11 +28,6 @@ RULE_KEYS = (
     "break", "ball_in_hand", "behind_head_string", "groups", "fouls", "shooter", "push_out",
     "option",
 )  # fmt: skip
-
-
-def _is_int(value: object) -> bool:
-    """A Python or numpy integer, not a bool."""
-    return isinstance(value, int | np.integer) and not isinstance(value, bool | np.bool_)
 
 
 def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.int64]:
@@ -86,14 +82,14 @@ def rack_option(config: GameConfig, given: Any, rack_scene: bool) -> NDArray[np.
     if "fouls" in given:
         fouls = given["fouls"]
         if not (isinstance(fouls, tuple | list) and len(fouls) == 2
-                and all(_is_int(f) and 0 <= f <= 2 for f in fouls)):  # fmt: skip
+                and all(is_integer(f) and 0 <= f <= 2 for f in fouls)):  # fmt: skip
             raise ValueError(
                 f"options['rules']['fouls'] must be two integers in 0..2, got {fouls!r}"
             )
         row[wpa.FOULS_0], row[wpa.FOULS_1] = (int(f) for f in fouls)
     if "shooter" in given:
         shooter = given["shooter"]
-        if not _is_int(shooter) or shooter not in (0, 1) or (config.players == 1 and shooter):
+        if not is_integer(shooter) or shooter not in (0, 1) or (config.players == 1 and shooter):
             raise ValueError(
                 f"options['rules']['shooter'] must be 0 or 1 (0 with one player), got {shooter!r}"
             )
