@@ -294,11 +294,23 @@ MUTANTS: tuple[Mutant, ...] = (
         "rules-push-out-after-a-foul-break",
         "rules",
         W,
-        "rack[PUSH_OUT] = 1 if breaking and foul == NO_FOUL and rotation(game) else 0",
-        "rack[PUSH_OUT] = 1 if breaking and rotation(game) else 0",
+        "rack[PUSH_OUT] = 1 if breaking and foul == NO_FOUL and rotation(game) and "
+        "offers_push_out else 0",
+        "rack[PUSH_OUT] = 1 if breaking and rotation(game) and offers_push_out else 0",
         GAMES,
         "the push-out offered after an illegal break too",
         "wpa.judge_rack: the push-out follows a legal break",
+    ),
+    Mutant(
+        "rules-push-out-in-the-game-without-it",
+        "rules",
+        W,
+        "rack[PUSH_OUT] = 1 if breaking and foul == NO_FOUL and rotation(game) and "
+        "offers_push_out else 0",
+        "rack[PUSH_OUT] = 1 if breaking and foul == NO_FOUL and rotation(game) else 0",
+        GAMES,
+        "the push-out offered under push_out=False (NineBallGame-v1) too",
+        "wpa.judge_rack: push_out=False plays 9-ball without the push-out",
     ),
     Mutant(
         "rules-push-out-without-option",

@@ -101,7 +101,7 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
     n_shots, n_cols = pocketed.shape
     n_balls = on_table.shape[1]
     game, players = int(params[VARIANT]), int(params[PLAYERS])
-    no_option = params[OPTION_COLUMN] < 0.0
+    offers_push_out = params[OPTION_COLUMN] >= 0.0  # False: push_out=False (NineBallGame-v1)
     values = np.zeros((n_shots, 4))
     flags = np.zeros((n_shots, N_FLAGS + 1), dtype=np.bool_)
     hits = np.zeros((n_shots, N_WPA_HITS), dtype=np.int64)
@@ -147,10 +147,8 @@ def judge_rules(params, pockets, tables, balls, positions, on_table, shots, rack
         foul, on, respot, loss, keeps, counts = judge_rack(
             game, players, rack[b], before, first_hit, scratch, potted, first_dropped,
             eight_pocket, calls[k, CALL_POCKET], rail, to_rail, kitchen, pushed, called_ball,
-            call_made,
+            call_made, offers_push_out,
         )  # fmt: skip
-        if no_option:  # 9-ball without the push-out (push_out=False, as -v1 plays)
-            rack[b, wpa.PUSH_OUT] = 0
         winner = rack[b, wpa.WINNER]
         legal_pots = 0  # the 8 of 8-ball is no pot: it wins or loses the rack
         if counts:

@@ -194,7 +194,7 @@ def kitchen_foul(rack, first, first_x, head_x, crossed):
 @kernel
 def judge_rack(game, players, rack, on_table, first, scratch, potted, first_dropped,
                eight_pocket, called, rail, to_rail, kitchen, push_out, called_ball,
-               call_made):  # fmt: skip
+               call_made, offers_push_out):  # fmt: skip
     """Judge one shot and move the rack state on (``rack`` is updated in place).
 
     Args:
@@ -214,6 +214,8 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
         push_out: The shot was declared a push-out (read only where ``rack[PUSH_OUT]``).
         called_ball: 10-ball: the ball called (-1: none).
         call_made: 10-ball: the called ball dropped in the called pocket.
+        offers_push_out: The game is played with the push-out (the rules option
+            ``push_out``; False: 9-ball as ``NineBallGame-v1``, no push-out after the break).
 
     Returns:
         ``(foul, ball_on, respot, loss, keeps, counts)``: the foul code, the ball on before
@@ -290,7 +292,7 @@ def judge_rack(game, players, rack, on_table, first, scratch, potted, first_drop
     rack[FOULS_0 + shooter] = rack[FOULS_0 + shooter] + 1 if foul != NO_FOUL else 0
     rack[BEHIND] = 1 if foul == FOUL_SCRATCH and breaking and game == EIGHT else 0
     rack[IN_HAND] = 1 if foul != NO_FOUL else 0
-    rack[PUSH_OUT] = 1 if breaking and foul == NO_FOUL and rotation(game) else 0
+    rack[PUSH_OUT] = 1 if breaking and foul == NO_FOUL and rotation(game) and offers_push_out else 0
     rack[BREAKING] = 0
     rack[WINNER] = winner
     rack[OPTION] = 1 if option and players == 2 and winner < 0 else 0
