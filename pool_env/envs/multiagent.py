@@ -18,9 +18,9 @@ the loser) or is truncated after ``max_shots`` steps (0 to both).
 Action (the game id's): aim, speed, cue ball x and y (used only with the cue ball in
 hand), called pocket (used when shooting at the 8 and on every 10-ball shot), 10-ball's
 called ball, 9-ball and 10-ball's option; see :class:`pool_env.PoolEnv`. ``model="spin"``
-plays the spin ids' table (``pool_env/NineBallGame-v1``, ...): the cue tip's side and
+plays the spin ids' table (``pool_env/NineBallGame-v2``, ...): the cue tip's side and
 vertical offsets end the action.
-Every default is the game's roll id's (``pool_env/NineBallGameRoll-v1``, ...):
+Every default is the game's roll id's (``pool_env/NineBallGameRoll-v2``, ...):
 its registered arguments, :func:`pool_env.game.config.make_config`'s defaults for the rest
 (``"cut"`` aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as
 the shot limit of the rack (both players' shots). As on every front

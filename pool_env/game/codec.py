@@ -272,7 +272,7 @@ def obs_layout(config: GameConfig | PoolConfig | Any) -> dict[str, slice]:
     Examples:
         >>> import gymnasium as gym, pool_env
         >>> from pool_env import obs_layout
-        >>> env = gym.make("pool_env/NineBallGame-v1")
+        >>> env = gym.make("pool_env/NineBallGame-v2")
         >>> layout = obs_layout(env.unwrapped.config)
         >>> layout["balls"], layout["legal"], layout["ball_in_hand"]
         (slice(0, 30, None), slice(30, 39, None), slice(39, 40, None))
