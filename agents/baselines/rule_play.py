@@ -29,10 +29,10 @@ search, the learned rack agent, the lookahead):
   opponent's option as above: the opponent hands back a leave with ``c < 1/2`` (the pusher
   then shoots it: worth ``c``) and takes one with ``c >= 1/2`` (worth ``1 - c`` to the
   pusher), so a push is worth at most one half, most for a leave as hard for either
-  player. It pushes when that beats its shot. With one player it never pushes: in run-out
-  mode a push-out ends the run (it does not keep the table), and in practice it would be a
-  free second shot with nobody to take the option, not the game; so every one-player
-  figure is the game's without it.
+  player. It pushes when that beats its shot. With one player it never pushes: the agent
+  shoots on after its own push-out (in run-out mode too), so it would be a free second
+  shot with nobody to take the option, not the game; so every one-player figure is the
+  game's without it.
 """
 
 from __future__ import annotations
