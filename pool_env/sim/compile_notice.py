@@ -18,8 +18,11 @@ from typing import Any, TextIO
 
 from numba.core import event
 
-#: Seconds a compile runs before the notice is printed.
+#: Seconds a compile runs (or a wait for another process's compile lasts) before a line.
 DELAY_SECONDS = 2.0
+
+#: The command that fills the cache ahead of a first shot (:mod:`pool_env.precompile`).
+PRECOMPILE = "python -m pool_env.precompile"
 
 
 class CompileNotice(event.Listener):
@@ -45,7 +48,9 @@ class CompileNotice(event.Listener):
         self._stream = stream
         self._depth = 0  # nested compiles: a kernel compiles the kernels it calls
         self._timer: threading.Timer | None = None
+        self._wait_timer: threading.Timer | None = None
         self.said = False
+        self.said_waiting = False
 
     def on_start(self, ev: event.Event) -> None:
         """A compile starts: at the outermost one of ours, start the clock."""
@@ -62,21 +67,45 @@ class CompileNotice(event.Listener):
             self._timer.cancel()
             self._timer = None
 
+    def waiting(self, started: bool) -> None:
+        """Another process compiles a kernel this one needs: a line if the wait is long.
+
+        Called by :mod:`pool_env.sim.compile_lock` when this process starts waiting on a
+        kernel's lock (``started`` True) and when it has the lock (False). Printed once per
+        process, and not after the compile line (which already says what the wait is).
+        """
+        if started and not (self.said or self.said_waiting):
+            self._wait_timer = threading.Timer(self._delay, self._say_waiting)
+            self._wait_timer.daemon = True
+            self._wait_timer.start()
+        elif not started and self._wait_timer is not None:
+            self._wait_timer.cancel()
+            self._wait_timer = None
+
     def _is_ours(self, ev: event.Event) -> bool:
         data: dict[str, Any] = ev.data or {}
         dispatcher = data.get("dispatcher")
         module = getattr(getattr(dispatcher, "py_func", None), "__module__", "") or ""
         return module.startswith(self._prefix)
 
+    def _print(self, line: str) -> None:
+        stream = self._stream if self._stream is not None else sys.stderr
+        print(line, file=stream, flush=True)
+
     def _say(self) -> None:
         self.said = True
         where = f" in {self._cache_folder}" if self._cache_folder is not None else " in memory"
-        stream = self._stream if self._stream is not None else sys.stderr
-        print(
-            "pool_env: compiling the simulator's kernels for this machine, once (20-40 s on 2 "
-            f"cores); the machine code is cached{where}, so later runs load it in about a second",
-            file=stream,
-            flush=True,
+        self._print(
+            "pool_env: compiling the simulator's kernels for this machine, once (tens of "
+            f"seconds); the machine code is cached{where}, so later runs load it in about a "
+            f"second. `{PRECOMPILE}` compiles them all ahead of time."
+        )
+
+    def _say_waiting(self) -> None:
+        self.said_waiting = True
+        self._print(
+            "pool_env: waiting for another process to finish compiling the simulator's "
+            "kernels, once; this process then loads them from the cache"
         )
 
 

@@ -5,8 +5,9 @@ compile through :func:`kernel`, :func:`inline_kernel` and :func:`parallel_kernel
 same options (no fastmath, for bit-for-bit determinism) and one cache folder.
 
 Kernels are cached on disk so a fresh process (every ``SubprocVecEnv`` worker) loads machine
-code instead of compiling. numba keys a cached function on its own file's time stamp only,
-not on the files of the functions it calls: after an edit of ``resolve.py``, the cached
+code instead of compiling. numba keys a cached function on its own file only (its
+content, not its time stamp, so a fresh clone loads what an earlier one compiled), not on
+the files of the functions it calls: after an edit of ``resolve.py``, the cached
 event loop of ``loop.py`` would still hold the old impact code (and numba freezes the
 constants a kernel reads from other modules, such as ``params.py``, into its machine code).
 So the cache lives in a folder named after a hash of the modules of :data:`KERNEL_MODULES`,
@@ -19,8 +20,10 @@ every module they import.
 The folder is the first writable of: ``$NUMBA_CACHE_DIR/pool_env-<hash>`` (if that variable
 is set), the package's ``__pycache__/numba-<hash>``, and ``~/.cache/pool_env/numba-<hash>``.
 With none writable (a read-only install and home), kernels compile in memory, with a
-warning. numba writes cache files through a temporary file and an atomic rename, so several
-processes compiling at once neither crash nor corrupt the cache.
+warning. numba writes cache files through a temporary file and an atomic rename, and each
+kernel compiles under a file lock of its own (:mod:`pool_env.sim.compile_lock`): processes
+starting together on an empty cache compile each kernel once between them, then load it.
+``python -m pool_env.precompile`` fills the cache ahead of a first shot.
 
 A cache file can still be damaged from outside (a full disk, a copy cut short, a bad
 sector): numba then raises from its loader (``EOFError``, ``UnpicklingError``) in this and
@@ -46,7 +49,7 @@ import numba
 from numba.core.caching import FunctionCache
 from numba.extending import overload
 
-from pool_env.sim import compile_notice
+from pool_env.sim import compile_lock, compile_notice
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -190,12 +193,23 @@ class HealingCache(FunctionCache):
             return None
 
     def save_overload(self, sig: Any, data: Any) -> None:
-        """Write the compile result, replacing an index damaged since it was read."""
-        try:
-            super().save_overload(sig, data)
-        except Exception as exc:  # the index cannot be read back: start it afresh
-            self._discard(exc)
-            super().save_overload(sig, data)
+        """Write the compile result, replacing an index damaged since it was read.
+
+        Under the kernel's index lock: numba reads the index, adds the entry and writes it
+        back, and another process saving another signature meanwhile would drop one entry.
+        """
+        index_lock = self.lock_stem.with_name(f"{self.lock_stem.name}.index.lock")
+        with compile_lock.holding(index_lock):
+            try:
+                super().save_overload(sig, data)
+            except Exception as exc:  # the index cannot be read back: start it afresh
+                self._discard(exc)
+                super().save_overload(sig, data)
+
+    @property
+    def lock_stem(self) -> Path:
+        """The stem of this kernel's lock files, beside its cache files."""
+        return Path(self._cache_path) / self._impl.filename_base
 
     def _discard(self, exc: Exception) -> None:
         """Delete this kernel's index and data files, warning once per process."""
@@ -226,6 +240,9 @@ def _compile(fn: F, options: dict[str, Any]) -> F:
         try:
             dispatcher = numba.njit(cache=True, **options)(fn)
             dispatcher._cache = HealingCache(fn)
+            compile_lock.lock_compiles(
+                dispatcher, dispatcher._cache.lock_stem, COMPILE_NOTICE.waiting
+            )
             return dispatcher  # type: ignore[no-any-return]
         except RuntimeError:  # numba found the folder unwritable after all
             pass

@@ -5,12 +5,14 @@ Each test starts fresh Python processes, because caching is about process start-
 
 from __future__ import annotations
 
+import json
 import os
 import shutil
 import stat
 import subprocess
 import sys
 import tempfile
+import time
 from pathlib import Path
 
 import grimp
@@ -34,9 +36,9 @@ print("cache_hits", sum(ENTRIES.packed_strike.stats.cache_hits.values()))
 """
 
 
-def _run(env: dict[str, str], **kwargs) -> subprocess.Popen:
+def _run(env: dict[str, str], code: str = SHOT, **kwargs) -> subprocess.Popen:
     return subprocess.Popen(
-        [sys.executable, "-c", SHOT],
+        [sys.executable, "-c", code],
         env=env,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
@@ -45,19 +47,55 @@ def _run(env: dict[str, str], **kwargs) -> subprocess.Popen:
     )
 
 
-def test_concurrent_cold_starts_share_one_cache(tmp_path: Path) -> None:
-    """Three workers compiling into one empty cache at once all succeed and agree."""
-    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"))
-    procs = [_run(env) for _ in range(3)]
-    outputs = [p.communicate(timeout=600) for p in procs]
+# Each kernel signature this process compiled (a cache miss) or loaded (a hit), by name.
+COMPILED = """
+import gc, json
+from numba.core.registry import CPUDispatcher
+stats = {"compiled": [], "loaded": []}
+for kernel in gc.get_objects():
+    if isinstance(kernel, CPUDispatcher) and kernel.py_func.__module__.startswith("pool_env"):
+        name = kernel.py_func.__module__ + "." + kernel.py_func.__qualname__
+        counters = {"compiled": kernel.stats.cache_misses, "loaded": kernel.stats.cache_hits}
+        for key, counter in counters.items():
+            stats[key] += [f"{name}{sig}" for sig, n in counter.items() if n]
+print(json.dumps(stats))
+"""
+
+
+def _writable_copy(root: Path) -> Path:
+    shutil.copytree(PACKAGE, root / "pool_env", ignore=shutil.ignore_patterns("__pycache__"))
+    return root
+
+
+def test_concurrent_cold_starts_compile_each_kernel_once(tmp_path: Path) -> None:
+    """Three processes starting at once on an empty cache compile each kernel once.
+
+    Each kernel signature compiles in exactly one of them (under its file lock,
+    :mod:`pool_env.sim.compile_lock`); the others wait and load it. All agree on the shot.
+    Then every source file gets a new modification time (a fresh clone, a checkout back
+    and forth): a fourth process still loads everything (numba 0.68 stamps a cache index
+    with a hash of its source file's content, and the folder is named after one).
+    """
+    root = _writable_copy(tmp_path / "src")
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path / "cache"), PYTHONPATH=str(root))
+    code = SHOT + COMPILED
+    procs = [_run(env, code=code, cwd=root) for _ in range(3)]
+    outputs = [p.communicate(timeout=900) for p in procs]
     for proc, (_, err) in zip(procs, outputs, strict=True):
         assert proc.returncode == 0, err
-    digests = {out.splitlines()[0] for out, _ in outputs}
-    assert len(digests) == 1
-    # A fourth process loads the kernels from the cache the others wrote.
-    out, err = _run(env).communicate(timeout=600)
-    assert out.splitlines()[0] in digests, err
-    assert int(out.splitlines()[1].split()[1]) > 0  # loaded from disk, not compiled
+    assert len({out.splitlines()[0] for out, _ in outputs}) == 1
+    compiled = [json.loads(out.splitlines()[-1])["compiled"] for out, _ in outputs]
+    every = [name for names in compiled for name in names]
+    twice = {name for name in every if every.count(name) > 1}
+    assert every and not twice, f"compiled in more than one process: {sorted(twice)[:5]}"
+    later = time.time() + 3600
+    for path in root.rglob("*.py"):
+        os.utime(path, (later, later))
+    out, err = _run(env, code=code, cwd=root).communicate(timeout=900)
+    stats = json.loads(out.splitlines()[-1])
+    assert out.splitlines()[0] == outputs[0][0].splitlines()[0], err
+    # A warm process loads the entry points it calls (their callees are linked into them).
+    assert stats["compiled"] == [] and stats["loaded"], stats
 
 
 def _readonly_copy() -> Path:
