@@ -3,10 +3,13 @@
 Clones this repository's committed ``HEAD`` into a temporary folder (no compiled kernels,
 no ``__pycache__``), then runs the README's first Python block (the quick start:
 ``gym.make`` + ``reset`` + ``step`` + ``render``) in a fresh interpreter of this venv with the
-clone first on ``sys.path``: once from an empty compile cache, then again with the cache
-the first run wrote. Each run reports, from inside the child, the seconds spent importing,
-making, resetting and stepping, and, from outside, the seconds from spawn to the first line
-on standard error (the compile notice, :mod:`pool_env.sim.compile_notice`) and to the end.
+clone first on ``sys.path``, three ways: after the README's install, whose last part,
+``python -m pool_env.precompile``, compiles every kernel from an empty cache (its seconds
+are the install's added time); from an empty cache with no precompile (what a user who
+skips it waits); and again with the cache that run wrote. Each run reports, from inside
+the child, the seconds spent importing, making, resetting and stepping, and, from outside,
+the seconds from spawn to the first line on standard error (the compile notice,
+:mod:`pool_env.sim.compile_notice`) and to the end.
 
     python -m bench.first_shot --runs 3
 
@@ -87,6 +90,21 @@ def run_once(clone: Path, code: str, cache: Path) -> dict[str, float]:
     return figures
 
 
+def precompile(clone: Path, cache: Path) -> float:
+    """Seconds ``python -m pool_env.precompile`` takes in ``clone`` into ``cache``."""
+    env = dict(os.environ, PYTHONPATH=str(clone), NUMBA_CACHE_DIR=str(cache))
+    start = time.perf_counter()
+    subprocess.run(
+        [sys.executable, "-m", "pool_env.precompile", "--quiet"],
+        cwd=clone,
+        env=env,
+        check=True,
+        capture_output=True,
+        timeout=1800,
+    )
+    return time.perf_counter() - start
+
+
 def main(argv: list[str] | None = None) -> int:
     """Clone, run cold and warm ``--runs`` times each, print and write the table."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
@@ -96,14 +114,23 @@ def main(argv: list[str] | None = None) -> int:
     head = subprocess.run(
         ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
     ).stdout.strip()
-    rows: dict[str, list[dict[str, float]]] = {"empty cache": [], "warm cache": []}
+    after_install = "after the install (`python -m pool_env.precompile`)"
+    rows: dict[str, list[dict[str, float]]] = {
+        after_install: [],
+        "empty cache, no precompile": [],
+        "warm cache": [],
+    }
+    added: list[float] = []
     load_before = os.getloadavg()[0]
     with tempfile.TemporaryDirectory() as scratch:
         for run in range(args.runs):
             clone = Path(scratch) / f"clone{run}"
             subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+            installed = Path(scratch) / f"installed{run}"
+            added.append(precompile(clone, installed))
+            rows[after_install].append(run_once(clone, code, installed))
             cache = Path(scratch) / f"cache{run}"
-            rows["empty cache"].append(run_once(clone, code, cache))
+            rows["empty cache, no precompile"].append(run_once(clone, code, cache))
             rows["warm cache"].append(run_once(clone, code, cache))
     load_after = os.getloadavg()[0]
     names = ["import", "make", "reset", "step", "render", "wall", "first stderr line"]
@@ -117,6 +144,12 @@ def main(argv: list[str] | None = None) -> int:
         "warm run follows its cold run with the cache that run wrote. Medians of the runs, "
         "in seconds: each phase of the quick start as the child timed it, then from spawn "
         "to the end and to the first line on standard error (the compile notice).",
+        "",
+        f"The install's added time, `python -m pool_env.precompile` from an empty cache "
+        f"(every kernel of every id, {os.cpu_count()} processes): "
+        f"{statistics.median(added):.1f} s (median; runs: "
+        + ", ".join(f"{a:.1f}" for a in added)
+        + ").",
         "",
         "| cache | " + " | ".join(names) + " | notice printed |",
         "|---" * (len(names) + 2) + "|",

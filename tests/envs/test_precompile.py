@@ -1,0 +1,99 @@
+"""``python -m pool_env.precompile``: after it, a first shot compiles nothing.
+
+The README's install ends with the command, and its promise is that the quick start (and a
+first training step) then loads every kernel from the cache. The check runs the command into
+an empty cache of its own (a warm one would hide a kernel it misses; about a minute and a
+half of CPU) and then, in a fresh process, the README's quick start and a vector env of the
+training default, counting the kernels that process compiled.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from pool_env import precompile
+from pool_env.envs.registration import CURRENT_IDS
+
+ROOT = Path(__file__).resolve().parents[2]
+
+# Every pool_env kernel signature the process compiled (a cache miss), by name.
+COMPILED = """
+import gc, json
+from numba.core.registry import CPUDispatcher
+print(json.dumps(sorted(
+    f"{k.py_func.__module__}.{k.py_func.__qualname__}{sig}"
+    for k in gc.get_objects()
+    if isinstance(k, CPUDispatcher) and k.py_func.__module__.startswith("pool_env")
+    for sig, n in k.stats.cache_misses.items() if n
+)))
+"""
+
+TRAINING_DEFAULT = """
+import gymnasium as gym
+vec = gym.make_vec("pool_env/OneBall-v1", 4, observation="shots")
+vec.reset(seed=1)
+vec.action_space.seed(1)
+for _ in range(3):
+    vec.step(vec.action_space.sample())
+"""
+
+
+def quick_start() -> str:
+    """The README's first Python block."""
+    block = re.search(r"```python\n(.*?)```", (ROOT / "README.md").read_text(), re.S)
+    assert block is not None, "README.md has no python block"
+    return block.group(1)
+
+
+def test_every_current_id_is_a_job_once_of_each_kind() -> None:
+    jobs = precompile.jobs()
+    kinds = ("env", "vector", "shots")
+    assert sorted(jobs) == sorted((i, k) for i in CURRENT_IDS for k in kinds)
+    assert "Roll-" not in jobs[0][0]  # the costliest compile (the spin loop) starts first
+    assert all("Roll-" in i for i, _ in jobs[1 : 1 + len(kinds) * len(CURRENT_IDS) // 2])
+
+
+def test_bad_workers_are_a_usage_error() -> None:
+    proc = subprocess.run(
+        [sys.executable, "-m", "pool_env.precompile", "--workers", "0"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+    )
+    assert proc.returncode == 2 and "Traceback" not in proc.stderr
+    assert "--workers must be at least 1" in proc.stderr
+
+
+@pytest.mark.slow
+def test_after_precompile_the_quick_start_compiles_nothing(tmp_path: Path) -> None:
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    done = subprocess.run(
+        [sys.executable, "-m", "pool_env.precompile", "--quiet"],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        timeout=1800,
+    )
+    assert done.returncode == 0, done.stderr
+    assert "compiled in" in done.stdout
+    code = quick_start() + TRAINING_DEFAULT + COMPILED
+    proc = subprocess.run(
+        [sys.executable, "-c", code],
+        capture_output=True,
+        text=True,
+        cwd=ROOT,
+        env=env,
+        timeout=1800,
+    )
+    assert proc.returncode == 0, proc.stderr
+    compiled = json.loads(proc.stdout.splitlines()[-1])
+    assert compiled == [], f"compiled after the precompile: {compiled[:5]}"
+    assert "compiling the simulator's kernels" not in proc.stderr
