@@ -1,9 +1,11 @@
-"""Every figure of the README's headline list is read from the report it links to.
+"""Every headline figure is read from the report it links to.
 
-A headline bullet quotes numbers and links the ``results/`` (or ``models/``) file that
-measured them; each number must stand in one of the files the bullet links, as written
-there (a thousands separator aside), so a re-run that changes a figure fails here until
-the README says the new one.
+The README's table of figures and the headline list of the benchmarks page quote numbers
+and link the ``results/`` (or ``models/``) file that measured them; each number must stand
+in one of the files its row or bullet links, as written there (a thousands separator
+aside), so a re-run that changes a figure fails here until the page says the new one.
+The figures of the install and the first shot, quoted in the README's prose and the
+getting-started page too, are checked against their one source the same way.
 """
 
 from __future__ import annotations
@@ -19,10 +21,31 @@ LINK = re.compile(r"\[[^\]]*\]\(([^)#\s]+)(?:#[^)]*)?\)")
 
 
 def headline_bullets() -> list[str]:
-    """The bullets of the README's "Headline figures" section."""
-    text = (ROOT / "README.md").read_text()
+    """The bullets of the benchmarks page's "Headline figures" section."""
+    text = (ROOT / "docs" / "benchmarks.md").read_text()
     section = text.split("\n## Headline figures\n", 1)[1].split("\n## ", 1)[0]
     return [b for b in re.split(r"\n- ", section)[1:] if b.strip()]
+
+
+def readme_rows() -> list[str]:
+    """The rows of the README's table of figures (after its header and rule)."""
+    text = (ROOT / "README.md").read_text()
+    section = text.split("\n## Figures\n", 1)[1].split("\n## ", 1)[0]
+    return [line for line in section.splitlines() if line.startswith("| ")][1:]
+
+
+def first_shot_quotes() -> list[str]:
+    """Every sentence of the README and getting-started that quotes the first-shot figures."""
+    quotes = []
+    for page in ("README.md", "docs/getting-started.md"):
+        text = re.sub(r"```.*?```", "", (ROOT / page).read_text(), flags=re.S)  # code
+        prose = [ln for ln in text.splitlines() if not ln.startswith(("|", "!", "<!--", "#"))]
+        for sentence in re.split(r"(?<=[.;:])\s", "\n".join(prose)):
+            if re.search(r"precompile|first shot|compiles the simulator", sentence) and (
+                quoted_numbers(sentence.replace("2-core", ""))
+            ):
+                quotes.append(sentence)
+    return quotes
 
 
 def quoted_numbers(bullet: str) -> list[str]:
@@ -32,18 +55,47 @@ def quoted_numbers(bullet: str) -> list[str]:
     return NUMBER.findall(prose)
 
 
+def _linked_reports(text: str, page: Path) -> list[Path]:
+    return [
+        (page.parent / link).resolve()
+        for link in LINK.findall(text)
+        if not link.startswith(("http", "docs/", "../docs/")) and link.endswith(".md")
+    ]
+
+
+def _missing(text: str, reports: list[Path]) -> list[str]:
+    source = "\n".join(path.read_text() for path in reports)
+    return [n for n in quoted_numbers(text) if n not in source and n.replace(",", "") not in source]
+
+
 @pytest.mark.parametrize("bullet", headline_bullets(), ids=lambda b: b[:40])
 def test_each_headline_figure_stands_in_its_report(bullet: str) -> None:
-    reports = [ROOT / link for link in LINK.findall(bullet) if not link.startswith("http")]
+    reports = _linked_reports(bullet, ROOT / "docs" / "benchmarks.md")
     assert reports, "a headline figure without the report that measured it"
-    text = "\n".join(path.read_text() for path in reports)
-    missing = [
-        n for n in quoted_numbers(bullet) if n not in text and n.replace(",", "") not in text
-    ]
-    assert not missing, f"not in {[str(r.relative_to(ROOT)) for r in reports]}: {missing}"
+    missing = _missing(bullet, reports)
+    assert not missing, f"not in {[r.name for r in reports]}: {missing}"
+
+
+@pytest.mark.parametrize("row", readme_rows(), ids=lambda r: r.split("|")[1].strip())
+def test_each_readme_figure_stands_in_its_report(row: str) -> None:
+    reports = _linked_reports(row, ROOT / "README.md")
+    assert reports, "a figure without the report that measured it"
+    missing = _missing(row.split("|")[2], reports)
+    assert not missing, f"not in {[r.name for r in reports]}: {missing}"
+
+
+@pytest.mark.parametrize("sentence", first_shot_quotes(), ids=lambda s: s[:40])
+def test_install_and_first_shot_figures_come_from_one_report(sentence: str) -> None:
+    report = ROOT / "results" / "first_shot.md"
+    missing = _missing(sentence.replace("2-core", "").replace("2 cores", ""), [report])
+    assert not missing, f"not in first_shot.md: {missing}"
 
 
 def test_the_headlines_are_read() -> None:
     bullets = headline_bullets()
     assert len(bullets) >= 10
     assert sum(len(quoted_numbers(b)) for b in bullets) > 50
+    rows = readme_rows()
+    assert 5 <= len(rows) <= 8, "the README's table: at most 8 rows"
+    assert sum(len(quoted_numbers(r.split("|")[2])) for r in rows) > 15
+    assert len(first_shot_quotes()) >= 3
