@@ -51,6 +51,14 @@ from pool_env.sim.table import Table
 #: ``docs/physics.md``). A soft touch rolls ~1 m, a power shot ~100 m if nothing stops it.
 DEFAULT_SPEED_RANGE = (0.45, 4.5)
 
+#: The model of the table played when the config gives none (no ``model``, and no
+#: :class:`~pool_env.Table` or a dict of its arguments that names none): the spin table,
+#: the one every ``pool_env/<Task>-v1`` id plays, so that ``PoolEnv()``, the vector and
+#: two-player fronts and ``gym.make("pool_env/Pool-v1")`` play one table. Read here only,
+#: by :func:`pool_env.game.config.make_config` (``tests/envs/test_front_defaults.py``);
+#: the roll table is ``model="roll"`` (the ``<Task>Roll-v1`` ids).
+DEFAULT_MODEL = "spin"
+
 
 @dataclass(frozen=True)
 class TableSection:
@@ -58,8 +66,9 @@ class TableSection:
 
     Attributes:
         table: A :class:`~pool_env.Table`, a dict of its arguments (a config file), or
-            ``None``: the default table.
-        model: ``"roll"`` or ``"spin"`` (the spin ids set it), or ``None``: the table's own.
+            ``None``: the default table, ``Table(model=DEFAULT_MODEL)`` (the spin table).
+        model: ``"roll"`` or ``"spin"`` (every id sets it), or ``None``: a
+            :class:`~pool_env.Table`'s own, else :data:`DEFAULT_MODEL` (``"spin"``).
     """
 
     table: Table | Mapping[str, Any] | None = None

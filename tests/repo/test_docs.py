@@ -25,7 +25,7 @@ from pool_env.game.games.solitaire import REWARD_TERMS as SOLITAIRE_REWARDS
 from pool_env.game.games.wpa import REWARD_TERMS as WPA_REWARDS
 from pool_env.game.games.wpa import WpaRules
 from pool_env.game.ruleset import RulesSection
-from pool_env.game.sections import KEYS, NoiseSection, TableSection, TaskSection
+from pool_env.game.sections import DEFAULT_MODEL, KEYS, NoiseSection, TableSection, TaskSection
 
 #: Every keyword the specification documents, and its section: the shared sections' keys,
 #: the built-in games' rules keys and their reward terms.
@@ -60,7 +60,7 @@ def literal(cell: str) -> object:
 
 # Documented defaults that are not literals, and what the code's default must be for them.
 NON_LITERAL = {
-    "`Table()`": None,  # None: make_config builds Table()
+    '`Table(model="spin")`': None,  # None: make_config builds Table(model=DEFAULT_MODEL)
     "scene's": None,  # None: the scene decides
     "by `aim`": None,  # None: DEFAULT_AIM_RANGE[aim]
 }
@@ -93,7 +93,8 @@ def test_specification_table_matches_the_config_sections() -> None:
         if isinstance(expected, tuple):  # and the same type: a tuple, not a list
             assert isinstance(code, tuple), name
     config = make_config()
-    default = Table()  # "Table()": the same numbers and pockets
+    default = Table(model=DEFAULT_MODEL)  # 'Table(model="spin")': its numbers and pockets
+    assert DEFAULT_MODEL == "spin"
     for field in dataclasses.fields(Table):
         if field.init and field.name != "pockets":
             assert getattr(config.table, field.name) == getattr(default, field.name), field.name
