@@ -341,7 +341,34 @@ def _one_game(game: Any, rules: Any, named: Any) -> None:
 
 
 def default_config(**overrides: Any) -> PoolConfig:
-    """The default configuration (solitaire, random scene, default table), with overrides.
+    """The default configuration, with keyword overrides.
+
+    With none: solitaire on a random scene (3 object balls), on the default table, the spin
+    table of the ``pool_env/<Task>-v1`` ids (:data:`DEFAULT_MODEL`), cut aim, 0.45 to 4.5
+    m/s, no noise. Each key's default and meaning: ``docs/environments/specification.md``,
+    "Configuration" (``help(pool_env.PoolEnv)`` too).
+
+    Args:
+        **overrides: Keys of one section each (:data:`KEYS` maps the shared ones):
+
+            * table: ``table``, ``model``;
+            * task: ``scene``, ``n_balls``, ``rack_order``, ``aim``, ``aim_range``,
+              ``observation``, ``speed_range``, ``tip_limit``, ``end_on_miss``,
+              ``max_shots``;
+            * noise: ``noise``;
+            * rules: ``game``, then the game's own keys (9-ball, 10-ball and 8-ball:
+              ``end_on_foul``, ``break_speed_range``, ``push_out``);
+            * rewards: ``reward_<term>`` per reward term of the game.
+
+            A section's name (``table``, ``task``, ``noise``, ``rules``, ``rewards``)
+            takes the section whole or a mapping of its keys.
+
+    Returns:
+        The sectioned config, as given (:func:`pool_env.game.config.make_config` checks
+        and parses it).
+
+    Raises:
+        ValueError: On a name that is no key or section, or a rule the game has not.
 
     Examples:
         >>> from pool_env import default_config

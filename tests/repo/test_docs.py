@@ -26,7 +26,15 @@ from pool_env.game.games.wpa import REWARD_TERMS as WPA_REWARDS
 from pool_env.game.games.wpa import WpaRules
 from pool_env.game.registry import BUILTIN, ruleset_for
 from pool_env.game.ruleset import RulesSection
-from pool_env.game.sections import DEFAULT_MODEL, KEYS, NoiseSection, TableSection, TaskSection
+from pool_env.game.sections import (
+    DEFAULT_MODEL,
+    KEYS,
+    SECTIONS,
+    NoiseSection,
+    TableSection,
+    TaskSection,
+    default_config,
+)
 
 #: Every keyword the specification documents, and its section: the shared sections' keys,
 #: the built-in games' rules keys and their reward terms.
@@ -138,6 +146,18 @@ def test_specification_names_every_game_and_each_keys_games() -> None:
 
 def _field_names(section_type: type) -> set[str]:
     return {f.name for f in dataclasses.fields(section_type)}
+
+
+def test_default_configs_docstring_names_every_key_and_no_other() -> None:
+    """``default_config``'s docstring lists the keys it takes, as the code has them."""
+    doc = inspect.getdoc(default_config) or ""
+    listed = doc.split("Args:")[1].split("Returns:")[0]
+    named = set(re.findall(r"``(\w+)``", listed))
+    rule_keys = {f.name for g in BUILTIN for f in dataclasses.fields(ruleset_for(g).section)}
+    assert set(KEYS) | set(SECTIONS) | {"game"} <= named  # every key, every section
+    assert rule_keys - {"game"} <= named  # the built-in games' rules keys
+    assert named <= set(KEYS) | set(SECTIONS) | rule_keys | {"reward_<term>"}, named
+    assert "``reward_<term>``" in listed and "docs/environments/specification.md" in doc
 
 
 def test_specification_quotes_the_code_defaults() -> None:
