@@ -256,10 +256,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         return renderer.frame(self.positions, self.on_table, trails=paths)
 
     def render(self) -> NDArray[np.uint8] | list[NDArray[np.uint8]] | None:
-        """The frame(s) of the render mode (see the class docstring, Rendering).
+        """The frame(s) of the render mode (``docs/environments/specification.md``, "Rendering").
 
         ``rgb_array``: the current frame with the last shot's trails; ``rgb_array_list``:
         every frame since the last call (the shots animated); ``human``: animate the shot.
+        ``None`` without a render mode (with a warning).
         """
         if self.render_mode is None:
             gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array'")
