@@ -2,9 +2,9 @@
 
 A cut shot on four object balls: ``shot.png`` is the frame with the paths the shot left,
 ``shot.gif`` the shot animated from its exact trajectories; ``break.png`` a 9-ball break
-with its paths. They are committed, so that the README and the docs pages show them on
-GitHub as on the site; ``tests/repo/test_docs_links.py`` checks that the PNGs are what today's
-renderer draws.
+with its paths; all on the roll table (``model="roll"``), where they were drawn. They are
+committed, so that the README and the docs pages show them on GitHub as on the site;
+``tests/repo/test_docs_links.py`` checks that the PNGs are what today's renderer draws.
 
 Run: ``python docs/make_picture.py``.
 """
@@ -26,7 +26,9 @@ SPEED = 1.3  # m/s
 
 def cut_shot_env(render_mode: str = "rgb_array", width: int = 800) -> PoolEnv:
     """The env after the cut shot: ghost-ball aim at ball 1, into the top-right corner."""
-    env = PoolEnv(scene=LAYOUT, aim="cut", render_mode=render_mode, render_width=width)
+    env = PoolEnv(
+        scene=LAYOUT, aim="cut", model="roll", render_mode=render_mode, render_width=width
+    )
     env.reset(seed=0)
     table = env.config.table
     cue, ball = LAYOUT[0], LAYOUT[1]
@@ -55,6 +57,7 @@ def break_env(width: int = 480) -> PoolEnv:
         scene="nine_ball",
         game="nine",
         rack_order="fixed",
+        model="roll",
         render_mode="rgb_array",
         render_width=width,
     )

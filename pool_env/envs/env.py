@@ -29,15 +29,20 @@ _ONE = np.zeros(1, dtype=np.intp)  # the rows of the single table
 class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     """Pool: pot the object balls, a shot per step, on an exact event-based table simulator.
 
-    One step is one shot: the action (aim, speed; on a spin table also the cue tip; under
-    rules also the cue ball's placement and a called pocket, in 10-ball a called ball, in
-    9-ball and 10-ball the option (push out, or hand the table back), each in ``[-1, 1]``)
-    is played by the simulator to rest. The observation is each ball's ``(x, y, on_table)`` scaled
-    to ``[-1, 1]`` (under rules, then the legal first balls and the rack state; with
-    ``observation="shots"`` then the ghost-ball shot into each pocket:
+    One step is one shot: the action (aim, speed; on the spin table, the default, also the
+    cue tip; under rules also the cue ball's placement and a called pocket, in 10-ball a
+    called ball, in 9-ball and 10-ball the option (push out, or hand the table back), each
+    in ``[-1, 1]``) is played by the simulator to rest. The observation is each ball's
+    ``(x, y, on_table)`` scaled to ``[-1, 1]`` (under rules, then the legal first balls and
+    the rack state; with ``observation="shots"`` then the ghost-ball shot into each pocket:
     :func:`pool_env.obs_layout` names each part). The reward counts pots (and under rules
     fouls and the rack's result). The whole specification, with every ``info`` key, is
     ``docs/environments/specification.md``.
+
+    The table, unless the config gives one, is the spin table that every
+    ``pool_env/<Task>-v1`` id plays (``Table(model="spin")``:
+    :data:`pool_env.game.sections.DEFAULT_MODEL`); ``model="roll"`` plays the roll table of
+    the ``<Task>Roll-v1`` ids (no spin, no tip columns, a cheaper simulation).
 
     Args:
         config: The sectioned config (:class:`pool_env.PoolConfig`;
@@ -51,7 +56,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
             when one is given):
 
             * table: ``table`` (a :class:`~pool_env.Table` or a dict of its
-              arguments), ``model`` (``"roll"`` or ``"spin"``);
+              arguments), ``model`` (``"spin"``, the default, or ``"roll"``);
             * task: ``scene``, ``n_balls``, ``rack_order`` (``"random"``: a rack scene
               racked as the WPA rules rack it, drawn by each reset; ``"fixed"``), ``aim``
               (``"cut"``, ``"relative"``, ``"absolute"``), ``aim_range``, ``observation``
@@ -78,13 +83,19 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
     Examples:
         >>> import numpy as np
         >>> from pool_env import PoolEnv
-        >>> env = PoolEnv(scene="one_ball", end_on_miss=True)
+        >>> env = PoolEnv(scene="one_ball", end_on_miss=True)  # the spin table
         >>> obs, info = env.reset(seed=0)
         >>> obs.shape  # x, y and on-table flag of the cue ball and ball 1
         (6,)
-        >>> obs, reward, terminated, truncated, info = env.step(np.array([0.0, 1.0]))
-        >>> reward, info["potted"], info["first_contact"], terminated  # a full hit, hard
+        >>> env.action_space.shape  # aim, speed, the cue tip's side and height
+        (4,)
+        >>> obs, reward, terminated, truncated, info = env.step(np.array([0.0, 1.0, 0.0, -0.5]))
+        >>> reward, info["potted"], info["first_contact"], terminated  # full, hard, with draw
         (1.0, (1,), 1, True)
+        >>> _ = env.reset(seed=0)  # the same shot hit in the centre: the cue ball follows in
+        >>> _, reward, *_, info = env.step(np.array([0.0, 1.0, 0.0, 0.0]))
+        >>> reward, info["potted"], info["scratch"]
+        (0.0, (1,), True)
     """
 
     metadata: ClassVar[dict[str, Any]] = {
@@ -245,10 +256,11 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         return renderer.frame(self.positions, self.on_table, trails=paths)
 
     def render(self) -> NDArray[np.uint8] | list[NDArray[np.uint8]] | None:
-        """The frame(s) of the render mode (see the class docstring, Rendering).
+        """The frame(s) of the render mode (``docs/environments/specification.md``, "Rendering").
 
         ``rgb_array``: the current frame with the last shot's trails; ``rgb_array_list``:
         every frame since the last call (the shots animated); ``human``: animate the shot.
+        ``None`` without a render mode (with a warning).
         """
         if self.render_mode is None:
             gym.logger.warn("render() called without a render_mode; pass render_mode='rgb_array'")

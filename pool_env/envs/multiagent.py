@@ -17,13 +17,14 @@ the loser) or is truncated after ``max_shots`` steps (0 to both).
 
 Action (the game id's): aim, speed, cue ball x and y (used only with the cue ball in
 hand), called pocket (used when shooting at the 8 and on every 10-ball shot), 10-ball's
-called ball, 9-ball and 10-ball's option; see :class:`pool_env.PoolEnv`. ``model="spin"``
-plays the spin ids' table (``pool_env/NineBallGame-v2``, ...): the cue tip's side and
-vertical offsets end the action.
-Every default is the game's roll id's (``pool_env/NineBallGameRoll-v2``, ...):
-its registered arguments, :func:`pool_env.game.config.make_config`'s defaults for the rest
-(``"cut"`` aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as
-the shot limit of the rack (both players' shots). As on every front
+called ball, 9-ball and 10-ball's option; see :class:`pool_env.PoolEnv`; then, on the spin
+table (the default), the cue tip's side and vertical offsets.
+Every default is the game's id's (``pool_env/NineBallGame-v2``, ...): its registered
+arguments but the model, :func:`pool_env.game.config.make_config`'s defaults for the rest
+(the spin table of every front, :data:`pool_env.game.sections.DEFAULT_MODEL`; ``"cut"``
+aim, 0.45 .. 4.5 m/s, the break 8 .. 12 m/s), and its ``max_episode_steps`` as the shot
+limit of the rack (both players' shots). ``model="roll"`` plays the roll ids' table
+(``pool_env/NineBallGameRoll-v2``, ...): no tip columns. As on every front
 (:func:`pool_env.game.sections.resolve`), a ``config`` given replaces these defaults
 whole (its game is played: ``PoolDuelEnv(config=<a 10-ball config>)`` plays 10-ball), and
 the keywords override either. ``end_on_foul`` is refused: it is the one-agent run-out
@@ -51,7 +52,7 @@ from gymnasium import spaces
 from numpy.typing import NDArray
 
 from pool_env.envs.checks import check_seed
-from pool_env.envs.registration import ROLL_IDS
+from pool_env.envs.registration import ENV_IDS, TASKS, spin_id
 from pool_env.envs.seeding import seed_table
 from pool_env.extras import require
 from pool_env.game import step as game_step
@@ -65,10 +66,11 @@ from pool_env.game.state import GameState
 AECEnv = require("pettingzoo", "multiagent", "pool_env.envs.multiagent").AECEnv
 AGENTS = ("player_0", "player_1")
 _ONE = np.zeros(1, dtype=np.intp)
-#: game -> the registered arguments (less ``game``) and ``max_episode_steps`` of its id.
+#: game -> the registered arguments of its current id (less ``game``, and less ``model``:
+#: the table is every front's default, ``make_config``'s) and its ``max_episode_steps``.
 _GAME_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    kwargs["game"]: ({k: v for k, v in kwargs.items() if k != "game"}, steps)
-    for env_id, (kwargs, steps) in ROLL_IDS.items()
+    kwargs["game"]: ({k: v for k, v in kwargs.items() if k not in ("game", "model")}, steps)
+    for kwargs, steps in (ENV_IDS[spin_id(task)] for task in TASKS)
     if "game" in kwargs
 }
 _OPTIONS = ("positions", "on_table", "rules")
@@ -88,8 +90,8 @@ class PoolDuelEnv(AECEnv):
         game: ``"nine"``, ``"ten"`` or ``"eight"``; ``None``: the ``config``'s game, or
             ``"nine"`` without one. Beside a ``config``, a keyword override of its game.
         config: The sectioned config (:class:`pool_env.PoolConfig`), played as it is;
-            ``None``: the game id's defaults (its scene and model), truncated after the
-            id's ``max_episode_steps`` shots of both players.
+            ``None``: the game id's defaults (its scene, the spin table), truncated after
+            the id's ``max_episode_steps`` shots of both players.
         **overrides: Keyword overrides of the config, as :class:`pool_env.PoolEnv` takes
             them (``table``, ``aim``, ``speed_range``, ``noise`` drawn from the generator
             seeded by ``reset(seed=...)``, ``break_speed_range``, ``max_shots``, ...).
@@ -101,8 +103,9 @@ class PoolDuelEnv(AECEnv):
     metadata: ClassVar[dict[str, Any]] = {
         "render_modes": [],
         # PettingZoo's name carries the version: v1 since 9-ball's push-out and option (one
-        # action column, two observation entries); push_out=False plays v0's 9-ball.
-        "name": "pool_duel_v1",
+        # action column, two observation entries; push_out=False plays v0's 9-ball), v2 since
+        # the spin table is the default (the two tip columns; model="roll" plays v1's spaces).
+        "name": "pool_duel_v2",
         "is_parallelizable": False,
     }
 

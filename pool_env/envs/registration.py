@@ -95,9 +95,11 @@ SPIN_IDS: dict[str, tuple[dict[str, Any], int]] = {
     for v, kw in _versions(task, kwargs).items()
 }
 
-#: The roll table's ids (``model="roll"``, the default of ``make_config``): every version.
+#: The roll table's ids (``model="roll"``): every version. The model is registered, not
+#: left to ``make_config``'s default, which is the spin table
+#: (:data:`pool_env.game.sections.DEFAULT_MODEL`, the spin ids' model).
 ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    roll_id(task, v): (kw, steps)
+    roll_id(task, v): ({**kw, "model": "roll"}, steps)
     for task, (kwargs, steps) in TASKS.items()
     for v, kw in _versions(task, kwargs).items()
 }

@@ -44,7 +44,8 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
 
     ``single_observation_space`` and ``single_action_space`` are ``PoolEnv``'s;
     ``observation_space`` is ``Box(-1, 1, (num_envs, 3 (n + 1)), float32)`` and
-    ``action_space`` ``Box(-1, 1, (num_envs, 2), float32)`` (``batch_space``).
+    ``action_space`` ``Box(-1, 1, (num_envs, 4), float32)`` on the default table, the spin
+    table (``(num_envs, 2)`` with ``model="roll"``; ``batch_space``).
 
     ## Autoreset
 
@@ -97,14 +98,15 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
     Examples:
         >>> import numpy as np
         >>> from pool_env import PoolVectorEnv
-        >>> envs = PoolVectorEnv(4, scene="one_ball", end_on_miss=True)
+        >>> envs = PoolVectorEnv(4, scene="one_ball", end_on_miss=True)  # the spin table
         >>> obs, info = envs.reset(seed=0)  # table i is seeded with 0 + i
         >>> obs.shape
         (4, 6)
-        >>> actions = np.zeros((4, 2), dtype=np.float32)  # full hits at the middle speed
+        >>> actions = np.zeros((4, 4), dtype=np.float32)  # aim, speed, tip side and height
+        >>> actions[:, 1], actions[:, 3] = 0.5, -1.0  # full hits at 3.5 m/s, with draw
         >>> obs, rewards, terminated, truncated, info = envs.step(actions)
-        >>> rewards  # pot, scratch, pot, pot
-        array([ 1., -1.,  1.,  1.])
+        >>> rewards  # pot, scratch, pot, miss
+        array([ 1., -1.,  1.,  0.])
         >>> bool(terminated.all())  # one shot ends a one-ball episode
         True
     """

@@ -24,14 +24,20 @@ from pool_env.sim.spin_inputs import reachable_spin_speed
 from pool_env.sim.table import MODELS, Table
 
 
-def parse_table(table: Table | Mapping[str, Any] | None, model: str | None = None) -> Table:
+def parse_table(
+    table: Table | Mapping[str, Any] | None, model: str | None, default_model: str
+) -> Table:
     """A :class:`Table`, the ``Table(**mapping)`` of a dict (a config file), or the default.
 
     Args:
         table: The table, its keyword arguments, or ``None`` (the default table).
-        model: ``"roll"`` or ``"spin"`` (the env's ``model`` keyword, which the spin ids set),
-            or ``None``: the table's own. A dict or ``None`` gets it as its ``model``; a
-            :class:`Table` (or a dict naming a model) must already have it.
+        model: ``"roll"`` or ``"spin"`` (the env's ``model`` keyword, which the ids set),
+            or ``None``: a :class:`Table`'s own, else ``default_model``. A dict or ``None``
+            gets it as its ``model``; a :class:`Table` (or a dict naming a model) must
+            already have it.
+        default_model: The model of a table given as ``None`` or as a dict that names no
+            model, when ``model`` is ``None`` (the config's
+            :data:`~pool_env.game.sections.DEFAULT_MODEL`).
 
     Raises:
         ValueError: On a bad table, an unknown model, or a table of another model.
@@ -39,7 +45,7 @@ def parse_table(table: Table | Mapping[str, Any] | None, model: str | None = Non
     if model is not None and model not in MODELS:
         raise ValueError(f"model must be one of {list(MODELS)} or None, got {model!r}")
     if table is None:
-        return Table() if model is None else Table(model=model)
+        return Table(model=default_model if model is None else model)
     if isinstance(table, Table):
         if model is not None and table.model != model:
             raise ValueError(
@@ -53,7 +59,9 @@ def parse_table(table: Table | Mapping[str, Any] | None, model: str | None = Non
                 f"model={model!r} but table['model'] is {table['model']!r}: give one model"
             )
         try:
-            return Table(**{**table, **({} if model is None else {"model": model})})
+            return Table(
+                **{"model": default_model, **table, **({} if model is None else {"model": model})}
+            )
         except TypeError as exc:
             raise ValueError(f"table: {exc}") from None
     raise ValueError(

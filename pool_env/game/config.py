@@ -25,6 +25,7 @@ from pool_env.game.registry import BUILTIN, ruleset_for
 from pool_env.game.ruleset import Ruleset, RulesSection, Setup
 from pool_env.game.scenes import ScenePlan, placement, plan_scene
 from pool_env.game.sections import (
+    DEFAULT_MODEL,
     DEFAULT_SPEED_RANGE,
     PoolConfig,
     TaskSection,
@@ -39,6 +40,7 @@ __all__ = [
     "AIM_MODES",
     "CUE",
     "DEFAULT_AIM_RANGE",
+    "DEFAULT_MODEL",
     "DEFAULT_SPEED_RANGE",
     "GAMES",
     "OBSERVATIONS",
@@ -312,7 +314,7 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
             refused here, never at a reset.
     """
     source = resolve(config, overrides)
-    table = checks.parse_table(source.table.table, source.table.model)
+    table = checks.parse_table(source.table.table, source.table.model, DEFAULT_MODEL)
     ruleset = ruleset_for(source.rules.game)
     task = parse_task(source.task, table, ruleset.scenes)
     sigmas = checks.parse_noise(source.noise.sigmas, table)

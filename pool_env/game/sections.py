@@ -51,6 +51,14 @@ from pool_env.sim.table import Table
 #: ``docs/physics.md``). A soft touch rolls ~1 m, a power shot ~100 m if nothing stops it.
 DEFAULT_SPEED_RANGE = (0.45, 4.5)
 
+#: The model of the table played when the config gives none (no ``model``, and no
+#: :class:`~pool_env.Table` or a dict of its arguments that names none): the spin table,
+#: the one every ``pool_env/<Task>-v1`` id plays, so that ``PoolEnv()``, the vector and
+#: two-player fronts and ``gym.make("pool_env/Pool-v1")`` play one table. Read here only,
+#: by :func:`pool_env.game.config.make_config` (``tests/envs/test_front_defaults.py``);
+#: the roll table is ``model="roll"`` (the ``<Task>Roll-v1`` ids).
+DEFAULT_MODEL = "spin"
+
 
 @dataclass(frozen=True)
 class TableSection:
@@ -58,8 +66,9 @@ class TableSection:
 
     Attributes:
         table: A :class:`~pool_env.Table`, a dict of its arguments (a config file), or
-            ``None``: the default table.
-        model: ``"roll"`` or ``"spin"`` (the spin ids set it), or ``None``: the table's own.
+            ``None``: the default table, ``Table(model=DEFAULT_MODEL)`` (the spin table).
+        model: ``"roll"`` or ``"spin"`` (every id sets it), or ``None``: a
+            :class:`~pool_env.Table`'s own, else :data:`DEFAULT_MODEL` (``"spin"``).
     """
 
     table: Table | Mapping[str, Any] | None = None
@@ -332,7 +341,34 @@ def _one_game(game: Any, rules: Any, named: Any) -> None:
 
 
 def default_config(**overrides: Any) -> PoolConfig:
-    """The default configuration (solitaire, random scene, default table), with overrides.
+    """The default configuration, with keyword overrides.
+
+    With none: solitaire on a random scene (3 object balls), on the default table, the spin
+    table of the ``pool_env/<Task>-v1`` ids (:data:`DEFAULT_MODEL`), cut aim, 0.45 to 4.5
+    m/s, no noise. Each key's default and meaning: ``docs/environments/specification.md``,
+    "Configuration" (``help(pool_env.PoolEnv)`` too).
+
+    Args:
+        **overrides: Keys of one section each (:data:`KEYS` maps the shared ones):
+
+            * table: ``table``, ``model``;
+            * task: ``scene``, ``n_balls``, ``rack_order``, ``aim``, ``aim_range``,
+              ``observation``, ``speed_range``, ``tip_limit``, ``end_on_miss``,
+              ``max_shots``;
+            * noise: ``noise``;
+            * rules: ``game``, then the game's own keys (9-ball, 10-ball and 8-ball:
+              ``end_on_foul``, ``break_speed_range``, ``push_out``);
+            * rewards: ``reward_<term>`` per reward term of the game.
+
+            A section's name (``table``, ``task``, ``noise``, ``rules``, ``rewards``)
+            takes the section whole or a mapping of its keys.
+
+    Returns:
+        The sectioned config, as given (:func:`pool_env.game.config.make_config` checks
+        and parses it).
+
+    Raises:
+        ValueError: On a name that is no key or section, or a rule the game has not.
 
     Examples:
         >>> from pool_env import default_config

@@ -193,7 +193,7 @@ def test_a_ten_ball_config_plays_ten_ball_in_a_duel() -> None:
     pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
     from pool_env.envs.multiagent import PoolDuelEnv
 
-    duel = PoolDuelEnv(config=default_config(scene="ten_ball", game="ten"))
+    duel = PoolDuelEnv(config=default_config(scene="ten_ball", game="ten", model="roll"))
     duel.reset(seed=1)
     assert duel.positions.shape == (1 + OBJECT_BALLS["ten"], 2)
     assert duel.action_space("player_0").shape == (WIDTHS["ten"],)

@@ -19,11 +19,12 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from pool_env import PoolEnv, PoolVectorEnv, default_config
-from pool_env.envs.registration import CURRENT_IDS, ENV_IDS, GAME_IDS
+import pool_env.game.config as config_module
+from pool_env import PoolEnv, PoolVectorEnv, Table, default_config
+from pool_env.envs.registration import CURRENT_IDS, ENV_IDS, GAME_IDS, TASKS, roll_id, spin_id
 from pool_env.game.config import DEFAULT_SPEED_RANGE, GameConfig, TaskConfig, make_config
 from pool_env.game.kernels import params as kp
-from pool_env.game.sections import KEYS
+from pool_env.game.sections import DEFAULT_MODEL, KEYS
 
 
 def _same(a: Any, b: Any) -> bool:
@@ -118,3 +119,84 @@ def test_an_argument_still_overrides_the_default() -> None:
     assert duel.config.aim_range == (-np.pi, np.pi) and duel.config.max_shots == 7
     with pytest.raises(ValueError, match="game must be"):
         PoolDuelEnv("snooker")
+
+
+# -- one default table (issue 48) -------------------------------------------------------------
+
+#: The configurable id: what ``gym.make("pool_env/Pool-v1")`` plays is the default table.
+DEFAULT_ID = spin_id("Pool")
+
+
+def _duel(**kwargs: Any) -> GameConfig:
+    pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
+    from pool_env.envs.multiagent import PoolDuelEnv
+
+    return PoolDuelEnv(**kwargs).config
+
+
+def _versus(**kwargs: Any) -> GameConfig:
+    pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
+    from pool_env.envs.multiagent import VersusPolicyEnv
+
+    return VersusPolicyEnv(**kwargs).config
+
+
+#: Every front, built with no table and no model: its parsed config.
+NO_TABLE_FRONTS = {
+    "PoolEnv()": lambda: PoolEnv().config,
+    "PoolEnv(config=default_config())": lambda: PoolEnv(config=default_config()).config,
+    "PoolVectorEnv(2)": lambda: PoolVectorEnv(2).config,
+    "make_config()": lambda: make_config(),
+    "make_config(default_config())": lambda: make_config(default_config()),
+    "PoolDuelEnv()": lambda: _duel(),
+    "PoolDuelEnv('ten')": lambda: _duel(game="ten"),
+    "VersusPolicyEnv()": lambda: _versus(),
+    "VersusPolicyEnv(game='eight')": lambda: _versus(game="eight"),
+}
+
+
+def _default_table() -> Table:
+    return gym.make(DEFAULT_ID).unwrapped.config.table
+
+
+@pytest.mark.parametrize("front", list(NO_TABLE_FRONTS))
+def test_every_front_plays_the_table_of_the_v1_ids(front: str) -> None:
+    """``PoolEnv()`` is ``pool_env/Pool-v1``'s table: the spin table, as every front's."""
+    table = NO_TABLE_FRONTS[front]().table
+    assert table.model == "spin" and table.has_spin
+    assert _same(table, _default_table())
+
+
+def test_every_v1_id_plays_the_default_table_and_every_roll_id_the_roll_table() -> None:
+    default = _default_table()
+    assert default.model == DEFAULT_MODEL == "spin"
+    for task in TASKS:
+        assert _same(gym.make(spin_id(task)).unwrapped.config.table, default), task
+        roll = gym.make(roll_id(task)).unwrapped.config.table
+        assert roll.model == "roll" and _same(roll, Table(model="roll")), task
+
+
+@pytest.mark.parametrize("front", list(NO_TABLE_FRONTS))
+def test_every_front_reads_the_one_default(front: str, monkeypatch: pytest.MonkeyPatch) -> None:
+    """One constant, read by make_config: a front that copied the default would not follow.
+
+    The ids register their model, so they keep their tables whatever the default is.
+    """
+    monkeypatch.setattr(config_module, "DEFAULT_MODEL", "roll")
+    assert NO_TABLE_FRONTS[front]().table.model == "roll"
+    assert _default_table().model == "spin"
+    assert gym.make(roll_id("Pool")).unwrapped.config.table.model == "roll"
+
+
+def test_a_table_given_keeps_its_model_and_a_dict_without_one_gets_the_default() -> None:
+    assert PoolEnv(model="roll").config.table.model == "roll"
+    assert PoolEnv(table=Table(model="roll")).config.table.model == "roll"  # the table's own
+    circles = PoolEnv(table={"pockets": "circles"}).config.table  # no model named: the default
+    assert circles.model == DEFAULT_MODEL and circles.pocket_model == "circles"
+    assert PoolEnv(table={"pockets": "circles", "model": "roll"}).config.table.model == "roll"
+    duel = _duel(model="roll")
+    assert duel.table.model == "roll" and duel.action_size == 6  # 9-ball's, no tip columns
+    with pytest.raises(
+        ValueError, match=r"model='spin' but the table given is Table\(model='roll'\)"
+    ):
+        gym.make(DEFAULT_ID, table=Table(model="roll"))

@@ -6,7 +6,8 @@ task under its next version (``pool_env.envs.registration.VERSIONS``), keep the 
 playing as it did (``EARLIER_VERSIONS``) and add the new id to the record
 (``python -m tests.envs.test_id_versions --add``, which never rewrites a recorded id).
 The two-player duel is recorded under its PettingZoo name, whose suffix is its version
-(``pool_duel_v1``: with the push-out).
+(``pool_duel_v1``: with the push-out; ``pool_duel_v2``: on the spin table by default, whose
+``model="roll"`` plays v1's spaces).
 
 ``data/nine_v1_trace.npz`` is 9-ball as ``pool_env/NineBallGame-v1`` and its roll twin played
 before the push-out (commit ``097e0ad``; ``data/nine_v1_trace.py`` says how it was made):
@@ -67,11 +68,11 @@ def spaces_of(env_id: str) -> dict[str, Any]:
         env.close()
 
 
-def duel_spaces_of(game: str) -> tuple[str, dict[str, Any]]:
+def duel_spaces_of(game: str, **kwargs: Any) -> tuple[str, dict[str, Any]]:
     """The duel's record key (its versioned name and the game) and its spaces."""
     from pool_env.envs.multiagent import PoolDuelEnv
 
-    duel = PoolDuelEnv(game)
+    duel = PoolDuelEnv(game, **kwargs)
     agent = duel.possible_agents[0]
     key = f"{duel.metadata['name']}/{game}"
     return key, {
@@ -104,6 +105,15 @@ def test_the_duels_spaces_are_the_recorded_ones_under_its_name(game: str) -> Non
     assert spaces == _record()[key], (
         f"the duel's spaces changed under {key}: bump the version in its metadata name"
     )
+
+
+@pytest.mark.parametrize("game", DUEL_GAMES)
+def test_the_duels_earlier_version_is_its_roll_table(game: str) -> None:
+    """v2 made the spin table the default: v1's spaces are the roll table's, still played."""
+    pytest.importorskip("pettingzoo", reason="needs the multiagent extra")
+    key, spaces = duel_spaces_of(game, model="roll")
+    assert key == f"pool_duel_v2/{game}" and spaces == _record()[f"pool_duel_v1/{game}"]
+    assert spaces["action"]["shape"][0] + 2 == _record()[key]["action"]["shape"][0]  # the tip
 
 
 def test_the_record_holds_no_id_that_is_gone() -> None:

@@ -26,7 +26,7 @@ def test_pettingzoo_api(game: str) -> None:
 
 
 def _rollout(seed: int, shots: int = 12) -> list:
-    env = PoolDuelEnv("nine", noise=(0.01, 0.05), max_shots=shots)
+    env = PoolDuelEnv("nine", noise=(0.01, 0.05), max_shots=shots, model="roll")
     env.reset(seed=seed)
     rng = np.random.default_rng(seed)
     trace = []
@@ -44,7 +44,7 @@ def test_same_seed_same_game() -> None:
 
 
 def test_a_break_that_touches_nothing_gives_the_opponent_ball_in_hand() -> None:
-    env = PoolDuelEnv("nine", aim="absolute", break_speed_range=(0.5, 10.0))
+    env = PoolDuelEnv("nine", aim="absolute", break_speed_range=(0.5, 10.0), model="roll")
     env.reset(seed=0)
     # Observation: 3 x 10 ball entries, 9 legal-ball flags, then ball in hand (39), behind
     # the head string (40), break (41), open table (42), own fouls (43), opponent's (44).
@@ -62,7 +62,7 @@ def test_a_break_that_touches_nothing_gives_the_opponent_ball_in_hand() -> None:
 
 
 def test_the_nine_straight_in_wins_the_rack() -> None:
-    env = PoolDuelEnv("nine", aim="absolute")
+    env = PoolDuelEnv("nine", aim="absolute", model="roll")
     pos = np.array([[1.5, 0.6]] * 10)
     on = np.zeros(10, bool)
     on[[0, 9]] = True
@@ -94,7 +94,7 @@ def test_versus_policy_env_passes_the_checkers() -> None:
 
 def test_versus_policy_rack_ends_with_the_opponents_win_or_the_agents() -> None:
     """A rack against a random opponent: the agent's return is the rack's result."""
-    env = VersusPolicyEnv(game="nine", max_shots=400)
+    env = VersusPolicyEnv(game="nine", max_shots=400, model="roll")
     env.reset(seed=1)
     total, done, rng = 0.0, False, np.random.default_rng(1)
     while not done:
@@ -152,7 +152,7 @@ def test_an_opponent_failure_takes_the_agents_shot_back(policy, match: str) -> N
     # The step raises naming the opponent, and the game is as before the step: the agent is
     # still to break, the generators have not moved; the next step plays the agent's shot.
     env = VersusPolicyEnv(opponent=_miss_then(policy), game="nine", aim="absolute",
-                          break_speed_range=(0.5, 10.0))  # fmt: skip
+                          break_speed_range=(0.5, 10.0), model="roll")  # fmt: skip
     env.reset(seed=0)
     r = env.duel.config.table.ball_radius
     ax = 2 * (0.3 - r) / (env.duel.config.table.length / 4 - r) - 1
@@ -201,7 +201,7 @@ def test_the_shot_limit_truncates_both_players(limit: int) -> None:
     # Every shot misses (a soft shot away from the 9): the turn passes each time, so the
     # last shot is player_0's (odd limits) or player_1's (even). Both are truncated at
     # once, whoever shot, and the AEC loop then only removes them: no shot past the limit.
-    env = PoolDuelEnv("nine", max_shots=limit, aim="absolute")
+    env = PoolDuelEnv("nine", max_shots=limit, aim="absolute", model="roll")
     _straight_nine(env)
     away = np.array([0.25, -0.9, 0.0, 0.0, 0.0, 0.0], np.float32)  # +pi/4: off the 9's line
     shooters = []
@@ -220,7 +220,7 @@ def test_the_shot_limit_truncates_both_players(limit: int) -> None:
 
 
 def test_a_win_on_the_last_allowed_shot_terminates_rather_than_truncates() -> None:
-    env = PoolDuelEnv("nine", max_shots=1, aim="absolute")
+    env = PoolDuelEnv("nine", max_shots=1, aim="absolute", model="roll")
     _straight_nine(env)
     env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0, 0.0], np.float32))
     assert env.terminations == {"player_0": True, "player_1": True}
@@ -230,7 +230,7 @@ def test_a_win_on_the_last_allowed_shot_terminates_rather_than_truncates() -> No
 
 def test_the_loser_sees_its_minus_one_and_the_rewards_sum_to_zero() -> None:
     # player_1 shoots the 9 in: player_0 (who did not shoot) gets -1 through last().
-    env = PoolDuelEnv("nine", aim="absolute")
+    env = PoolDuelEnv("nine", aim="absolute", model="roll")
     _straight_nine(env, shooter=1)
     assert env.agent_selection == "player_1"
     env.step(np.array([TOWARD_CORNER / math.pi, _speed_action(env, 1.5), 0, 0, 0, 0.0], np.float32))
@@ -249,7 +249,7 @@ def test_versus_policy_truncates_at_the_shot_limit_inside_the_opponents_turn() -
     # agent's step reports the truncation, and a further step is refused.
     env = VersusPolicyEnv(opponent=lambda obs: np.array([0.5, -1, 0, 0, 0, 0.0], np.float32),
                           game="nine", max_shots=2, aim="absolute",
-                          break_speed_range=(0.5, 10.0))  # fmt: skip
+                          break_speed_range=(0.5, 10.0), model="roll")  # fmt: skip
     env.reset(seed=0)
     r = env.duel.config.table.ball_radius
     ax = 2 * (0.3 - r) / (env.duel.config.table.length / 4 - r) - 1
@@ -261,7 +261,7 @@ def test_versus_policy_truncates_at_the_shot_limit_inside_the_opponents_turn() -
 
 
 def test_observations_and_infos_are_never_shared() -> None:
-    env = PoolDuelEnv("nine")
+    env = PoolDuelEnv("nine", model="roll")
     env.reset(seed=0)
     a, b = env.observe("player_0"), env.observe("player_0")
     a[:] = 0.5
@@ -275,11 +275,11 @@ def test_observations_and_infos_are_never_shared() -> None:
 def test_numpy_integer_seeds_play_as_python_ints(seed) -> None:
     runs = []
     for s in (seed, 5):
-        env = VersusPolicyEnv(game="nine")
+        env = VersusPolicyEnv(game="nine", model="roll")
         obs, _ = env.reset(seed=s)
         out = env.step(np.array([0.0, 0.5, 0.0, 0.0, 0.0, 0.0], np.float32))
         runs.append((obs.tobytes(), out[0].tobytes(), out[4]["opponent_shots"]))
-        duel = PoolDuelEnv("nine", noise=(0.01, 0.05))
+        duel = PoolDuelEnv("nine", noise=(0.01, 0.05), model="roll")
         duel.reset(seed=s)
         duel.step(np.zeros(6, np.float32))
         runs.append(duel.positions.tobytes())
@@ -297,7 +297,7 @@ def test_the_opponent_winning_in_its_turn_gives_the_agent_minus_one() -> None:
         v = 2 * (y - r) / (table.width - 2 * r) - 1
         return np.array([TOWARD_CORNER / math.pi, speed, u, v, 0.0, 0.0], np.float32)
 
-    env = VersusPolicyEnv(opponent=potter, game="nine", aim="absolute")
+    env = VersusPolicyEnv(opponent=potter, game="nine", aim="absolute", model="roll")
     speed = _speed_action(env.duel, 1.5)
     pos = np.array([[1.5, 0.6]] * 10)
     on = np.zeros(10, bool)

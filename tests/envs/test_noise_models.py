@@ -126,11 +126,14 @@ def test_the_parsed_sigmas_and_what_is_not_applied() -> None:
     assert spin == pytest.approx((math.radians(0.125), 0.075, 0.0005 / R), rel=1e-15)
     five = PoolEnv(model="spin", noise=("fastfiz", 5)).config.noise
     assert five == pytest.approx(tuple(5 * s for s in spin), rel=1e-15)
-    assert PoolEnv(noise="fastfiz").config.noise == pytest.approx(spin[:2], rel=1e-15)  # roll
+    roll = PoolEnv(noise="fastfiz", model="roll").config.noise
+    assert roll == pytest.approx(spin[:2], rel=1e-15)
     small = Table(model="spin", ball_radius=0.026)  # the tip's sigma follows R: 0.5 mm of it
     assert PoolEnv(table=small, noise="fastfiz").config.noise[2] == pytest.approx(0.0005 / 0.026)
     assert FASTFIZ_ELEVATION_DEG == 0.1 and list(NOISE_MODELS) == ["fastfiz"]
-    assert PoolEnv(noise=["fastfiz", 2]).config.noise == pytest.approx((2 * spin[0], 0.15))
+    assert PoolEnv(noise=["fastfiz", 2], model="roll").config.noise == pytest.approx(
+        (2 * spin[0], 0.15)
+    )
 
 
 @pytest.mark.parametrize(

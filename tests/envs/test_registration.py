@@ -58,7 +58,7 @@ def test_each_task_has_a_spin_id_and_a_roll_id_and_nothing_else() -> None:
     assert set(IDS) == current | earlier and len(IDS) == 16  # 9-ball's -v1 and -v2
     for task in TASKS:
         assert gym.spec(spin_id(task)).kwargs["id_defaults"]["model"] == "spin"
-        assert gym.spec(roll_id(task)).kwargs["id_defaults"].get("model", "roll") == "roll"
+        assert gym.spec(roll_id(task)).kwargs["id_defaults"]["model"] == "roll"
 
 
 @pytest.mark.parametrize("env_id", CURRENT_IDS)

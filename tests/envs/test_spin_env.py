@@ -185,8 +185,8 @@ def test_v0_and_v1_streams_agree_up_to_the_tip_draws() -> None:
         ({"model": "spin", "tip_limit": True}, "tip_limit must be a number"),  # as 1.0
         ({"model": "spin", "noise": (True, 0.05)}, r"noise must be \(sigma_angle"),
         ({"speed_range": ("1", 4.0)}, "speed_range must be a pair"),
-        ({"tip_limit": 0.5}, "tip_limit needs a spin table"),
-        ({"noise": (0.0, 0.0, 0.1)}, "roll table has no cue tip"),
+        ({"model": "roll", "tip_limit": 0.5}, "tip_limit needs a spin table"),
+        ({"model": "roll", "noise": (0.0, 0.0, 0.1)}, "roll table has no cue tip"),
         ({"model": "spin", "noise": (0.0, 0.0, -0.1)}, "must be >= 0"),
         ({"model": "spin", "noise": (0.1, 0.1, 0.1, 0.1)}, "sigma_tip"),
     ],
@@ -206,13 +206,17 @@ def test_bad_tip_actions_raise_and_change_nothing() -> None:
             env.step(np.array(bad))
     np.testing.assert_array_equal(env.unwrapped.positions, before)
     assert env.unwrapped.shots == 0
-    assert PoolEnv(scene="one_ball", noise=(0.1, 0.1, 0.0)).config.noise == (0.1, 0.1)  # zero: fine
+    roll = PoolEnv(scene="one_ball", noise=(0.1, 0.1, 0.0), model="roll")
+    assert roll.config.noise == (0.1, 0.1)  # a zero tip sigma on a roll table: fine
 
 
 @pytest.mark.parametrize(("game", "width"), [("nine", 6), ("ten", 7), ("eight", 5)])
 def test_rules_actions_keep_placement_and_pocket_where_they_were(game: str, width: int) -> None:
     scene = f"{game}_ball"
-    roll, spin = PoolEnv(scene=scene, game=game), PoolEnv(scene=scene, game=game, model="spin")
+    roll, spin = (
+        PoolEnv(scene=scene, game=game, model="roll"),
+        PoolEnv(scene=scene, game=game, model="spin"),
+    )
     assert roll.action_space.shape == (width,) and spin.action_space.shape == (width + 2,)
     assert spin.config.tip_columns == (width, width + 1)
     roll.reset(seed=4)

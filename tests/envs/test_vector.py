@@ -106,7 +106,7 @@ def test_disabled_autoreset_waits_for_a_masked_reset_and_equals_sync() -> None:
 
 
 def test_next_step_autoreset_ignores_the_action_of_a_finished_table() -> None:
-    env = PoolVectorEnv(3, scene="one_ball", end_on_miss=True, autoreset_mode=NEXT)
+    env = PoolVectorEnv(3, scene="one_ball", end_on_miss=True, autoreset_mode=NEXT, model="roll")
     env.reset(seed=0)
     _, _, terminated, _, info = env.step(np.zeros((3, 2)))
     assert terminated.all() and info["_potted"].all()
@@ -119,13 +119,18 @@ def test_next_step_autoreset_ignores_the_action_of_a_finished_table() -> None:
 
 
 def test_same_step_autoreset_reports_final_observation_and_info() -> None:
-    env = PoolVectorEnv(2, scene=SCRATCH_LAYOUT, aim="absolute", autoreset_mode=SAME)
+    env = PoolVectorEnv(2, scene=SCRATCH_LAYOUT, aim="absolute", autoreset_mode=SAME, model="roll")
     env.reset(seed=0)
     obs, reward, terminated, truncated, info = env.step([SCRATCH_SHOT, SCRATCH_SHOT])
     assert reward.tolist() == [-1.0, -1.0] and not terminated.any()
     np.testing.assert_allclose(obs[:, :3], [[-0.5, 0.0, 1.0]] * 2)  # back on the head spot
     env = PoolVectorEnv(
-        2, max_episode_steps=1, scene=SCRATCH_LAYOUT, aim="absolute", autoreset_mode=SAME
+        2,
+        max_episode_steps=1,
+        scene=SCRATCH_LAYOUT,
+        aim="absolute",
+        autoreset_mode=SAME,
+        model="roll",
     )
     env.reset(seed=0)
     obs, reward, terminated, truncated, info = env.step([SCRATCH_SHOT, SCRATCH_SHOT])
@@ -138,10 +143,10 @@ def test_same_step_autoreset_reports_final_observation_and_info() -> None:
 
 def test_a_scratch_with_the_head_spot_taken_matches_pool_env() -> None:
     layout = np.array([SCRATCH_LAYOUT[0], HEAD])
-    single = PoolEnv(scene=layout, aim="absolute")
+    single = PoolEnv(scene=layout, aim="absolute", model="roll")
     single.reset(seed=0)
     expected = single.step(np.array(SCRATCH_SHOT))
-    env = PoolVectorEnv(2, scene=layout, aim="absolute")
+    env = PoolVectorEnv(2, scene=layout, aim="absolute", model="roll")
     env.reset(seed=0)
     obs, _, _, _, info = env.step([SCRATCH_SHOT, SCRATCH_SHOT])
     assert info["scratch"].all()
@@ -192,12 +197,12 @@ def test_seeding_per_table_and_reproducibility() -> None:
 
 def test_bad_input_raises_and_changes_nothing() -> None:
     with pytest.raises(ValueError, match="num_envs"):
-        PoolVectorEnv(0)
+        PoolVectorEnv(0, model="roll")
     with pytest.raises(ValueError, match="render_mode"):
-        PoolVectorEnv(2, render_mode="human")
+        PoolVectorEnv(2, render_mode="human", model="roll")
     with pytest.raises(ValueError, match="aim"):
-        PoolVectorEnv(2, aim="sideways")  # PoolEnv's own checks
-    env = PoolVectorEnv(2)
+        PoolVectorEnv(2, aim="sideways", model="roll")  # PoolEnv's own checks
+    env = PoolVectorEnv(2, model="roll")
     with pytest.raises(RuntimeError, match="reset"):
         env.step(np.zeros((2, 2)))
     env.reset(seed=0, options={"reset_mask": np.array([True, False])})
@@ -229,7 +234,7 @@ def test_reset_options_lay_out_each_table() -> None:
 
 
 def test_returned_arrays_are_not_the_state_and_pickling_resumes_identically() -> None:
-    env = PoolVectorEnv(4, scene="nine_ball", noise=(0.01, 0.1))
+    env = PoolVectorEnv(4, scene="nine_ball", noise=(0.01, 0.1), model="roll")
     obs, _ = env.reset(seed=3)
     obs[:] = 0.0
     assert env.step(np.zeros((4, 2)))[0].any()
@@ -279,7 +284,7 @@ def test_compiled_draws_equal_numpys(bits: type) -> None:
     noise = (1.0, 2.0)
     params = make_config(
         scene="one_ball", aim="absolute", aim_range=(0.0, 0.0), speed_range=(5.0, 5.0),
-        noise=noise,
+        noise=noise, model="roll"
     ).params  # fmt: skip
     at_rest, on = np.zeros((1, 2, 2)), np.ones((1, 2), np.bool_)
     angles, speeds = np.zeros(20_000), np.zeros(20_000)
@@ -331,11 +336,11 @@ def test_threaded_batch_equals_serial_and_names_the_table() -> None:
 @pytest.mark.parametrize("dtype", [np.float16, np.longdouble, ">f8", np.float32])
 def test_action_dtypes_play_as_in_pool_env(dtype: object) -> None:
     actions = np.array([[0.25, -0.5], [-0.7, 0.3]], dtype=dtype)
-    env = PoolVectorEnv(2, scene="random", n_balls=4)
+    env = PoolVectorEnv(2, scene="random", n_balls=4, model="roll")
     env.reset(seed=4)
     obs, rewards, *_ = env.step(actions)
     for i in range(2):
-        single = PoolEnv(scene="random", n_balls=4)
+        single = PoolEnv(scene="random", n_balls=4, model="roll")
         single.reset(seed=4 + i)
         expected = single.step(actions[i])
         np.testing.assert_array_equal(obs[i], expected[0])
@@ -366,7 +371,9 @@ def test_bad_actions_seeds_and_layouts_get_the_same_messages_as_pool_env() -> No
 
 def test_a_crowded_scene_never_fails_in_an_autoreset() -> None:
     # Issue 11 (5): the autoreset inside step() raised "cannot lay out the scene".
-    env = PoolVectorEnv(16, table={"length": 0.4, "width": 0.2}, n_balls=11, autoreset_mode=SAME)
+    env = PoolVectorEnv(
+        16, table={"length": 0.4, "width": 0.2}, n_balls=11, autoreset_mode=SAME, model="roll"
+    )
     env.reset(seed=0)
     rng = np.random.default_rng(0)
     for _ in range(30):

@@ -102,11 +102,11 @@ def test_encode_refuses_what_the_action_cannot_play() -> None:
         encode_action(spin.config, Shot(math.pi, 1.0), *args[1:])  # away from the ball
     with pytest.raises(ValueError, match="speed"):
         encode_action(spin.config, Shot(0.0, 9.0), *args[1:])
-    roll = PoolEnv(scene="one_ball")
+    roll = PoolEnv(scene="one_ball", model="roll")
     roll.reset(seed=0)
     with pytest.raises(ValueError, match="needs a spin table"):
         encode_action(roll.config, Shot(0.0, 1.0, tip=(0.1, 0.0)), roll.positions)
-    game = PoolEnv(scene="nine_ball", game="nine")
+    game = PoolEnv(scene="nine_ball", game="nine", model="roll")
     game.reset(seed=0)
     with pytest.raises(ValueError, match="pocket"):
         encode_action(game.config, Shot(0.0, 9.0, pocket=6), game.positions, rack=game.rack)

@@ -160,8 +160,8 @@ def _in_range(angle: float) -> bool:
 def test_the_reported_angle_is_in_minus_pi_to_pi_on_the_single_and_the_vector_env(
     noise: Any,
 ) -> None:
-    env = PoolEnv(scene="one_ball", noise=noise)
-    envs = PoolVectorEnv(3, scene="one_ball", noise=noise)
+    env = PoolEnv(scene="one_ball", noise=noise, model="roll")
+    envs = PoolVectorEnv(3, scene="one_ball", noise=noise, model="roll")
     for seed in range(3):
         env.reset(seed=seed, options={"positions": LEFTWARD})
         envs.reset(seed=[seed, seed, seed], options={"positions": LEFTWARD})
@@ -179,7 +179,7 @@ def test_the_reported_angle_is_in_minus_pi_to_pi_on_the_single_and_the_vector_en
 
 
 def test_absolute_aim_at_plus_pi_is_reported_as_minus_pi() -> None:
-    env = PoolEnv(scene="one_ball", aim="absolute")
+    env = PoolEnv(scene="one_ball", aim="absolute", model="roll")
     env.reset(seed=0, options={"positions": LEFTWARD})
     info = env.step(np.array([1.0, 0.0]))[4]  # +1 maps to +pi: the same direction as -pi
     assert info["angle"] == -math.pi
@@ -189,7 +189,7 @@ def test_every_codec_function_takes_the_config_in_every_form() -> None:
     """encode_action, decode_action and the encoders read what obs_layout reads."""
     from pool_env.envs.multiagent import VersusPolicyEnv
 
-    source = default_config(game="eight", scene="eight_ball")
+    source = default_config(game="eight", scene="eight_ball", model="roll")
     parsed = make_config(source)
     positions = np.array([[0.5 + 0.1 * i, 0.3 + 0.05 * (i % 5)] for i in range(16)])
     shot = Shot(0.1, 2.0, pocket=3)
@@ -199,7 +199,7 @@ def test_every_codec_function_takes_the_config_in_every_form() -> None:
         assert decode_action(form, want, positions).pocket == 3
         assert encode_pocket(form, 3) == encode_pocket(parsed, 3)
         assert encode_placement(form, (0.4, 0.5)) == encode_placement(parsed, (0.4, 0.5))
-    versus = VersusPolicyEnv(game="eight")
+    versus = VersusPolicyEnv(game="eight", model="roll")
     assert obs_layout(versus) == obs_layout(versus.duel.config)
     sync = gym.make_vec("pool_env/NineBallGameRoll-v2", 2, vectorization_mode="sync")
     assert obs_layout(sync) == obs_layout(sync.envs[0].unwrapped.config)

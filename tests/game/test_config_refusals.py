@@ -30,10 +30,10 @@ from pool_env.sim.inputs import max_speed
 
 
 def test_a_bare_rules_section_is_its_games_rules_at_their_defaults() -> None:
-    config = default_config(rules=RulesSection(game="nine"), scene="nine_ball")
+    config = default_config(rules=RulesSection(game="nine"), scene="nine_ball", model="roll")
     assert config.rules == WpaRules(game="nine")
     assert PoolConfig(rules=RulesSection(game="eight")).rules == WpaRules(game="eight")
-    env = PoolEnv(rules=RulesSection(game="nine"), scene="nine_ball")
+    env = PoolEnv(rules=RulesSection(game="nine"), scene="nine_ball", model="roll")
     assert env.config.game == "nine" and env.config.action_size == 6
     env.reset(seed=0)
     assert env.rack["break"]  # 9-ball's rack state: the break comes first
@@ -177,10 +177,10 @@ def test_a_speed_range_at_the_ceiling_plays_and_one_beyond_is_refused(model: str
 def test_a_break_speed_range_beyond_the_ceiling_is_refused_where_it_is_given() -> None:
     limit = strike_speed_limit(Table(), None)
     with pytest.raises(ValueError, match=r"break_speed_range=\(8, 2000\): its top speed must"):
-        PoolEnv(game="nine", scene="nine_ball", break_speed_range=(8, 2000))
+        PoolEnv(game="nine", scene="nine_ball", break_speed_range=(8, 2000), model="roll")
     with pytest.raises(ValueError, match=r"break_speed_range=\(8, 2000\)"):
-        PoolVectorEnv(2, game="nine", scene="nine_ball", break_speed_range=(8, 2000))
-    PoolEnv(game="nine", scene="nine_ball", break_speed_range=(8, limit))
+        PoolVectorEnv(2, game="nine", scene="nine_ball", break_speed_range=(8, 2000), model="roll")
+    PoolEnv(game="nine", scene="nine_ball", break_speed_range=(8, limit), model="roll")
 
 
 def test_noise_whose_draws_could_pass_the_ceiling_is_refused_naming_it() -> None:
@@ -189,14 +189,14 @@ def test_noise_whose_draws_could_pass_the_ceiling_is_refused_naming_it() -> None
     largest = (top - 4.5) / MAX_NORMAL_DRAW  # the default speed range's top is 4.5 m/s
     k_max = largest / fastfiz_sigmas(table)[1]
     with pytest.raises(ValueError, match=rf"noise=\('fastfiz', 1000\).*k at most {k_max:.6g}"):
-        PoolEnv(noise=("fastfiz", 1000))
+        PoolEnv(noise=("fastfiz", 1000), model="roll")
     with pytest.raises(ValueError, match=rf"noise=\(0\.1, 40\.0\).*at most {largest:.6g} m/s"):
-        PoolEnv(noise=(0.1, 40.0))
+        PoolEnv(noise=(0.1, 40.0), model="roll")
     below = largest * (1 - 1e-9)  # one rounding of the bound's own arithmetic under it
-    assert PoolEnv(noise=(0.1, below)).config.noise == (0.1, below)
+    assert PoolEnv(noise=(0.1, below), model="roll").config.noise == (0.1, below)
     # a break's top speed counts too: the same sigma is refused under the rules
     with pytest.raises(ValueError, match="break_speed_range's top speed 12 m/s"):
-        PoolEnv(game="nine", scene="nine_ball", noise=(0.1, below))
+        PoolEnv(game="nine", scene="nine_ball", noise=(0.1, below), model="roll")
 
 
 def test_an_angle_sigma_past_half_a_turn_is_refused() -> None:

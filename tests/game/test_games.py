@@ -714,7 +714,7 @@ def test_a_push_out_through_the_env_needs_no_contact_and_the_agent_shoots_on() -
 
 @pytest.mark.parametrize("game", ["nine", "ten"])
 def test_the_duel_opponent_hands_the_table_back_after_a_push_out(game: str) -> None:
-    duel = PoolDuelEnv(game, **KWARGS)
+    duel = PoolDuelEnv(game, **KWARGS, model="roll")
     balls = {**NINE_MISS, 10: parked(2)} if game == "ten" else NINE_MISS
     duel.reset(seed=0, options={**layout(game, balls), "rules": {"push_out": True}})
     option = duel.config.ruleset.option_column

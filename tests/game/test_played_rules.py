@@ -44,7 +44,8 @@ def play_and_judge(game: str, steps: int, seed: int) -> dict[str, int]:
     Returns:
         Counts of what was played: steps, racks, push-outs, hand-backs, fouls, pots.
     """
-    duel = PoolDuelEnv(game, noise=(0.003, 0.05))
+    # The roll table: the reference replays each shot with shoot(angle, speed), no tip.
+    duel = PoolDuelEnv(game, noise=(0.003, 0.05), model="roll")
     config, table = duel.config, duel.config.table
     head_x = table.length / 4.0
     rng = np.random.default_rng(seed)

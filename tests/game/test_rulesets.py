@@ -144,7 +144,7 @@ def test_a_new_ruleset_is_a_subclass_and_a_name(monkeypatch: pytest.MonkeyPatch)
     register_game(_DoubleRewards())
     recorder = register_game(_Recorder())
     kwargs = {"scene": "nine_ball", "reward_pot": 1.0, "reward_scratch": -1.0}
-    envs = {g: PoolEnv(game=g, **kwargs) for g in ("solitaire", "double", "recorded")}
+    envs = {g: PoolEnv(game=g, **kwargs, model="roll") for g in ("solitaire", "double", "recorded")}
     for env in envs.values():
         env.reset(seed=5)
     rng = np.random.default_rng(5)

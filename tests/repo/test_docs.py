@@ -24,8 +24,17 @@ from pool_env.game.config import DEFAULT_AIM_RANGE, DEFAULT_SPEED_RANGE, make_co
 from pool_env.game.games.solitaire import REWARD_TERMS as SOLITAIRE_REWARDS
 from pool_env.game.games.wpa import REWARD_TERMS as WPA_REWARDS
 from pool_env.game.games.wpa import WpaRules
+from pool_env.game.registry import BUILTIN, ruleset_for
 from pool_env.game.ruleset import RulesSection
-from pool_env.game.sections import KEYS, NoiseSection, TableSection, TaskSection
+from pool_env.game.sections import (
+    DEFAULT_MODEL,
+    KEYS,
+    SECTIONS,
+    NoiseSection,
+    TableSection,
+    TaskSection,
+    default_config,
+)
 
 #: Every keyword the specification documents, and its section: the shared sections' keys,
 #: the built-in games' rules keys and their reward terms.
@@ -60,7 +69,7 @@ def literal(cell: str) -> object:
 
 # Documented defaults that are not literals, and what the code's default must be for them.
 NON_LITERAL = {
-    "`Table()`": None,  # None: make_config builds Table()
+    '`Table(model="spin")`': None,  # None: make_config builds Table(model=DEFAULT_MODEL)
     "scene's": None,  # None: the scene decides
     "by `aim`": None,  # None: DEFAULT_AIM_RANGE[aim]
 }
@@ -93,12 +102,63 @@ def test_specification_table_matches_the_config_sections() -> None:
         if isinstance(expected, tuple):  # and the same type: a tuple, not a list
             assert isinstance(code, tuple), name
     config = make_config()
-    default = Table()  # "Table()": the same numbers and pockets
+    default = Table(model=DEFAULT_MODEL)  # 'Table(model="spin")': its numbers and pockets
+    assert DEFAULT_MODEL == "spin"
     for field in dataclasses.fields(Table):
         if field.init and field.name != "pockets":
             assert getattr(config.table, field.name) == getattr(default, field.name), field.name
     np.testing.assert_array_equal(config.table.pockets, default.pockets)
     assert config.aim_range == DEFAULT_AIM_RANGE["cut"]  # "by aim"
+
+
+#: The games a row of the specification's table names in its section's parentheses.
+ROW_GAMES = {"9": "nine", "10": "ten", "8": "eight", "solitaire": "solitaire"}
+
+
+def _documented_games(section: str) -> set[str]:
+    """``rules (9/10/8-ball)`` -> {"nine", "ten", "eight"}; ``(all games)``: every game."""
+    inside = section.partition("(")[2].rstrip(")")
+    if inside == "all games":
+        return set(BUILTIN)
+    return {ROW_GAMES[name] for name in inside.removesuffix("-ball").split("/")}
+
+
+def test_specification_names_every_game_and_each_keys_games() -> None:
+    """The ``game`` row lists the registry's games; a rules or reward row, the games of its key.
+
+    Issue 48: the row had listed ``"nine"`` or ``"eight"`` while the code took ``"ten"``.
+    """
+    rows = table_rows(SPEC.read_text(), "| Section | Key | Type | Default |")
+    game_row = next(row for row in rows if row[1] == "`game`")
+    assert set(re.findall(r'`"(\w+)"`', game_row[4])) == set(BUILTIN)
+    assert "`register_game`" in game_row[4]  # and the user's games
+    for section, key, *_ in rows:
+        name = key.strip("`")
+        if section.split()[0] == "rules" and "(" in section:
+            owners = {g for g in BUILTIN if name in _field_names(ruleset_for(g).section)}
+        elif section.split()[0] == "rewards":
+            term = name.removeprefix("reward_")
+            owners = {g for g in BUILTIN if term in ruleset_for(g).reward_terms}
+        else:
+            continue
+        assert _documented_games(section) == owners, (section, name, owners)
+
+
+def _field_names(section_type: type) -> set[str]:
+    return {f.name for f in dataclasses.fields(section_type)}
+
+
+def test_default_configs_docstring_names_every_key_and_no_other() -> None:
+    """``default_config``'s docstring lists the keys it takes, as the code has them."""
+    doc = inspect.getdoc(default_config) or ""
+    assert "Args:" in doc and "Returns:" in doc  # issue 48: it named no key
+    listed = doc.split("Args:")[1].split("Returns:")[0]
+    named = set(re.findall(r"``(\w+)``", listed))
+    rule_keys = {f.name for g in BUILTIN for f in dataclasses.fields(ruleset_for(g).section)}
+    assert set(KEYS) | set(SECTIONS) | {"game"} <= named  # every key, every section
+    assert rule_keys - {"game"} <= named  # the built-in games' rules keys
+    assert named <= set(KEYS) | set(SECTIONS) | rule_keys | {"reward_<term>"}, named
+    assert "``reward_<term>``" in listed and "docs/environments/specification.md" in doc
 
 
 def test_specification_quotes_the_code_defaults() -> None:

@@ -8,6 +8,7 @@ is refused by name. ``results/`` and ``CHANGELOG.md`` are dated records, kept as
 
 from __future__ import annotations
 
+import ast
 import re
 import subprocess
 from pathlib import Path
@@ -104,6 +105,51 @@ def test_nothing_cites_the_documents_outside_the_repository() -> None:
     assert offenders == []
 
 
+#: A section of a page cited by name: ``docs/physics.md``, "The model".
+CITED_SECTION = re.compile(r'``([\w/.-]+\.md)``, "([^"]+)"')
+
+#: A section of the enclosing class's docstring cited by name: (see the class docstring,
+#: Rendering).
+CLASS_SECTION = re.compile(r"the class docstring, \"?([A-Z]\w*)")
+
+
+def _has_section(text: str, name: str) -> bool:
+    """A heading of ``text`` (``## name...``), or a bold lead (``**name...``), starts so."""
+    return any(
+        re.sub(r"^#+\s*|^\*\*", "", line.strip()).startswith(name)
+        for line in text.splitlines()
+        if line.lstrip().startswith(("#", "**"))
+    )
+
+
+def _cited_sections(source: str) -> list[tuple[str, str]]:
+    """The (page, section) pairs a file cites, a citation's lines joined."""
+    return [(m[1], " ".join(m[2].split())) for m in CITED_SECTION.finditer(source)]
+
+
+def test_every_cited_section_exists() -> None:
+    """A docstring or comment that sends the reader to a named section finds it there.
+
+    Issue 48: ``PoolEnv.render`` sent the reader to a "Rendering" section of the class
+    docstring, which has none (the specification page has it).
+    """
+    broken = []
+    for citing in (f for f in _citing(_tracked()) if f.endswith(".py")):
+        source = (ROOT / citing).read_text()
+        for page, section in _cited_sections(source):
+            if not (ROOT / page).exists() or not _has_section((ROOT / page).read_text(), section):
+                broken.append(f"{citing}: {page}, {section!r}")
+        if not CLASS_SECTION.search(source):
+            continue
+        for node in ast.walk(ast.parse(source)):
+            if isinstance(node, ast.ClassDef):
+                own = ast.get_docstring(node) or ""
+                for name in CLASS_SECTION.findall(ast.get_source_segment(source, node) or ""):
+                    if not _has_section(own, name):
+                        broken.append(f"{citing}: class {node.name}'s docstring, {name!r}")
+    assert broken == []
+
+
 def test_the_checks_find_what_they_look_for() -> None:
     """The patterns catch a missing file and an outside citation (so the tests can fail)."""
     files = set(_tracked())
@@ -112,6 +158,13 @@ def test_the_checks_find_what_they_look_for() -> None:
     assert _resolves("game/step.py", "docs/architecture.md", files, set())  # under a package
     assert PATH.search("see `pool_env/sim/nowhere.py`").group(1) == "pool_env/sim/nowhere.py"
     assert OUTSIDE.search("(PHYSICS.md section 4)") and OUTSIDE.search("research/SPIN.md")
+    cite = 'as (``docs/physics.md``, "Three mistakes in\n    the classic formulas"):'
+    assert _cited_sections(cite) == [("docs/physics.md", "Three mistakes in the classic formulas")]
+    physics = (ROOT / "docs" / "physics.md").read_text()
+    assert _has_section(physics, "The model") and _has_section(physics, "Zeno rules")
+    assert not _has_section(physics, "No such section")
+    assert not _has_section("A plain line naming Rendering.", "Rendering")
+    assert CLASS_SECTION.findall("(see the class docstring, Rendering).") == ["Rendering"]
 
 
 def test_the_architecture_page_names_every_module() -> None:
