@@ -75,6 +75,9 @@ def run_job(job: Job) -> tuple[Job, float]:
     import gymnasium as gym
 
     import pool_env  # noqa: F401  (registers the ids)
+    from pool_env.sim.jit import COMPILE_NOTICE
+
+    COMPILE_NOTICE.silence()  # the command's own lines say what compiles
 
     env_id, kind = job
     extra = {"observation": "shots"} if kind == "shots" else {}

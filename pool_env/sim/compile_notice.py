@@ -67,6 +67,10 @@ class CompileNotice(event.Listener):
             self._timer.cancel()
             self._timer = None
 
+    def silence(self) -> None:
+        """Print nothing more in this process (one that says what it compiles itself)."""
+        self.said = self.said_waiting = True
+
     def waiting(self, started: bool) -> None:
         """Another process compiles a kernel this one needs: a line if the wait is long.
 

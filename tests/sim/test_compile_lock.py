@@ -125,3 +125,13 @@ def test_a_short_wait_prints_nothing() -> None:
     notice.waiting(True)
     notice.waiting(False)
     assert stream.getvalue() == "" and not notice.said_waiting
+
+
+def test_a_silenced_notice_prints_neither_line() -> None:
+    stream = io.StringIO()
+    notice = CompileNotice(None, delay=0.0, stream=stream)
+    notice.silence()
+    notice.waiting(True)
+    time.sleep(0.1)
+    notice.waiting(False)
+    assert stream.getvalue() == ""
