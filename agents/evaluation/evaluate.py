@@ -34,6 +34,7 @@ import argparse
 import difflib
 import time
 from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -297,8 +298,11 @@ def evaluate_agent(
     env_kwargs: dict[str, Any] | None = None,
     wrapper: str | None = None,
     agent: Policy | None = None,
+    progress: Callable[[int], object] | None = None,
 ) -> dict[str, Estimate]:
     """Evaluate one agent (by name, or ``agent`` given) and return its summary.
+
+    ``progress`` is called with 1 after each episode (:func:`run_episodes`).
 
     For a model path, the env is made with the model's saved ``wrapper`` and
     ``env_kwargs``, with ``env_kwargs`` given (a noise, say) over them.
@@ -316,17 +320,61 @@ def evaluate_agent(
     env = make_env(env_id, env_kwargs, wrapper)
     try:
         agent = agent if agent is not None else make_agent(name, env, seed)
-        return run_episodes(agent, env, episodes, seed).summary()
+        return run_episodes(agent, env, episodes, seed, progress=progress).summary()
     finally:
         env.close()
 
 
+#: What a row is, printed under the table when the row is in it.
+ROW_NOTES = {
+    "first-row": "first-row: the observation's easiest ghost-ball shot (row 0 of its shot "
+    "features: aim and speed, the tip at the centre) played exactly, learning nothing: the "
+    "geometry alone, which a learner on that observation must beat.",
+}
+
+
+#: On a one-shot task, the columns that are others by construction: a cleared episode is
+#: a pot, a run-out a clean pot, and each turn one shot.
+ONE_SHOT_TWINS = {
+    "clear_rate": "pots_per_shot",
+    "run_out_rate": "clean_pot_rate",
+    "pots_per_turn": "pots_per_shot",
+}
+
+
+def one_shot(rows: dict[str, dict[str, Estimate]]) -> bool:
+    """Whether every episode of every row was one shot (a one-shot task: OneBall, ...)."""
+    return all(
+        (stats["shots_per_episode"].low, stats["shots_per_episode"].high) == (1.0, 1.0)
+        for stats in rows.values()
+    )
+
+
 def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
-    """A markdown table: one row per agent, each statistic with its 95% interval."""
+    """A markdown table: one row per agent, each statistic with its 95% interval.
+
+    On a one-shot task (:func:`one_shot`) a column that repeats its twin in every row
+    (:data:`ONE_SHOT_TWINS`: clears and pots per turn are pots per shot, run-outs clean
+    pots) is left out, and so is shots per episode (1); the note under the table says so. A row of
+    :data:`ROW_NOTES` gets its note.
+    """
     # Pots per shot is a rate only while no shot pots two balls (a break can pot several).
     multi = any(stats["pots_per_shot"].high > 1.0 for stats in rows.values())
     game = any("fouls_per_shot" in stats for stats in rows.values())
     columns = GAME_COLUMNS if game else COLUMNS
+    dropped: list[str] = []
+    if rows and one_shot(rows):
+        labels = {key: label for key, label, _ in columns}
+        kept: list[tuple[str, str, bool]] = []
+        for key, label, pct in columns:
+            twin = ONE_SHOT_TWINS.get(key)
+            if key == "shots_per_episode":
+                dropped.append(f"{label} (1)")
+            elif twin and all(_same(stats[key], stats[twin]) for stats in rows.values()):
+                dropped.append(f"{label} (= {labels[twin]})")
+            else:
+                kept.append((key, label, pct))
+        columns = tuple(kept)
     head = "| agent | " + " | ".join(label for _, label, _ in columns) + " |"
     lines = [head, "|" + "---|" * (len(columns) + 1)]
     for agent, stats in rows.items():
@@ -349,7 +397,20 @@ def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
             f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets. Clean "
             "pot: a shot that pots without scratching. Run-out: cleared in the first turn."
         )
+    if dropped:
+        lines.append(f"One shot per episode, so these columns repeat others: {', '.join(dropped)}.")
+    lines += [note for name, note in ROW_NOTES.items() if any(_base(r) == name for r in rows)]
     return "\n".join(lines)
+
+
+def _same(a: Estimate, b: Estimate) -> bool:
+    """Two statistics equal in value and interval (one column repeating another)."""
+    return (a.value, a.low, a.high) == (b.value, b.low, b.high)
+
+
+def _base(row: str) -> str:
+    """A row's agent name without its label (``"best-const (+0.50, ...)"``: ``"best-const"``)."""
+    return row.split(" ")[0]
 
 
 def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
