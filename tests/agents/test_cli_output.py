@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import train
@@ -126,3 +127,21 @@ def test_evaluate_help_lists_the_players(capsys: pytest.CaptureFixture[str]) -> 
     for word in ("ghost", "const:a0,a1", "best-const", ".zip", ".npz", ".yaml", "search player",
                  "fastfiz on the game ids"):  # fmt: skip
         assert word in text, word
+
+
+def test_a_long_run_keeps_the_best_constant_scan(capsys: pytest.CaptureFixture[str]) -> None:
+    from agents.training.train_lib import _final_evaluation
+
+    config = resolve_config("pool_env/OneBallRoll-v1", "ppo", {"progress_bar": False})
+    env = make_env(config.env_id, config.env_kwargs)
+    agent = RandomAgent(env, seed=0)
+    env.close()
+    rows, action = _final_evaluation(config, agent, 5, steps=1_000_000)  # 81 x 5 shots
+    assert "best-const" in rows and action is not None
+    grid = np.linspace(-1.0, 1.0, 9).tolist()
+    assert all(v in grid for v in action)
+    out = capsys.readouterr().out
+    assert "left out" not in out and "best-const scan (5 episodes each): 81 actions" in out
+    rows, action = _final_evaluation(config, agent, 5, steps=400)  # the scan: 405 > 400
+    assert "best-const" not in rows and action is None
+    assert "its scan would play 405 shots, more than the 400 trained" in capsys.readouterr().out
