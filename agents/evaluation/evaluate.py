@@ -610,8 +610,9 @@ def main(argv: list[str] | None = None) -> int:
         times[label] = time.perf_counter() - start
     table = format_table(rows, args.episodes)
     others = {k: v for k, v in kwargs.items() if k != "noise"}
+    settings = f" {others}" if others else ""
     print(
-        f"{args.env} {others or ''}, noise {noise_label(noise)}, seeds "
+        f"{args.env}{settings}, noise {noise_label(noise)}, seeds "
         f"{args.seed}..{args.seed + args.episodes - 1}"
     )
     print(table)
