@@ -85,8 +85,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--threads", type=int, default=1, help="torch threads (1 is fastest here)")
     p.add_argument("--eval-freq", type=int, help="steps between evaluations (0: none)")
     p.add_argument("--eval-episodes", type=int, help="episodes per periodic evaluation")
-    p.add_argument("--final-episodes", type=int, default=1000, help="final evaluation episodes")
-    p.add_argument("--no-baselines", action="store_true", help="skip random/ghost at the end")
+    p.add_argument(
+        "--final-episodes",
+        type=int,
+        help="episodes of the final evaluation, the model's and each baseline's (default: "
+        "sized to the run, a hundredth of the steps trained, 100 to 1000)",
+    )
+    p.add_argument(
+        "--no-baselines",
+        action="store_true",
+        help="skip the baselines of the final evaluation (random, best-const, ghost, ...)",
+    )
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--aim", help="env aim mode override (cut, relative, absolute)")
     p.add_argument(
@@ -113,10 +122,26 @@ def first_line(env_id: str, algo: str, backend: str) -> str:
     )
 
 
+#: Options that count something: each must be at least this (``--eval-freq 0``: none).
+MINIMUMS = {
+    "timesteps": 1, "n_envs": 1, "threads": 1, "eval_freq": 0, "eval_episodes": 1,
+    "final_episodes": 1, "env_runners": 1,
+}  # fmt: skip
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Parse, resolve the config, train; print the final comparison."""
+    """Parse, check, resolve the config, train; print the final comparison.
+
+    Every value is checked before the trainer loads (the env id, its keyword arguments,
+    the wrapper) or before anything trains (``--set`` against the algorithm's
+    constructor): a bad one exits with status 2 and one line naming it (``parser.error``).
+    """
     parser = build_parser()
     args = parser.parse_args(argv)
+    for name, least in MINIMUMS.items():
+        value = getattr(args, name)
+        if value is not None and value < least:
+            parser.error(f"--{name.replace('_', '-')} must be >= {least}, got {value}")
     if args.backend == "rllib":
         require("ray.rllib", "rllib", "python train.py --backend rllib")
     else:
@@ -126,11 +151,16 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         parser.error(str(exc))
     yaml = require("yaml", "train", "python train.py")
-    extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
+    try:
+        extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
+    except yaml.YAMLError as exc:
+        parser.error(f"--env-kwargs {args.env_kwargs!r} is not YAML: {' '.join(str(exc).split())}")
     if not isinstance(extra, dict):
         parser.error("--env-kwargs must be a YAML mapping")
     if args.aim:
         extra["aim"] = args.aim
+    wrapper = None if args.wrapper in (None, "none") else args.wrapper
+    _check_env(parser, args.env, extra, wrapper)
     print(first_line(args.env, args.algo, args.backend), flush=True)
     if args.backend == "rllib":
         return _train_rllib(parser, args, algo_kwargs, extra)
@@ -147,21 +177,38 @@ def main(argv: list[str] | None = None) -> int:
         "progress_bar": not args.no_progress,
         "algo_kwargs": algo_kwargs,
     }
+    from agents.training import hyperparams
     from agents.training.run_config import resolve_config
     from agents.training.train_lib import NATIVE_WRAPPERS, train
 
     try:
         config = resolve_config(args.env, args.algo, overrides, args.hyperparams, args.recipe)
+        hyperparams.to_sb3(config.algo_kwargs)  # schedules and activations by name
     except KeyError as exc:
         parser.error(str(exc.args[0]))
+    except ValueError as exc:
+        parser.error(str(exc))
     config.env_kwargs = {**config.env_kwargs, **extra}
     if args.wrapper:
-        config.wrapper = None if args.wrapper == "none" else args.wrapper
+        config.wrapper = wrapper
         native_ok = config.wrapper is None or config.wrapper in NATIVE_WRAPPERS
         if config.vec == "native" and not native_ok and not args.vec:
             config.vec = "dummy"  # the native vector env cannot apply this Python wrapper
+    _check_env(parser, config.env_id, config.env_kwargs, config.wrapper)  # with the entry's
     train(config, root=args.runs)
     return 0
+
+
+def _check_env(
+    parser: argparse.ArgumentParser, env_id: str, env_kwargs: dict[str, Any], wrapper: str | None
+) -> None:
+    """Make the env once, as the run will: an unknown id, key, value or wrapper exits 2."""
+    from agents.learned.envs import make_env  # Gymnasium and pool_env: no trainer yet
+
+    try:
+        make_env(env_id, env_kwargs, wrapper).close()
+    except ValueError as exc:
+        parser.error(str(exc))
 
 
 def _train_rllib(

@@ -12,6 +12,7 @@ figure reported for it on the evaluation seeds is not inflated by the choice.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -41,7 +42,12 @@ class ConstantScan:
 
 
 def scan_constant_actions(
-    env: Any, grid: int = 9, episodes: int = 1000, seed: int = SCAN_SEED, tip_grid: int = 3
+    env: Any,
+    grid: int = 9,
+    episodes: int = 1000,
+    seed: int = SCAN_SEED,
+    tip_grid: int = 3,
+    progress: Callable[[int], object] | None = None,
 ) -> ConstantScan:
     """Play every action of a ``grid x grid`` lattice on ``env`` and keep the best.
 
@@ -51,6 +57,7 @@ def scan_constant_actions(
         episodes: Episodes per action (the same seeds for each).
         seed: Seed of the first episode.
         tip_grid: Points per tip component of a spin env's ``Box(4)`` (``>= 2``).
+        progress: Called with 1 after each action's episodes (a progress bar's ``update``).
 
     Raises:
         ValueError: On ``grid < 2``, ``tip_grid < 2`` or ``episodes < 1``.
@@ -75,6 +82,8 @@ def scan_constant_actions(
         table.append((action, rate.value))
         if best is None or rate.value > best[1].value:
             best = (action, rate)
+        if progress is not None:
+            progress(1)
     assert best is not None
     return ConstantScan(best[0], best[1], table)
 
@@ -84,6 +93,12 @@ def lattice_size(env: Any, grid: int = 9, tip_grid: int = 3) -> int:
     return grid * grid * tip_grid ** (int(env.action_space.shape[0]) - 2)
 
 
-def best_constant_agent(env: Any, grid: int = 9, episodes: int = 1000) -> ConstantAgent:
+def best_constant_agent(
+    env: Any,
+    grid: int = 9,
+    episodes: int = 1000,
+    progress: Callable[[int], object] | None = None,
+) -> ConstantAgent:
     """A :class:`ConstantAgent` playing the best action of :func:`scan_constant_actions`."""
-    return ConstantAgent(env, scan_constant_actions(env, grid, episodes).action)
+    scan = scan_constant_actions(env, grid, episodes, progress=progress)
+    return ConstantAgent(env, scan.action)

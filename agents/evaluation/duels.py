@@ -29,7 +29,13 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation.evaluate import check_agents, make_agent, parse_noise
+from agents.evaluation.evaluate import (
+    check_agents,
+    check_game_id,
+    make_agent,
+    noise_label,
+    parse_noise,
+)
 from agents.evaluation.metrics import wilson
 from agents.learned.envs import make_env
 from agents.policy import Policy, last_plan
@@ -102,7 +108,7 @@ def play_duels(
     opponent: str,
     racks: int,
     seed: int,
-    noise: NoiseSpec = NOISE,
+    noise: NoiseSpec | None = NOISE,
     env_id: str = ENV_ID,
 ) -> dict[str, Any]:
     """Play ``racks`` racks of ``agent`` against ``opponent`` (names or model paths).
@@ -178,7 +184,8 @@ def main(argv: list[str] | None = None) -> int:
         "--noise",
         default="0.003,0.05,0.05",
         help="execution noise, as agents.evaluate takes it: sigmas (aim rad, speed m/s, tip "
-        "in R) or fastfiz / fastfiz:K (the computer billiards championships' model, K times)",
+        "in R), fastfiz / fastfiz:K (the computer billiards championships' model, K times) "
+        "or none",
     )
     parser.add_argument("--shots", action="store_true", help="shots by plan and outcome")
     args = parser.parse_args(argv)
@@ -188,8 +195,9 @@ def main(argv: list[str] | None = None) -> int:
         noise = parse_noise(args.noise)
     except ValueError as err:
         parser.error(str(err))
+    check_game_id(parser, args.env, "agents.duels")
     check_agents(parser, [args.agent, *args.opponent], args.env, {"noise": noise}, 2)
-    print(f"{args.agent}, {args.env}, noise {noise}, racks seeds {args.seed}..")
+    print(f"{args.agent}, {args.env}, noise {noise_label(noise)}, racks seeds {args.seed}..")
     print("| opponent | won | lost | drawn | win rate [95%] | side: shots, pots/shot, fouls/shot, "
           "scratch/shot, break scratches, breaks kept |")  # fmt: skip
     print("|---|---|---|---|---|---|")

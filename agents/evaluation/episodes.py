@@ -7,6 +7,7 @@ an agent with SB3's ``predict`` signature and a Gymnasium env, not SB3 itself.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 from agents.evaluation.metrics import EpisodeLog
@@ -16,7 +17,12 @@ __all__ = ["run_episodes"]
 
 
 def run_episodes(
-    agent: Policy, env: Any, episodes: int, seed: int, deterministic: bool = True
+    agent: Policy,
+    env: Any,
+    episodes: int,
+    seed: int,
+    deterministic: bool = True,
+    progress: Callable[[int], object] | None = None,
 ) -> EpisodeLog:
     """Play ``episodes`` episodes (episode ``k`` reset with ``seed + k``) and count.
 
@@ -26,6 +32,7 @@ def run_episodes(
         episodes: Number of episodes.
         seed: Seed of the first episode.
         deterministic: Passed to ``predict``.
+        progress: Called with 1 after each episode (a progress bar's ``update``).
 
     Returns:
         The per-episode counts.
@@ -73,4 +80,6 @@ def run_episodes(
         log.run_out.append(cleared and first_turn)
         if rules:
             log.fouls.append(fouls)
+        if progress is not None:
+            progress(1)
     return log

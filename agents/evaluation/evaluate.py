@@ -34,9 +34,11 @@ import argparse
 import difflib
 import time
 from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+import pool_env
 from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
 from agents.baselines.ghost_ball import GhostBallAgent
 from agents.baselines.random_agent import ConstantAgent, RandomAgent
@@ -201,25 +203,47 @@ def check_agents(
     env_kwargs: dict[str, Any] | None,
     players: int | None = None,
 ) -> None:
-    """Check every agent among ``names`` before anything is played: a bad one is a usage error.
+    """Check the env and every agent among ``names`` before anything is played.
 
-    A name must be a baseline (:func:`agent_kind`) or a file of a known kind
-    (:data:`FILE_KINDS`) that exists; a ``const:`` action and a player file (``.yaml``,
-    ``.yml``) are built once, so that their own checks run. A command so exits at once
-    with one line naming the value as written (``parser.error``, status 2) rather than a
-    traceback later.
+    The env must be made with ``env_kwargs`` (a known id, keys and values the env takes:
+    :func:`~agents.learned.envs.make_env`); a name must be a baseline (:func:`agent_kind`)
+    or a file of a known kind (:data:`FILE_KINDS`) that exists, and every agent is built
+    on that env, so that it can refuse a game it cannot play (the search player off
+    9-ball, the rack planner off the game ids, a model trained on other observations);
+    ``best-const`` is checked without its scan. A command so exits at once with one line
+    naming the value as written (``parser.error``, status 2) rather than a traceback later.
     """
-    for name in names:
-        try:
-            _check_agent(name, env_id, env_kwargs, players)
-        except ValueError as err:
-            parser.error(str(err))
+    try:
+        env = make_env(env_id, env_kwargs)
+    except ValueError as err:
+        parser.error(str(err))
+    try:
+        for name in names:
+            try:
+                _check_agent(name, env, env_id, env_kwargs, players)
+            except ValueError as err:
+                parser.error(str(err))
+    finally:
+        env.close()
+
+
+def check_game_id(parser: argparse.ArgumentParser, env_id: str, command: str) -> None:
+    """A command that plays racks by the rules refuses another id (a usage error, status 2)."""
+    try:
+        env = make_env(env_id)
+    except ValueError as err:
+        parser.error(str(err))
+    game = is_game(env)
+    env.close()
+    if not game:
+        ids = ", ".join(k for k in pool_env.ENV_IDS if "Game" in k)
+        parser.error(f"{command} plays the game ids ({ids}), not {env_id}")
 
 
 def _check_agent(
-    name: str, env_id: str, env_kwargs: dict[str, Any] | None, players: int | None
+    name: str, env: Any, env_id: str, env_kwargs: dict[str, Any] | None, players: int | None
 ) -> None:
-    """:func:`check_agents` for one name. Raises ``ValueError`` naming it."""
+    """:func:`check_agents` for one name on its ``env``. Raises ``ValueError`` naming it."""
     kind, path = agent_kind(name), Path(name)
     if kind != "baseline" and path.is_dir():
         raise ValueError(f"agent {name!r} is a directory, not a file ({path.absolute()})")
@@ -227,12 +251,43 @@ def _check_agent(
         raise _unknown_agent(name)
     if kind != "baseline" and not path.is_file():
         raise ValueError(f"agent {name!r}: {FILE_KINDS[kind]} not found ({path.absolute()})")
-    if kind in (".yaml", ".yml") or name.startswith("const:"):  # cheap: their checks run
-        env = make_env(env_id, env_kwargs)
-        try:
+    if kind == ".zip":
+        _check_model(name, env_id, env_kwargs)
+        return
+    try:
+        if name == "best-const":  # its scan is the evaluation's work: a constant agent only
+            ConstantAgent(env, (0.0,) * int(env.action_space.shape[0]))
+        else:
             make_agent(name, env, players=players)
-        finally:
-            env.close()
+    except ValueError as err:
+        message = str(err)
+        if name not in message:  # the agent's own words, with the name as written
+            message = f"agent {name!r} cannot play {env_id}: {message}"
+        raise ValueError(message) from None
+
+
+def _check_model(name: str, env_id: str, env_kwargs: dict[str, Any] | None) -> None:
+    """An SB3 model must read the observations and make the actions of ``env_id``.
+
+    Its env is built as :func:`evaluate_agent` builds it (the saved config's settings
+    under the command's); the shapes are compared before any episode is played.
+    """
+    config = model_config(name)
+    kwargs = {**(config.get("env_kwargs") or {}), **(env_kwargs or {})}
+    env = make_env(env_id, kwargs, config.get("wrapper"))
+    try:
+        model = load_model(name)
+        for what in ("observation", "action"):
+            want = getattr(model, f"{what}_space").shape
+            got = getattr(env, f"{what}_space").shape
+            if want != got:
+                trained = config.get("env_id", "another env")
+                raise ValueError(
+                    f"agent {name!r} was trained on {trained} ({what}s of shape {want}) and "
+                    f"cannot play {env_id} ({what}s of shape {got})"
+                )
+    finally:
+        env.close()
 
 
 def evaluate_agent(
@@ -243,10 +298,14 @@ def evaluate_agent(
     env_kwargs: dict[str, Any] | None = None,
     wrapper: str | None = None,
     agent: Policy | None = None,
+    progress: Callable[[int], object] | None = None,
 ) -> dict[str, Estimate]:
     """Evaluate one agent (by name, or ``agent`` given) and return its summary.
 
-    For a model path, ``env_kwargs`` and ``wrapper`` default to the model's saved config.
+    ``progress`` is called with 1 after each episode (:func:`run_episodes`).
+
+    For a model path, the env is made with the model's saved ``wrapper`` and
+    ``env_kwargs``, with ``env_kwargs`` given (a noise, say) over them.
 
     Examples:
         >>> from agents import evaluate_agent
@@ -254,23 +313,68 @@ def evaluate_agent(
         >>> print(summary["pots_per_shot"], summary["scratch_rate"])
         1.000 [0.839, 1.000] 0.100 [0.028, 0.301]
     """
-    if agent is None and agent_kind(name) == ".zip" and env_kwargs is None and wrapper is None:
-        config = model_config(name)
-        env_kwargs, wrapper = config.get("env_kwargs"), config.get("wrapper")
+    if agent is None and agent_kind(name) == ".zip" and wrapper is None:
+        config = model_config(name)  # the command's settings over the saved ones
+        env_kwargs = {**(config.get("env_kwargs") or {}), **(env_kwargs or {})}
+        wrapper = config.get("wrapper")
     env = make_env(env_id, env_kwargs, wrapper)
     try:
         agent = agent if agent is not None else make_agent(name, env, seed)
-        return run_episodes(agent, env, episodes, seed).summary()
+        return run_episodes(agent, env, episodes, seed, progress=progress).summary()
     finally:
         env.close()
 
 
+#: What a row is, printed under the table when the row is in it.
+ROW_NOTES = {
+    "first-row": "first-row: the observation's easiest ghost-ball shot (row 0 of its shot "
+    "features: aim and speed, the tip at the centre) played exactly, learning nothing: the "
+    "geometry alone, which a learner on that observation must beat.",
+}
+
+
+#: On a one-shot task, the columns that are others by construction: a cleared episode is
+#: a pot, a run-out a clean pot, and each turn one shot.
+ONE_SHOT_TWINS = {
+    "clear_rate": "pots_per_shot",
+    "run_out_rate": "clean_pot_rate",
+    "pots_per_turn": "pots_per_shot",
+}
+
+
+def one_shot(rows: dict[str, dict[str, Estimate]]) -> bool:
+    """Whether every episode of every row was one shot (a one-shot task: OneBall, ...)."""
+    return all(
+        (stats["shots_per_episode"].low, stats["shots_per_episode"].high) == (1.0, 1.0)
+        for stats in rows.values()
+    )
+
+
 def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
-    """A markdown table: one row per agent, each statistic with its 95% interval."""
+    """A markdown table: one row per agent, each statistic with its 95% interval.
+
+    On a one-shot task (:func:`one_shot`) a column that repeats its twin in every row
+    (:data:`ONE_SHOT_TWINS`: clears and pots per turn are pots per shot, run-outs clean
+    pots) is left out, and so is shots per episode (1); the note under the table says so. A row of
+    :data:`ROW_NOTES` gets its note.
+    """
     # Pots per shot is a rate only while no shot pots two balls (a break can pot several).
     multi = any(stats["pots_per_shot"].high > 1.0 for stats in rows.values())
     game = any("fouls_per_shot" in stats for stats in rows.values())
     columns = GAME_COLUMNS if game else COLUMNS
+    dropped: list[str] = []
+    if rows and one_shot(rows):
+        labels = {key: label for key, label, _ in columns}
+        kept: list[tuple[str, str, bool]] = []
+        for key, label, pct in columns:
+            twin = ONE_SHOT_TWINS.get(key)
+            if key == "shots_per_episode":
+                dropped.append(f"{label} (1)")
+            elif twin and all(_same(stats[key], stats[twin]) for stats in rows.values()):
+                dropped.append(f"{label} (= {labels[twin]})")
+            else:
+                kept.append((key, label, pct))
+        columns = tuple(kept)
     head = "| agent | " + " | ".join(label for _, label, _ in columns) + " |"
     lines = [head, "|" + "---|" * (len(columns) + 1)]
     for agent, stats in rows.items():
@@ -293,7 +397,20 @@ def format_table(rows: dict[str, dict[str, Estimate]], episodes: int) -> str:
             f"{episodes} episodes each, same seeds; 95% confidence intervals in brackets. Clean "
             "pot: a shot that pots without scratching. Run-out: cleared in the first turn."
         )
+    if dropped:
+        lines.append(f"One shot per episode, so these columns repeat others: {', '.join(dropped)}.")
+    lines += [note for name, note in ROW_NOTES.items() if any(_base(r) == name for r in rows)]
     return "\n".join(lines)
+
+
+def _same(a: Estimate, b: Estimate) -> bool:
+    """Two statistics equal in value and interval (one column repeating another)."""
+    return (a.value, a.low, a.high) == (b.value, b.low, b.high)
+
+
+def _base(row: str) -> str:
+    """A row's agent name without its label (``"best-const (+0.50, ...)"``: ``"best-const"``)."""
+    return row.split(" ")[0]
 
 
 def one_line(rows: dict[str, dict[str, Estimate]]) -> str:
@@ -333,17 +450,27 @@ def rack_ends(agent: Policy, env: Any, episodes: int, seed: int) -> Counter[tupl
     return ends
 
 
-def parse_noise(text: str) -> NoiseSpec:
+#: ``--noise`` spellings of no noise at all (exact shots).
+NO_NOISE = ("none", "0")
+
+#: The noise the game ids play at unless told otherwise: the field's, FastFiz's model x1
+#: (the computer billiards championships' "low noise", :mod:`pool_env.game.noise`).
+FIELD_NOISE = "fastfiz"
+
+
+def parse_noise(text: str) -> NoiseSpec | None:
     """``--noise``'s text as the env's ``noise`` value, checked by the env's own check.
 
     ``"0.003,0.05[,0.05]"``: the sigmas (aim rad, speed m/s[, tip in fractions of R]);
     ``"fastfiz"``: FastFiz's model, the computer billiards championships' (x1);
     ``"fastfiz:K"``: that model times ``K >= 0`` (``fastfiz:5``: the championships' "high"
-    noise; :mod:`pool_env.game.noise`).
+    noise; :mod:`pool_env.game.noise`); ``"none"`` or ``"0"``: exact shots (``None``).
 
     Raises:
         ValueError: Naming ``--noise`` and what is wrong with the text.
     """
+    if text.strip().lower() in NO_NOISE:
+        return None
     name, colon, multiple = text.partition(":")
     value: NoiseSpec
     try:
@@ -353,8 +480,8 @@ def parse_noise(text: str) -> NoiseSpec:
             value = tuple(float(v) for v in text.split(","))
     except ValueError:
         raise ValueError(
-            f"--noise takes 2 or 3 comma-separated sigmas, or {' or '.join(NOISE_MODELS)}"
-            f"[:K] with a number K, got {text!r}"
+            f"--noise takes 2 or 3 comma-separated sigmas, {' or '.join(NOISE_MODELS)}"
+            f"[:K] with a number K, or none; got {text!r}"
         ) from None
     try:  # a spin table takes every spelling: a roll env refuses a tip sigma itself
         parse_env_noise(value, Table(model="spin"))
@@ -363,24 +490,56 @@ def parse_noise(text: str) -> NoiseSpec:
     return value
 
 
+def noise_label(noise: object) -> str:
+    """The noise in force, in words: ``"none (exact shots)"``, ``"fastfiz (FastFiz x1)"``."""
+    if noise is None:
+        return "none (exact shots)"
+    if noise in NOISE_MODELS:
+        return f"{noise} (FastFiz x1, the field's)"
+    if isinstance(noise, tuple | list) and noise and noise[0] in NOISE_MODELS:
+        return f"{noise[0]}:{noise[1]:g} (FastFiz x{noise[1]:g})"
+    return "sigmas " + ", ".join(f"{float(v):g}" for v in noise)  # type: ignore[union-attr]
+
+
+def is_game(env: Any) -> bool:
+    """Whether ``env`` plays a rack by the rules (a game id: 9-ball, 10-ball, 8-ball)."""
+    config = getattr(env.unwrapped, "config", None)
+    return config is not None and config.ruleset.has_rack
+
+
 def _yaml_mapping(text: str) -> Any:
-    """``--env-kwargs`` parsed as YAML."""
+    """``--env-kwargs`` parsed as YAML.
+
+    Raises:
+        ValueError: On text that is not YAML (PyYAML's message on one line).
+    """
     # pyyaml: an extra (train), not the core install; needed for --env-kwargs only
     yaml = require("yaml", "train", "--env-kwargs")
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError as err:
+        raise ValueError(" ".join(str(err).split())) from None
 
-    return yaml.safe_load(text)
+
+#: ``--help``'s list of the players ``--agent`` takes.
+PLAYERS_HELP = (
+    "agents by name (module doc): random, const (the full hit) or const:a0,a1[,...] (one "
+    "action), best-const (a grid scan's best), ghost, ghost-centre, search, rack-planner (the "
+    "game ids), first-row (observation=shots); or a file: an SB3 model .zip (e.g. "
+    "models/ppo_oneball.zip), a rack or lookahead model .npz (models/runout_value.npz), or a "
+    "search player file .yaml/.yml (models/search_player.yaml: 9-ball only)"
+)
 
 
 def main(argv: list[str] | None = None) -> int:
     """Command-line entry point."""
-    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser = argparse.ArgumentParser(
+        description=__doc__.split("\n")[0],
+        epilog="Agents: " + PLAYERS_HELP + ".",
+    )
     parser.add_argument("--env", default="pool_env/OneBallRoll-v1", help="registered env id")
     parser.add_argument(
-        "--agent",
-        nargs="+",
-        default=["random", "ghost"],
-        help="random, const[:a0,a1,...], best-const, ghost, ghost-centre, search, "
-        "rack-planner, first-row, a model .zip, a rack model .npz or a player file .yaml/.yml",
+        "--agent", nargs="+", default=["random", "ghost"], metavar="AGENT", help=PLAYERS_HELP
     )
     parser.add_argument("--episodes", type=int, default=1000)
     parser.add_argument("--seed", type=int, default=10_000)
@@ -393,9 +552,11 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--noise",
         default=None,
-        help="execution noise sigmas: aim (rad), speed (m/s)[, tip (fraction of R)], e.g. "
-        "0.003,0.05,0.05, or fastfiz (the computer billiards championships' model) or "
-        "fastfiz:K (K times it, e.g. fastfiz:5) (the env's noise keyword)",
+        help="execution noise: sigmas aim (rad), speed (m/s)[, tip (fraction of R)], e.g. "
+        "0.003,0.05,0.05; fastfiz (FastFiz's model, the computer billiards championships') "
+        "or fastfiz:K (K times it, e.g. fastfiz:5); none (exact shots). Default: fastfiz on "
+        "the game ids (NineBallGame-*, TenBallGame-*, EightBallGame-*: the field's noise), "
+        "the env's own (none) elsewhere",
     )
     parser.add_argument(
         "--scan-episodes",
@@ -412,7 +573,10 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.episodes < 1 or args.scan_episodes < 1:
         parser.error("--episodes and --scan-episodes must be >= 1")
-    kwargs = _yaml_mapping(args.env_kwargs) if args.env_kwargs else {}
+    try:
+        kwargs = _yaml_mapping(args.env_kwargs) if args.env_kwargs else {}
+    except ValueError as err:
+        parser.error(f"--env-kwargs {args.env_kwargs!r} is not YAML: {err}")
     if not isinstance(kwargs, dict):
         parser.error("--env-kwargs must be a YAML mapping")
     if args.noise is not None:
@@ -422,6 +586,14 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(str(err))
     if args.aim:
         kwargs["aim"] = args.aim
+    try:
+        probe = make_env(args.env, kwargs or None)
+    except ValueError as err:
+        parser.error(str(err))
+    if "noise" not in kwargs and is_game(probe):  # the field's noise, unless told otherwise
+        kwargs["noise"] = FIELD_NOISE
+    noise = kwargs.get("noise", probe.unwrapped.config.noise)
+    probe.close()
     check_agents(parser, args.agent, args.env, kwargs or None)
     rows, times = {}, {}
     for name in args.agent:
@@ -437,7 +609,12 @@ def main(argv: list[str] | None = None) -> int:
         )
         times[label] = time.perf_counter() - start
     table = format_table(rows, args.episodes)
-    print(f"{args.env} {kwargs or ''}, seeds {args.seed}..{args.seed + args.episodes - 1}")
+    others = {k: v for k, v in kwargs.items() if k != "noise"}
+    settings = f" {others}" if others else ""
+    print(
+        f"{args.env}{settings}, noise {noise_label(noise)}, seeds "
+        f"{args.seed}..{args.seed + args.episodes - 1}"
+    )
     print(table)
     # Wall time of each row's evaluation (its agent and the env, one process) per shot played.
     for label, seconds in times.items():

@@ -26,7 +26,7 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation.evaluate import check_agents, make_agent, parse_noise
+from agents.evaluation.evaluate import check_agents, check_game_id, make_agent, parse_noise
 from agents.evaluation.metrics import Z95, Estimate, wilson
 from agents.learned.envs import make_env
 
@@ -127,17 +127,24 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--env", default="pool_env/NineBallGame-v2")
     parser.add_argument("--racks", type=int, default=100)
     parser.add_argument("--seed", type=int, default=949000)
-    parser.add_argument("--noise", default="fastfiz", help="as agents.evaluate's --noise")
+    parser.add_argument(
+        "--noise", default="fastfiz", help="as agents.evaluate's --noise (none: exact shots)"
+    )
     parser.add_argument("--rack-order", default=None, help="the env's rack order (default its own)")
     parser.add_argument("--out", default=None, help="write the results as JSON here")
     args = parser.parse_args(argv)
     if args.racks < 1:
         parser.error("--racks must be >= 1")
     kwargs: dict[str, Any] = {}
-    if args.noise not in ("none", "0"):
-        kwargs["noise"] = parse_noise(args.noise)
+    try:
+        noise = parse_noise(args.noise)
+    except ValueError as err:
+        parser.error(str(err))
+    if noise is not None:
+        kwargs["noise"] = noise
     if args.rack_order is not None:
         kwargs["rack_order"] = args.rack_order
+    check_game_id(parser, args.env, "agents.evaluation.runouts")
     check_agents(parser, args.agents, args.env, {**kwargs, "end_on_foul": True})
     results = []
     for name in args.agents:

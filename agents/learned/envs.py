@@ -7,12 +7,13 @@ environment is rebuilt for evaluation from a saved config.
 
 from __future__ import annotations
 
+import difflib
 from collections.abc import Callable
 from typing import Any
 
 import gymnasium as gym
 
-import pool_env  # noqa: F401  (registers the ids)
+import pool_env  # registers the ids
 from agents.learned.candidates import GhostCandidates
 from agents.learned.features import GhostBallFeatures, PocketFeatures
 
@@ -33,6 +34,23 @@ def worker_id(env_id: str) -> str:
     return f"pool_env:{env_id}"
 
 
+def check_env_id(env_id: str) -> None:
+    """Refuse an id Gymnasium does not know, naming the closest pool_env id and all of them.
+
+    Any registered id passes (another package's too, or ``"module:Id"`` to import first);
+    the ids listed are pool_env's current ones (:data:`pool_env.ENV_IDS`).
+
+    Raises:
+        ValueError: ``unknown env id 'pool_env/NineBall-v9' (did you mean ...?): ...``.
+    """
+    if ":" in env_id or env_id in gym.registry:  # "module:Id": Gymnasium imports it first
+        return
+    ids = list(pool_env.ENV_IDS)
+    close = difflib.get_close_matches(env_id, ids, n=1, cutoff=0.6)
+    hint = f" (did you mean {close[0]}?)" if close else ""
+    raise ValueError(f"unknown env id {env_id!r}{hint}: the pool_env ids are {', '.join(ids)}")
+
+
 def make_env(
     env_id: str,
     env_kwargs: dict[str, Any] | None = None,
@@ -41,14 +59,14 @@ def make_env(
     """``gymnasium.make(env_id, **env_kwargs)`` with the named wrapper applied.
 
     Raises:
-        ValueError: On an unknown wrapper name.
+        ValueError: On an unknown env id (:func:`check_env_id`) or wrapper name, or the
+            env's own refusal of a keyword argument.
     """
+    check_env_id(env_id)
+    if wrapper and wrapper not in WRAPPERS:
+        raise ValueError(f"unknown wrapper {wrapper!r}: use one of {sorted(WRAPPERS)}")
     env = gym.make(worker_id(env_id), **(env_kwargs or {}))
-    if wrapper:
-        if wrapper not in WRAPPERS:
-            raise ValueError(f"unknown wrapper {wrapper!r}: use one of {sorted(WRAPPERS)}")
-        env = WRAPPERS[wrapper](env)
-    return env
+    return WRAPPERS[wrapper](env) if wrapper else env
 
 
 class EnvFactory:

@@ -8,12 +8,16 @@ overrides; :data:`ALGOS` holds the algorithms by the name used in both.
 
 from __future__ import annotations
 
+import difflib
+import inspect
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 from stable_baselines3.common.base_class import BaseAlgorithm
 
+from agents.evaluation.evaluate import is_game
+from agents.learned.envs import make_env
 from agents.learned.pretrained import ALGO_CLASSES, algo_class
 from agents.training import hyperparams
 
@@ -22,6 +26,21 @@ ALGOS: dict[str, type[BaseAlgorithm]] = {name: algo_class(name) for name in ALGO
 
 #: Baselines of the final evaluation, in the order printed (see :mod:`agents.evaluation.evaluate`).
 FINAL_BASELINES = ("random", "best-const", "ghost", "search")
+
+#: The final baselines of a game id (a rack by the rules) without its own entry: a constant
+#: action means nothing over a rack, and the search takes about 2 s a 9-ball rack (half an
+#: hour for 1000): ``python -m agents.evaluate --agent search`` measures it apart.
+GAME_BASELINES = ("random", "ghost")
+
+#: Constructor arguments the trainer passes itself: not for ``--set``.
+TRAINER_ARGS = ("self", "policy", "env", "seed", "device", "verbose", "tensorboard_log")
+
+#: The option of ``train.py`` that sets a run key or a trainer's argument.
+RUN_FLAGS = {
+    "n_timesteps": "--timesteps", "n_envs": "--n-envs", "vec": "--vec", "seed": "--seed",
+    "eval_freq": "--eval-freq", "eval_episodes": "--eval-episodes", "wrapper": "--wrapper",
+    "env_kwargs": "--env-kwargs", "tensorboard_log": "--runs (tb/ in the run folder)",
+}  # fmt: skip
 
 
 @dataclass
@@ -40,10 +59,12 @@ class TrainConfig:
         threads: Torch threads.
         eval_freq: Environment steps between evaluations (0: none during training).
         eval_episodes: Episodes per periodic evaluation.
-        final_episodes: Episodes of the final evaluation (model and baselines).
+        final_episodes: Episodes of the final evaluation (model and baselines); ``None``:
+            sized to the run (:func:`agents.training.train_lib.final_episodes`).
         baselines: Evaluate the baselines next to the model.
-        final_baselines: Which (:data:`FINAL_BASELINES` by default): the spin entries leave
-            out the search, whose 1000 episodes take over two minutes there.
+        final_baselines: Which (:data:`FINAL_BASELINES` by default, :data:`GAME_BASELINES`
+            on a game id): the spin entries leave out the search, whose 1000 episodes take
+            over two minutes there.
         progress_bar: Show SB3's progress bar.
         policy: SB3 policy name.
         env_kwargs: ``gymnasium.make`` keyword arguments.
@@ -61,7 +82,7 @@ class TrainConfig:
     threads: int = 1
     eval_freq: int = 50_000
     eval_episodes: int = 500
-    final_episodes: int = 1000
+    final_episodes: int | None = None
     baselines: bool = True
     final_baselines: list[str] = field(default_factory=lambda: list(FINAL_BASELINES))
     progress_bar: bool = True
@@ -82,11 +103,68 @@ def resolve_config(
 
     ``overrides`` holds :class:`TrainConfig` fields (``None`` values are ignored) and an
     optional ``algo_kwargs`` dict merged over the file's; ``recipe`` picks a named entry
-    (:func:`agents.training.hyperparams.load`).
+    (:func:`agents.training.hyperparams.load`). A game id whose entry names no final
+    baselines gets :data:`GAME_BASELINES`.
+
+    Raises:
+        ValueError: On an unknown algorithm, or an algorithm argument its class does not
+            take (:func:`check_algo_kwargs`; ``--set`` names the command line's).
+        KeyError: As :func:`agents.training.hyperparams.load`.
     """
     if algo not in ALGOS:
         raise ValueError(f"unknown algorithm {algo!r}: use one of {list(ALGOS)}")
     run, algo_kwargs = hyperparams.split(hyperparams.load(env_id, algo, path, recipe))
-    algo_kwargs.update(overrides.pop("algo_kwargs", None) or {})
+    check_algo_kwargs(
+        algo, algo_kwargs, f"the entry {algo!r} of {path or hyperparams.DEFAULT_PATH}"
+    )
+    given = overrides.pop("algo_kwargs", None) or {}
+    check_algo_kwargs(algo, given, "--set")
+    algo_kwargs.update(given)
     fields = {**run, **{k: v for k, v in overrides.items() if v is not None}}
+    if "final_baselines" not in fields and _is_game(env_id):
+        fields["final_baselines"] = list(GAME_BASELINES)
     return TrainConfig(env_id=env_id, algo=algo, recipe=recipe, algo_kwargs=algo_kwargs, **fields)
+
+
+def algo_args(algo: str) -> list[str]:
+    """The keyword arguments of ``algo``'s constructor a run may set (not :data:`TRAINER_ARGS`)."""
+    params = inspect.signature(ALGOS[algo].__init__).parameters
+    return [name for name in params if name not in TRAINER_ARGS and not name.startswith("_")]
+
+
+def check_algo_kwargs(algo: str, kwargs: dict[str, Any], where: str) -> None:
+    """Refuse an algorithm argument ``algo``'s class does not take, before anything runs.
+
+    A run key (``n_envs``, ...) has its own flag and is named; any other key is checked
+    against the constructor's signature, with the closest name.
+
+    Raises:
+        ValueError: ``--set n_step: PPO takes no 'n_step' (did you mean n_steps?); ...``.
+    """
+    valid = algo_args(algo)
+    for key in kwargs:
+        if key in valid:
+            continue
+        if key in hyperparams.RUN_KEYS or key in TRAINER_ARGS:
+            how = RUN_FLAGS.get(key, "the hyperparameter file (--hyperparams)")
+            raise ValueError(
+                f"{where} {key}: a setting of the run, not an argument of {algo.upper()}: use {how}"
+            )
+        close = difflib.get_close_matches(key, valid, n=1)
+        hint = f" (did you mean {close[0]}?)" if close else ""
+        raise ValueError(
+            f"{where} {key}: {algo.upper()} takes no {key!r}{hint}; its arguments: "
+            f"{', '.join(valid)}"
+        )
+
+
+def _is_game(env_id: str) -> bool:
+    """Whether ``env_id`` plays racks by the rules (False for an id Gymnasium cannot make)."""
+    try:
+        env = make_env(env_id)
+    except ValueError:
+        return False
+    try:
+        return is_game(env)
+    finally:
+        env.close()

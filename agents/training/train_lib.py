@@ -17,14 +17,20 @@ from __future__ import annotations
 
 import json
 import time
+import warnings
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from dataclasses import asdict
 from pathlib import Path
 
 import numpy as np
 import yaml
 from stable_baselines3.common.base_class import BaseAlgorithm
-from stable_baselines3.common.callbacks import BaseCallback
+from stable_baselines3.common.callbacks import BaseCallback, ProgressBarCallback
 from stable_baselines3.common.env_util import make_vec_env
+from stable_baselines3.common.off_policy_algorithm import OffPolicyAlgorithm
+from stable_baselines3.common.on_policy_algorithm import OnPolicyAlgorithm
+from stable_baselines3.common.type_aliases import TrainFrequencyUnit
 from stable_baselines3.common.vec_env import (
     DummyVecEnv,
     SubprocVecEnv,
@@ -63,6 +69,73 @@ FINAL_SEED = 10_000
 #: lattice's size, at most the final evaluation's (81 actions on a roll id: 1000 each; 729
 #: with a spin id's tip: 137 each, about 20 s, where 1000 each took minutes).
 SCAN_SHOTS = 100_000
+
+#: The final evaluation's episodes when the config leaves them to the run: one per
+#: :data:`STEPS_PER_FINAL_EPISODE` steps trained, within ``[MIN, MAX]`` (runs of 200k steps
+#: and more: 1000 episodes; a 16k-step smoke run: 100).
+MIN_FINAL_EPISODES, MAX_FINAL_EPISODES = 100, 1000
+STEPS_PER_FINAL_EPISODE = 200
+
+
+def trained_steps(model: BaseAlgorithm, n_timesteps: int) -> int:
+    """The steps ``model.learn(n_timesteps)`` trains: whole rollouts, not ``n_timesteps``.
+
+    SB3 collects a rollout of ``n_steps`` on each of the ``n_envs`` envs before it checks
+    the count (PPO with 2048 x 8 trains 16,384 steps when 100 are asked); an off-policy
+    algorithm ``train_freq`` steps of every env (one env step where it counts episodes).
+    """
+    if isinstance(model, OnPolicyAlgorithm):
+        batch = model.n_steps * model.n_envs
+    elif isinstance(model, OffPolicyAlgorithm) and model.train_freq.unit == TrainFrequencyUnit.STEP:
+        batch = model.train_freq.frequency * model.n_envs
+    else:
+        batch = model.n_envs
+    return -(-n_timesteps // batch) * batch
+
+
+def final_episodes(config: TrainConfig, steps: int) -> int:
+    """The final evaluation's episodes: the config's, or sized to the ``steps`` trained."""
+    if config.final_episodes is not None:
+        return config.final_episodes
+    return min(MAX_FINAL_EPISODES, max(MIN_FINAL_EPISODES, steps // STEPS_PER_FINAL_EPISODE))
+
+
+class StepsBar(ProgressBarCallback):
+    """SB3's progress bar, its total the steps that will be trained (:func:`trained_steps`).
+
+    SB3's own counts to the steps asked, so a run of 800,000 ended at 802,816/800,000.
+    """
+
+    def __init__(self, total: int) -> None:
+        super().__init__()
+        self.total = total
+
+    def _on_training_start(self) -> None:
+        from stable_baselines3.common import callbacks  # its tqdm: rich's, or None
+        from tqdm import TqdmExperimentalWarning
+
+        with warnings.catch_warnings():  # SB3's bar: tqdm's rich front is "experimental"
+            warnings.simplefilter("ignore", TqdmExperimentalWarning)
+            self.pbar = callbacks.tqdm(total=self.total - self.model.num_timesteps)
+
+
+@contextmanager
+def progress(bar: bool, what: str, total: int, unit: str) -> Iterator[Callable[[int], object]]:
+    """Show the progress of ``total`` ``unit``s of work: a bar, or a line at the start and end.
+
+    Yields:
+        The ``update(n)`` to call as the work goes.
+    """
+    t0 = time.perf_counter()
+    if bar:
+        from tqdm import tqdm
+
+        with tqdm(total=total, desc=what, unit=unit, leave=True) as pbar:
+            yield pbar.update
+        return
+    print(f"{what}: {total:,} {unit}s ...", flush=True)
+    yield lambda n: None
+    print(f"{what}: done in {time.perf_counter() - t0:.0f} s", flush=True)
 
 
 def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = None) -> VecEnv:
@@ -124,13 +197,7 @@ class PeriodicEval(BaseCallback):
         for key in ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward"):
             self.logger.record(f"eval/{key}", summary[key].value)
         self.logger.dump(self.num_timesteps)
-        if not self.config.progress_bar:  # a log line instead of the bar
-            print(
-                f"{self.num_timesteps:>9,} steps {self.history[-1][1]:6.0f} s  pots/shot "
-                f"{summary['pots_per_shot']}  clean {summary['clean_pot_rate']}  "
-                f"scratch {summary['scratch_rate']}",
-                flush=True,
-            )
+        print(eval_line(self.num_timesteps, self.history[-1][1], summary), flush=True)
 
     def _on_training_start(self) -> None:
         self._evaluate()  # the untrained policy: the curve's first point
@@ -146,6 +213,15 @@ class PeriodicEval(BaseCallback):
         if not self.history or self.history[-1][0] != self.num_timesteps:
             self._evaluate()
         self.env.close()
+
+
+def eval_line(steps: int, seconds: float, summary: dict[str, Estimate]) -> str:
+    """A periodic evaluation in one line: the pot rate (a game id: racks won too)."""
+    won = f"  racks won {summary['clear_rate']}" if "fouls_per_shot" in summary else ""
+    return (
+        f"{steps:>9,} steps {seconds:6.0f} s  pots/shot {summary['pots_per_shot']}  "
+        f"clean {summary['clean_pot_rate']}  scratch {summary['scratch_rate']}{won}"
+    )
 
 
 def run_folder(root: str | Path, config: TrainConfig) -> Path:
@@ -195,10 +271,6 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     runs.write_command(out)
 
     compile_seconds = warm_up(config)
-    if not quiet:
-        print(
-            f"Ready in {compile_seconds:.1f} s; training {config.n_timesteps:,} steps", flush=True
-        )
     env = make_vec(config)
     model = ALGOS[config.algo](
         config.policy,
@@ -209,26 +281,34 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
         tensorboard_log=str(out / "tb"),
         **hyperparams.to_sb3(config.algo_kwargs),
     )
+    steps = trained_steps(model, config.n_timesteps)
+    if not quiet:
+        print(f"Ready in {compile_seconds:.1f} s; {steps_line(model, config, steps)}", flush=True)
     history: list[tuple[int, float, dict]] = []
     callback = PeriodicEval(config, history) if config.eval_freq > 0 else None
+    callbacks: list[BaseCallback] = [c for c in (callback,) if c is not None]
+    if config.progress_bar:
+        callbacks.append(StepsBar(steps))
     t_train = time.perf_counter()
-    model.learn(config.n_timesteps, callback=callback, progress_bar=config.progress_bar)
+    model.learn(config.n_timesteps, callback=callbacks)
     eval_seconds = callback.eval_seconds if callback is not None else 0.0
     train_seconds = time.perf_counter() - t_train - eval_seconds
     env.close()
     model.save(out / "model.zip")
 
-    rows, best_const = _final_evaluation(config, model)
+    n_final = final_episodes(config, steps)
+    rows, best_const = _final_evaluation(config, model, n_final, steps)
     from agents.training.plots import learning_curve  # matplotlib only now
 
     _write_curve(out, history)
     learning_curve(out / "learning_curve.png", history, rows, config)
     total = time.perf_counter() - t0
-    table = format_table(rows, config.final_episodes)
+    table = format_table(rows, n_final)
     report = {
         "env_id": config.env_id,
         "algo": config.algo,
         "n_timesteps": config.n_timesteps,
+        "trained_steps": steps,
         "train_seconds": round(train_seconds, 1),
         "periodic_eval_seconds": round(eval_seconds, 1),
         "compile_seconds": round(compile_seconds, 1),
@@ -236,19 +316,20 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
         "process_seconds": round(runs.process_seconds(), 1),
         "best_const_action": best_const,
         "final_seed": FINAL_SEED,
-        "episodes": config.final_episodes,
+        "episodes": n_final,
         "results": {agent: _as_dict(stats) for agent, stats in rows.items()},
     }
     (out / "evaluation.json").write_text(json.dumps(report, indent=2) + "\n")
     (out / "evaluation.md").write_text(
-        f"# {config.algo.upper()} on {config.env_id}, {config.n_timesteps:,} steps\n\n"
+        f"# {config.algo.upper()} on {config.env_id}, {steps:,} steps\n\n"
         f"Command: `{(out / 'command.txt').read_text().strip()}`\n\n{table}\n\n"
         f"Training {train_seconds:.0f} s (periodic evaluation {eval_seconds:.0f} s, compiling "
         f"{compile_seconds:.0f} s), total {total:.0f} s.{_best_const_note(best_const)}\n"
     )
-    print(f"\n{config.algo.upper()} on {config.env_id} after {config.n_timesteps:,} steps")
+    print(f"\n{config.algo.upper()} on {config.env_id} after {steps:,} steps")
     print(table)
-    print(_best_const_note(best_const).strip())
+    if best_const is not None:
+        print(_best_const_note(best_const).strip())
     print("\n" + one_line(rows))
     if history:
         print(climb_line(history, out))
@@ -261,40 +342,81 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     return out
 
 
+def steps_line(model: BaseAlgorithm, config: TrainConfig, steps: int) -> str:
+    """``training 16,384 steps (100 asked: ...)``: the steps that will be trained, and why."""
+    if steps == config.n_timesteps:
+        return f"training {steps:,} steps"
+    if isinstance(model, OnPolicyAlgorithm):
+        how = f"whole rollouts of {model.n_steps:,} steps on each of {model.n_envs} envs"
+    else:
+        how = f"steps of all {model.n_envs} envs at once"
+    asked = f"{config.n_timesteps:,} asked: {config.algo.upper()} trains {how}"
+    return f"training {steps:,} steps ({asked})"
+
+
 def _final_evaluation(
-    config: TrainConfig, model: BaseAlgorithm
+    config: TrainConfig, model: BaseAlgorithm, n: int, steps: int
 ) -> tuple[dict[str, dict], list[float] | None]:
-    """The model and (optionally) the final baselines on the same final seeds.
+    """The model and (optionally) the final baselines on the same ``n`` final seeds.
 
     The baselines: ``config.final_baselines``
-    (:data:`~agents.training.run_config.FINAL_BASELINES` by default).
+    (:data:`~agents.training.run_config.FINAL_BASELINES` by default); the best-constant
+    scan is left out when it would play more shots than the ``steps`` trained (a short run:
+    the scan would be most of the command's time). Each row shows its progress.
 
     Returns:
-        The rows by agent name, and the best constant action (``None`` without baselines).
+        The rows by agent name, and the best constant action (``None`` without it).
     """
-    n, kw, wrap = config.final_episodes, config.env_kwargs, config.wrapper
-    name = f"{config.algo} (this run)"
-    rows = {name: evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, wrap, agent=model)}
-    best_const = None
-    if config.baselines:  # baselines read the raw observation: no wrapper, same layouts
-        for name in config.final_baselines:
-            agent = None
-            if name == "best-const":  # scanned on its own seeds, then evaluated on these
-                scan_env = make_env(config.env_id, kw)
-                per_action = max(1, min(n, SCAN_SHOTS // lattice_size(scan_env)))
-                agent = best_constant_agent(scan_env, episodes=per_action)
-                scan_env.close()
-                best_const = [float(v) for v in agent.action]
-            rows[name] = evaluate_agent(name, config.env_id, n, FINAL_SEED, kw, None, agent=agent)
-        if (kw or {}).get("observation") == "shots" and wrap is None:  # its trivial policy
-            rows["first-row"] = evaluate_agent("first-row", config.env_id, n, FINAL_SEED, kw)
-        if wrap == "ghost_candidates":  # the trivial candidate policy: row 0, no residual
-            probe = make_env(config.env_id, kw, wrap)
-            first_row = FirstRowAgent(probe.n_rows)
-            probe.close()
-            rows["first-row"] = evaluate_agent(
-                "first-row", config.env_id, n, FINAL_SEED, kw, wrap, agent=first_row
+    kw, wrap, bar = config.env_kwargs, config.wrapper, config.progress_bar
+    probe = make_env(config.env_id, kw)
+    scan_shots = lattice_size(probe) * max(1, min(n, SCAN_SHOTS // lattice_size(probe)))
+    probe.close()
+    names = list(config.final_baselines) if config.baselines else []
+    skipped = ""
+    if "best-const" in names and scan_shots > steps:
+        names.remove("best-const")
+        skipped = (
+            f" best-const left out: its scan would play {scan_shots:,} shots, more than the "
+            f"{steps:,} trained."
+        )
+    first_row = config.baselines and (
+        ((kw or {}).get("observation") == "shots" and wrap is None) or wrap == "ghost_candidates"
+    )
+    listed = ", ".join([config.algo, *names, *(["first-row"] if first_row else [])])
+    print(
+        f"\nFinal evaluation: {n:,} episodes each of {listed} (--final-episodes N for another "
+        f"number, --no-baselines for the model alone).{skipped}",
+        flush=True,
+    )
+
+    def play(name: str, wrapper: str | None = None, agent: object = None) -> dict:
+        with progress(bar, f"final: {name}", n, "episode") as update:
+            return evaluate_agent(
+                name, config.env_id, n, FINAL_SEED, kw, wrapper, agent=agent, progress=update
             )
+
+    name = f"{config.algo} (this run)"
+    rows = {name: play(name, wrap, model)}
+    best_const = None
+    for name in names:  # baselines read the raw observation: no wrapper, same layouts
+        agent = None
+        if name == "best-const":  # scanned on its own seeds, then evaluated on these
+            scan_env = make_env(config.env_id, kw)
+            size = lattice_size(scan_env)
+            per_action = max(1, min(n, SCAN_SHOTS // size))
+            what = f"best-const scan ({per_action:,} episodes each)"
+            with progress(bar, what, size, "action") as update:
+                agent = best_constant_agent(scan_env, episodes=per_action, progress=update)
+            scan_env.close()
+            best_const = [float(v) for v in agent.action]
+        rows[name] = play(name, None, agent)
+    if first_row and wrap is None:  # the "shots" observation's trivial policy
+        rows["first-row"] = play("first-row")
+    elif first_row:  # the trivial candidate policy: row 0, no residual
+        probe = make_env(config.env_id, kw, wrap)
+        agent = FirstRowAgent(probe.n_rows)
+        probe.close()
+        rows["first-row"] = play("first-row", wrap, agent)
     return rows, best_const
 
 

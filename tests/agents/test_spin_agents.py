@@ -127,11 +127,11 @@ def test_the_commands_take_the_model_by_name(capsys: pytest.CaptureFixture[str])
     from agents.evaluation import duels
 
     assert main(["--env", ONE, "--agent", "random", "--episodes", "2", "--noise", "fastfiz:5"]) == 0
-    assert "'noise': ('fastfiz', 5.0)" in capsys.readouterr().out
+    assert f"{ONE}, noise fastfiz:5 (FastFiz x5), seeds" in capsys.readouterr().out
     argv = ["--env", "pool_env/NineBallGameRoll-v2", "--agent", "random", "--opponent",
             "random", "--racks", "1", "--noise", "fastfiz"]  # fmt: skip
     assert duels.main(argv) == 0
-    assert "noise fastfiz," in capsys.readouterr().out
+    assert "noise fastfiz (FastFiz x1, the field's)," in capsys.readouterr().out
     with pytest.raises(SystemExit):
         duels.main([*argv[:-1], "fastfiz:-1"])
     assert "k must be >= 0" in capsys.readouterr().err

@@ -37,7 +37,9 @@ def test_train_py_writes_a_complete_run_folder(
     assert printed.splitlines()[0] == first_line("pool_env/OneBall-v1", "ppo", "sb3")
     assert "simulator compiles" in printed.splitlines()[0]
     assert printed.index("Ready in") < printed.index("pots per shot: ppo")
-    assert all(f"| {name} " in printed for name in ("random", "best-const", "ghost", "first-row"))
+    assert all(f"| {name} " in printed for name in ("random", "ghost", "first-row"))
+    # 512 steps: the best-constant scan (729 actions x 20 episodes) would outweigh them
+    assert "| best-const " not in printed and "best-const left out" in printed
     (run,) = (tmp_path / "OneBall-v1").iterdir()
     for name in ("config.yaml", "command.txt", "model.zip", "evaluation.md", "evaluation.json",
                  "curve.csv", "learning_curve.png"):  # fmt: skip
@@ -50,14 +52,11 @@ def test_train_py_writes_a_complete_run_folder(
     report = json.loads((run / "evaluation.json").read_text())
     # The "shots" observation adds its trivial policy (row 0 played exactly) to the
     # baselines; the spin entry leaves the (slow) search out.
-    assert set(report["results"]) == {
-        "ppo (this run)", "random", "best-const", "ghost", "first-row"
-    }  # fmt: skip
+    assert set(report["results"]) == {"ppo (this run)", "random", "ghost", "first-row"}
     assert report["process_seconds"] > 0.0
     assert report["total_seconds"] <= report["process_seconds"]
     assert report["results"]["ghost"]["pots_per_shot"][0] >= 0.8
-    grid = np.linspace(-1.0, 1.0, 9).tolist()
-    assert all(v in grid for v in report["best_const_action"])
+    assert report["best_const_action"] is None and report["trained_steps"] == 512
     curve = (run / "curve.csv").read_text().splitlines()
     assert len(curve) >= 3  # header, start, end
     # The climb is printed from the curve's first and last points, and names the plot.
