@@ -240,9 +240,10 @@ def _compile(fn: F, options: dict[str, Any]) -> F:
         try:
             dispatcher = numba.njit(cache=True, **options)(fn)
             dispatcher._cache = HealingCache(fn)
-            compile_lock.lock_compiles(
-                dispatcher, dispatcher._cache.lock_stem, COMPILE_NOTICE.waiting
-            )
+            if not numba.config.DISABLE_JIT:  # else numba hands back the plain function
+                compile_lock.lock_compiles(
+                    dispatcher, dispatcher._cache.lock_stem, COMPILE_NOTICE.waiting
+                )
             return dispatcher  # type: ignore[no-any-return]
         except RuntimeError:  # numba found the folder unwritable after all
             pass

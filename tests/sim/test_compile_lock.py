@@ -7,6 +7,7 @@ tested in ``test_compile_cache.py``; here the lock's own behaviour, fast.
 from __future__ import annotations
 
 import io
+import os
 import subprocess
 import sys
 import time
@@ -135,3 +136,18 @@ def test_a_silenced_notice_prints_neither_line() -> None:
     time.sleep(0.1)
     notice.waiting(False)
     assert stream.getvalue() == ""
+
+
+def test_with_numba_jit_disabled_kernels_run_as_python() -> None:
+    """``NUMBA_DISABLE_JIT=1`` (bench.prediction_count's counting mode): no lock, no error."""
+    code = (
+        "from pool_env import Table, simulate\n"
+        "r = simulate(Table(model='roll'), [[1.0, 0.635], [1.5, 0.635]], [[1.0, 0.0], [0, 0]])\n"
+        "print(r.n_events)\n"
+    )
+    env = dict(os.environ, NUMBA_DISABLE_JIT="1")
+    proc = subprocess.run(
+        [sys.executable, "-c", code], env=env, capture_output=True, text=True, timeout=300
+    )
+    assert proc.returncode == 0, proc.stderr
+    assert int(proc.stdout.split()[-1]) > 0
