@@ -494,7 +494,7 @@ def noise_label(noise: object) -> str:
     """The noise in force, in words: ``"none (exact shots)"``, ``"fastfiz (FastFiz x1)"``."""
     if noise is None:
         return "none (exact shots)"
-    if noise in NOISE_MODELS:
+    if isinstance(noise, str) and noise in NOISE_MODELS:  # a list (YAML sigmas) is no name
         return f"{noise} (FastFiz x1, the field's)"
     if isinstance(noise, tuple | list) and noise and noise[0] in NOISE_MODELS:
         return f"{noise[0]}:{noise[1]:g} (FastFiz x{noise[1]:g})"

@@ -9,7 +9,7 @@ import pytest
 
 import train
 from agents.baselines.random_agent import RandomAgent
-from agents.evaluation.evaluate import format_table, main, parse_noise, run_episodes
+from agents.evaluation.evaluate import format_table, main, noise_label, parse_noise, run_episodes
 from agents.learned.envs import make_env
 from agents.training import hyperparams
 from agents.training.run_config import ALGOS, GAME_BASELINES, TrainConfig, resolve_config
@@ -145,3 +145,17 @@ def test_a_long_run_keeps_the_best_constant_scan(capsys: pytest.CaptureFixture[s
     rows, action = _final_evaluation(config, agent, 5, steps=400)  # the scan: 405 > 400
     assert "best-const" not in rows and action is None
     assert "its scan would play 405 shots, more than the 400 trained" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(
+    ("noise", "label"),
+    [
+        (None, "none (exact shots)"),
+        ("fastfiz", "fastfiz (FastFiz x1, the field's)"),
+        (("fastfiz", 5.0), "fastfiz:5 (FastFiz x5)"),
+        ((0.003, 0.05), "sigmas 0.003, 0.05"),
+        ([0.003, 0.05], "sigmas 0.003, 0.05"),  # --env-kwargs "{noise: [...]}" is a list
+    ],
+)
+def test_the_header_names_the_noise_in_force(noise: object, label: str) -> None:
+    assert noise_label(noise) == label
