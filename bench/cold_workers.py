@@ -25,6 +25,8 @@ import tempfile
 import time
 from pathlib import Path
 
+from bench.first_shot import head_commit, publish
+
 ROOT = Path(__file__).resolve().parents[1]
 OUT = ROOT / "results" / "cold_workers.md"
 
@@ -75,9 +77,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--runs", type=int, default=2, help="runs of each kind and tree")
     parser.add_argument("--base", default=None, help="a commit to compare, same run")
     args = parser.parse_args(argv)
-    head = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
-    ).stdout.strip()
+    head = head_commit()
     load_before = os.getloadavg()[0]
     rows: dict[tuple[str, int], list[tuple[float, float]]] = {}
     with tempfile.TemporaryDirectory() as scratch:
@@ -119,9 +119,7 @@ def main(argv: list[str] | None = None) -> int:
             cpu = statistics.median(c for _, c in rows[(name, n)])
             kind = "1 (`gym.make`)" if n == 1 else f"{n} (`make_vec`, async)"
             lines.append(f"| {name} | {kind} | {wall:.1f} | {cpu:.0f} | {wall / one:.2f} |")
-    report = "\n".join(lines) + "\n"
-    print(report)
-    OUT.write_text(report)
+    publish(lines, OUT)
     return 0
 
 

@@ -105,15 +105,27 @@ def precompile(clone: Path, cache: Path) -> float:
     return time.perf_counter() - start
 
 
+def head_commit() -> str:
+    """This repository's ``HEAD``, short."""
+    return subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
+    ).stdout.strip()
+
+
+def publish(lines: list[str], out: Path) -> None:
+    """Print the report's ``lines`` and write them to ``out``."""
+    report = "\n".join(lines) + "\n"
+    print(report)
+    out.write_text(report)
+
+
 def main(argv: list[str] | None = None) -> int:
     """Clone, run cold and warm ``--runs`` times each, print and write the table."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--runs", type=int, default=3, help="cold and warm runs of each kind")
     args = parser.parse_args(argv)
     code = quick_start()
-    head = subprocess.run(
-        ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
-    ).stdout.strip()
+    head = head_commit()
     after_install = "after the install (`python -m pool_env.precompile`)"
     rows: dict[str, list[dict[str, float]]] = {
         after_install: [],
@@ -158,9 +170,7 @@ def main(argv: list[str] | None = None) -> int:
         cells = [f"{statistics.median(r.get(n, float('nan')) for r in runs):.2f}" for n in names]
         said = sum(int(r["notice"]) for r in runs)
         lines.append(f"| {kind} | " + " | ".join(cells) + f" | {said} of {len(runs)} |")
-    report = "\n".join(lines) + "\n"
-    print(report)
-    OUT.write_text(report)
+    publish(lines, OUT)
     return 0
 
 

@@ -23,7 +23,7 @@ import numpy as np
 
 import pool_env  # noqa: F401  (registers the ids)
 from agents.evaluation.duels import NOISE, play_rack
-from agents.evaluation.evaluate import make_agent
+from agents.evaluation.players import make_agent
 from agents.learned.rack_play import FEATURES, RackAgent, load_rack_agent
 from pool_env.envs.multiagent import PoolDuelEnv
 

@@ -9,7 +9,7 @@ Usage::
 Rack ``k`` is :class:`pool_env.envs.multiagent.PoolDuelEnv` of the id's game and table reset
 with seed ``seed + k``; the agent breaks the even racks (``player_0``) and the opponent the odd
 ones, so each side breaks half of the same racks. Each agent is built as
-:func:`agents.evaluation.evaluate.make_agent` builds it on the single-player id with the same
+:func:`agents.evaluation.players.make_agent` builds it on the single-player id with the same
 settings (the planners read the table, the ranges and the noise from it), told that it
 plays an opponent (``players=2``: it may push out), and plays from its seat's observation.
 The win rate is won racks over all racks with its Wilson interval; a rack that reaches the
@@ -29,14 +29,9 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation.evaluate import (
-    check_agents,
-    check_game_id,
-    make_agent,
-    noise_label,
-    parse_noise,
-)
 from agents.evaluation.metrics import wilson
+from agents.evaluation.noise_flag import noise_label, parse_noise
+from agents.evaluation.players import check_agents, check_game_id, make_agent
 from agents.learned.envs import make_env
 from agents.policy import Policy, last_plan
 from pool_env.envs.multiagent import AGENTS, PoolDuelEnv

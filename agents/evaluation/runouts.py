@@ -26,8 +26,9 @@ from typing import Any
 
 import numpy as np
 
-from agents.evaluation.evaluate import check_agents, check_game_id, make_agent, parse_noise
 from agents.evaluation.metrics import Z95, Estimate, wilson
+from agents.evaluation.noise_flag import parse_noise
+from agents.evaluation.players import check_agents, check_game_id, make_agent
 from agents.learned.envs import make_env
 
 #: How a rack can end, in the order of the table's columns.

@@ -27,7 +27,8 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
-from agents.evaluation.evaluate import evaluate_agent, format_table, one_line
+from agents.evaluation.evaluate import evaluate_agent
+from agents.evaluation.table import format_table, one_line
 from agents.integrations.rllib_env import register
 from agents.training import hyperparams, runs
 

@@ -32,8 +32,8 @@ from typing import Any
 import gymnasium as gym
 import numpy as np
 
-from agents.evaluation.evaluate import parse_noise
 from agents.evaluation.metrics import wilson
+from agents.evaluation.noise_flag import parse_noise
 from agents.learned.layout_value import LayoutValue
 from agents.learned.leaf_value import LogisticLeaf
 from agents.learned.search_player import SearchPlayer, SearchSettings

@@ -32,7 +32,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.evaluation.duels import NOISE, play_rack
-from agents.evaluation.evaluate import make_agent
+from agents.evaluation.players import make_agent
 from agents.learned.envs import make_env
 from agents.learned.rack_play import BREAK_ARMS, FEATURES, RackAgent, load_rack_agent
 from agents.training.racks import ENV_ID

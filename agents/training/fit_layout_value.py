@@ -47,7 +47,7 @@ import yaml
 from numpy.typing import NDArray
 
 from agents.evaluation.duels import ENV_ID, NOISE, play_rack
-from agents.evaluation.evaluate import make_agent
+from agents.evaluation.players import make_agent
 from agents.learned.envs import make_env
 from agents.learned.layout_value import (
     LAYOUT_FEATURES,
@@ -149,7 +149,7 @@ def collect(
     """Play ``racks`` racks: ``features``, ``won`` and the raw layouts (module doc).
 
     Args:
-        agent: The player (:func:`agents.evaluation.evaluate.make_agent`'s names and models).
+        agent: The player (:func:`agents.evaluation.players.make_agent`'s names and models).
         opponent: Its opponent in a duel (unused with ``runout``).
         racks: How many racks; rack ``k`` is seeded ``seed + k``.
         seed: The first rack's seed.

@@ -16,7 +16,7 @@ from typing import Any
 
 from stable_baselines3.common.base_class import BaseAlgorithm
 
-from agents.evaluation.evaluate import is_game
+from agents.evaluation.players import is_game
 from agents.learned.envs import make_env
 from agents.learned.pretrained import ALGO_CLASSES, algo_class
 from agents.training import hyperparams

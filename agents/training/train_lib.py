@@ -41,8 +41,9 @@ from stable_baselines3.common.vec_env import (
 
 from agents.evaluation.constant_scan import best_constant_agent, lattice_size
 from agents.evaluation.episodes import run_episodes
-from agents.evaluation.evaluate import evaluate_agent, format_table, one_line
+from agents.evaluation.evaluate import evaluate_agent
 from agents.evaluation.metrics import Estimate
+from agents.evaluation.table import format_table, one_line
 from agents.learned.candidates import FirstRowAgent
 from agents.learned.envs import EnvFactory, make_env
 from agents.training import hyperparams, runs

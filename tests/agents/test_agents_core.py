@@ -13,7 +13,8 @@ import sys
 import textwrap
 from pathlib import Path
 
-from agents.evaluation.evaluate import evaluate_agent, format_table
+from agents.evaluation.evaluate import evaluate_agent
+from agents.evaluation.table import format_table
 
 ROOT = Path(__file__).resolve().parents[2]
 #: The train extra's packages (and Ray): absent from a core install.

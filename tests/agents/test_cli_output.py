@@ -9,7 +9,9 @@ import pytest
 
 import train
 from agents.baselines.random_agent import RandomAgent
-from agents.evaluation.evaluate import format_table, main, noise_label, parse_noise, run_episodes
+from agents.evaluation.evaluate import main, run_episodes
+from agents.evaluation.noise_flag import noise_label, parse_noise
+from agents.evaluation.table import format_table
 from agents.learned.envs import make_env
 from agents.training import hyperparams
 from agents.training.run_config import ALGOS, GAME_BASELINES, TrainConfig, resolve_config

@@ -11,7 +11,9 @@ import pytest
 import pool_env  # noqa: F401  (registers the ids)
 from agents.baselines.game_agents import GameGhostBallAgent
 from agents.baselines.ghost_ball import GhostBallAgent
-from agents.evaluation.evaluate import format_table, make_agent, run_episodes
+from agents.evaluation.evaluate import run_episodes
+from agents.evaluation.players import make_agent
+from agents.evaluation.table import format_table
 from pool_env.envs.registration import roll_id
 from tests.game.test_games import KWARGS, layout, parked, straight_in
 

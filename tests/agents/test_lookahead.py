@@ -11,7 +11,7 @@ import pytest
 
 from agents.baselines.rule_play import rule_action
 from agents.evaluation.duels import shot_outcome
-from agents.evaluation.evaluate import make_agent
+from agents.evaluation.players import make_agent
 from agents.learned.game_model import GameModel
 from agents.learned.layout_value import (
     LAYOUT_FEATURES,

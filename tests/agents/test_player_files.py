@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 from agents.evaluation.duels import main as duels_main
-from agents.evaluation.evaluate import check_agents, make_agent
 from agents.evaluation.evaluate import main as evaluate_main
+from agents.evaluation.players import check_agents, make_agent
 from agents.evaluation.runouts import main as runouts_main
 from agents.learned.layout_value import LayoutValue
 from agents.learned.leaf_value import SetLeaf

@@ -13,7 +13,7 @@ import pool_env
 from agents.baselines.rule_play import rule_action
 from agents.evaluation.duels import play_duels
 from agents.evaluation.evaluate import main as evaluate_main
-from agents.evaluation.evaluate import make_agent
+from agents.evaluation.players import make_agent
 from agents.learned.rack_play import BREAK_ARMS, FEATURES, RackAgent, ValueNet, load_rack_agent
 from agents.training.racks import GAMMA, WIN_BONUS, fit, shot_reward
 
@@ -187,8 +187,8 @@ def test_duels_alternate_the_break_and_count_every_rack() -> None:
 
 
 def test_the_curve_reads_back_the_evaluation_table(tmp_path) -> None:
-    from agents.evaluation.evaluate import format_table
     from agents.evaluation.metrics import Estimate
+    from agents.evaluation.table import format_table
     from agents.training.rack_curve import read_tables
 
     stats = {

@@ -10,7 +10,7 @@ import pool_env
 from agents.baselines.game_agents import GameGhostBallAgent
 from agents.baselines.rule_play import TAKE_CHANCE, push_value, rule_action, take_table
 from agents.evaluation.duels import play_duels
-from agents.evaluation.evaluate import make_agent
+from agents.evaluation.players import make_agent
 from agents.policy import last_plan
 from pool_env.envs.multiagent import AGENTS, PoolDuelEnv
 from pool_env.envs.registration import spin_id

@@ -10,7 +10,7 @@ import gymnasium as gym
 import numpy as np
 import pytest
 
-from agents.evaluation.evaluate import make_agent
+from agents.evaluation.players import make_agent
 from agents.evaluation.runouts import ENDINGS, paired_difference
 from agents.evaluation.runouts import main as runouts_main
 from agents.learned.game_model import GameModel

@@ -15,7 +15,9 @@ import pytest
 import pool_env  # noqa: F401  (registers the ids)
 from agents import GhostBallAgent, SearchAgent, run_episodes
 from agents.baselines.game_agents import GameGhostBallAgent, GameSearchAgent
-from agents.evaluation.evaluate import main, make_agent, parse_noise, rack_ends
+from agents.evaluation.evaluate import main, rack_ends
+from agents.evaluation.noise_flag import parse_noise
+from agents.evaluation.players import make_agent
 from pool_env.envs.registration import spin_id
 from pool_env.sim.kernels import loop
 

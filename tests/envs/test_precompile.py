@@ -60,13 +60,14 @@ def test_every_current_id_is_a_job_once_of_each_kind() -> None:
     assert all("Roll-" in i for i, _ in jobs[1 : 1 + len(kinds) * len(CURRENT_IDS) // 2])
 
 
-def test_bad_workers_are_a_usage_error() -> None:
-    proc = subprocess.run(
-        [sys.executable, "-m", "pool_env.precompile", "--workers", "0"],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
+def _run(args: list[str], env: dict[str, str] | None = None) -> subprocess.CompletedProcess:
+    return subprocess.run(
+        [sys.executable, *args], capture_output=True, text=True, cwd=ROOT, env=env, timeout=1800
     )
+
+
+def test_bad_workers_are_a_usage_error() -> None:
+    proc = _run(["-m", "pool_env.precompile", "--workers", "0"])
     assert proc.returncode == 2 and "Traceback" not in proc.stderr
     assert "--workers must be at least 1" in proc.stderr
 
@@ -74,25 +75,10 @@ def test_bad_workers_are_a_usage_error() -> None:
 @pytest.mark.slow
 def test_after_precompile_the_quick_start_compiles_nothing(tmp_path: Path) -> None:
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
-    done = subprocess.run(
-        [sys.executable, "-m", "pool_env.precompile", "--quiet"],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        env=env,
-        timeout=1800,
-    )
+    done = _run(["-m", "pool_env.precompile", "--quiet"], env)
     assert done.returncode == 0, done.stderr
     assert "compiled in" in done.stdout
-    code = quick_start() + TRAINING_DEFAULT + COMPILED
-    proc = subprocess.run(
-        [sys.executable, "-c", code],
-        capture_output=True,
-        text=True,
-        cwd=ROOT,
-        env=env,
-        timeout=1800,
-    )
+    proc = _run(["-c", quick_start() + TRAINING_DEFAULT + COMPILED], env)
     assert proc.returncode == 0, proc.stderr
     compiled = json.loads(proc.stdout.splitlines()[-1])
     assert compiled == [], f"compiled after the precompile: {compiled[:5]}"
