@@ -117,8 +117,9 @@ def first_line(env_id: str, algo: str, backend: str) -> str:
     trainer = "Ray RLlib" if backend == "rllib" else "Stable-Baselines3"
     return (
         f"Training {algo.upper()} ({trainer}) on {env_id}. First the trainer loads and the "
-        "simulator compiles for this machine (20-40 s on 2 cores, on the first run only: "
-        "later runs load it from the disk cache in about a second)."
+        "simulator compiles what it needs for this machine (tens of seconds, on the first "
+        "run only, and none after `python -m pool_env.precompile`: later runs load it from "
+        "the disk cache in about a second)."
     )
 
 

@@ -13,8 +13,8 @@ the seconds from spawn to the first line on standard error (the compile notice,
 
     python -m bench.first_shot --runs 3
 
-Writes ``results/first_shot.md``. CPU-heavy (each cold run compiles for 20-40 s): run it
-alone on the machine.
+Writes ``results/first_shot.md``. CPU-heavy (each cold run compiles for tens of seconds,
+each precompile for about a minute): run it alone on the machine.
 """
 
 from __future__ import annotations

@@ -2,8 +2,9 @@
 
 numba compiles the simulator's kernels on their first call and caches the machine code on
 disk (:mod:`pool_env.sim.jit`); from an empty cache a first shot waits for the compiler.
-This command plays a few shots on every registered id, as a single env and as a vector env
-(and renders one frame), in as many processes as the machine has cores: each kernel
+This command plays a few shots on every registered id (earlier versions included), as a
+single env and as a vector env (rendering each shot), in as many processes as the machine
+has cores: each kernel
 compiles once, in whichever process needs it first (:mod:`pool_env.sim.compile_lock`), and
 every later process loads it::
 
@@ -33,21 +34,26 @@ KINDS = ("env", "vector", "shots")
 
 
 def jobs() -> list[Job]:
-    """Every current id in every kind, in an order that keeps two processes busy.
+    """Every registered id in every kind, in an order that keeps two processes busy.
 
     The spin table's event loop is the costliest compile (about half of all): its first id
     goes first, then every roll job, which a second process compiles meanwhile (a roll job
-    waiting for a spin kernel would sit idle), then the rest of the spin jobs, which mostly
-    load what the first compiled.
+    waiting for a spin kernel would sit idle), then the rest of the current spin jobs, which
+    mostly load what the first compiled, and last the earlier versions that still play
+    (``NineBallGame-v1``: another rack order and no push-out, some kernels of their own).
     """
+    from gymnasium import registry
+
     from pool_env.envs.registration import CURRENT_IDS
 
     spin = [i for i in CURRENT_IDS if "Roll-" not in i]
     roll = [i for i in CURRENT_IDS if "Roll-" in i]
+    earlier = sorted(i for i in registry if i.startswith("pool_env/") and i not in CURRENT_IDS)
     return (
         [(spin[0], "env")]
         + [(i, kind) for kind in KINDS for i in roll]
         + [(i, kind) for kind in KINDS for i in spin if (i, kind) != (spin[0], "env")]
+        + [(i, kind) for i in earlier for kind in KINDS]
     )
 
 
