@@ -25,6 +25,8 @@ from concurrent.futures import ProcessPoolExecutor, as_completed
 from multiprocessing import get_context
 from typing import Any
 
+import numpy as np
+
 #: One job: an env id and how it is played. "env": ``gym.make``, a frame rendered after
 #: each shot; "vector": ``gym.make_vec`` over two tables; "shots": both, with the
 #: ``observation="shots"`` features (what ``train.py`` trains on).
@@ -57,21 +59,25 @@ def jobs() -> list[Job]:
     )
 
 
-def _play(env: Any, vector: bool) -> None:
-    """Reset, play three random shots, render after each on a single env."""
+def _play(env: Any, render: bool = False) -> None:
+    """Reset, play three random shots (rendering each), close."""
     env.reset(seed=0)
     env.action_space.seed(0)
     for _ in range(3):
         _, _, terminated, truncated, _ = env.step(env.action_space.sample())
-        if not vector:
+        if render:
             env.render()  # the shot's paths: the timeline kernels
-            if terminated or truncated:
-                env.reset()
+        if np.any(terminated) or np.any(truncated):
+            env.reset()
     env.close()
 
 
 def run_job(job: Job) -> tuple[Job, float]:
     """Play ``job`` (:data:`Job`) to compile, or load, the kernels it needs.
+
+    A single env plays both with and without a render mode: rendering records the shot's
+    paths, which calls the rules' kernels with other arguments (SB3's envs render nothing,
+    the README's quick start renders).
 
     Returns:
         The job and the seconds it took in its process.
@@ -84,13 +90,13 @@ def run_job(job: Job) -> tuple[Job, float]:
     from pool_env.sim.jit import COMPILE_NOTICE
 
     COMPILE_NOTICE.silence()  # the command's own lines say what compiles
-
     env_id, kind = job
     extra = {"observation": "shots"} if kind == "shots" else {}
     if kind != "vector":
-        _play(gym.make(env_id, render_mode="rgb_array", **extra), vector=False)
+        _play(gym.make(env_id, **extra))
+        _play(gym.make(env_id, render_mode="rgb_array", **extra), render=True)
     if kind != "env":
-        _play(gym.make_vec(env_id, 2, vectorization_mode="vector_entry_point", **extra), True)
+        _play(gym.make_vec(env_id, 2, vectorization_mode="vector_entry_point", **extra))
     return job, time.perf_counter() - start
 
 

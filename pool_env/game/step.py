@@ -43,8 +43,8 @@ from pool_env.sim.table import Table
 
 __all__ = ["StepResult", "observe", "option_layouts", "reset", "step"]
 
-_NO_CONTACT = np.full((1, 2), -1, dtype=np.int64)
-_NO_CONTACT.setflags(write=False)
+#: The first contact of a shot that touched no ball: ``(-1, -1)``.
+_NO_CONTACT = (-1, -1)
 
 
 class StepResult:
@@ -236,7 +236,9 @@ def _simulate(
             ang = None if spin is None else spin[0, balls]
             shot = simulate_checked_arrays(table, pos[balls], vel[0, balls], ang, record)
         contact = shot.first_contact
-        first = _NO_CONTACT if contact is None else np.array([contact], dtype=np.int64)
+        # A fresh writable array either way: a read-only one for the misses gave the rules'
+        # kernels a second signature, compiled on a process's first miss.
+        first = np.array([_NO_CONTACT if contact is None else contact], dtype=np.int64)
         final, pocketed = shot.positions, shot.pocketed
         return Outcome(
             final[None], pocketed[None], first, shot.cushions_after_contact[None],

@@ -36,15 +36,19 @@ print(json.dumps(sorted(
 )))
 """
 
-# The training default, and the issue's short game run (an earlier version of 9-ball).
+# The training default and the issue's short game run (an earlier version of 9-ball), as
+# SB3 plays them (single envs, no render mode) and as the native vector env does.
 TRAINING_DEFAULT = """
 import gymnasium as gym
+import numpy as np
 for env_id in ("pool_env/OneBall-v1", "pool_env/NineBallGame-v1"):
-    vec = gym.make_vec(env_id, 4, observation="shots")
-    vec.reset(seed=1)
-    vec.action_space.seed(1)
-    for _ in range(3):
-        vec.step(vec.action_space.sample())
+    for env in (gym.make(env_id, observation="shots"), gym.make_vec(env_id, 4)):
+        env.reset(seed=1)
+        env.action_space.seed(1)
+        for _ in range(3):
+            _, _, terminated, truncated, _ = env.step(env.action_space.sample())
+            if np.any(terminated) or np.any(truncated):
+                env.reset()
 """
 
 
