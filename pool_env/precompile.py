@@ -46,10 +46,10 @@ def jobs() -> list[Job]:
     """
     from gymnasium import registry
 
-    from pool_env.envs.registration import CURRENT_IDS
+    from pool_env.envs.registration import CURRENT_IDS, ROLL_IDS
 
-    spin = [i for i in CURRENT_IDS if "Roll-" not in i]
-    roll = [i for i in CURRENT_IDS if "Roll-" in i]
+    spin = [i for i in CURRENT_IDS if i not in ROLL_IDS]
+    roll = [i for i in CURRENT_IDS if i in ROLL_IDS]
     earlier = sorted(i for i in registry if i.startswith("pool_env/") and i not in CURRENT_IDS)
     return (
         [(spin[0], "env")]
