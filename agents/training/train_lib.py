@@ -440,7 +440,9 @@ def climb_line(history: list[tuple[int, float, dict]], out: Path) -> str:
 def _best_const_note(action: list[float] | None) -> str:
     if action is None:
         return ""
-    return f" best-const: the action ({action[0]:+.2f}, {action[1]:+.2f}) of a 9 x 9 grid scan."
+    # Every component: on a spin id the scan also crosses a grid of cue tips.
+    values = ", ".join(f"{a:+.2f}" for a in action)
+    return f" best-const: the action ({values}), the best of a grid scan of constant actions."
 
 
 def _as_dict(stats: dict[str, Estimate]) -> dict[str, list[float]]:

@@ -161,3 +161,11 @@ def test_a_long_run_keeps_the_best_constant_scan(capsys: pytest.CaptureFixture[s
 )
 def test_the_header_names_the_noise_in_force(noise: object, label: str) -> None:
     assert noise_label(noise) == label
+
+
+def test_the_best_constant_note_gives_every_component_of_the_action() -> None:
+    from agents.training.train_lib import _best_const_note
+
+    note = _best_const_note([0.25, -0.5, 0.125, -1.0])  # a spin id's aim, speed and tip
+    assert "(+0.25, -0.50, +0.12, -1.00)" in note and "9 x 9" not in note
+    assert _best_const_note(None) == ""
