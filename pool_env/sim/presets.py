@@ -35,6 +35,32 @@ the pockets. pooltool's ``PocketTableSpecs`` cuts its own pocket shapes (jaw cir
 of 0.02095 m, corner mouths 0.118 m); the preset keeps this package's WPA jaw pockets
 (``pockets="jaws"``), sized for any table. ``Table.preset("pooltool-0.6", pockets="none")``
 is the pocketless table on which shots agree with pooltool's (``bench/models_vs_pooltool.py``).
+
+``"snooker"`` is the 12-ft snooker table (WPBSA Rules, Section 1, "The Standard Table"),
+on the spin level by default; ``model="roll"`` over it is allowed, as it sets no spin-only
+value. Each value and its source:
+
+==========================  ============================================  ==============
+``Table`` keyword           source                                        value
+==========================  ============================================  ==============
+``length``, ``width``       WPBSA 1(a): 11 ft 8.5 in x 5 ft 10 in          3.569, 1.778
+``ball_radius``             WPBSA 2: balls of 52.5 mm (+/- 0.05 mm)       0.02625
+``ball_mass``               pooltool 0.6.0 ``SNOOKER_GENERIC.m``          0.140
+``pockets``                 :data:`SNOOKER_POCKETS` (below)               ``JawSpec``
+==========================  ============================================  ==============
+
+WPBSA 1(c)(ii) has the pocket openings "conform to the templates authorised by the
+WPBSA"; the templates are not published, so the pocket shape is pooltool 0.6.0's
+``SnookerTableSpecs``: corner and centre mouths 0.083 m and 0.087 m, facings parallel to
+the pocket's axis (its pocket angle 0: a cut of 135 degrees at corners, 90 at the centre),
+rounded jaws of 4 in (corner) and 2.5 in (centre) radius, fall lines 0.036 m and
+0.95 in behind the mouth. The rest (cloth, restitution) is the package's defaults.
+
+``"carom"`` is the match carom table of three-cushion (UMB "Rules of the game of
+billiards", article 1: playing area 2.84 x 1.42 m, balls of 61-61.5 mm and 205-220 g,
+cushion nose 37 mm high), pocketless, on the spin level (three-cushion is played there).
+The ball mass and the cloth and cushion friction are pooltool 0.6.0's ``BILLIARD_GENERIC``
+(``m = 0.210``, ``f_c = 0.15``); the rest is the package's defaults.
 """
 
 from __future__ import annotations
@@ -42,8 +68,24 @@ from __future__ import annotations
 from types import MappingProxyType
 from typing import Any
 
+from pool_env.sim.pockets import JawSpec
+
 #: pooltool 0.6.0's ball radius and mass (``BallParams.R``, ``.m``), used twice below.
 _R, _M = 0.028575, 0.170097
+
+_INCH = 0.0254
+
+#: The snooker pockets: pooltool 0.6.0's ``SnookerTableSpecs`` (see the module's text).
+SNOOKER_POCKETS = JawSpec(
+    corner_mouth=0.083,
+    side_mouth=0.087,
+    corner_cut=135.0,
+    side_cut=90.0,
+    corner_shelf=0.036,
+    side_shelf=0.95 * _INCH,
+    corner_tip_radius=4.0 * _INCH,
+    side_tip_radius=2.5 * _INCH,
+)
 
 #: The presets: name -> ``Table`` keywords.
 PRESETS: MappingProxyType[str, MappingProxyType[str, Any]] = MappingProxyType(
@@ -72,6 +114,28 @@ PRESETS: MappingProxyType[str, MappingProxyType[str, Any]] = MappingProxyType(
                 "cushion_omega_ratio": 1.8,
                 "ball_model": "frictional",
             }
-        )
+        ),
+        "snooker": MappingProxyType(
+            {
+                "length": 3.569,
+                "width": 1.778,
+                "ball_radius": 0.0525 / 2,
+                "ball_mass": 0.140,
+                "pockets": SNOOKER_POCKETS,
+                "model": "spin",
+            }
+        ),
+        "carom": MappingProxyType(
+            {
+                "length": 2.84,
+                "width": 1.42,
+                "ball_radius": 0.0615 / 2,
+                "ball_mass": 0.210,
+                "pockets": "none",
+                "model": "spin",
+                "cushion_height": 0.037,
+                "cushion_friction": 0.15,
+            }
+        ),
     }
 )
