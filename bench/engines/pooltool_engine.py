@@ -67,12 +67,6 @@ def run_pooltool(
         The worker's JSON output with ``available: True``, or ``{"available": False,
         "reason": ...}`` if pooltool is missing or the worker failed.
     """
-    python = pooltool_python(venv)
-    if python is None:
-        return {
-            "available": False,
-            "reason": f"no pooltool virtualenv at {venv} (run bash bench/setup_pooltool.sh)",
-        }
     job = {
         "repeats": repeats,
         "max_events": max_events,
@@ -80,12 +74,36 @@ def run_pooltool(
         "scenes": scenes,
         "min_dist": min_dist,
     }
+    return run_worker(WORKER, job, total_timeout, venv)
+
+
+def run_worker(
+    worker: Path, job: dict[str, Any], total_timeout: float = 1800.0, venv: Path = DEFAULT_VENV
+) -> dict[str, Any]:
+    """Run a worker script in pooltool's virtualenv: ``job`` as JSON on stdin, JSON back.
+
+    Args:
+        worker: The script (it imports pooltool, nothing of this project).
+        job: Its input document.
+        total_timeout: Seconds for the whole subprocess.
+        venv: The pooltool virtualenv.
+
+    Returns:
+        The worker's JSON output with ``available: True``, or ``{"available": False,
+        "reason": ...}`` if pooltool is missing or the worker failed.
+    """
+    python = pooltool_python(venv)
+    if python is None:
+        return {
+            "available": False,
+            "reason": f"no pooltool virtualenv at {venv} (run bash bench/setup_pooltool.sh)",
+        }
     with tempfile.TemporaryDirectory(prefix="pooltool-home-") as home:
         env = {**os.environ, "HOME": home, "PYTHONNOUSERSITE": "1"}
         env.pop("PYTHONPATH", None)
         try:
             proc = subprocess.run(
-                [str(python), str(WORKER)],
+                [str(python), str(worker)],
                 input=json.dumps(job),
                 capture_output=True,
                 text=True,
