@@ -141,12 +141,15 @@ def snooker_constraints(state: dict[str, Any]) -> dict[str, Any]:
     return {"hittable": [lowest], "call_shot": True, "ball_call": lowest}
 
 
-def pooltool_job(game: str, cases: list[Case], timeout: float = 60.0) -> dict[str, Any]:
-    """The worker's input for ``cases`` of one game."""
+def pooltool_job(
+    game: str, cases: list[Case], min_dist: float | None = 1e-12, timeout: float = 60.0
+) -> dict[str, Any]:
+    """The worker's input for ``cases`` of one game (``min_dist``: pooltool's spacer)."""
     table = table_of(game)
     params = ball_params_from_table(table)
     return {
         "timeout": timeout,
+        "min_dist": min_dist,
         "table": {"kind": "billiard" if game == "three_cushion" else "snooker",
                   "l": table.length, "w": table.width, "cushion_height": table.cushion_height},
         "ball": params,

@@ -7,7 +7,7 @@ works in pooltool's frame and names throughout (the caller maps its layouts and 
 
 Input::
 
-    {"timeout": 60.0,
+    {"timeout": 60.0, "min_dist": 1e-12 | null,
      "table": {"kind": "billiard" | "snooker", "l": ..., "w": ..., "cushion_height": ...},
      "ball": {BallParams keywords: "m", "R", "u_s", "u_r", "u_sp_proportionality", "e_b",
               "e_c", "f_c", "g"},
@@ -23,6 +23,9 @@ A ``"snooker"`` table is ``SnookerTableSpecs()`` with the given ``l``, ``w`` and
 ``cushion_height`` (its pockets as pooltool ships them), a ``"billiard"`` table
 ``BilliardTableSpecs``. Every shot runs on pooltool's default physics engine (its
 ``default_resolver()``, not a user's YAML), every ball with the given ``BallParams``.
+``min_dist`` replaces pooltool's collision spacer ``constants.MIN_DIST`` (1e-6 m as it
+ships; ``null`` keeps it), as ``bench/models_vs_pooltool.py`` does: the spacer backs the
+balls apart before each impact, which later impacts amplify to millimetres.
 
 Per shot the output has pooltool's verdict, from its ruleset's own ``build_shot_info``
 on a two-player game (``"A"`` to shoot, ``"B"`` the opponent; scores start at zero):
@@ -197,6 +200,8 @@ def main() -> None:
     """Read the job from stdin, play and judge its shots, print the results as JSON."""
     signal.signal(signal.SIGALRM, _on_alarm)
     job = json.load(sys.stdin)
+    if job.get("min_dist") is not None:
+        pt.constants.MIN_DIST = float(job["min_dist"])
     engine = PhysicsEngine(resolver=default_resolver())
     timeout = float(job.get("timeout", 60.0))
     results = [_run(job, shot, engine, timeout) for shot in job["shots"]]
