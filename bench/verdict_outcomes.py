@@ -51,6 +51,10 @@ class Summary:
     rows: dict[str, dict[int, int]]
     events: list[list[Any]]
 
+    def point_made(self) -> bool:
+        """A carom's point by the count pooltool's ``is_point`` makes (for the search)."""
+        return self.second >= 0 and self.cushions_second + self.circular_second >= 3
+
     def key(self, game: str) -> tuple[Any, ...]:
         """The fields a verdict of ``game`` reads: equal keys mean the same outcome."""
         if game == "three_cushion":

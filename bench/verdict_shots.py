@@ -25,6 +25,7 @@ touching-ball rule).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -200,21 +201,34 @@ def _spots(table: Table) -> np.ndarray:
                      for fx, fy in (fractions[c] for c in COLOURS)])  # fmt: skip
 
 
-def three_cushion_case(rng: np.random.Generator, index: int) -> Case:
-    """Three balls anywhere; the white's or the yellow's shot, aimed at a ball or anywhere."""
+def three_cushion_case(
+    rng: np.random.Generator, index: int, scores: Callable[[Case], bool] | None = None
+) -> Case:
+    """Three balls anywhere; the white's or the yellow's shot.
+
+    Aimed at an object ball at any thickness (some miss it) or anywhere; or, for two
+    shots in five when ``scores`` is given, the first of up to 200 random strokes that
+    ``scores`` (our simulator) makes a point with (random shots score 2% of the time, and
+    a comparison of verdicts needs points), else the last stroke tried.
+    """
     table = three_cushion_table()
     placed: list[np.ndarray] = []
     for _ in range(3):
         placed.append(_free_point(rng, table, placed))
     pos = np.array(placed)
     cue = int(rng.integers(0, 2))
-    if rng.random() < 0.6:  # at an object ball, any thickness (some miss it)
-        target = pos[int(rng.choice([b for b in range(3) if b != cue]))]
-        angle = _aim_at(rng, pos[cue], target, table.ball_radius, 1.2)
-    else:
-        angle = float(rng.uniform(-math.pi, math.pi))
-    speed = float(rng.uniform(1.0, 6.0))
-    return Case("three_cushion", index, (0, 1, 2), pos, cue, angle, speed, _tip(rng))
+    search = scores is not None and rng.random() < 0.4
+    for _ in range(200 if search else 1):
+        if rng.random() < 0.6:
+            target = pos[int(rng.choice([b for b in range(3) if b != cue]))]
+            angle = _aim_at(rng, pos[cue], target, table.ball_radius, 1.2)
+        else:
+            angle = float(rng.uniform(-math.pi, math.pi))
+        speed = float(rng.uniform(1.0, 6.0))
+        case = Case("three_cushion", index, (0, 1, 2), pos, cue, angle, speed, _tip(rng))
+        if not search or scores(case):  # type: ignore[misc]
+            break
+    return case
 
 
 def snooker_case(rng: np.random.Generator, index: int) -> Case:
@@ -292,12 +306,15 @@ def _pot_aim(rng: np.random.Generator, table: Table, cue: np.ndarray, target: np
         ghost = target - 2 * r * u
         aim = ghost - cue
         if np.dot(aim, u) / np.hypot(*aim) > 0.2:  # a cut under about 78 degrees
-            return float(math.atan2(aim[1], aim[0]) + rng.normal(0.0, 0.005))
+            return float(math.atan2(aim[1], aim[0]) + rng.normal(0.0, 0.003))
     return _aim_at(rng, cue, target, r, 1.0)
 
 
-def make_cases(game: str, n: int, seed: int) -> list[Case]:
-    """``n`` seeded cases of ``game``."""
+def make_cases(
+    game: str, n: int, seed: int, scores: Callable[[Case], bool] | None = None
+) -> list[Case]:
+    """``n`` seeded cases of ``game`` (``scores``: see :func:`three_cushion_case`)."""
     rng = np.random.default_rng([seed, 0 if game == "three_cushion" else 1])
-    build = three_cushion_case if game == "three_cushion" else snooker_case
-    return [build(rng, k) for k in range(n)]
+    if game == "three_cushion":
+        return [three_cushion_case(rng, k, scores) for k in range(n)]
+    return [snooker_case(rng, k) for k in range(n)]

@@ -1,0 +1,280 @@
+"""Our snooker and three-cushion verdicts beside pooltool 0.6's rulesets, on the same shots.
+
+Run (pooltool from ``bash bench/setup_pooltool.sh``; over a minute of CPU: under the lock)::
+
+    flock /tmp/pool_cpu.lock python -m bench.verdicts_vs_pooltool  # -> results/verdicts_...md
+    python -m bench.verdicts_vs_pooltool --shots 20                # smoke run (prints only)
+
+Per game, :func:`bench.verdict_shots.make_cases` draws seeded shots (layouts, rule states,
+strokes; the tables made equal to pooltool's where they can be: see that module). Each
+shot is played twice:
+
+* by pooltool, in its own virtualenv (``bench/engines/pooltool_verdicts.py``), which
+  judges it by its own ruleset (``three_cushion.is_point``; ``_Snooker.build_shot_info``
+  under the state's ``ShotConstraints``) and returns its outcome summary;
+* by our simulator (:func:`bench.verdict_outcomes.ours`).
+
+Both outcomes are read into one :class:`~bench.verdict_outcomes.Summary`. Then three
+verdicts of each shot (:mod:`bench.verdict_rules`): pooltool's; ours, by our game's own
+rules through its env (:mod:`bench.verdict_games`), once on our physics and once on
+pooltool's outcome (the simulator's answer replaced by pooltool's, so that the rules are
+compared on identical outcomes); and the rule text's (a third opinion, to say which engine
+a disagreement proves wrong). The agreement rates:
+
+(a) our verdict on our physics against pooltool's, over the shots whose outcome summaries
+    agree (the fields a verdict reads: first and second contact and the cue ball's cushions
+    before its second for three-cushion; first contact and the balls potted for snooker);
+(b) our verdict on pooltool's outcome against pooltool's, over every shot pooltool plays
+    to an end (no crash, no hang): identical outcomes.
+
+Every disagreement is listed with its class and explanation.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import hashlib
+import json
+import time
+from collections import Counter
+from pathlib import Path
+from typing import Any
+
+from bench.engines.pooltool_engine import run_worker
+from bench.verdict_outcomes import Summary, from_pooltool, ours
+from bench.verdict_rules import pooltool_verdict, rule_text
+from bench.verdict_shots import (
+    SNOOKER_IDS,
+    THREE_CUSHION_IDS,
+    Case,
+    make_cases,
+    pooltool_job,
+    table_of,
+)
+
+ROOT = Path(__file__).resolve().parents[1]
+WORKER = Path(__file__).resolve().parent / "engines" / "pooltool_verdicts.py"
+GAMES = ("three_cushion", "snooker")
+#: pooltool's collision spacer for the comparison (its ``MIN_DIST``, 1e-6 m as it ships).
+SPACER = 1e-12
+
+
+def run_pooltool(game: str, cases: list[Case], cache: Path | None) -> list[dict[str, Any]]:
+    """Pooltool's results for ``cases`` (read from ``cache`` if this very job ran before)."""
+    job = pooltool_job(game, cases, min_dist=SPACER)
+    digest = hashlib.sha256(json.dumps(job, sort_keys=True).encode()).hexdigest()[:16]
+    path = None if cache is None else cache / f"{game}-{len(cases)}-{digest}.json"
+    if path is not None and path.exists():
+        return json.loads(path.read_text())
+    out = run_worker(WORKER, job, total_timeout=7200.0)
+    if not out["available"]:
+        raise SystemExit(f"pooltool unavailable: {out['reason']}")
+    results = out["results"]
+    if path is not None:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(json.dumps(results))
+    return results
+
+
+def _name(game: str, ball: int) -> str:
+    if ball < 0:
+        return "-"
+    return (THREE_CUSHION_IDS if game == "three_cushion" else SNOOKER_IDS)[ball]
+
+
+def describe(game: str, s: Summary) -> str:
+    """An outcome in a few words."""
+    if game == "three_cushion":
+        return f"{_name(game, s.first)}, {_name(game, s.second)}, {s.cushions_second} cushions"
+    pots = " ".join(f"{_name(game, b)}@{p}" for b, p in s.potted) or "no pot"
+    return f"first {_name(game, s.first)}; {pots}"
+
+
+def physics_reason(game: str, o: Summary, p: Summary) -> str:
+    """Why two outcomes differ, in words (which field, and the likely cause)."""
+    if o.first != p.first:
+        return "first contact differs"
+    if game == "three_cushion":
+        return "second contact or cushion count differs"
+    only_o = sorted({b for b, _ in o.potted} - {b for b, _ in p.potted})
+    only_p = sorted({b for b, _ in p.potted} - {b for b, _ in o.potted})
+    parts = []
+    if only_o:
+        parts.append("dropped on ours only: " + ", ".join(_name(game, b) for b in only_o))
+    if only_p:
+        parts.append("dropped on pooltool only: " + ", ".join(_name(game, b) for b in only_p))
+    return "; ".join(parts) + " (the pockets' shapes differ)"
+
+
+def compare(game: str, n: int, seed: int, cache: Path | None, judge: Any) -> dict[str, Any]:
+    """Play and judge ``n`` shots of ``game``; the counts and the disagreements."""
+    table = table_of(game)
+    cases = make_cases(game, n, seed, lambda case: ours(case, table).point_made())
+    t0 = time.perf_counter()
+    results = run_pooltool(game, cases, cache)
+    t_pt = time.perf_counter() - t0
+    rows = []
+    counts: Counter[str] = Counter()
+    t0 = time.perf_counter()
+    for case, res in zip(cases, results, strict=True):
+        if res.get("error"):
+            counts["pooltool_error"] += 1
+            rows.append({"case": case, "class": "undefined", "why": f"pooltool: {res['error']}"})
+            continue
+        p_out = from_pooltool(case, table, res)
+        o_out = ours(case, table)
+        v_pt = pooltool_verdict(game, res["verdict"])
+        text_p = rule_text(case, p_out)
+        same_outcome = o_out.key(game) == p_out.key(game)
+        counts["defined"] += 1
+        counts["same_outcome"] += same_outcome
+        counts["text_equals_pooltool"] += text_p == v_pt
+        row = {"case": case, "ours_out": o_out, "pt_out": p_out, "pooltool": v_pt,
+               "text": text_p, "same_outcome": same_outcome}  # fmt: skip
+        if game == "three_cushion":
+            counts["points_pooltool"] += v_pt["point"]
+        else:
+            counts["fouls_pooltool"] += v_pt["foul"]
+            counts["pots_pooltool"] += bool(p_out.potted)
+        if judge is not None:
+            v_own = judge(case, None)
+            v_on_pt = judge(case, p_out)
+            row["ours_own"], row["ours_on_pt"] = v_own, v_on_pt
+            counts["b_agree"] += v_on_pt == v_pt
+            if same_outcome:
+                counts["a_agree"] += v_own == v_pt
+            counts["raw_agree"] += v_own == v_pt
+        rows.append(row)
+    counts_t = time.perf_counter() - t0
+    return {"game": game, "cases": cases, "rows": rows, "counts": counts,
+            "seconds": (t_pt, counts_t)}  # fmt: skip
+
+
+def classify(game: str, row: dict[str, Any]) -> list[tuple[str, str]]:
+    """The disagreements of one shot: ``(class, explanation)`` each."""
+    if row.get("class") == "undefined":
+        return [("undefined", row["why"])]
+    out = []
+    v_pt, text = row["pooltool"], row["text"]
+    if text != v_pt:
+        out.append(("pooltool vs rule text", f"pooltool {v_pt}, rule text {text}"))
+    if "ours_on_pt" in row:
+        mine = row["ours_on_pt"]
+        if mine != v_pt:
+            wrong = "ours" if mine != text else "pooltool"
+            why = f"ours {mine}, pooltool {v_pt}, rule text {text}: {wrong} wrong"
+            out.append(("rules (identical outcome)", why))
+        if row["same_outcome"] and row["ours_own"] != v_pt:
+            out.append(("rules (own physics, same outcome)",
+                        f"ours {row['ours_own']}, pooltool {v_pt}"))  # fmt: skip
+        if not row["same_outcome"] and row["ours_own"] != v_pt:
+            why = physics_reason(game, row["ours_out"], row["pt_out"])
+            out.append(("physics", f"{why}: ours {row['ours_own']}, pooltool {v_pt}"))
+    elif not row["same_outcome"]:
+        text_o = rule_text(row["case"], row["ours_out"])
+        if text_o != v_pt:
+            why = physics_reason(game, row["ours_out"], row["pt_out"])
+            out.append(("physics", f"{why}: by the rule text, ours {text_o}, pooltool {v_pt}"))
+    return out
+
+
+def pct(a: int, b: int) -> str:
+    """``a / b`` as a percentage."""
+    return f"{100.0 * a / b:.1f}%" if b else "-"
+
+
+def report(runs: list[dict[str, Any]], command: str, judged: bool) -> str:
+    """The results page."""
+    today = datetime.date.today().isoformat()
+    lines = [
+        "# Verdicts beside pooltool 0.6.0's rulesets",
+        "",
+        f"`{command}` ({today}); see the script's docstring for the set-up, and",
+        "`bench/verdict_shots.py` for the tables, layouts, states and strokes.",
+        "",
+        "| game | shots | defined | outcome summaries agree | pooltool = rule text "
+        "| (a) ours = pooltool, own physics, same outcome | (b) ours = pooltool, identical "
+        "outcome | ours = pooltool, all shots |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for run in runs:
+        c = run["counts"]
+        d, s = c["defined"], c["same_outcome"]
+        a = f"{c['a_agree']} / {s} ({pct(c['a_agree'], s)})" if judged else "pending"
+        b = f"{c['b_agree']} / {d} ({pct(c['b_agree'], d)})" if judged else "pending"
+        raw = f"{c['raw_agree']} / {d} ({pct(c['raw_agree'], d)})" if judged else "pending"
+        lines.append(
+            f"| {run['game']} | {len(run['cases'])} | {d} | {s} ({pct(s, d)}) | "
+            f"{c['text_equals_pooltool']} / {d} | {a} | {b} | {raw} |"
+        )
+    lines.append("")
+    for run in runs:
+        c, game = run["counts"], run["game"]
+        if game == "three_cushion":
+            lines.append(f"Three-cushion: pooltool scores {c['points_pooltool']} points.")
+        else:
+            lines.append(
+                f"Snooker: pooltool calls {c['fouls_pooltool']} fouls; "
+                f"{c['pots_pooltool']} shots pot a ball."
+            )
+        lines.append(
+            f"Seconds: pooltool {run['seconds'][0]:.0f}, ours and the verdicts "
+            f"{run['seconds'][1]:.0f}."
+        )
+        lines.append("")
+    lines += ["## Every disagreement", "",
+              "| game | shot | state | outcome (ours / pooltool) | class | explanation |",
+              "|---|---:|---|---|---|---|"]  # fmt: skip
+    classes: Counter[tuple[str, str]] = Counter()
+    for run in runs:
+        game = run["game"]
+        for row in run["rows"]:
+            for cls, why in classify(game, row):
+                classes[(game, cls)] += 1
+                case = row["case"]
+                state = case.state.get("phase", "") if game == "snooker" else ""
+                if game == "snooker" and case.state["nominated"] >= 0:
+                    state += f" ({_name(game, case.state['nominated'])} called)"
+                elif game == "snooker":
+                    state += f" (on {_name(game, case.state['on'][0])}..)"
+                outcome = "-"
+                if "pt_out" in row:
+                    outcome = f"{describe(game, row['ours_out'])} / {describe(game, row['pt_out'])}"
+                lines.append(f"| {game} | {case.index} | {state} | {outcome} | {cls} | {why} |")
+    lines += ["", "## Disagreements by class", ""]
+    lines += [f"- {game}, {cls}: {k}" for (game, cls), k in sorted(classes.items())]
+    return "\n".join(lines) + "\n"
+
+
+def main() -> None:
+    """Run the comparison; write the results page (unless a smoke run)."""
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--shots", type=int, default=1000)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--games", nargs="+", choices=GAMES, default=list(GAMES))
+    parser.add_argument(
+        "--cache",
+        type=Path,
+        default=Path("/tmp/verdicts_vs_pooltool"),
+        help="where pooltool's results are kept between runs ('' for none)",
+    )
+    parser.add_argument("--out", type=Path, default=ROOT / "results" / "verdicts_vs_pooltool.md")
+    args = parser.parse_args()
+    from bench.verdict_games import game_judge
+
+    judge = game_judge()
+    cache = args.cache if str(args.cache) else None
+    runs = [compare(g, args.shots, args.seed, cache, judge) for g in args.games]
+    command = "python -m bench.verdicts_vs_pooltool"
+    if args.shots != 1000 or args.seed != 0:
+        command += f" --shots {args.shots} --seed {args.seed}"
+    page = report(runs, command, judge is not None)
+    print(page)
+    if args.shots >= 1000 and set(args.games) == set(GAMES):
+        args.out.write_text(page)
+        print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()
