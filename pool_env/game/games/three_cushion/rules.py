@@ -100,7 +100,7 @@ def judge_rows(
     )
     # The first player at the target: the second's equalizing inning, or the match.
     to_equalize = reached & (s == 0) & equalizing
-    first_wins = reached & (s == 0) & ~equalizing
+    first_wins = reached & (s == 0) & (not equalizing)
     second_reaches = reached & (s == 1)
     missed = ~point
     failed_equalizing = missed & (s == 1) & in_equalizing
