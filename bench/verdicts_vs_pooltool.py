@@ -148,7 +148,7 @@ def compare(game: str, n: int, seed: int, cache: Path | None, judge: Any) -> dic
         rows.append(row)
     counts_t = time.perf_counter() - t0
     return {"game": game, "cases": cases, "rows": rows, "counts": counts,
-            "seconds": (t_pt, counts_t)}  # fmt: skip
+            "seconds": (t_pt, counts_t), "judged": judge is not None}  # fmt: skip
 
 
 def classify(game: str, row: dict[str, Any]) -> list[tuple[str, str]]:
@@ -184,7 +184,7 @@ def pct(a: int, b: int) -> str:
     return f"{100.0 * a / b:.1f}%" if b else "-"
 
 
-def report(runs: list[dict[str, Any]], command: str, judged: bool) -> str:
+def report(runs: list[dict[str, Any]], command: str) -> str:
     """The results page."""
     today = datetime.date.today().isoformat()
     lines = [
@@ -199,7 +199,7 @@ def report(runs: list[dict[str, Any]], command: str, judged: bool) -> str:
         "|---|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for run in runs:
-        c = run["counts"]
+        c, judged = run["counts"], run["judged"]
         d, s = c["defined"], c["same_outcome"]
         a = f"{c['a_agree']} / {s} ({pct(c['a_agree'], s)})" if judged else "pending"
         b = f"{c['b_agree']} / {d} ({pct(c['b_agree'], d)})" if judged else "pending"
@@ -263,13 +263,12 @@ def main() -> None:
     args = parser.parse_args()
     from bench.verdict_games import game_judge
 
-    judge = game_judge()
     cache = args.cache if str(args.cache) else None
-    runs = [compare(g, args.shots, args.seed, cache, judge) for g in args.games]
+    runs = [compare(g, args.shots, args.seed, cache, game_judge(g)) for g in args.games]
     command = "python -m bench.verdicts_vs_pooltool"
     if args.shots != 1000 or args.seed != 0:
         command += f" --shots {args.shots} --seed {args.seed}"
-    page = report(runs, command, judge is not None)
+    page = report(runs, command)
     print(page)
     if args.shots >= 1000 and set(args.games) == set(GAMES):
         args.out.write_text(page)
