@@ -41,6 +41,8 @@ from collections import Counter
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from bench.engines.pooltool_engine import run_worker
 from bench.verdict_outcomes import Summary, from_pooltool, ours
 from bench.verdict_rules import pooltool_verdict, rule_text
@@ -52,6 +54,7 @@ from bench.verdict_shots import (
     pooltool_job,
     table_of,
 )
+from pool_env.sim.table import Table
 
 ROOT = Path(__file__).resolve().parents[1]
 WORKER = Path(__file__).resolve().parent / "engines" / "pooltool_verdicts.py"
@@ -91,20 +94,33 @@ def describe(game: str, s: Summary) -> str:
     return f"first {_name(game, s.first)}; {pots}"
 
 
-def physics_reason(game: str, o: Summary, p: Summary) -> str:
-    """Why two outcomes differ, in words (which field, and the likely cause)."""
+def physics_reason(game: str, o: Summary, p: Summary, table: Table) -> str:
+    """Why two outcomes differ, in words (which field, and the cause where it is plain)."""
     if o.first != p.first:
-        return "first contact differs"
+        return "first contact differs (the paths parted before it: a pot or a jaw on the way)"
     if game == "three_cushion":
         return "second contact or cushion count differs"
-    only_o = sorted({b for b, _ in o.potted} - {b for b, _ in p.potted})
-    only_p = sorted({b for b, _ in p.potted} - {b for b, _ in o.potted})
+    ours_potted = {b for b, _ in o.potted}
     parts = []
-    if only_o:
-        parts.append("dropped on ours only: " + ", ".join(_name(game, b) for b in only_o))
-    if only_p:
-        parts.append("dropped on pooltool only: " + ", ".join(_name(game, b) for b in only_p))
-    return "; ".join(parts) + " (the pockets' shapes differ)"
+    for b, pocket in p.potted:
+        if b in ours_potted:
+            continue
+        gap = float(np.hypot(*(np.array(o.final[b]) - table.pockets[pocket, :2])))
+        if gap < table.pockets[pocket, 2]:
+            parts.append(
+                f"{_name(game, b)} drops on pooltool (its centre entered pooltool's pocket "
+                f"circle); on ours it stops in the jaws, {100 * gap:.1f} cm from the pocket's "
+                "corner point, short of the fall line"
+            )
+        else:
+            parts.append(
+                f"{_name(game, b)} drops on pooltool; on ours the jaws turn it away (it ends "
+                f"{gap:.2f} m from that pocket)"
+            )
+    for b, _ in o.potted:
+        if b not in {x for x, _ in p.potted}:
+            parts.append(f"{_name(game, b)} drops on ours only")
+    return "; ".join(parts) + " (pocket models differ)"
 
 
 def compare(game: str, n: int, seed: int, cache: Path | None, judge: Any) -> dict[str, Any]:
@@ -134,6 +150,8 @@ def compare(game: str, n: int, seed: int, cache: Path | None, judge: Any) -> dic
                "text": text_p, "same_outcome": same_outcome}  # fmt: skip
         if game == "three_cushion":
             counts["points_pooltool"] += v_pt["point"]
+            counts["both_hit"] += p_out.second >= 0
+            counts["close_calls"] += p_out.cushions_second in (2, 3)
         else:
             counts["fouls_pooltool"] += v_pt["foul"]
             counts["pots_pooltool"] += bool(p_out.potted)
@@ -169,12 +187,12 @@ def classify(game: str, row: dict[str, Any]) -> list[tuple[str, str]]:
             out.append(("rules (own physics, same outcome)",
                         f"ours {row['ours_own']}, pooltool {v_pt}"))  # fmt: skip
         if not row["same_outcome"] and row["ours_own"] != v_pt:
-            why = physics_reason(game, row["ours_out"], row["pt_out"])
+            why = physics_reason(game, row["ours_out"], row["pt_out"], table_of(game))
             out.append(("physics", f"{why}: ours {row['ours_own']}, pooltool {v_pt}"))
     elif not row["same_outcome"]:
         text_o = rule_text(row["case"], row["ours_out"])
         if text_o != v_pt:
-            why = physics_reason(game, row["ours_out"], row["pt_out"])
+            why = physics_reason(game, row["ours_out"], row["pt_out"], table_of(game))
             out.append(("physics", f"{why}: by the rule text, ours {text_o}, pooltool {v_pt}"))
     return out
 
@@ -182,6 +200,43 @@ def classify(game: str, row: dict[str, Any]) -> list[tuple[str, str]]:
 def pct(a: int, b: int) -> str:
     """``a / b`` as a percentage."""
     return f"{100.0 * a / b:.1f}%" if b else "-"
+
+
+#: The page's account of the set-up and of each class of disagreement.
+NOTES = [
+    "## How the two are made comparable",
+    "",
+    "- Same shots: each layout, rule state and stroke is played by both engines; the",
+    "  stroke is mapped by `pool_env.interop.pooltool.cue_to_pooltool` (level cue).",
+    "- Three-cushion: our table is pooltool's carom table (`BilliardTableSpecs()`, its",
+    "  `BILLIARD_GENERIC` ball) under pooltool's default physics",
+    "  (`Table.preset(\"pooltool-0.6\")`'s models), pocketless on both sides; pooltool's",
+    "  collision spacer `MIN_DIST` is 1e-12 m as in `bench/models_vs_pooltool.py`. The",
+    "  physics is then the same (final positions within about 1e-9 m), and so is every",
+    "  outcome summary.",
+    "- Snooker: pooltool's `SnookerTableSpecs()` size and cushion height and its",
+    "  `SNOOKER_GENERIC` ball, the same physics models; the pockets cannot be equal:",
+    "  pooltool's are circular jaw segments and a pocket circle whose entry is the drop,",
+    "  ours the jaw model (`JawSpec`, `pool_env.sim.presets.SNOOKER_POCKETS`: pooltool's",
+    "  mouths, cut, depths and jaw radii) with its fall line. A shot whose outcome summary",
+    "  differs (first contact, or the balls potted) is a physics disagreement, kept out of",
+    "  rate (a) and listed below; rate (b) judges pooltool's own outcome by our rules.",
+    "- Common ground only: the states are ones both rulesets define (a red on, a",
+    "  nominated colour after a red or after the last red, the colours in order); not",
+    "  free ball, the touching ball or push stroke (layouts keep 2 mm between balls and",
+    "  from the cushions), the miss, the re-spotted black, or three-cushion's break (the",
+    "  red first), which pooltool's rulesets do not have.",
+    "- The rule text (`bench/verdict_rules.py`, written from the UMB and WPBSA rules, no",
+    "  code shared) is the third opinion that says which engine a disagreement proves",
+    "  wrong.",
+    "",
+    "Classes of disagreement: `physics` (the engines' outcomes differ; each engine's",
+    "verdict is its rules' on its own outcome: see rate (b)); `rules (identical outcome)`",
+    "(our game and pooltool judge the same outcome differently; the rule text names the",
+    "wrong one); `rules (own physics, same outcome)`; `pooltool vs rule text`; `undefined`",
+    "(pooltool crashed or hung).",
+    "",
+]
 
 
 def report(runs: list[dict[str, Any]], command: str) -> str:
@@ -212,7 +267,11 @@ def report(runs: list[dict[str, Any]], command: str) -> str:
     for run in runs:
         c, game = run["counts"], run["game"]
         if game == "three_cushion":
-            lines.append(f"Three-cushion: pooltool scores {c['points_pooltool']} points.")
+            lines.append(
+                f"Three-cushion: pooltool scores {c['points_pooltool']} points; the cue ball "
+                f"meets both object balls in {c['both_hit']} shots, {c['close_calls']} of them "
+                "with 2 or 3 cushions before the second (the close calls)."
+            )
         else:
             lines.append(
                 f"Snooker: pooltool calls {c['fouls_pooltool']} fouls; "
@@ -223,6 +282,7 @@ def report(runs: list[dict[str, Any]], command: str) -> str:
             f"{run['seconds'][1]:.0f}."
         )
         lines.append("")
+    lines += NOTES
     lines += ["## Every disagreement", "",
               "| game | shot | state | outcome (ours / pooltool) | class | explanation |",
               "|---|---:|---|---|---|---|"]  # fmt: skip

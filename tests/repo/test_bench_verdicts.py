@@ -87,3 +87,28 @@ def test_pooltool_judges_a_few_shots_as_the_rule_text_does(game):
             assert mine.key(game) == theirs.key(game)
             gap = max(np.hypot(*np.subtract(mine.final[b], theirs.final[b])) for b in case.balls)
             assert gap < 1e-6
+
+
+@pytest.mark.parametrize("game", ["three_cushion", "snooker"])
+def test_our_game_judges_pooltools_outcomes_as_pooltool_does(game):
+    """Our game's rules, through its env, on pooltool's own outcomes: pooltool's verdicts.
+
+    And on our own physics, where the outcome is the same, the same verdict too.
+    """
+    from bench.verdict_games import game_judge
+
+    if pooltool_python() is None:
+        pytest.skip("no pooltool virtualenv (bash bench/setup_pooltool.sh)")
+    judge = game_judge(game)
+    if judge is None:
+        pytest.skip(f"game={game!r} is not in this tree")
+    table = table_of(game)
+    cases = make_cases(game, 8, 11, lambda case: ours(case, table).point_made())
+    out = run_worker(WORKER, pooltool_job(game, cases, min_dist=SPACER), total_timeout=600.0)
+    assert out["available"], out.get("reason")
+    for case, res in zip(cases, out["results"], strict=True):
+        theirs = from_pooltool(case, table, res)
+        expected = pooltool_verdict(game, res["verdict"])
+        assert judge(case, theirs) == expected, case.index
+        if ours(case, table).key(game) == theirs.key(game):
+            assert judge(case, None) == expected, case.index
