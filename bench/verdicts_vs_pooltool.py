@@ -97,7 +97,7 @@ def describe(game: str, s: Summary) -> str:
 def physics_reason(game: str, o: Summary, p: Summary, table: Table) -> str:
     """Why two outcomes differ, in words (which field, and the cause where it is plain)."""
     if o.first != p.first:
-        return "first contact differs (the paths parted before it: a pot or a jaw on the way)"
+        return "first contact differs: " + parting(o, p)
     if game == "three_cushion":
         return "second contact or cushion count differs"
     ours_potted = {b for b, _ in o.potted}
@@ -121,6 +121,28 @@ def physics_reason(game: str, o: Summary, p: Summary, table: Table) -> str:
         if b not in {x for x, _ in p.potted}:
             parts.append(f"{_name(game, b)} drops on ours only")
     return "; ".join(parts) + " (pocket models differ)"
+
+
+_KIND_WORDS = {"circular": "a jaw's rounded point", "linear": "a cushion", "ball": "a ball",
+               "pocket": "a pocket"}  # fmt: skip
+
+
+def parting(o: Summary, p: Summary) -> str:
+    """Where two event lists part: the last event they share, and each one's next."""
+    k = 0
+    for a, b in zip(o.events, p.events, strict=False):
+        same_ball = a[1] != "ball" or {a[2], a[3]} == {b[2], b[3]}
+        if a[1] != b[1] or a[2] != b[2] or not same_ball or abs(a[0] - b[0]) > 1e-6:
+            break
+        k += 1
+
+    def next_of(events: list[list[Any]]) -> str:
+        return _KIND_WORDS[events[k][1]] if k < len(events) else "nothing"
+
+    where = "at once" if k == 0 else f"after {_KIND_WORDS[o.events[k - 1][1]]} at t = " \
+        f"{o.events[k - 1][0]:.3f} s on both"  # fmt: skip
+    return f"the paths part {where}; next, ours meets {next_of(o.events)}, pooltool's " \
+        f"{next_of(p.events)}"  # fmt: skip
 
 
 def compare(game: str, n: int, seed: int, cache: Path | None, judge: Any) -> dict[str, Any]:
