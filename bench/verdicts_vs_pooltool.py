@@ -36,6 +36,7 @@ import argparse
 import datetime
 import hashlib
 import json
+import os
 import time
 from collections import Counter
 from pathlib import Path
@@ -44,6 +45,7 @@ from typing import Any
 import numpy as np
 
 from bench.engines.pooltool_engine import run_worker
+from bench.report import machine
 from bench.verdict_outcomes import Summary, from_pooltool, ours
 from bench.verdict_rules import pooltool_verdict, rule_text
 from bench.verdict_shots import (
@@ -59,6 +61,8 @@ from pool_env.sim.table import Table
 ROOT = Path(__file__).resolve().parents[1]
 WORKER = Path(__file__).resolve().parent / "engines" / "pooltool_verdicts.py"
 GAMES = ("three_cushion", "snooker")
+#: The pooltool the worker runs (checked against its answer).
+POOLTOOL_VERSION = "0.6.0"
 #: pooltool's collision spacer for the comparison (its ``MIN_DIST``, 1e-6 m as it ships).
 SPACER = 1e-12
 
@@ -77,6 +81,10 @@ def run_pooltool(game: str, cases: list[Case], cache: Path | None) -> list[dict[
     seconds = time.perf_counter() - t0
     if not out["available"]:
         raise SystemExit(f"pooltool unavailable: {out['reason']}")
+    if out["pooltool"] != POOLTOOL_VERSION:
+        raise SystemExit(
+            f"pooltool {out['pooltool']} found, the comparison is of {POOLTOOL_VERSION}"
+        )
     results = out["results"]
     if path is not None:
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -266,11 +274,16 @@ NOTES = [
 def report(runs: list[dict[str, Any]], command: str) -> str:
     """The results page."""
     today = datetime.date.today().isoformat()
+    m = machine()
     lines = [
         "# Verdicts beside pooltool 0.6.0's rulesets",
         "",
         f"`{command}` ({today}); see the script's docstring for the set-up, and",
         "`bench/verdict_shots.py` for the tables, layouts, states and strokes.",
+        "",
+        f"Machine: {m['cpu']}, {m['cores']} cores shared (load {os.getloadavg()[0]:.1f}), "
+        f"{m['os']}, Python {m['python']}, numba {m['numba']}, commit {m['commit']}; "
+        f"pooltool {POOLTOOL_VERSION} in its own venv.",
         "",
         "| game | shots | defined | outcome summaries agree | pooltool = rule text "
         "| (a) ours = pooltool, own physics, same outcome | (b) ours = pooltool, identical "
