@@ -110,6 +110,20 @@ def test_snooker_pockets_measured_from_the_built_jaws(k: int, mouth: float, tip:
         assert not (0.0 < x < table.length and 0.0 < y < table.width)
 
 
+def test_the_snooker_jaws_are_round_down_to_the_fall_line():
+    """The big round jaws reach past the fall line: a ball drops before any straight facing.
+
+    Each tip meets its facing ``r / tan(cut / 2)`` behind the mouth (42 mm at a corner,
+    63.5 mm at the centre), deeper than the fall line (36 mm, 24 mm): every jaw contact on
+    this table is a round-jaw contact (a ``"point"`` event).
+    """
+    table = Table.preset("snooker")
+    for jaw in table.jaws:
+        fall = jaw.fall_line.mean(axis=0)
+        for start, _ in jaw.facings:
+            assert (start - fall) @ jaw.fall_normal < -0.005  # 5 mm and more behind it
+
+
 def test_a_jaw_tables_capture_circles_are_its_own_mouths():
     """``table.pockets`` on a JawSpec table summarises *its* mouths, not the WPA ones.
 
