@@ -190,6 +190,11 @@ def snooker(step: float, out: Path) -> None:
         f"{'yes' if along_the_rail(roll) else 'NO'} (roll), "
         f"{'yes' if along_the_rail(spin) else 'NO'} (spin).",
         "",
+        "On the roll level a ball's path off a jaw does not depend on its speed (the "
+        "restitution is a constant), so the roll column changes only where a slow ball "
+        "stops short; on the spin level the cloth and the cushion friction bend the "
+        "path after a jaw contact, more so for a slow ball.",
+        "",
         "For comparison, the pool table's figures at 0.7 m/s are in "
         "`results/pocket_acceptance.md` (WPA mouths of 4.5 in and 5 in, 57 mm balls).",
         "",
