@@ -90,6 +90,10 @@ class Ruleset:
         scenes: The game's own starting layouts by name, each a fixed ``(N, 2)`` layout or
             a callable ``(table, rng) -> (N, 2)`` (cue ball first), which ``scene=<name>``
             picks on this game's tables (the shared ones are :data:`pool_env.SCENES`).
+        ball_colours: The game's balls in pictures: one RGB triple (0-255) per ball column
+            (ball 0 first), drawn plain, without numbers or stripes (snooker's reds and
+            colours, carom's white, yellow and red); ``None``: pool balls by number.
+        cloth: The cloth's RGB triple in pictures (carom's blue); ``None``: pool green.
     """
 
     name: str = ""
@@ -99,6 +103,8 @@ class Ruleset:
     section: type[RulesSection] = RulesSection
     reward_terms: Mapping[str, float] = {}
     scenes: Mapping[str, Any] = {}
+    ball_colours: tuple[tuple[int, int, int], ...] | None = None
+    cloth: tuple[int, int, int] | None = None
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"
