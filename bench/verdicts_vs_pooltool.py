@@ -125,9 +125,22 @@ def physics_reason(game: str, o: Summary, p: Summary, table: Table) -> str:
                 "corner point, short of the fall line"
             )
         else:
+            t_drop = next(e[0] for e in p.events if e[1] == "pocket" and e[2] == b)
+
+            def jaw(events: list[list[Any]], b: int = b, t: float = t_drop) -> bool:
+                return any(e[1] == "circular" and e[2] == b and abs(e[0] - t) < 0.3
+                           for e in events)  # fmt: skip
+
+            how = (
+                "it meets a jaw's rounded point where pooltool's drops without one"
+                if jaw(o.events) and not jaw(p.events)
+                else "both meet a jaw's point, then part"
+                if jaw(o.events)
+                else "no jaw point on ours"
+            )
             parts.append(
-                f"{_name(game, b)} drops on pooltool; on ours the jaws turn it away (it ends "
-                f"{gap:.2f} m from that pocket)"
+                f"{_name(game, b)} drops on pooltool; on ours the jaws turn it away ({how}; "
+                f"it ends {gap:.2f} m from that pocket)"
             )
     for b, _ in o.potted:
         if b not in {x for x, _ in p.potted}:
@@ -271,6 +284,17 @@ NOTES = [
 ]
 
 
+#: The causes of a physics disagreement, as :func:`physics_reason` words them.
+CAUSES = (
+    "stops in the jaws",
+    "it meets a jaw's rounded point where pooltool's drops without one",
+    "both meet a jaw's point, then part",
+    "no jaw point on ours",
+    "drops on ours only",
+    "first contact differs",
+)
+
+
 def report(runs: list[dict[str, Any]], command: str) -> str:
     """The results page."""
     today = datetime.date.today().isoformat()
@@ -324,6 +348,7 @@ def report(runs: list[dict[str, Any]], command: str) -> str:
               "| game | shot | state | outcome (ours / pooltool) | class | explanation |",
               "|---|---:|---|---|---|---|"]  # fmt: skip
     classes: Counter[tuple[str, str]] = Counter()
+    physics: Counter[str] = Counter()
     for run in runs:
         game = run["game"]
         for row in run["rows"]:
@@ -339,8 +364,13 @@ def report(runs: list[dict[str, Any]], command: str) -> str:
                 if "pt_out" in row:
                     outcome = f"{describe(game, row['ours_out'])} / {describe(game, row['pt_out'])}"
                 lines.append(f"| {game} | {case.index} | {state} | {outcome} | {cls} | {why} |")
+                if cls == "physics":
+                    physics.update(c for c in CAUSES if c in why)
     lines += ["", "## Disagreements by class", ""]
     lines += [f"- {game}, {cls}: {k}" for (game, cls), k in sorted(classes.items())]
+    if physics:
+        lines += ["", "Physics disagreements by cause (a row may name several balls):", ""]
+        lines += [f"- {cause}: {k}" for cause, k in physics.most_common()]
     return "\n".join(lines) + "\n"
 
 
