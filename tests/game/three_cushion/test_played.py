@@ -155,3 +155,28 @@ def test_sb3_and_versus_policy_fronts() -> None:
     rack = versus.duel.rack
     assert rack["innings"] == (3, 3) and rack["winner"] in (0, 1, 2)
     assert reward == {0: 1.0, 1: -1.0, 2: 0.0}[rack["winner"]]
+
+
+@pytest.mark.parametrize(
+    ("rules", "words"),
+    [
+        ({"score": 5}, r"score must be a pair .* got 5"),
+        ({"innings": (1, 2, 3)}, r"innings must be a pair"),
+        ({"winner": 7}, r"winner -1, 0, 1 or 2 .*got"),
+        ({"shooter": 2}, r"shooter must be 0 or 1, got 2"),
+        ({"colour": 1}, r"unknown three-cushion state key\(s\) \['colour'\]"),
+    ],
+)
+def test_a_bad_rack_state_is_refused_and_changes_nothing(rules: dict, words: str) -> None:
+    env = gym.make(ID).unwrapped
+    env.reset(seed=0)
+    before = (env.positions, env.rack)
+    with pytest.raises(ValueError, match=words):
+        env.reset(options={"positions": starting_layout(TABLE, 0), "rules": rules})
+    assert np.array_equal(env.positions, before[0]) and env.rack == before[1]
+
+
+def test_a_ball_off_the_table_is_refused_naming_on_table() -> None:
+    env = gym.make(ID).unwrapped
+    with pytest.raises(ValueError, match=r"on_table must be all True, got \[True, True, False\]"):
+        env.reset(options={"positions": starting_layout(TABLE, 0), "on_table": [1, 1, 0]})

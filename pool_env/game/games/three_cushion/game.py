@@ -141,7 +141,10 @@ class ThreeCushion(Ruleset):
         """
         config, state, tables = turn
         if not np.all(on_table):
-            raise ValueError("three-cushion keeps its three balls on the table")
+            raise ValueError(
+                "three-cushion keeps its three balls on the table: on_table must be all "
+                f"True, got {on_table[~np.all(on_table, axis=1)][0].tolist()}"
+            )
         row = self.state_row(config, given)
         if given is None:
             row[sc.BREAKING] = rack_scene and config.scene.spec is break_scene
@@ -335,6 +338,11 @@ class ThreeCushion(Ruleset):
             shooter = merged["shooter"]
             if shooter not in (0, 1) or isinstance(shooter, bool):
                 raise ValueError(f"shooter must be 0 or 1, got {shooter!r}")
+            for key in ("score", "innings"):
+                if not isinstance(merged[key], list | tuple) or len(merged[key]) != 2:
+                    raise ValueError(
+                        f"{key} must be a pair (player 0's, player 1's), got {merged[key]!r}"
+                    )
             values = [shooter, *merged["score"], *merged["innings"], merged["run"],
                       merged["breaking"], merged["equalizing"], merged["winner"]]  # fmt: skip
             array = np.array(values)
@@ -344,7 +352,10 @@ class ThreeCushion(Ruleset):
             raise ValueError(f"a three-cushion state row is {sc.N_RACK} integers, got {given!r}")
         row = array.astype(np.int64)
         if np.any(row[: sc.WINNER] < 0) or row[sc.SHOOTER] > 1 or not -1 <= row[sc.WINNER] <= 2:
-            raise ValueError(f"a three-cushion state has counts >= 0, got {given!r}")
+            raise ValueError(
+                "a three-cushion state has shooter 0 or 1, counts >= 0 and winner -1, 0, 1 "
+                f"or 2 (a draw), got {given!r}"
+            )
         return row
 
     def shooters(self, state: GameState) -> NDArray[np.int64]:
