@@ -51,12 +51,26 @@ def jobs() -> list[Job]:
     spin = [i for i in CURRENT_IDS if i not in ROLL_IDS]
     roll = [i for i in CURRENT_IDS if i in ROLL_IDS]
     earlier = sorted(i for i in registry if i.startswith("pool_env/") and i not in CURRENT_IDS)
-    return (
+    every = (
         [(spin[0], "env")]
         + [(i, kind) for kind in KINDS for i in roll]
         + [(i, kind) for kind in KINDS for i in spin if (i, kind) != (spin[0], "env")]
         + [(i, kind) for i in earlier for kind in KINDS]
     )
+    return [(i, kind) for i, kind in every if kind != "shots" or plays_shots(i)]
+
+
+def plays_shots(env_id: str) -> bool:
+    """Whether ``env_id`` takes ``observation="shots"`` (three-cushion refuses it)."""
+    from gymnasium import registry
+
+    from pool_env.game.config import make_config
+
+    try:
+        make_config(**registry[env_id].kwargs["id_defaults"], observation="shots")
+    except ValueError:
+        return False
+    return True
 
 
 def _play(env: Any, render: bool = False) -> None:

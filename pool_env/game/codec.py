@@ -121,8 +121,12 @@ def _aim(config: GameConfig, state: GameState, angle: float, clip: bool) -> floa
     """The aim component that plays the direction ``angle`` (radians from +x)."""
     params = config.params
     mode, (low, high) = int(params[kp.AIM_MODE]), config.aim_range
-    targets = config.ruleset.aim_references(state)[0]
-    j, dist, base = nearest_object_ball(state.positions[0], targets, 0)
+    ruleset = config.ruleset
+    targets = ruleset.aim_references(state)[0]
+    # From the striker's own cue ball (three-cushion's yellow on player 1's turn), as the
+    # game's shoot() decodes it.
+    cue = int(ruleset.cue_columns(state)[0])
+    j, dist, base = nearest_object_ball(state.positions[0], targets, cue)
     param, status = aim_parameter(mode, low, high, params[kp.RADIUS], angle, j, dist, base, 0.0)
     if mode == 0 and status == AIM_OUT_OF_RANGE:
         if not clip:

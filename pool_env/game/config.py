@@ -330,7 +330,7 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
     ruleset = ruleset.variant(rules)
     # The section as given (Setup's contract): the game checks it, naming values as written.
     setup = Setup(table, task.scene, source.rules, rewards, task.end_on_miss, players,
-                  ruleset.action_width, speeds)  # fmt: skip
+                  ruleset.action_width, speeds, task.observation)  # fmt: skip
     tail = ruleset.configure(setup)
     shots = task.max_shots or 0
     params = kernel_params(table, task, sigmas, shots, players, tail, ruleset.action_width)

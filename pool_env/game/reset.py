@@ -60,6 +60,7 @@ def reset(
         _lay_out(config, state, tables)
         state.on_table[tables] = True
     state.shots[tables] = 0
+    ruleset.settle_layout(Turn(config, state, tables))  # the layouts have landed
 
 
 def _lay_out(config: GameConfig, state: GameState, tables: NDArray[np.intp]) -> None:

@@ -22,7 +22,8 @@ only chooses which of them run and with which arrays. A game decides, in this or
 
 The rest serves players and the codec, read-only: :meth:`Ruleset.obs_layout`,
 :meth:`Ruleset.constraints`, :meth:`Ruleset.first_balls_after`,
-:meth:`Ruleset.aim_references`, :meth:`Ruleset.encode` and the game state as a dict
+:meth:`Ruleset.aim_references`, :meth:`Ruleset.cue_columns`, :meth:`Ruleset.encode` and
+the game state as a dict
 (:meth:`Ruleset.state_dict`, :meth:`Ruleset.state_row`, :meth:`Ruleset.shooters`).
 
 A game is a package of its own under :mod:`pool_env.game.games` (or anywhere: a user's
@@ -159,6 +160,14 @@ class Ruleset:
             raise ValueError(f"game={self.name!r} takes no options['rules']")
         turn.state.rack[turn.tables] = 0  # a game that keeps state starts from zeros
 
+    def settle_layout(self, turn: Turn) -> None:
+        """Apply the game's rules to the layouts just laid out on ``turn.tables``: none here.
+
+        Called by every reset after the layouts land (the scene's or ``options``'), once
+        :meth:`start` has checked them: a game may move balls its rules do not let stand
+        (three-cushion re-spots a frozen cue ball). It must not fail.
+        """
+
     # -- one step -------------------------------------------------------------------------
 
     def shoot(self, turn: Turn, actions: NDArray[np.float64]) -> Executed:
@@ -248,6 +257,14 @@ class Ruleset:
         A fresh array.
         """
         return state.on_table.copy()
+
+    def cue_columns(self, state: GameState) -> NDArray[np.int64]:
+        """``(B,)`` the column of the ball each table's striker strikes: 0 here.
+
+        A game where each player has a cue ball of his own (three-cushion: the yellow is
+        player 1's) answers the striker's; the codec aims from that ball. A fresh array.
+        """
+        return np.zeros(state.n_tables, dtype=np.int64)
 
     def encode(
         self, config: GameConfig, shot: Shot, state: GameState, out: NDArray[np.float64],

@@ -187,6 +187,8 @@ class Setup(NamedTuple):
         action_width: The game's action columns (the tip columns follow on a spin table).
         speeds: What a speed range's top may be on this table with this noise: a game
             checks its own ranges with it (``speeds.check(name, given, high)``).
+        observation: The task's ``observation`` (``"balls"`` or ``"shots"``): a game
+            whose shots are not ghost-ball shots at pockets refuses ``"shots"``.
     """
 
     table: Table
@@ -197,3 +199,4 @@ class Setup(NamedTuple):
     players: int
     action_width: int
     speeds: SpeedCeiling
+    observation: str = "balls"

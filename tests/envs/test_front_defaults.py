@@ -21,7 +21,15 @@ import pytest
 
 import pool_env.game.config as config_module
 from pool_env import PoolEnv, PoolVectorEnv, Table, default_config
-from pool_env.envs.registration import CURRENT_IDS, ENV_IDS, GAME_IDS, TASKS, roll_id, spin_id
+from pool_env.envs.registration import (
+    CURRENT_IDS,
+    ENV_IDS,
+    GAME_IDS,
+    SPIN_ONLY,
+    TASKS,
+    roll_id,
+    spin_id,
+)
 from pool_env.game.config import DEFAULT_SPEED_RANGE, GameConfig, TaskConfig, make_config
 from pool_env.game.kernels import params as kp
 from pool_env.game.sections import DEFAULT_MODEL, KEYS
@@ -170,8 +178,14 @@ def test_every_front_plays_the_table_of_the_v1_ids(front: str) -> None:
 def test_every_v1_id_plays_the_default_table_and_every_roll_id_the_roll_table() -> None:
     default = _default_table()
     assert default.model == DEFAULT_MODEL == "spin"
-    for task in TASKS:
-        assert _same(gym.make(spin_id(task)).unwrapped.config.table, default), task
+    for task, (kwargs, _) in TASKS.items():
+        # A task on a table of its own (three-cushion's carom) plays it at the default model.
+        own = kwargs.get("table")
+        table = default if own is None else Table(**own, model=DEFAULT_MODEL)
+        assert _same(gym.make(spin_id(task)).unwrapped.config.table, table), task
+        if task in SPIN_ONLY:
+            assert roll_id(task) not in gym.registry, task
+            continue
         roll = gym.make(roll_id(task)).unwrapped.config.table
         assert roll.model == "roll" and _same(roll, Table(model="roll")), task
 

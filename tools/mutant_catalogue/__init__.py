@@ -28,13 +28,13 @@ sticking lump there.
 
 from __future__ import annotations
 
-from tools.mutant_catalogue import actions, env, physics, pockets, rules, spin
+from tools.mutant_catalogue import actions, env, physics, pockets, rules, spin, three_cushion
 from tools.mutant_catalogue.base import INTERPRETABLE, Mutant
 
 __all__ = ["AREAS", "CATALOGUE", "INTERPRETABLE", "Mutant"]
 
 #: The area modules, each with its ``MUTANTS``; the runner reads them all.
-AREAS = (physics, pockets, rules, actions, env, spin)
+AREAS = (physics, pockets, rules, actions, env, spin, three_cushion)
 
 #: The mutants :mod:`tools.mutants` runs.
 CATALOGUE: tuple[Mutant, ...] = tuple(m for area in AREAS for m in area.MUTANTS)

@@ -99,5 +99,6 @@ INTERPRETABLE = frozenset(
         "tests/sim/test_spin_resolve.py",
         "tests/sim/test_spin_cushion.py",
         "tests/sim/test_spin_strike.py",
+        "tests/game/three_cushion/test_reference.py",
     }
 )

@@ -106,7 +106,7 @@ class ThreeCushion(Ruleset):
         )
 
     def configure(self, setup: Setup) -> NDArray[np.float64]:
-        """Refuse the roll level, a table with pockets, a scene not of three balls."""
+        """Refuse the roll level, a table with pockets, a scene not of three balls, "shots"."""
         if not setup.table.has_spin:
             raise ValueError(f"model='roll': {ROLL_REFUSAL}")  # a roll Table given
         if setup.table.n_pockets != 0:
@@ -119,6 +119,13 @@ class ThreeCushion(Ruleset):
                 "game='three_cushion' needs three balls (white, yellow, red), got a scene "
                 f"with {setup.scene.n_objects + 1}"
             )
+        if setup.observation == "shots":
+            raise ValueError(
+                "observation='shots' is no three-cushion observation: its features are "
+                "the ghost-ball shot of the reference ball into each pocket, and a carom "
+                "has no pocket and no ghost-ball shot (a point is a path off three "
+                "cushions to both object balls); use observation='balls'"
+            )
         if setup.end_on_miss:
             raise ValueError("end_on_miss is solitaire's: a three-cushion inning ends at a miss")
         self.parse_section(setup.rules)
@@ -129,23 +136,37 @@ class ThreeCushion(Ruleset):
 
         ``options["rules"]`` (``given``) is a dict as :meth:`state_dict` gives, or a row;
         without it a layout given at reset is white's first inning, not a break. Called
-        before the layout lands (the reset checks first): a cue ball frozen in a given
-        layout is played as it lies; after every shot the next one is re-spotted.
+        before the layout lands (the reset checks first); a frozen cue ball is then
+        re-spotted by :meth:`settle_layout`.
         """
         config, state, tables = turn
         if not np.all(on_table):
-            raise ValueError("three-cushion keeps its three balls on the table")
+            raise ValueError(
+                "three-cushion keeps its three balls on the table: on_table must be all "
+                f"True, got {on_table[~np.all(on_table, axis=1)][0].tolist()}"
+            )
         row = self.state_row(config, given)
         if given is None:
             row[sc.BREAKING] = rack_scene and config.scene.spec is break_scene
         state.rack[tables] = row
+
+    def settle_layout(self, turn: Turn) -> None:
+        """A striker's cue ball frozen in the layout laid out: re-spotted (UMB art. 27).
+
+        What a carom referee does when a player comes to the table with his ball touching
+        another, whether after a shot or in a layout given at reset
+        (``options["positions"]``, a scene): the balls go to the starting position, the
+        striker's ball on the head string. ``PoolEnv.positions`` shows where they went.
+        """
+        config, state, tables = turn
+        self._respot_frozen(config, state, tables)
 
     # -- one step -------------------------------------------------------------------------
 
     def shoot(self, turn: Turn, actions: NDArray[np.float64]) -> Executed:
         """The shared strike on each striker's own cue ball (yellow: columns 0 and 1 swapped)."""
         config, state, tables = turn
-        yellow = state.rack[tables, sc.SHOOTER] == 1
+        yellow = self.cue_columns(state)[tables] == 1
         local = np.arange(tables.shape[0])
         pos = state.positions[tables]
         pos[yellow] = pos[yellow][:, [1, 0, 2]]
@@ -253,6 +274,10 @@ class ThreeCushion(Ruleset):
         refer[state.rack[:, sc.BREAKING] != 0, :2] = False
         return refer
 
+    def cue_columns(self, state: GameState) -> NDArray[np.int64]:
+        """``(B,)`` each striker's cue ball: 0 the white (player 0), 1 the yellow (a copy)."""
+        return state.rack[:, sc.SHOOTER].copy()
+
     def constraints(self, config: GameConfig, observation: NDArray[Any]) -> ShotConstraints:
         """Any first ball (a carom may start on either object ball; the break: the red)."""
         obs = np.asarray(observation)
@@ -313,6 +338,11 @@ class ThreeCushion(Ruleset):
             shooter = merged["shooter"]
             if shooter not in (0, 1) or isinstance(shooter, bool):
                 raise ValueError(f"shooter must be 0 or 1, got {shooter!r}")
+            for key in ("score", "innings"):
+                if not isinstance(merged[key], list | tuple) or len(merged[key]) != 2:
+                    raise ValueError(
+                        f"{key} must be a pair (player 0's, player 1's), got {merged[key]!r}"
+                    )
             values = [shooter, *merged["score"], *merged["innings"], merged["run"],
                       merged["breaking"], merged["equalizing"], merged["winner"]]  # fmt: skip
             array = np.array(values)
@@ -322,7 +352,10 @@ class ThreeCushion(Ruleset):
             raise ValueError(f"a three-cushion state row is {sc.N_RACK} integers, got {given!r}")
         row = array.astype(np.int64)
         if np.any(row[: sc.WINNER] < 0) or row[sc.SHOOTER] > 1 or not -1 <= row[sc.WINNER] <= 2:
-            raise ValueError(f"a three-cushion state has counts >= 0, got {given!r}")
+            raise ValueError(
+                "a three-cushion state has shooter 0 or 1, counts >= 0 and winner -1, 0, 1 "
+                f"or 2 (a draw), got {given!r}"
+            )
         return row
 
     def shooters(self, state: GameState) -> NDArray[np.int64]:
