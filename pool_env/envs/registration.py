@@ -14,7 +14,13 @@ import sys
 from types import ModuleType
 from typing import Any
 
+from pool_env.sim.presets import PRESETS
+
 ENTRY_POINT = "pool_env.envs.env:PoolEnv"
+
+#: The snooker table (``Table.preset("snooker")``) as ``table=`` arguments, less its model:
+#: each id sets the model (the roll twin plays the same table on the roll level).
+_SNOOKER_TABLE = {k: v for k, v in PRESETS["snooker"].items() if k != "model"}
 
 #: ``gymnasium.make_vec(id, num_envs=n)`` builds this batched env (one compiled call per
 #: step for all tables); ``vectorization_mode="sync"`` / ``"async"`` still wrap PoolEnvs.
@@ -55,6 +61,24 @@ TASKS: dict[str, tuple[dict[str, Any], int]] = {
     "NineBallGame": ({"scene": "nine_ball", "game": "nine"}, 100),
     "TenBallGame": ({"scene": "ten_ball", "game": "ten"}, 110),
     "EightBallGame": ({"scene": "eight_ball", "game": "eight"}, 150),
+    # Snooker (pool_env.game.games.snooker) on the WPBSA table: one visit to the table
+    # (reds spread at random, the colours on their spots; the reward is the points of the
+    # break), then a frame whose both sides one agent plays. SnookerFrame comes last: the
+    # duel front plays game="snooker" with its arguments.
+    "SnookerBreak": (
+        {
+            "scene": "snooker_break",
+            "game": "snooker",
+            "table": _SNOOKER_TABLE,
+            "end_on_foul": True,
+            "reward_penalty": 0.0,
+        },
+        60,
+    ),
+    "SnookerFrame": (
+        {"scene": "snooker", "game": "snooker", "table": _SNOOKER_TABLE},
+        400,
+    ),
 }
 
 #: task -> its current version, where it is not 1. An id takes a new version when its
@@ -110,9 +134,15 @@ ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {**SPIN_IDS, **ROLL_IDS}
 #: The current version of every task's ids (spin and roll), the ones to use in new work.
 CURRENT_IDS: tuple[str, ...] = tuple(i for task in TASKS for i in (spin_id(task), roll_id(task)))
 
+#: The tasks that had ``-v0`` ids (the roll table's, before the spin table came); a task
+#: added since has none.
+V0_TASKS: tuple[str, ...] = (
+    "Pool", "OneBall", "NineBall", "EightBall", "NineBallGame", "TenBallGame", "EightBallGame",
+)  # fmt: skip
+
 #: The old names of the roll ids (``pool_env/<task>-v0`` -> ``pool_env/<task>Roll-v1``),
 #: registered with the same arguments; Gymnasium reports them out of date.
-LEGACY_IDS: dict[str, str] = {f"pool_env/{task}-v0": roll_id(task, 1) for task in TASKS}
+LEGACY_IDS: dict[str, str] = {f"pool_env/{task}-v0": roll_id(task, 1) for task in V0_TASKS}
 
 
 def register_envs() -> None:

@@ -33,6 +33,7 @@ BUILTIN: dict[str, str] = {
     "nine": "pool_env.game.games.wpa",
     "eight": "pool_env.game.games.wpa",
     "ten": "pool_env.game.games.wpa",
+    "snooker": "pool_env.game.games.snooker",
 }
 
 _games: dict[str, Ruleset] = {}

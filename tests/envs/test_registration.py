@@ -54,8 +54,8 @@ def test_registration_is_idempotent() -> None:
 def test_each_task_has_a_spin_id_and_a_roll_id_and_nothing_else() -> None:
     current = {spin_id(t) for t in TASKS} | {roll_id(t) for t in TASKS}
     earlier = {make(t, v) for t, v in EARLIER_VERSIONS for make in (spin_id, roll_id)}
-    assert set(CURRENT_IDS) == current and len(current) == 2 * len(TASKS) == 14
-    assert set(IDS) == current | earlier and len(IDS) == 16  # 9-ball's -v1 and -v2
+    assert set(CURRENT_IDS) == current and len(current) == 2 * len(TASKS) == 18
+    assert set(IDS) == current | earlier and len(IDS) == 20  # 9-ball's -v1 and -v2
     for task in TASKS:
         assert gym.spec(spin_id(task)).kwargs["id_defaults"]["model"] == "spin"
         assert gym.spec(roll_id(task)).kwargs["id_defaults"]["model"] == "roll"
