@@ -71,7 +71,7 @@ TASKS: dict[str, tuple[dict[str, Any], int]] = {
             "game": "snooker",
             "table": _SNOOKER_TABLE,
             "end_on_foul": True,
-            "reward_penalty": 0.0,
+            "reward_foul": 0.0,
         },
         60,
     ),

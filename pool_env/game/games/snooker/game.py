@@ -116,8 +116,8 @@ class Snooker(Ruleset):
             sp.BLUE_X: mark.spots[3, 0],
             sp.PINK_X: mark.spots[4, 0],
             sp.BLACK_X: mark.spots[5, 0],
-            sp.W_POINTS: setup.rewards["points"],
-            sp.W_PENALTY: setup.rewards["penalty"],
+            sp.W_POINTS: setup.rewards["pot"],
+            sp.W_PENALTY: setup.rewards["foul"],
             sp.W_WIN: setup.rewards["win"],
         }
         for index, value in values.items():

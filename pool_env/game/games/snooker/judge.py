@@ -14,8 +14,8 @@ The action is ``(aim, speed, cue x, cue y, nomination)``, then a spin table's ti
   others yellow .. black (balls 16 .. 21). Read after a red (the colour on) and for a
   free ball (a colour other than the ball on; nothing plays the ball on).
 
-Reward terms (:data:`pool_env.game.games.snooker.section.REWARD_TERMS`): ``points`` per
-point the striker scores, ``penalty`` per penalty point the striker's foul gives the
+Reward terms (:data:`pool_env.game.games.snooker.section.REWARD_TERMS`): ``pot`` per
+point the striker scores, ``foul`` per penalty point the striker's foul gives the
 opponent, ``win`` for winning the frame (minus it for losing it), each times its scale.
 """
 

@@ -6,11 +6,12 @@ from dataclasses import dataclass
 
 from pool_env.game.ruleset import RulesSection
 
-#: The reward terms and their default scales, in the judge's order: per point the striker
-#: scores, per penalty point the striker's foul gives the opponent, and the frame won
-#: (lost: minus the scale). ``pool_env/SnookerBreak-v1`` sets ``penalty`` to 0: its reward
-#: is the points of the break.
-REWARD_TERMS: dict[str, float] = {"points": 1.0, "penalty": -1.0, "win": 0.0}
+#: The reward terms and their default scales, in the judge's order (the WPA games' names,
+#: snooker's meanings): ``pot`` per point the striker scores, ``foul`` per penalty point
+#: the striker's foul gives the opponent, ``win`` for the frame won (lost: minus the
+#: scale; 0 by default: the points already say who leads). ``pool_env/SnookerBreak-v1``
+#: sets ``foul`` to 0: its reward is the points of the break.
+REWARD_TERMS: dict[str, float] = {"pot": 1.0, "foul": -1.0, "win": 0.0}
 
 
 @dataclass(frozen=True)
