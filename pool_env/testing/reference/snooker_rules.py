@@ -321,6 +321,7 @@ def referee(table: TableSpec, frame: Frame, before: Balls, after: Balls, first: 
             new = replace(new, winner=0 if scores[0] > scores[1] else 1)
         else:  # S3 R4(b): the black re-spotted, from in hand, the next score or foul ends it
             tie = True
+            balls.pop(BLACK, None)  # picked up (if still on the table) and spotted
             put_back(table, balls, [BLACK])
             cue_in_hand = True
             new = replace(new, striker=1 - frame.striker, current_break=0, on="in_order",

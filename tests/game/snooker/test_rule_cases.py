@@ -27,7 +27,9 @@ TOP_LEFT = np.array([L, W])  # the top cushion's corner pocket on the +y side
 
 @pytest.fixture(scope="module")
 def env() -> PoolEnv:
-    return PoolEnv(game="snooker", scene="snooker", table=TABLE, aim="absolute")
+    # slow strokes too (a foul that leaves the cue ball where it was)
+    return PoolEnv(game="snooker", scene="snooker", table=TABLE, aim="absolute",
+                   speed_range=(0.05, 4.0))  # fmt: skip
 
 
 def layout(reds: dict[int, tuple[float, float]], **moved: tuple[float, float]) -> tuple:
