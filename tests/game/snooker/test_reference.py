@@ -36,9 +36,11 @@ def test_seeded_sweep_matches_reference() -> None:
 
 
 def test_a_tie_respots_the_black_on_its_own_spot_though_it_lay_on_it() -> None:
-    """The 100,000-outcome sweep's find: a foul on the last black levels the scores while
-    the black lies over its own spot; picked up to be re-spotted, it does not cover that
-    spot itself (the reference had put it on the pink's).
+    """A level frame re-spots the black on its own spot even when it lay over it.
+
+    The 100,000-outcome sweep's find: a foul on the last black levels the scores while the
+    black lies over its own spot; picked up to be re-spotted, it does not cover that spot
+    itself (the reference had put it on the pink's).
     """
     row = np.array([1, 3, 10, 2, 0, 0, 33, 0, -1], dtype=np.int64)  # player 1 on the black
     on = np.zeros(22, dtype=bool)
