@@ -17,7 +17,7 @@ import pytest
 from numpy.typing import NDArray
 
 from pool_env import PoolEnv
-from pool_env.envs.registration import CURRENT_IDS
+from pool_env.envs.registration import CURRENT_IDS, ENV_IDS
 from pool_env.game import registry
 from pool_env.game.config import GAMES, make_config
 from pool_env.game.games.solitaire import Solitaire
@@ -44,8 +44,8 @@ SPACES = [
 
 
 def test_the_registry_names_the_built_in_games_and_the_wpa_codes() -> None:
-    assert GAMES == tuple(registry.BUILTIN) == ("solitaire", "nine", "eight", "ten")
-    assert game_names()[:4] == GAMES  # then any game registered since (tests/user_game)
+    assert GAMES == tuple(registry.BUILTIN) == ("solitaire", "nine", "eight", "ten", "snooker")
+    assert game_names()[:5] == GAMES  # then any game registered since (tests/user_game)
     codes = {"nine": wpa.NINE, "eight": wpa.EIGHT, "ten": wpa.TEN}
     for name in GAMES:
         ruleset = ruleset_for(name)
@@ -166,7 +166,7 @@ def test_a_new_ruleset_is_a_subclass_and_a_name(monkeypatch: pytest.MonkeyPatch)
 @pytest.mark.parametrize("env_id", [i for i in CURRENT_IDS if "Roll-" not in i])
 def test_every_steps_reward_terms_sum_to_its_reward(env_id: str) -> None:
     """Each term reported (``info["reward_<term>"]``) and their sum is the reward, exactly."""
-    shaping = {"reward_shaping": 0.5} if "Game" not in env_id else {}
+    shaping = {"reward_shaping": 0.5} if "game" not in ENV_IDS[env_id][0] else {}  # solitaire
     env = gym.make(env_id, noise=(0.01, 0.05), **shaping)
     terms = [f"reward_{t}" for t in env.unwrapped.config.ruleset.reward_terms]
     env.reset(seed=7)
