@@ -45,7 +45,7 @@ SPACES = [
 
 def test_the_registry_names_the_built_in_games_and_the_wpa_codes() -> None:
     assert tuple(registry.BUILTIN) == GAMES
-    assert GAMES == ("solitaire", "nine", "eight", "ten", "three_cushion")
+    assert GAMES == ("solitaire", "nine", "eight", "ten", "three_cushion", "snooker")
     # Then any game registered since (tests/user_game).
     assert game_names()[: len(GAMES)] == GAMES
     codes = {"nine": wpa.NINE, "eight": wpa.EIGHT, "ten": wpa.TEN}
@@ -172,7 +172,9 @@ def test_every_steps_reward_terms_sum_to_its_reward(env_id: str) -> None:
     # A scale that random play makes non-zero: solitaire's shaping; three-cushion's point
     # is rare at random, its foul (the break not on the red) is not.
     scales = {None: {"reward_shaping": 0.5}, "three_cushion": {"reward_foul": -1.0}}
-    env = gym.make(env_id, noise=(0.01, 0.05), **scales.get(game, {}))
+    # A term the id sets to 0 (SnookerBreak's foul) is given a scale, so that it shows.
+    zeroed = {k: -1.0 for k, v in ENV_IDS[env_id][0].items() if k.startswith("reward_") and v == 0}
+    env = gym.make(env_id, noise=(0.01, 0.05), **{**scales.get(game, {}), **zeroed})
     terms = [f"reward_{t}" for t in env.unwrapped.config.ruleset.reward_terms]
     env.reset(seed=7)
     seen = set()
