@@ -258,6 +258,7 @@ class SnookerGhostBallAgent(BaselineAgent):
             self.last_plan = {"kind": "fallback", "colour": colour}
         else:
             self.last_plan = {"kind": "ghost", "shot": shot, "colour": colour}
+        self.last_plan["cue"] = positions[0].copy()  # placed, with the cue ball in hand
         return snooker_action(self.config, action, place, colour)
 
     def balls_on(
