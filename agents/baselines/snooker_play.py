@@ -212,6 +212,8 @@ class SnookerGhostBallAgent(BaselineAgent):
         #: The aim noise (rad) pot chances are taken at: the env's, at least MIN_SIGMA.
         self.sigma = max(float(noise[0]) if noise else 0.0, MIN_SIGMA)
         self._targets: list[int] = []
+        #: The points of the D tried at the last placement, with their worth, best first.
+        self.last_places: list[tuple[float, NDArray[np.float64]]] = []
         self.last_plan: dict[str, Any] = {}
 
     # -- what the ghost-ball planner may aim at ------------------------------------------
@@ -326,6 +328,29 @@ class SnookerGhostBallAgent(BaselineAgent):
             return 0.0
         return ball_value(shot.ball) * pot_chance(shot.tolerance, self.sigma)
 
+    def placements(
+        self,
+        rules: ShotConstraints,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        reference: NDArray[np.bool_],
+        targets: list[int],
+    ) -> list[tuple[float, NDArray[np.float64]]]:
+        """The cue ball in hand's points of the D with their worth, the best first.
+
+        Each candidate (:meth:`TheD.candidates`) with the worth of its best pot
+        (:meth:`worth`), then the D's middle (worth 0: the point when none has a pot).
+        """
+        d = TheD.of(rules)
+        table = self.config.table
+        trial = positions.copy()
+        out = []
+        for point in d.candidates(positions, on, targets, table.pockets, table.ball_radius):
+            trial[0] = point
+            out.append((self.worth(trial, on, reference, targets), point))
+        out.sort(key=lambda item: -item[0])
+        return out + [(0.0, np.array([d.baulk_x - 0.5 * d.radius, d.centre_y]))]
+
     def place(
         self,
         rules: ShotConstraints,
@@ -336,22 +361,17 @@ class SnookerGhostBallAgent(BaselineAgent):
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
         """The cue ball in hand's point of the D: ``(positions with it there, action[2:4])``.
 
-        The candidate (:meth:`TheD.candidates`) whose best pot is worth the most
-        (:meth:`worth`); the D's middle when none has a pot.
+        The best of :meth:`placements`.
         """
-        d = TheD.of(rules)
-        table = self.config.table
-        trial = positions.copy()
-        best = np.array([d.baulk_x - 0.5 * d.radius, d.centre_y])
-        best_worth = 0.0
-        for point in d.candidates(positions, on, targets, table.pockets, table.ball_radius):
-            trial[0] = point
-            value = self.worth(trial, on, reference, targets)
-            if value > best_worth:
-                best, best_worth = point, value
+        self.last_places = self.placements(rules, positions, on, reference, targets)
+        best = self.last_places[0][1]
         placed = positions.copy()
         placed[0] = best
-        return placed, np.array(encode_placement(self.config, best, clip=True))
+        return placed, self.place_components(best)
+
+    def place_components(self, point: NDArray[np.float64]) -> NDArray[np.float64]:
+        """``action[2:4]`` that put the cue ball in hand on ``point`` (the env's codec)."""
+        return np.array(encode_placement(self.config, point, clip=True))
 
     def _nearest(self, positions: NDArray[np.float64]) -> int | None:
         """The nearest ball the fallback's full hit aims at, nominated if it is a colour."""

@@ -2,8 +2,9 @@
 
 :class:`SnookerSearchAgent` plays every shot of a visit this way, within ``budget`` seconds:
 
-1. **Placement** (cue ball in hand): the ghost-ball player's point of the D
-   (:meth:`agents.baselines.snooker_play.SnookerGhostBallAgent.place`).
+1. **Placement** (cue ball in hand): the ghost-ball player's :attr:`places` best points
+   of the D (:meth:`agents.baselines.snooker_play.SnookerGhostBallAgent.placements`),
+   each with its own candidates below.
 2. **Candidates**: the clear ghost-ball pots (:func:`pool_env.game.geometry.ghost_shots`)
    on the balls on: the reds, or after a red every colour (each nominated as itself), or
    the colour on in order; the two best pockets of each ball, then the :attr:`shots` best
@@ -13,7 +14,8 @@
 3. **Rollouts**: all candidates are played side by side through the game's own step
    (:func:`pool_env.game.candidate_actions.rollout_actions`: the rules, the placement, the
    execution noise), in rounds: each round draws one noise sample, the same for every
-   candidate (common random numbers). Rounds go on while the budget lasts, up to
+   candidate (common random numbers). After :data:`PRUNE_AFTER` rounds the
+   :attr:`finalists` best go on alone; rounds go on while the budget lasts, up to
    :attr:`samples` (one at no noise: the step is then exact).
 4. **Value**: each outcome is worth the points it scored plus, when the visit goes on, the
    leave: the best next pot's ``chance x (value + FUTURE)``, the chance of its most
@@ -53,6 +55,8 @@ VERTICAL_TIPS = (0.0, 0.6, -0.6)
 #: What keeping the table is worth beyond the next ball's value (points): a leave's pot
 #: chance times this is its position's worth. About the break a kept table goes on to.
 FUTURE = 5.0
+#: Noise rounds played by every candidate before all but the finalists drop out.
+PRUNE_AFTER = 4
 #: Values of the observation's points features are scaled by the maximum break.
 MAX_BREAK = 147.0
 
@@ -65,7 +69,10 @@ class SnookerSearchAgent(BaselineAgent):
         budget: Wall-clock seconds per shot (rounds of rollouts stop once it is spent; the
             first round always runs).
         samples: Most noise samples (rounds) per shot.
-        shots: Ghost-ball pots expanded into candidates.
+        shots: Ghost-ball pots expanded into candidates (per point of the D tried).
+        places: Points of the D tried with the cue ball in hand (the ghost-ball player's
+            best by its estimate).
+        finalists: Candidates kept after :data:`PRUNE_AFTER` rounds.
         seed: Seed of the rollouts' noise.
 
     Raises:
@@ -73,16 +80,25 @@ class SnookerSearchAgent(BaselineAgent):
     """
 
     def __init__(
-        self, env: Any, budget: float = 1.0, samples: int = 16, shots: int = 10, seed: int = 0
+        self,
+        env: Any,
+        budget: float = 1.0,
+        samples: int = 24,
+        shots: int = 10,
+        places: int = 6,
+        finalists: int = 24,
+        seed: int = 0,
     ) -> None:
         self.player = SnookerGhostBallAgent(env)
         if not (math.isfinite(budget) and budget > 0.0):
             raise ValueError(f"budget must be a finite number of seconds > 0, got {budget!r}")
-        for name, value in (("samples", samples), ("shots", shots)):
+        counts = {"samples": samples, "shots": shots, "places": places, "finalists": finalists}
+        for name, value in counts.items():
             if isinstance(value, bool) or not isinstance(value, int) or value < 1:
                 raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
         self.config = self.player.config
         self.budget, self.samples, self.shots = float(budget), samples, shots
+        self.places, self.finalists = places, finalists
         self.mouths = geo.pocket_mouths(self.config.table)
         self.rng = np.random.default_rng(seed)
         self.last_plan: dict[str, Any] = {}
@@ -126,29 +142,35 @@ class SnookerSearchAgent(BaselineAgent):
         rules = shot_constraints(config, obs)
         phase = phase_of(config, obs)
         targets, reference = player.balls_on(rules, phase, on)
-        placed = positions.copy()
-        if rules.ball_in_hand:
-            placed[0] = player.last_plan["cue"]
-        actions = np.vstack(
-            [self.candidates(placed, on, reference, targets, phase, ghost_action[2:4]),
-             ghost_action[None]]
-        )  # fmt: skip
+        spots = [p for _, p in player.last_places[: self.places]] if rules.ball_in_hand else []
+        blocks = [ghost_action[None]]
+        for spot in spots or [None]:
+            placed, comps = positions.copy(), np.zeros(2)
+            if spot is not None:
+                placed[0], comps = spot, player.place_components(spot)
+            blocks.append(self.candidates(placed, on, reference, targets, phase, comps))
+        actions = np.vstack(blocks)
         state = config.new_state(1)
         state.positions[0], state.on_table[0] = positions, on
         state.rack[0] = self.rack_row(obs)
         rounds = 1 if config.noise is None else self.samples
-        values = np.zeros((rounds, actions.shape[0]))
-        done = 0
-        while done < rounds and (done == 0 or time.perf_counter() - start < self.budget):
+        alive = np.arange(actions.shape[0])
+        sums, counts = np.zeros(actions.shape[0]), np.zeros(actions.shape[0])
+        for done in range(rounds):
+            if done and time.perf_counter() - start >= self.budget:
+                break
+            if done == PRUNE_AFTER and alive.size > self.finalists:
+                means = sums[alive] / counts[alive]
+                alive = alive[np.argsort(-means, kind="stable")[: self.finalists]]
             state.use_generator(0, np.random.default_rng(self.rng.integers(2**63)))
-            result, after = rollout_actions(config, state, 0, actions)
-            values[done] = result.rewards + np.where(result.terminated, 0.0, self.leave(after))
-            done += 1
-        mean = values[:done].mean(axis=0)
-        best = int(np.argmax(mean))
+            result, after = rollout_actions(config, state, 0, actions[alive])
+            sums[alive] += result.rewards + np.where(result.terminated, 0.0, self.leave(after))
+            counts[alive] += 1
+        means = sums[alive] / counts[alive]
+        best = int(alive[np.argmax(means)])
         self.last_plan = {
-            "kind": "search", "candidates": actions.shape[0], "rounds": done,
-            "value": float(mean[best]), "ghost": best == actions.shape[0] - 1,
+            "kind": "search", "candidates": actions.shape[0], "rounds": int(counts[best]),
+            "value": float(sums[best] / counts[best]), "ghost": best == 0,
         }  # fmt: skip
         return actions[best]
 
