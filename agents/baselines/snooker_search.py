@@ -10,7 +10,10 @@
    the colour on in order; the two best pockets of each ball, then the :attr:`shots` best
    by ``value x pot chance``; each at :data:`ARRIVALS` object-ball speeds
    (:func:`pool_env.game.geometry.cue_speeds`) and, on a spin env, :data:`VERTICAL_TIPS`
-   (stun, follow, draw); and the ghost-ball player's own shot.
+   (stun, follow, draw), each aimed at the ghost-ball direction and :data:`AIM_OFFSETS`
+   of the shot's tolerance either side; and the ghost-ball player's own shot. (The ids'
+   cut aim can only strike the nearest ball on: the other balls' pots are not
+   candidates there, and the leave counts that ball's pots only.)
 3. **Rollouts**: all candidates are played side by side through the game's own step
    (:func:`pool_env.game.candidate_actions.rollout_actions`: the rules, the placement, the
    execution noise), in rounds: each round draws one noise sample, the same for every
@@ -26,6 +29,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from typing import Any
@@ -44,7 +48,7 @@ from agents.baselines.snooker_play import (
 from pool_env import obs_layout, shot_constraints
 from pool_env.game import geometry as geo
 from pool_env.game.candidate_actions import rollout_actions
-from pool_env.game.codec import encode_shots
+from pool_env.game.codec import encode_shots, reference_balls
 from pool_env.game.state import GameState
 
 #: Object-ball speeds (m/s) at the pocket the candidates are struck for: a dying pot to a
@@ -52,6 +56,9 @@ from pool_env.game.state import GameState
 ARRIVALS = (0.3, 0.7, 1.3, 2.2)
 #: Vertical tips (fractions of the tip limit) tried on a spin env: stun, follow, draw.
 VERTICAL_TIPS = (0.0, 0.6, -0.6)
+#: Aim offsets off the ghost-ball direction tried, in the shot's tolerances: the throw and
+#: the cut-induced spin move the object ball's path by a fraction of the tolerance.
+AIM_OFFSETS = (-0.5, 0.0, 0.5)
 #: What keeping the table is worth beyond the next ball's value (points): a leave's pot
 #: chance times this is its position's worth. About the break a kept table goes on to.
 FUTURE = 5.0
@@ -209,8 +216,8 @@ class SnookerSearchAgent(BaselineAgent):
                 speed = float(geo.cue_speeds(table, row, arrival))
                 if not low <= speed <= high:
                     continue
-                for tip in tips:
-                    angles.append(row[geo.ANGLE])
+                for tip, offset in itertools.product(tips, AIM_OFFSETS):
+                    angles.append(row[geo.ANGLE] + offset * row[geo.TOLERANCE])
                     speeds.append(speed)
                     tip_rows.append(tip)
                     colours.append(ball if phase == "colour" and ball >= COLOURS[0] else None)
@@ -232,6 +239,10 @@ class SnookerSearchAgent(BaselineAgent):
         """``(K,)`` each table's best next pot: ``chance x (value + FUTURE)``, 0 for none."""
         config = self.config
         legal = config.ruleset.aim_references(after)
+        if config.aim == "cut":  # the cut aim hits the nearest ball on, and only it
+            nearest = reference_balls(after.positions, legal)
+            legal = np.zeros_like(legal)
+            legal[np.flatnonzero(nearest >= 0), nearest[nearest >= 0]] = True
         n = legal.shape[1]
         targets = np.full((legal.shape[0], n - 1), -1, dtype=np.int64)
         for b in range(legal.shape[0]):

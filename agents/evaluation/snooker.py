@@ -16,8 +16,9 @@ break, how the visits end (a miss, each foul, cleared, the shot limit), legal po
 visit, and seconds a shot with the machine's load average (a time is only comparable
 when the load is below the cores' count). Each noise is the env's ``noise`` keyword
 (:func:`agents.evaluation.noise_flag.parse_noise`: ``none``, ``fastfiz``,
-``fastfiz:5``...). Under the tables: the first player's mean break over each other's on
-the same visits, with its interval.
+``fastfiz:5``...). ``--aim`` sets the env's aim mode (the ids' cut aim strikes only
+the nearest ball on; ``absolute`` any direction). Under the tables: the first player's
+mean break over each other's on the same visits, with its interval.
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from agents.baselines.snooker_search import SnookerSearchAgent
 from agents.evaluation.metrics import Estimate, mean_ci, ratio_ci
 from agents.evaluation.noise_flag import noise_label, parse_noise
 from agents.policy import Policy
+from pool_env import AIM_MODES
 
 #: The one-visit ids this command plays.
 ENVS = ("pool_env/SnookerBreak-v1", "pool_env/SnookerBreakRoll-v1")
@@ -88,10 +90,19 @@ def visit_end(info: dict[str, Any], truncated: bool, on_table: np.ndarray) -> st
 
 
 def play_visits(
-    name: str, env_id: str, noise: Any, visits: int, seed: int, budget: float
+    name: str,
+    env_id: str,
+    noise: Any,
+    visits: int,
+    seed: int,
+    budget: float,
+    aim: str | None = None,
 ) -> Visits:
-    """Play ``visits`` visits from seeds ``seed``, ``seed + 1``, ... with player ``name``."""
-    env = gym.make(env_id, noise=noise)
+    """Play ``visits`` visits from seeds ``seed``, ``seed + 1``, ... with player ``name``.
+
+    ``aim``: the env's aim mode, ``None`` the id's (cut).
+    """
+    env = gym.make(env_id, noise=noise, **({} if aim is None else {"aim": aim}))
     player = PLAYERS[name](env, seed, budget)
     out = Visits(load=(os.getloadavg()[0], 0.0))
     for k in range(visits):
@@ -168,6 +179,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument(
         "--noise", nargs="+", default=["none", "fastfiz", "fastfiz:5"], help="noises played"
     )
+    parser.add_argument(
+        "--aim", default=None, choices=AIM_MODES, help="the env's aim mode (default: the id's)"
+    )
     parser.add_argument("--budget", type=float, default=1.0, help="search: seconds a shot")
     parser.add_argument("--out", default=None, help="write the tables (markdown) here")
     args = parser.parse_args(argv)
@@ -195,12 +209,13 @@ def main(argv: list[str] | None = None) -> int:
         f"`{command}`",
         "",
         f"{args.env}, {args.visits} visits from seed {args.seed} (visit k: seed + k), "
-        f"the same for every player; search budget {args.budget:g} s a shot; "
+        f"the same for every player; aim {args.aim or 'cut (the id default)'}; "
+        f"search budget {args.budget:g} s a shot; "
         f"{os.cpu_count()} CPUs.",
     ]
     for text, noise in noises:
         results = {
-            name: play_visits(name, args.env, noise, args.visits, args.seed, args.budget)
+            name: play_visits(name, args.env, noise, args.visits, args.seed, args.budget, args.aim)
             for name in args.players
         }
         part = ["", f"## Noise {text}: {noise_label(noise)}", ""]
