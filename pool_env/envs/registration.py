@@ -21,6 +21,9 @@ ENTRY_POINT = "pool_env.envs.env:PoolEnv"
 #: ``Table.preset("carom")``'s arguments, the model left to the id (a spin-only task: a
 #: roll table of them is refused by the game, with its reason, not by the table).
 _CAROM: dict[str, Any] = {k: v for k, v in PRESETS["carom"].items() if k != "model"}
+#: The snooker table (``Table.preset("snooker")``) as ``table=`` arguments, less its model:
+#: each id sets the model (the roll twin plays the same table on the roll level).
+_SNOOKER_TABLE = {k: v for k, v in PRESETS["snooker"].items() if k != "model"}
 
 #: ``gymnasium.make_vec(id, num_envs=n)`` builds this batched env (one compiled call per
 #: step for all tables); ``vectorization_mode="sync"`` / ``"async"`` still wrap PoolEnvs.
@@ -65,6 +68,24 @@ TASKS: dict[str, tuple[dict[str, Any], int]] = {
     # player, an episode is one inning (it ends at the first miss); 100 shots is a run
     # twice the world record's. Spin level only (SPIN_ONLY).
     "ThreeCushion": ({"scene": "three_cushion", "game": "three_cushion", "table": _CAROM}, 100),
+    # Snooker (pool_env.game.games.snooker) on the WPBSA table: one visit to the table
+    # (reds spread at random, the colours on their spots; the reward is the points of the
+    # break), then a frame whose both sides one agent plays. SnookerFrame comes last: the
+    # duel front plays game="snooker" with its arguments.
+    "SnookerBreak": (
+        {
+            "scene": "snooker_break",
+            "game": "snooker",
+            "table": _SNOOKER_TABLE,
+            "end_on_foul": True,
+            "reward_foul": 0.0,
+        },
+        60,
+    ),
+    "SnookerFrame": (
+        {"scene": "snooker", "game": "snooker", "table": _SNOOKER_TABLE},
+        400,
+    ),
 }
 
 #: Tasks played on the spin table only: no roll twin (nor a ``-v0`` alias) is registered,
@@ -128,11 +149,15 @@ CURRENT_IDS: tuple[str, ...] = tuple(
     i for task in TASKS for i in (spin_id(task), roll_id(task)) if i in ENV_IDS
 )
 
+#: The tasks that had ``-v0`` ids (the roll table's, before the spin table came); a task
+#: added since has none.
+V0_TASKS: tuple[str, ...] = (
+    "Pool", "OneBall", "NineBall", "EightBall", "NineBallGame", "TenBallGame", "EightBallGame",
+)  # fmt: skip
+
 #: The old names of the roll ids (``pool_env/<task>-v0`` -> ``pool_env/<task>Roll-v1``),
 #: registered with the same arguments; Gymnasium reports them out of date.
-LEGACY_IDS: dict[str, str] = {
-    f"pool_env/{task}-v0": roll_id(task, 1) for task in TASKS if task not in SPIN_ONLY
-}
+LEGACY_IDS: dict[str, str] = {f"pool_env/{task}-v0": roll_id(task, 1) for task in V0_TASKS}
 
 
 def register_envs() -> None:

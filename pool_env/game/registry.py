@@ -34,6 +34,7 @@ BUILTIN: dict[str, str] = {
     "eight": "pool_env.game.games.wpa",
     "ten": "pool_env.game.games.wpa",
     "three_cushion": "pool_env.game.games.three_cushion",
+    "snooker": "pool_env.game.games.snooker",
 }
 
 _games: dict[str, Ruleset] = {}

@@ -58,8 +58,8 @@ def test_each_task_has_a_spin_id_and_a_roll_id_and_nothing_else() -> None:
     twins = [t for t in TASKS if t not in SPIN_ONLY]
     current = {spin_id(t) for t in TASKS} | {roll_id(t) for t in twins}
     earlier = {make(t, v) for t, v in EARLIER_VERSIONS for make in (spin_id, roll_id)}
-    assert set(CURRENT_IDS) == current and len(current) == 2 * len(twins) + 1 == 15
-    assert set(IDS) == current | earlier and len(IDS) == 17  # 9-ball's -v1 and -v2
+    assert set(CURRENT_IDS) == current and len(current) == 2 * len(twins) + 1 == 19
+    assert set(IDS) == current | earlier and len(IDS) == 21  # 9-ball's -v1 and -v2
     assert not any(roll_id(t) in gym.registry for t in SPIN_ONLY)
     for task in TASKS:
         assert gym.spec(spin_id(task)).kwargs["id_defaults"]["model"] == "spin"

@@ -112,7 +112,7 @@ def test_specification_table_matches_the_config_sections() -> None:
 
 
 #: The games a row of the specification's table names in its section's parentheses.
-ROW_GAMES = {"9": "nine", "10": "ten", "8": "eight", "solitaire": "solitaire"}
+ROW_GAMES = {"9": "nine", "10": "ten", "8": "eight", "solitaire": "solitaire", "snooker": "snooker"}
 
 
 def _documented_games(section: str) -> set[str]:
@@ -120,7 +120,11 @@ def _documented_games(section: str) -> set[str]:
     inside = section.partition("(")[2].rstrip(")")
     if inside == "all games":
         return set(BUILTIN)
-    return {ROW_GAMES[name] for name in inside.removesuffix("-ball").split("/")}
+    return {
+        ROW_GAMES[name]
+        for part in inside.split(", ")  # "9/10/8-ball, snooker"
+        for name in part.removesuffix("-ball").split("/")
+    }
 
 
 def test_specification_names_every_game_and_each_keys_games() -> None:
