@@ -16,6 +16,12 @@ with random tips and elevations, and random initial angular velocities
 (:mod:`tools.fuzz_spin`); every invariant then includes the spin (energy with the
 rotational part, and M, the motion states and transitions).
 
+``--table snooker`` (or ``carom``) plays every shot on that preset's table
+(``Table.preset``) instead of a random one: half the shots on the preset as it is, half
+with random restitutions, rolling resistance and (spin) spin parameters over its
+geometry. The snooker table's big round jaws are then hit one shot in four. ``carom`` is
+a spin table only (``--model spin``).
+
 Every invariant is checked on every shot, and a shot the simulator refuses (a ``ValueError``
 from a table and a draw it accepted) is a violation (R): every draw is meant to be a real
 shot. The termination target is no event-cap hit on a
@@ -57,6 +63,38 @@ MASS_RATIO = 1e6
 def is_damped(table: Table) -> bool:
     """Whether every motion on ``table`` loses energy: the target's tables."""
     return table.mu_roll >= 1e-3 and table.e_ball < 1.0 and table.e_cushion < 1.0
+
+
+def preset_table(
+    rng: np.random.Generator, preset: str, spin: dict[str, object]
+) -> tuple[Table, float]:
+    """The ``preset``'s table, as it is or with random damping and ``spin`` parameters.
+
+    ``spin`` is :func:`fuzz_spin.random_spin_parameters`'s draw on the spin level, else
+    empty. Half the tables are the preset as it is (on ``spin``'s level); the other half
+    draw restitutions and rolling resistance as :func:`random_table` does, over the
+    preset's geometry.
+    """
+    level = {"model": "spin"} if spin else {"model": "roll"}
+    if rng.random() < 0.5:
+        return Table.preset(preset, **level), 1.0
+    radius = float(Table.preset(preset, **level).ball_radius)
+    e_cushion = float(rng.choice([1.0, 0.85, 0.65, rng.uniform(0, 1)]))
+    e_jaw = float(rng.choice([e_cushion, rng.uniform(0, 1), 0.0]))
+    kwargs: dict[str, object] = dict(level)
+    if spin:
+        kwargs = fuzz_spin.spin_table_kwargs(spin, radius)
+        e_cushion = fuzz_spin.model_restitution(spin, e_cushion)
+        e_jaw = fuzz_spin.model_restitution(spin, e_jaw)
+    table = Table.preset(
+        preset,
+        mu_roll=0.01 if rng.random() < 0.5 else float(10 ** rng.uniform(-3, -1)),
+        e_ball=float(rng.choice([1.0, 0.95, rng.uniform(0, 1), 0.0])),
+        e_cushion=e_cushion,
+        e_jaw=e_jaw,
+        **kwargs,
+    )
+    return table, 1.0
 
 
 def random_table(rng: np.random.Generator, **spin: object) -> tuple[Table, float]:
@@ -112,10 +150,16 @@ def _is_valid(table: Table, positions: np.ndarray) -> bool:
 
 
 def random_case(
-    rng: np.random.Generator, **spin: object
+    rng: np.random.Generator, preset: str | None = None, **spin: object
 ) -> tuple[Table, np.ndarray, np.ndarray, np.ndarray]:
-    """One random table, layout, initial velocities and masses (``spin``: as random_table)."""
-    table, scale = random_table(rng, **spin)
+    """One random table, layout, initial velocities and masses (``spin``: as random_table).
+
+    ``preset``: the table is that preset's (:func:`preset_table`), not a random one.
+    """
+    if preset is None:
+        table, scale = random_table(rng, **spin)
+    else:
+        table, scale = preset_table(rng, preset, spin)
     kind = rng.integers(5)
     if kind == 4:  # a heavy ball drives a chain of light ones into a rail
         speed = min(float(rng.uniform(0.05, 5) * np.sqrt(scale)), 0.999 * max_speed(table))
@@ -194,19 +238,21 @@ def shot_problems(table: Table, result: ShotResult, masses: np.ndarray, samples:
     return problems
 
 
-def cases(seed: int, model: str = "roll") -> Iterator[tuple]:
+def cases(seed: int, model: str = "roll", preset: str | None = None) -> Iterator[tuple]:
     """The fuzz's shots in order: ``(table, positions, velocities, masses, run)``.
 
     ``run()`` simulates the shot. Scenes are drawn without simulating, so shot ``k`` of a
-    seed can be regenerated alone (``--only k``) to reproduce a violation.
+    seed can be regenerated alone (``--only k``) to reproduce a violation. ``preset``: every
+    shot on that preset's table (:func:`preset_table`).
     """
     rng = np.random.default_rng(seed)
     while True:
         if model == "spin":
-            table, pos, vel, masses = random_case(rng, **fuzz_spin.random_spin_parameters(rng))
+            spin = fuzz_spin.random_spin_parameters(rng)
+            table, pos, vel, masses = random_case(rng, preset, **spin)
             yield table, pos, vel, masses, fuzz_spin.spin_shot(rng, table, pos, vel, masses)
         else:
-            table, pos, vel, masses = random_case(rng)
+            table, pos, vel, masses = random_case(rng, preset)
             yield table, pos, vel, masses, partial(simulate, table, pos, vel, masses)
 
 
@@ -223,17 +269,28 @@ def main() -> None:
     parser.add_argument("--progress", type=int, default=10000, help="shots per progress line")
     parser.add_argument("--only", type=int, default=None, help="rerun one shot and print it")
     parser.add_argument("--spin", action="store_true", help="the same as --model spin")
+    parser.add_argument(
+        "--table",
+        choices=["random", "snooker", "carom"],
+        default="random",
+        help="random tables (default) or every shot on Table.preset(TABLE)",
+    )
     args = parser.parse_args()
     if args.spin:
         args.model = "spin"
+    if args.table == "carom" and args.model == "roll":
+        parser.error("--table carom is a spin table only (three-cushion): add --model spin")
+    preset = None if args.table == "random" else args.table
     if args.only is not None:
-        table, pos, vel, masses, run = next(islice(cases(args.seed, args.model), args.only, None))
+        shots = cases(args.seed, args.model, preset)
+        table, pos, vel, masses, run = next(islice(shots, args.only, None))
         result = run()
         print(table, pos.tolist(), vel.tolist(), masses.tolist(), result, sep="\n")
         print(check_shot(table, result, masses, samples=args.samples))
         return
     if args.out is None:
-        args.out = Path("results/fuzz.md" if args.model == "roll" else "results/fuzz_spin.md")
+        stem = "fuzz" if args.model == "roll" else "fuzz_spin"
+        args.out = Path(f"results/{stem}{'' if preset is None else '_' + preset}.md")
     started = time.time()
     failures: list[str] = []
     long_shots: list[str] = []
@@ -242,7 +299,7 @@ def main() -> None:
     events = []
     kinds: Counter[str] = Counter()
     refused: list[str] = []
-    for shot, (table, _pos, _vel, masses, run) in enumerate(cases(args.seed, args.model)):
+    for shot, (table, _pos, _vel, masses, run) in enumerate(cases(args.seed, args.model, preset)):
         if shot == args.shots:
             break
         try:
@@ -282,7 +339,8 @@ def main() -> None:
         "# Fuzz: invariants over random scenes and shots",
         "",
         f"Command: `python -m tools.fuzz --shots {args.shots} --seed {args.seed}"
-        f"{' --model spin' if args.model == 'spin' else ''}`",
+        f"{' --model spin' if args.model == 'spin' else ''}"
+        f"{'' if preset is None else ' --table ' + preset}`",
         "",
         f"- shots: {args.shots}; shots with any violation (G, P, E, T, O, M, D, R): "
         f"{len(failures)}",

@@ -243,7 +243,7 @@ class PoolEnv(gym.Env[NDArray[np.float32], NDArray[np.float32]]):
         if self._renderer is None:
             from pool_env.render import Renderer
 
-            self._renderer = Renderer(self.config.table, self.render_width)
+            self._renderer = Renderer.for_config(self.config, self.render_width)
         return self._renderer
 
     def _frame(self) -> NDArray[np.uint8]:

@@ -255,7 +255,7 @@ class PoolVectorEnv(VectorEnv[NDArray[np.float32], NDArray[np.float32], NDArray[
         if self._renderer is None:
             from pool_env.render import Renderer
 
-            self._renderer = Renderer(self.config.table, self.render_width)
+            self._renderer = Renderer.for_config(self.config, self.render_width)
         state = self._state
         return tuple(
             self._renderer.frame(p, o) for p, o in zip(state.positions, state.on_table, strict=True)

@@ -92,6 +92,10 @@ class Ruleset:
             picks on this game's tables (the shared ones are :data:`pool_env.SCENES`).
         spin_only: Empty, or why the game is played on the spin level only: then
             ``model="roll"`` is refused with this reason before any table is made.
+        ball_colours: The game's balls in pictures: one RGB triple (0-255) per ball column
+            (ball 0 first), drawn plain, without numbers or stripes (snooker's reds and
+            colours, carom's white, yellow and red); ``None``: pool balls by number.
+        cloth: The cloth's RGB triple in pictures (carom's blue); ``None``: pool green.
     """
 
     name: str = ""
@@ -102,6 +106,8 @@ class Ruleset:
     reward_terms: Mapping[str, float] = {}
     scenes: Mapping[str, Any] = {}
     spin_only: str = ""
+    ball_colours: tuple[tuple[int, int, int], ...] | None = None
+    cloth: tuple[int, int, int] | None = None
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"

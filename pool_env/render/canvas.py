@@ -64,16 +64,48 @@ def blend_ring(
     )  # fmt: skip
 
 
+def _rgb(name: str, value: Any) -> NDArray[np.float64]:
+    """``value`` as one RGB triple of numbers in ``[0, 255]`` (``ValueError`` naming ``name``)."""
+    try:
+        arr = np.array(value, dtype=np.float64)
+    except (TypeError, ValueError):
+        arr = np.full(0, np.nan)
+    if arr.shape != (3,) or not np.all((arr >= 0.0) & (arr <= 255.0)):
+        raise ValueError(f"{name} must be an RGB triple of numbers in [0, 255], got {value!r}")
+    return arr
+
+
 class Renderer:
     """Draws a table and its balls as ``(H, W, 3)`` uint8 frames.
 
     Args:
         table: The table.
         width: Frame width in pixels (rounded up to a multiple of 16, as video codecs like).
+        ball_colours: One RGB triple per ball number (a game's own balls, e.g. snooker's
+            reds and colours): the balls are drawn plain in these colours, without numbers
+            or stripes. ``None`` (default): pool balls by number (:data:`.BALL_COLOURS`).
+        cloth: The cloth's RGB triple (the cushions a shade darker); ``None``: pool green.
+
+    Raises:
+        ValueError: A colour that is not an RGB triple in ``[0, 255]``, named.
     """
 
-    def __init__(self, table: Table, width: int = 800) -> None:
+    def __init__(
+        self,
+        table: Table,
+        width: int = 800,
+        ball_colours: Any = None,
+        cloth: Any = None,
+    ) -> None:
         self.table = table
+        self.ball_colours = (
+            None
+            if ball_colours is None
+            else np.array([_rgb(f"ball_colours[{k}]", c) for k, c in enumerate(ball_colours)])
+        )
+        self.cloth = CLOTH if cloth is None else _rgb("cloth", cloth).astype(np.uint8)
+        # The cushion rubber: the pool one, or a darker shade of the game's cloth.
+        self.cushion = CUSHION if cloth is None else (self.cloth * 0.75).astype(np.uint8)
         w = int(math.ceil(width / 16.0) * 16)
         self.scale = w / (table.length + 2.0 * RAIL)  # pixels per metre
         h = int(math.ceil((table.width + 2.0 * RAIL) * self.scale / 16.0) * 16)
@@ -84,6 +116,35 @@ class Renderer:
         self._digit = max(1, round(self.ball_px / 9.0))
         self._glyphs = {k: glyph(k, self._digit) for k in range(1, 16)}
         self.background = self._draw_table()
+
+    @classmethod
+    def for_config(cls, config: Any, width: int = 800) -> Renderer:
+        """The renderer of an env's config: its table in its game's colours.
+
+        Reads the ruleset's ``ball_colours`` and ``cloth``
+        (:class:`~pool_env.game.ruleset.Ruleset`; ``None``: the pool palette).
+
+        Raises:
+            ValueError: ``ball_colours`` with fewer triples than the game has balls, or a
+                colour that is not an RGB triple, naming the ruleset.
+        """
+        ruleset = config.ruleset
+        colours = getattr(ruleset, "ball_colours", None)
+        if colours is not None and len(colours) < config.n_balls:
+            raise ValueError(
+                f"{ruleset!r}.ball_colours has {len(colours)} colours for "
+                f"{config.n_balls} balls: give one RGB triple per ball"
+            )
+        try:
+            return cls(config.table, width, colours, getattr(ruleset, "cloth", None))
+        except ValueError as exc:
+            raise ValueError(f"{ruleset!r}: {exc}") from None
+
+    def colour_of(self, number: int) -> NDArray[np.float64]:
+        """The colour ball ``number`` is drawn in (its game's, or pool's by number)."""
+        if self.ball_colours is not None:
+            return self.ball_colours[number]
+        return ball_colour(number)
 
     def to_pixels(self, xy: NDArray[np.float64]) -> NDArray[np.float64]:
         """Table coordinates (m) to ``(column, row)`` pixel coordinates (y up on screen)."""
@@ -99,8 +160,9 @@ class Renderer:
         img[:] = WOOD
         (c0, r1), (c1, r0) = self.to_pixels(np.array([[0.0, 0.0], [t.length, t.width]]))
         band = 0.02 * self.scale  # cushion rubber, inside the wood
-        img[int(r0 - band) : math.ceil(r1 + band), int(c0 - band) : math.ceil(c1 + band)] = CUSHION
-        img[round(r0) : round(r1), round(c0) : round(c1)] = CLOTH
+        cushion = self.cushion
+        img[int(r0 - band) : math.ceil(r1 + band), int(c0 - band) : math.ceil(c1 + band)] = cushion
+        img[round(r0) : round(r1), round(c0) : round(c1)] = self.cloth
         # Sights: diamonds every eighth of the length and quarter of the width, on the wood.
         sight_r = max(1.5, 0.008 * self.scale)
         mid = 0.5 * RAIL + 0.01
@@ -113,7 +175,7 @@ class Renderer:
                 self.disc(img, np.array([x, k * t.width / 4.0]), sight_r / self.scale, SIGHT)
         # Head string and foot spot, faint.
         hx = self.to_pixels(np.array([t.length / 4.0, 0.0]))[0]
-        img[round(r0) : round(r1), int(hx)] = (CLOTH * 0.8 + 255 * 0.2).astype(np.uint8)
+        img[round(r0) : round(r1), int(hx)] = (self.cloth * 0.8 + 255 * 0.2).astype(np.uint8)
         self.disc(img, np.array([0.75 * t.length, t.width / 2.0]), 1.5 / self.scale, SIGHT)
         if t.jaws:
             for jaw in t.jaws:
@@ -134,10 +196,10 @@ class Renderer:
         )  # a convex quadrilateral: the mouth, the two facings and their inner ends
         # The rails stop at the points: cloth across the throat, then the hole behind the
         # fall line.
-        self.fill(img, corners, CLOTH, None)
+        self.fill(img, corners, self.cloth, None)
         self.fill(img, corners, POCKET, (jaw.fall_line[0], jaw.fall_normal))
         for side in range(2):
-            self.disc(img, jaw.tip_centres[side], jaw.tip_radius + 0.5 / self.scale, CUSHION)
+            self.disc(img, jaw.tip_centres[side], jaw.tip_radius + 0.5 / self.scale, self.cushion)
 
     def fill(
         self,
@@ -180,7 +242,10 @@ class Renderer:
         blend_disc(img, cx, cy, rp, colour)
 
     def _ball(self, img: Frame, centre: NDArray[np.float64], number: int) -> None:
-        """Draw ball ``number``: solid (1-8), striped (9-15) or the cue (0), with its number."""
+        """Draw ball ``number``: solid (1-8), striped (9-15) or the cue (0), with its number.
+
+        In a game's own colours (``ball_colours``) every ball is plain, without a number.
+        """
         cx, cy = self.to_pixels(centre)
         rp = self.ball_px
         r0, r1 = max(int(cy - rp - 1), 0), min(int(cy + rp + 2), img.shape[0])
@@ -188,11 +253,12 @@ class Renderer:
         yy, xx = np.mgrid[r0:r1, c0:c1]
         dx, dy = xx + 0.5 - cx, yy + 0.5 - cy
         d = np.hypot(dx, dy)
-        base = ball_colour(number)
+        base = self.colour_of(number)
         colour = np.broadcast_to(base, (*d.shape, 3)).copy()
-        if number > 8:  # stripe: white caps above and below a coloured band
+        pool = self.ball_colours is None  # pool balls carry their numbers
+        if pool and number > 8:  # stripe: white caps above and below a coloured band
             colour[np.abs(dy) > 0.55 * rp] = WHITE
-        if number > 0:
+        if pool and number > 0:
             colour[d < 0.52 * rp] = WHITE
         # A soft highlight up-left and a darker rim give the balls some volume.
         shade = 1.0 - 0.25 * np.clip((d / max(rp, 1e-9)) ** 2, 0.0, 1.0)
@@ -200,7 +266,7 @@ class Renderer:
         alpha = np.clip(rp + 0.5 - d, 0.0, 1.0)[..., None]
         patch = img[r0:r1, c0:c1]
         patch[:] = (patch * (1.0 - alpha) + colour * alpha).astype(np.uint8)
-        if number > 0:
+        if pool and number > 0:
             glyph = self._glyphs[number]
             gr = round(cy - glyph.shape[0] / 2.0)
             gc = round(cx - glyph.shape[1] / 2.0)
@@ -239,7 +305,7 @@ class Renderer:
     def _ring(self, img: Frame, centre: NDArray[np.float64], number: int) -> None:
         """Blend a thin ball-sized circle outline at ``centre`` (m), half transparent."""
         (cx, cy) = self.to_pixels(centre)
-        blend_ring(img, cx, cy, self.ball_px, ball_colour(number), 0.55)
+        blend_ring(img, cx, cy, self.ball_px, self.colour_of(number), 0.55)
 
     def _polyline(self, img: Frame, line: NDArray[np.float64], number: int) -> None:
         """Blend a 2 px line along ``line`` (m) in the ball's colour, half transparent."""
@@ -256,5 +322,5 @@ class Renderer:
         rows = np.concatenate([pts[:, 1] + dr for dr in (-0.5, -0.5, 0.5, 0.5)]).astype(np.int64)
         keep = (rows >= 0) & (rows < img.shape[0]) & (cols >= 0) & (cols < img.shape[1])
         rows, cols = rows[keep], cols[keep]
-        colour = ball_colour(number)
+        colour = self.colour_of(number)
         img[rows, cols] = (img[rows, cols] * 0.45 + colour * 0.55).astype(np.uint8)

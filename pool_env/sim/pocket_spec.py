@@ -17,7 +17,13 @@ from pool_env.sim.kernels import limits
 from pool_env.sim.pockets import CORNER_MOUTH, SIDE_MOUTH, JawSpec, PocketJaws, regulation_jaws
 
 
-def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray[np.float64]:
+def standard_pockets(
+    length: float,
+    width: float,
+    ball_radius: float,
+    corner_mouth: float = CORNER_MOUTH,
+    side_mouth: float = SIDE_MOUTH,
+) -> NDArray[np.float64]:
     """Capture circles of a regulation 6-pocket table (the cheap pocket model).
 
     The rails run the full length, so a pocket is a capture circle that catches a ball whose
@@ -36,14 +42,16 @@ def standard_pockets(length: float, width: float, ball_radius: float) -> NDArray
         length: Table length ``L`` (m).
         width: Table width ``W`` (m).
         ball_radius: Ball radius ``R`` (m).
+        corner_mouth: Corner mouth width (m), the WPA one by default.
+        side_mouth: Side mouth width (m), the WPA one by default.
 
     Returns:
         A ``(6, 3)`` array of ``(x, y, radius)``, ordered: bottom-left, bottom-middle,
         bottom-right, top-left, top-middle, top-right.
     """
     r = ball_radius
-    corner_r = math.hypot(r, CORNER_MOUTH / math.sqrt(2.0))
-    side_r = math.hypot(2.0 * r, SIDE_MOUTH / 2.0)
+    corner_r = math.hypot(r, corner_mouth / math.sqrt(2.0))
+    side_r = math.hypot(2.0 * r, side_mouth / 2.0)
     return np.array(
         [
             (0.0, 0.0, corner_r),
@@ -72,16 +80,19 @@ def parse_pockets(
 
     Returns:
         ``(model, circles, jaws)``: ``"jaws"``, ``"circles"`` or ``"none"``; the
-        ``(K, 3)`` capture circles (the regulation ones on a jaw table); the jaws of
-        each pocket (empty unless ``"jaws"``).
+        ``(K, 3)`` capture circles (on a jaw table those of its own mouths: the summary
+        of where its pockets are that the games' spots and aim points read); the jaws
+        of each pocket (empty unless ``"jaws"``).
 
     Raises:
         ValueError: On an unknown name, a malformed array, or a non-finite, too large
             or non-positive value.
     """
-    circles = standard_pockets(length, width, ball_radius)
     if isinstance(spec, JawSpec):
+        mouths = (spec.corner_mouth, spec.side_mouth)
+        circles = standard_pockets(length, width, ball_radius, *mouths)
         return "jaws", circles, regulation_jaws(length, width, ball_radius, spec)
+    circles = standard_pockets(length, width, ball_radius)
     if isinstance(spec, str):
         if spec in ("jaws", "standard"):
             jaws = regulation_jaws(length, width, ball_radius, JawSpec())

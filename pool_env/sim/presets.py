@@ -37,30 +37,83 @@ of 0.02095 m, corner mouths 0.118 m); the preset keeps this package's WPA jaw po
 is the pocketless table on which shots agree with pooltool's (``bench/models_vs_pooltool.py``).
 
 ``"snooker"`` is the 12-ft snooker table (WPBSA Rules, Section 1, "The Standard Table"),
-on the spin level by default; ``model="roll"`` over it is allowed, as it sets no spin-only
-value. Each value and its source:
+on the spin level by default. ``model="roll"`` over it is allowed (:data:`ROLL_ALLOWED`):
+the roll table then takes the preset without its spin-only values (the last three rows),
+which the roll level does not read. Each value and its source:
 
 ==========================  ============================================  ==============
 ``Table`` keyword           source                                        value
 ==========================  ============================================  ==============
-``length``, ``width``       WPBSA 1(a): 11 ft 8.5 in x 5 ft 10 in          3.569, 1.778
-``ball_radius``             WPBSA 2: balls of 52.5 mm (+/- 0.05 mm)       0.02625
-``ball_mass``               pooltool 0.6.0 ``SNOOKER_GENERIC.m``          0.140
+``length``, ``width``       WPBSA 1(a): 11 ft 8.5 in x 5 ft 10in          3.569, 1.778
+                            ("3569mm x 1778mm", +/- 13 mm); pooltool's
+                            ``SnookerTableSpecs`` has 3.5445 x 1.7465,
+                            inside that tolerance but not the figure
+``ball_radius``             WPBSA 2: balls of 52.5 mm (+0.05 mm);         0.02625
+                            pooltool's 0.02619375 is 2 1/16 in
+``ball_mass``               pooltool 0.6.0 ``SNOOKER_GENERIC.m`` (the     0.140
+                            WPBSA sets no mass, only 3 g within a set)
+``mu_roll``                 pooltool's ``SNOOKER_GENERIC.u_r``, inside    0.01
+                            Alciatore's 0.005-0.015 (no snooker-cloth
+                            measurement found: kept)
+``e_ball``, ``e_cushion``   the package's defaults (``docs/sources.md``   0.95, 0.65
+                            "Physical properties"); Mathavan's 0.98 for
+                            the cushion belongs to his model (friction
+                            at the cloth during the impact), pooltool's
+                            0.85 is unresearched: kept
 ``pockets``                 :data:`SNOOKER_POCKETS` (below)               ``JawSpec``
+``mu_slide`` (spin)         Mathavan et al. 2010, measured on a snooker   0.212
+                            table (``docs/sources.md``, "Cushions in
+                            detail"); pooltool's ``SNOOKER_GENERIC.u_s``
+                            0.5 is, by its own comment, unresearched
+``cushion_friction`` (spin) Mathavan et al. 2010 (same): 0.14; pooltool   0.14
+                            ``SNOOKER_GENERIC.f_c`` 0.5 (unresearched)
+``cushion_height`` (spin)   Mathavan et al. 2010 (same): the snooker      0.03675
+                            cushion's contact at ``7 R / 5``; pooltool's
+                            0.028 is below ``R`` here, which no cushion
+                            model takes (the ball would ride over it)
 ==========================  ============================================  ==============
 
 WPBSA 1(c)(ii) has the pocket openings "conform to the templates authorised by the
 WPBSA"; the templates are not published, so the pocket shape is pooltool 0.6.0's
-``SnookerTableSpecs``: corner and centre mouths 0.083 m and 0.087 m, facings parallel to
-the pocket's axis (its pocket angle 0: a cut of 135 degrees at corners, 90 at the centre),
-rounded jaws of 4 in (corner) and 2.5 in (centre) radius, fall lines 0.036 m and
-0.95 in behind the mouth. The rest (cloth, restitution) is the package's defaults.
+``SnookerTableSpecs``, the same shape (``tests/sim/test_presets.py`` builds both):
+corner and centre mouths 0.083 m and 0.087 m between the points (where each rail's nose
+line meets its facing's); pocket angle 0 (facings parallel to the pocket's axis: a cut of
+135 degrees to the rail at corners, 90 at the centre); rounded jaws of 4 in (corner) and
+2.5 in (centre) radius, each a circle tangent to the rail's nose and to the facing (its
+centre ``r / tan(cut / 2)`` along the rail from the point, ``r`` behind the nose, as
+pooltool's ``create_pocket_table_cushion_segments`` puts it). pooltool's pocket
+*depths* (0.036 m and 0.95 in) are not the same quantity here: pooltool pots a ball
+whose centre enters a circle (of radius 4 in and 1.68 in) centred that far behind the
+corner and the rail, which on the pocket's axis reaches 24 mm (corner) and 19 mm (centre)
+in front of the mouth; this package pots at a fall line behind the mouth, which must lie
+in the throat. The preset takes pooltool's two depths as the fall lines' distances
+behind the mouth (no published snooker shelf figure found).
 
 ``"carom"`` is the match carom table of three-cushion (UMB "Rules of the game of
-billiards", article 1: playing area 2.84 x 1.42 m, balls of 61-61.5 mm and 205-220 g,
-cushion nose 37 mm high), pocketless, on the spin level (three-cushion is played there).
-The ball mass and the cloth and cushion friction are pooltool 0.6.0's ``BILLIARD_GENERIC``
-(``m = 0.210``, ``f_c = 0.15``); the rest is the package's defaults.
+billiards", article 1, the source pooltool's ``BilliardTableSpecs`` cites), pocketless,
+on the spin level only (three-cushion is played there; ``model="roll"`` is refused, as
+its cushion values are spin-only):
+
+==========================  ============================================  ==============
+``Table`` keyword           source                                        value
+==========================  ============================================  ==============
+``length``, ``width``       UMB art. 1: playing area 2.84 x 1.42 m        2.84, 1.42
+``ball_radius``             UMB: balls of 61-61.5 mm; pooltool            0.03075
+                            ``BILLIARD_GENERIC.R`` = 0.0615 / 2
+``ball_mass``               UMB: 205-220 g; pooltool                      0.210
+                            ``BILLIARD_GENERIC.m``
+``cushion_height`` (spin)   UMB: cushion nose 37 mm (+/- 1 mm) above      0.037
+                            the cloth; pooltool ``BilliardTableSpecs``
+``cushion_friction`` (spin) pooltool ``BILLIARD_GENERIC.f_c``             0.15
+``mu_roll``, ``mu_slide``   the package's defaults (pooltool's            0.01, 0.2
+                            ``BILLIARD_GENERIC`` has the same); the
+                            heated cloth plays faster, but no measured
+                            coefficient was found: kept
+``e_ball``, ``e_cushion``   the package's defaults (pooltool's            0.95, 0.65
+                            ``BILLIARD_GENERIC.e_c`` 0.85 is
+                            unresearched; no measured carom cushion
+                            restitution found: kept)
+==========================  ============================================  ==============
 """
 
 from __future__ import annotations
@@ -86,6 +139,10 @@ SNOOKER_POCKETS = JawSpec(
     corner_tip_radius=4.0 * _INCH,
     side_tip_radius=2.5 * _INCH,
 )
+
+#: The presets a roll table may be made from (``model="roll"``): each loses its spin-only
+#: values there (:data:`pool_env.sim.table.SPIN_ONLY`), which the roll level does not read.
+ROLL_ALLOWED = frozenset({"snooker"})
 
 #: The presets: name -> ``Table`` keywords.
 PRESETS: MappingProxyType[str, MappingProxyType[str, Any]] = MappingProxyType(
@@ -121,8 +178,12 @@ PRESETS: MappingProxyType[str, MappingProxyType[str, Any]] = MappingProxyType(
                 "width": 1.778,
                 "ball_radius": 0.0525 / 2,
                 "ball_mass": 0.140,
+                "mu_roll": 0.01,
                 "pockets": SNOOKER_POCKETS,
                 "model": "spin",
+                "mu_slide": 0.212,
+                "cushion_friction": 0.14,
+                "cushion_height": 7.0 / 5.0 * 0.0525 / 2,
             }
         ),
         "carom": MappingProxyType(

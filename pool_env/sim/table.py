@@ -52,7 +52,7 @@ from pool_env.sim.pockets import (
     kernel_rows,
     rail_segments,
 )
-from pool_env.sim.presets import PRESETS
+from pool_env.sim.presets import PRESETS, ROLL_ALLOWED
 from pool_env.sim.scalars import positive, real_number, within
 from pool_env.sim.spin_models import BALL_MODELS, CUSHION_MODELS, check_models
 
@@ -378,6 +378,8 @@ class Table:
         The preset is a spin table: ``model="roll"`` over it is refused, as its spin-only
         values (Stronge's cushions, pooltool's friction rule, ...) would mean nothing there;
         a roll table of pooltool's size is ``Table(length=1.9812, width=0.9906, ...)``.
+        The presets of :data:`~pool_env.sim.presets.ROLL_ALLOWED` (``"snooker"``) make a
+        roll table too: ``model="roll"`` drops their spin-only values (:data:`SPIN_ONLY`).
 
         Args:
             name: The preset's name.
@@ -396,7 +398,10 @@ class Table:
                 f"unknown Table keyword(s) {unknown} for preset {name!r}; the keywords are "
                 f"{keywords}"
             )
-        return cls(**{**PRESETS[name], **overrides})  # type: ignore[arg-type]
+        values = dict(PRESETS[name])
+        if name in ROLL_ALLOWED and overrides.get("model") == "roll":
+            values = {k: v for k, v in values.items() if k not in SPIN_ONLY}
+        return cls(**{**values, **overrides})  # type: ignore[arg-type]
 
     @property
     def deceleration(self) -> float:

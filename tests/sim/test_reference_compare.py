@@ -4,8 +4,9 @@ The reference is ``pool_env/testing/reference/``.
 
 Random scenes of 2-4 balls with 1-3 ball-ball impacts (plus cushions, pockets and stops) on
 jaw, capture-circle and pocketless tables, and random jaw-table scenes with 1-3 impacts that
-hit facings and points: pots and the event sequence must agree exactly, and final
-positions within 1e-9 m.
+hit facings and points, on the default (WPA) jaws and the snooker preset's (round jaws of
+4 in and 2.5 in): pots and the event sequence must agree exactly, and final positions
+within 1e-9 m.
 
 Pool is chaotic: each impact multiplies a position error by up to ~distance / R. A few
 scenes with many cushions between their impacts amplify a one-ulp change of the *input* to
@@ -95,18 +96,20 @@ def test_matches_reference(scene) -> None:
 IMPACT_KINDS = ("ball", "cushion", "jaw", "point")
 
 
-def _jaw_scene(seed: int) -> tuple[Table, np.ndarray, np.ndarray] | None:
+def _jaw_scene(seed: int, preset: str | None = None) -> tuple[Table, np.ndarray, np.ndarray] | None:
     """A random jaw-table scene with 1-3 impacts, one at least on a facing or point.
 
     Impacts are ball, rail, facing and point contacts; None if this seed gives another count.
+    ``preset``: on that preset's table (its roll level), else the default jaw table.
     """
     rng = np.random.default_rng(seed)
     e_cushion = float(rng.choice([0.7, 1.0, rng.uniform(0.3, 1.0)]))
-    table = Table(
-        e_ball=float(rng.choice([1.0, 0.95, rng.uniform(0.3, 1.0)])),
-        e_cushion=e_cushion,
-        e_jaw=float(rng.choice([e_cushion, rng.uniform(0.0, 1.0)])),
-    )
+    values = {
+        "e_ball": float(rng.choice([1.0, 0.95, rng.uniform(0.3, 1.0)])),
+        "e_cushion": e_cushion,
+        "e_jaw": float(rng.choice([e_cushion, rng.uniform(0.0, 1.0)])),
+    }
+    table = Table(**values) if preset is None else Table.preset(preset, model="roll", **values)
     n = int(rng.integers(1, 4))
     pos = random_layout(table, n, rng, min_gap=1e-3)
     # Send one ball at a pocket's mouth, off its centre, so that facings and points are hit.
@@ -131,7 +134,24 @@ def test_enough_jaw_scenes() -> None:
     assert {"jaw", "point", "pocket", "ball"} <= kinds
 
 
-@pytest.mark.parametrize("scene", JAW_SCENES, ids=lambda s: f"{len(s[1])}balls")
+#: The snooker table's jaws: narrow mouths, facings along the pocket's axis, round jaws of
+#: 4 in and 2.5 in (``Table.preset("snooker")``), on the roll level the reference models.
+SNOOKER_SCENES = [
+    s for s in (_jaw_scene(seed, "snooker") for seed in range(2000, 2600)) if s is not None
+][:60]
+
+
+def test_enough_snooker_jaw_scenes() -> None:
+    assert len(SNOOKER_SCENES) >= 50
+    assert all(table.jaws[0].tip_radius == 4 * 0.0254 for table, _, _ in SNOOKER_SCENES)
+    kinds = {e.kind for table, pos, vel in SNOOKER_SCENES for e in simulate(table, pos, vel).events}
+    # Every jaw contact is on a round jaw: the straight facings start behind the fall line
+    # (``tests/sim/test_presets.py``), so a ball drops before it can reach one.
+    assert {"point", "pocket", "cushion"} <= kinds
+    assert "jaw" not in kinds
+
+
+@pytest.mark.parametrize("scene", JAW_SCENES + SNOOKER_SCENES, ids=lambda s: f"{len(s[1])}balls")
 def test_jaw_scenes_match_reference(scene) -> None:
     """Facings, points and fall lines against the reference: events exact, 1e-9 m."""
     table, pos, vel = scene

@@ -11,6 +11,8 @@ every event kind runs by default; ``-m slow`` runs 100 more.
 
 from __future__ import annotations
 
+from functools import partial
+
 import numpy as np
 import pytest
 from mpmath import mp, mpf
@@ -23,13 +25,19 @@ TOLERANCE = 1e-9  # m
 KINDS = {"ball", "cushion", "slide_roll", "roll_spin", "stop", "spin_stop"}
 
 
-def _scene(seed: int) -> tuple | None:
-    """A random spin scene with 1-3 impacts, or None if this seed gives another count."""
+def _scene(seed: int, preset: str | None = None) -> tuple | None:
+    """A random spin scene with 1-3 impacts, or None if this seed gives another count.
+
+    ``preset``: on that (pocketless) preset's table, else a pocketless default-sized one.
+    """
     rng = np.random.default_rng(seed)
     friction = str(rng.choice(["alciatore", "alciatore", "none", "const"]))
-    table = Table(
-        model="spin",
-        pockets="none",
+    make = (
+        partial(Table, model="spin", pockets="none")
+        if preset is None
+        else partial(Table.preset, preset)
+    )
+    table = make(
         e_ball=float(rng.choice([0.95, 1.0, rng.uniform(0.5, 1.0)])),
         e_cushion=float(rng.choice([0.65, rng.uniform(0.3, 1.0)])),
         ball_friction=(
@@ -57,12 +65,14 @@ def _scene(seed: int) -> tuple | None:
     return table, pos, vel, ang, masses
 
 
-def _scenes(seeds: range, count: int) -> list[tuple]:
-    return [s for s in (_scene(seed) for seed in seeds) if s is not None][:count]
+def _scenes(seeds: range, count: int, preset: str | None = None) -> list[tuple]:
+    return [s for s in (_scene(seed, preset) for seed in seeds) if s is not None][:count]
 
 
 FAST = _scenes(range(0, 40), 14)
 SLOW = _scenes(range(1000, 1300), 100)
+#: The carom table (``Table.preset("carom")``): UMB size, 61.5 mm balls, 37 mm nose.
+CAROM = _scenes(range(2000, 2100), 12, "carom")
 
 
 def _tie_groups(times: list) -> list[slice]:
@@ -106,6 +116,24 @@ def test_fast_scenes_cover_every_event_kind() -> None:
 
 @pytest.mark.parametrize("scene", FAST, ids=lambda s: f"{len(s[1])}balls")
 def test_matches_reference(scene: tuple) -> None:
+    assert _compare(scene) < TOLERANCE
+
+
+def test_carom_scenes_are_on_the_carom_table() -> None:
+    assert len(CAROM) == 12
+    assert {(t.length, t.ball_radius, t.cushion_height) for t, *_ in CAROM} == {
+        (2.84, 0.03075, 0.037)
+    }
+    kinds = {
+        e.kind
+        for table, pos, vel, ang, masses in CAROM
+        for e in simulate(table, pos, vel, masses, angular_velocities=ang).events
+    }
+    assert {"ball", "cushion"} <= kinds
+
+
+@pytest.mark.parametrize("scene", CAROM, ids=lambda s: f"{len(s[1])}balls")
+def test_carom_matches_reference(scene: tuple) -> None:
     assert _compare(scene) < TOLERANCE
 
 
