@@ -259,6 +259,10 @@ class SnookerGhostBallAgent(BaselineAgent):
             colour = self._nearest(positions) if phase == "colour" else None
             self.last_plan = {"kind": "fallback", "colour": colour}
         else:
+            traced = self.ghost.last_traced if shot is None else None  # a bank (spin envs)
+            ball = shot.ball if shot is not None else (traced.ball if traced else None)
+            if phase == "colour" and ball is not None and ball >= COLOURS[0]:
+                colour = ball  # the colour struck: the nominated one, or a bank's
             self.last_plan = {"kind": "ghost", "shot": shot, "colour": colour}
         self.last_plan["cue"] = positions[0].copy()  # placed, with the cue ball in hand
         return snooker_action(self.config, action, place, colour)
