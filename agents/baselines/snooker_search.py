@@ -90,7 +90,7 @@ class SnookerSearchAgent(BaselineAgent):
         self,
         env: Any,
         budget: float = 1.0,
-        samples: int = 24,
+        samples: int = 64,
         shots: int = 10,
         places: int = 6,
         finalists: int = 24,
