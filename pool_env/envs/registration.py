@@ -15,6 +15,7 @@ from types import ModuleType
 from typing import Any
 
 from pool_env.sim.presets import PRESETS
+from pool_env.sim.table import SPIN_ONLY as TABLE_SPIN_ONLY
 
 ENTRY_POINT = "pool_env.envs.env:PoolEnv"
 
@@ -131,11 +132,24 @@ SPIN_IDS: dict[str, tuple[dict[str, Any], int]] = {
     for v, kw in _versions(task, kwargs).items()
 }
 
+
+def _on_roll(kwargs: dict[str, Any]) -> dict[str, Any]:
+    """A task's arguments on the roll table: a preset's spin-only values dropped.
+
+    As ``Table.preset(name, model="roll")`` drops them (the snooker preset's ``mu_slide``,
+    cushion friction and height mean nothing on the roll level, which refuses them).
+    """
+    table = kwargs.get("table")
+    if isinstance(table, dict):
+        kwargs = {**kwargs, "table": {k: v for k, v in table.items() if k not in TABLE_SPIN_ONLY}}
+    return {**kwargs, "model": "roll"}
+
+
 #: The roll table's ids (``model="roll"``): every version. The model is registered, not
 #: left to ``make_config``'s default, which is the spin table
 #: (:data:`pool_env.game.sections.DEFAULT_MODEL`, the spin ids' model).
 ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    roll_id(task, v): ({**kw, "model": "roll"}, steps)
+    roll_id(task, v): (_on_roll(kw), steps)
     for task, (kwargs, steps) in TASKS.items()
     if task not in SPIN_ONLY
     for v, kw in _versions(task, kwargs).items()
