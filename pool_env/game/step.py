@@ -243,6 +243,7 @@ def _simulate(
         return Outcome(
             final[None], pocketed[None], first, shot.cushions_after_contact[None],
             shot.pocket_order[None], None, None, balls, shot, vel, spins,
+            shot.second_hit[None], shot.cushions_at_second[None],
         )  # fmt: skip
     every = n_shots == state.n_tables
     pos = state.positions if every else state.positions[tables]
@@ -254,7 +255,8 @@ def _simulate(
     return Outcome(
         result.positions, result.pocketed, result.first_contact,
         result.cushions_after_contact, result.pocket_order, result.n_events,
-        result.hit_event_cap, np.arange(n_balls), None, vel, spins,
+        result.hit_event_cap, np.arange(n_balls), None, vel, spins, result.second_hit,
+        result.cushions_at_second,
     )  # fmt: skip
 
 

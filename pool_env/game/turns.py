@@ -83,6 +83,10 @@ class Outcome(NamedTuple):
         shot: The :class:`~pool_env.ShotResult` of a one-table step, else ``None``.
         velocities: ``(K, N, 2)`` the shots' initial velocities (a rule may replay a shot).
         spins: ``(K, N, 3)`` their angular velocities on a spin table, else ``None``.
+        second_hit: ``(K, M)`` result column of the second distinct ball each ball
+            touched, -1 for none.
+        cushions_at_second: ``(K, M)`` each ball's cushion impacts from the shot's start up
+            to its second distinct ball contact, -1 for none.
     """
 
     final: NDArray[np.float64]
@@ -96,6 +100,8 @@ class Outcome(NamedTuple):
     shot: ShotResult | None
     velocities: NDArray[np.float64]
     spins: NDArray[np.float64] | None
+    second_hit: NDArray[np.int64]
+    cushions_at_second: NDArray[np.int64]
 
 
 class Turn(NamedTuple):

@@ -69,6 +69,11 @@ class BatchResult:
             -1 on the table (or inactive).
         stopped_by_cap: ``(B, N)`` the balls that were still moving when a table reached
             ``max_events`` and were stopped there (all False on tables under the cap).
+        second_hit: ``(B, N)`` the second distinct ball each ball touched, -1 if none (or
+            inactive).
+        cushions_at_second: ``(B, N)`` each ball's own cushion impacts from the shot's
+            start up to its second distinct ball contact, -1 without one (see
+            :attr:`pool_env.ShotResult.cushions_at_second`).
     """
 
     positions: NDArray[np.float64]
@@ -80,6 +85,8 @@ class BatchResult:
     cushions_after_contact: NDArray[np.int64]
     pocket_order: NDArray[np.int64]
     stopped_by_cap: NDArray[np.bool_]
+    second_hit: NDArray[np.int64]
+    cushions_at_second: NDArray[np.int64]
 
 
 def batch_result(out: BatchOutput) -> BatchResult:
@@ -94,6 +101,8 @@ def batch_result(out: BatchOutput) -> BatchResult:
         cushions_after_contact=out.cushions_after_contact,
         pocket_order=out.pocket_order,
         stopped_by_cap=out.stopped_by_cap,
+        second_hit=out.second_hit,
+        cushions_at_second=out.cushions_at_second,
     )
 
 

@@ -71,6 +71,9 @@ class ShotResult:
             first ball-ball impact (all zero without one). With one ball struck (as by
             :func:`pool_env.shoot`) that impact is the cue ball's first contact, so a rail
             hit before it is not counted: the "rail after contact" of the rules.
+        second_hit: ``(N,)`` ints: the second distinct ball each ball touched, -1 if none.
+        cushions_at_second: ``(N,)`` ints: each ball's own cushion impacts from the shot's
+            start up to its second distinct ball contact (-1 without one): a carom's count.
         pocket_order: ``(N,)`` ints: 0 for the first ball to drop, 1 for the next, and so
             on; -1 for a ball left on the table.
         event_times, event_kinds, event_i, event_j: The events as arrays (kinds are int
@@ -158,6 +161,21 @@ class ShotResult:
     def cushions_after_contact(self) -> NDArray[np.int64]:
         """``(N,)`` each ball's cushion impacts after the shot's first ball-ball impact."""
         return self._ball_row(packing.BALL_CUSHIONS)
+
+    @property
+    def second_hit(self) -> NDArray[np.int64]:
+        """``(N,)`` the second distinct ball each ball touched, -1 if none."""
+        return self._ball_row(packing.BALL_SECOND_HIT)
+
+    @property
+    def cushions_at_second(self) -> NDArray[np.int64]:
+        """``(N,)`` each ball's own cushion impacts up to its second distinct ball contact.
+
+        Rails, jaw facings and points, counted from the shot's start; an impact at the
+        very instant of that contact counts. -1 for a ball that touched fewer than two
+        distinct balls. A carom's point reads it on the cue ball.
+        """
+        return self._ball_row(packing.BALL_CUSHIONS_AT_SECOND)
 
     @property
     def stopped_by_cap(self) -> NDArray[np.bool_]:

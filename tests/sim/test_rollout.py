@@ -46,6 +46,10 @@ def _assert_rows_are_shots(table, layout, rows, out, cue=0, masses=None, active=
         assert out.hit_event_cap[s] == shot.hit_event_cap, s
         hit = shot.first_hit
         assert np.array_equal(out.first_hit[s, balls], np.where(hit >= 0, balls[hit], -1)), s
+        second = shot.second_hit
+        want = np.where(second >= 0, balls[second], -1)
+        assert np.array_equal(out.second_hit[s, balls], want), s
+        assert np.array_equal(out.cushions_at_second[s, balls], shot.cushions_at_second), s
         contact = shot.first_contact
         want = [-1, -1] if contact is None else [balls[contact[0]], balls[contact[1]]]
         assert out.first_contact[s].tolist() == list(want), s

@@ -53,6 +53,7 @@ from pool_env.sim.kernels.level import (
 )
 from pool_env.sim.kernels.packing import (
     BALL_CUSHIONS,
+    BALL_CUSHIONS_AT_SECOND,
     BALL_STOPPED,
     N_BALL_ROWS,
     invalid_shot,
@@ -61,7 +62,7 @@ from pool_env.sim.kernels.packing import (
 from pool_env.sim.kernels.params import P_MASS
 from pool_env.sim.kernels.record import grown_event_log, grown_segment_log, log_event, new_event_log
 from pool_env.sim.kernels.roots import INF
-from pool_env.sim.kernels.sequence import next_event, tally
+from pool_env.sim.kernels.sequence import close_tally, next_event, tally
 from pool_env.sim.kernels.validation import OK
 
 
@@ -114,6 +115,8 @@ def shoot(level, positions, velocities, angular, masses, prm, pockets, max_event
     balls = np.full((N_BALL_ROWS, n), -1, dtype=np.int64)  # one allocation for the rows
     balls[BALL_CUSHIONS] = 0
     balls[BALL_STOPPED] = 0
+    balls[BALL_CUSHIONS_AT_SECOND] = 0  # counts until the second contact; -1 if none
+    t_second = np.full(n, INF)  # each ball's second distinct contact's time
     first_i = first_j = -1
     events = new_event_log(16 if record else 0)
     segments = new_segments(level, max(2 * n, 16) if record else 0)
@@ -140,7 +143,7 @@ def shoot(level, positions, velocities, angular, masses, prm, pockets, max_event
                 events = grown_event_log(events)
             log_event(events, n_ev, now, bkind, bi, bj, n_seg)
         n_ev += 1
-        first_i, first_j = tally(bkind, bi, bj, balls, first_i, first_j)
+        first_i, first_j = tally(bkind, bi, bj, now, balls, t_second, first_i, first_j)
         repeats = 0
         if bkind == BALL or bkind == CUSHION or bkind == JAW or bkind == POINT:  # noqa: SIM109 (numba)
             other = bj if bkind == BALL else bi
@@ -186,6 +189,7 @@ def shoot(level, positions, velocities, angular, masses, prm, pockets, max_event
                         segments = grown_segment_log(segments)
                     log_segment(level, segments, n_seg, i, now, st, ms)
                     n_seg += 1
+    close_tally(balls)
     return st, ms, balls, first_i, first_j, n_ev, now, capped, events, segments, n_seg
 
 

@@ -32,9 +32,12 @@ from pool_env.sim.jit import kernel
 
 #: Rows of the per-ball results (``N_BALL_ROWS`` of them): the pocket each ball dropped
 #: into, its place in the pocketing order, the first ball it touched, its cushion impacts
-#: after the first contact, and 1 if the event cap stopped it.
+#: after the first contact, 1 if the event cap stopped it, the second distinct ball it
+#: touched (-1: none), and its own cushion impacts (rails, jaw facings and points) from
+#: the shot's start up to that second contact (-1: no second contact).
 BALL_POCKET, BALL_POCKET_ORDER, BALL_FIRST_HIT, BALL_CUSHIONS, BALL_STOPPED = range(5)
-N_BALL_ROWS = 5
+BALL_SECOND_HIT, BALL_CUSHIONS_AT_SECOND = 5, 6
+N_BALL_ROWS = 7
 #: Rows of a logged event in ``ints``: kind code, ``i``, ``j``, first segment row.
 N_EVENT_ROWS = 4
 #: Columns of the spin level's tails: angular velocities in ``floats``, motion states in
@@ -144,9 +147,10 @@ def tail_starts(n: int, n_log: int, n_seg: int, width: int) -> tuple[int, int]:
 #: What a batch returns, by name; ball indices count all ``N`` balls of a table.
 #:
 #: * ``positions`` ``(B, N, 2)``; ``pocketed``, ``pocket_order``, ``first_hit``,
-#:   ``cushions_after_contact``, ``stopped_by_cap`` ``(B, N)``: the per-ball rows of a
-#:   single shot (``BALL_POCKET``, ...), per table (an inactive ball keeps its input
-#:   position, -1, 0 and False).
+#:   ``cushions_after_contact``, ``stopped_by_cap``, ``second_hit``,
+#:   ``cushions_at_second`` ``(B, N)``: the per-ball rows of a single shot
+#:   (``BALL_POCKET``, ...), per table (an inactive ball keeps its input position, -1, 0,
+#:   False and -1).
 #: * ``n_events`` ``(B,)``, ``capped`` ``(B,)``.
 #: * ``first_contact`` ``(B, 2)``: each table's first ball-ball impact, -1 if none.
 #: * ``error`` ``(B, 3)``: a validation code and its ball indices (a pocket index for
@@ -165,6 +169,8 @@ BatchOutput = namedtuple(
         "first_contact",
         "error",
         "stopped_by_cap",
+        "second_hit",
+        "cushions_at_second",
     ],
 )
 
@@ -184,13 +190,18 @@ def allocate_batch(positions):
         np.full((n_tables, 2), -1, dtype=np.int64),
         np.zeros((n_tables, 3), dtype=np.int64),
         np.zeros((n_tables, n_balls), dtype=np.bool_),
+        np.full((n_tables, n_balls), -1, dtype=np.int64),
+        np.full((n_tables, n_balls), -1, dtype=np.int64),
     )
 
 
 @kernel
 def batch_fields(out):
     """``out`` as a plain tuple: numba's ``prange`` cannot hand a named tuple to its threads."""
-    return (out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7], out[8], out[9])
+    return (
+        out[0], out[1], out[2], out[3], out[4], out[5], out[6], out[7], out[8], out[9],
+        out[10], out[11],
+    )  # fmt: skip
 
 
 @kernel
@@ -209,6 +220,9 @@ def store_table(out, b, index, st, balls, first_i, first_j, n_ev, capped):
         out.first_hit[b, ball] = index[hit] if hit >= 0 else -1
         out.cushions_after_contact[b, ball] = balls[BALL_CUSHIONS, k]
         out.stopped_by_cap[b, ball] = balls[BALL_STOPPED, k] != 0
+        second = balls[BALL_SECOND_HIT, k]
+        out.second_hit[b, ball] = index[second] if second >= 0 else -1
+        out.cushions_at_second[b, ball] = balls[BALL_CUSHIONS_AT_SECOND, k]
     out.n_events[b] = n_ev
     out.capped[b] = capped
     if first_i >= 0:

@@ -2,9 +2,10 @@
 
 Simultaneous events are taken in one fixed total order, (time, kind, first id, second id)
 (:func:`next_event`), which makes reruns bit-for-bit identical; each event taken updates
-the per-ball rows the rules read (:func:`tally`: pocketing order, first contacts, cushion
-impacts after the first contact). The one event loop (:mod:`~pool_env.sim.kernels.loop`)
-runs on these for every model level.
+the per-ball rows the rules read (:func:`tally`: pocketing order, first and second
+contacts, cushion impacts after the first contact and up to each ball's second contact).
+The one event loop (:mod:`~pool_env.sim.kernels.loop`) runs on these for every model
+level.
 """
 
 from __future__ import annotations
@@ -23,9 +24,11 @@ from pool_env.sim.kernels.kinds import (
 )
 from pool_env.sim.kernels.packing import (
     BALL_CUSHIONS,
+    BALL_CUSHIONS_AT_SECOND,
     BALL_FIRST_HIT,
     BALL_POCKET,
     BALL_POCKET_ORDER,
+    BALL_SECOND_HIT,
 )
 from pool_env.sim.kernels.roots import INF
 
@@ -68,11 +71,15 @@ def next_event(own, pair):
 
 
 @inline_kernel
-def tally(kind, i, j, balls, first_i, first_j):
-    """Update what the rules read from a shot with event ``(kind, i, j)``.
+def tally(kind, i, j, now, balls, t_second, first_i, first_j):
+    """Update what the rules read from a shot with event ``(kind, i, j)`` at time ``now``.
 
-    ``balls`` holds the per-ball rows (``BALL_POCKET``, ...); ``(first_i, first_j)`` is the
-    shot's first ball-ball impact so far (-1 before it), returned updated.
+    ``balls`` holds the per-ball rows (``BALL_POCKET``, ...); ``t_second`` each ball's
+    time of its second distinct ball contact (``INF`` before it): its cushion impacts are
+    counted up to and including that instant (a cushion impact at the very time of the
+    contact comes after it in the event order, yet counts, as ``time <= t`` does);
+    ``(first_i, first_j)`` is the shot's first ball-ball impact so far (-1 before it),
+    returned updated.
     """
     if kind == POCKET:
         order = 0
@@ -84,11 +91,30 @@ def tally(kind, i, j, balls, first_i, first_j):
     elif kind == CUSHION or kind == JAW or kind == POINT:  # noqa: SIM109 (numba)
         if first_i >= 0:  # a jaw facing or point is a cushion for the rules
             balls[BALL_CUSHIONS, i] += 1
+        if now <= t_second[i]:
+            balls[BALL_CUSHIONS_AT_SECOND, i] += 1
     elif kind == BALL:
         if first_i < 0:
             first_i, first_j = i, j
-        if balls[BALL_FIRST_HIT, i] < 0:
-            balls[BALL_FIRST_HIT, i] = j
-        if balls[BALL_FIRST_HIT, j] < 0:
-            balls[BALL_FIRST_HIT, j] = i
+        _touch(i, j, now, balls, t_second)
+        _touch(j, i, now, balls, t_second)
     return first_i, first_j
+
+
+@inline_kernel
+def _touch(i, j, now, balls, t_second):
+    """Ball ``i`` touches ball ``j``: its first, or its second distinct, ball contact."""
+    first = balls[BALL_FIRST_HIT, i]
+    if first < 0:
+        balls[BALL_FIRST_HIT, i] = j
+    elif first != j and balls[BALL_SECOND_HIT, i] < 0:
+        balls[BALL_SECOND_HIT, i] = j
+        t_second[i] = now
+
+
+@inline_kernel
+def close_tally(balls):
+    """End a shot's rows: a ball without a second distinct contact gets -1 cushions there."""
+    for i in range(balls.shape[1]):
+        if balls[BALL_SECOND_HIT, i] < 0:
+            balls[BALL_CUSHIONS_AT_SECOND, i] = -1
