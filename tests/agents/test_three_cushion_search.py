@@ -9,7 +9,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from agents.baselines.carom import noisy_rows, point_of_events, points_of_rows
+from agents.baselines.carom import near_scores, noisy_rows, point_of_events, points_of_rows
 from agents.baselines.three_cushion_search import ThreeCushionSearch
 from agents.evaluation.three_cushion import (
     break_layout,
@@ -37,25 +37,27 @@ def _random_rows(rng: np.random.Generator, n: int) -> np.ndarray:
 def test_the_rows_point_equals_the_event_log_recount(cue: int) -> None:
     """The rollout rows' point equals the recount over each shot's event log.
 
-    Random shots and the search's grid shots from random layouts (points among them),
-    compared shot by shot.
+    From random layouts: the search grid's points, its near misses (both balls met after
+    fewer cushions) and random shots, compared shot by shot.
     """
     rng = np.random.default_rng(cue)
-    points = 0
-    for k in range(8):
+    grid = ThreeCushionSearch(TABLE, budget=0.5)._grid
+    kinds = np.zeros(3, dtype=np.int64)  # points, near misses, others compared
+    for _ in range(4):
         pos = random_layout(TABLE, rng)
-        rows = _random_rows(rng, 400)
-        rows[:200] = ThreeCushionSearch(TABLE, budget=0.5, seed=k)._grid[
-            rng.integers(0, 10_000, 200)
-        ]  # grid rows too: the search's own shots
+        out = rollout(TABLE, pos, grid, cue=cue)
+        near = near_scores(out, cue)
+        picked = [rng.permutation(np.flatnonzero(near == v))[:40] for v in (3.0, 2.0, 1.0)]
+        rows = np.concatenate([grid[np.concatenate(picked)], _random_rows(rng, 40)])
         fast = points_of_rows(rollout(TABLE, pos, rows, cue=cue), cue)
         slow = [
             point_of_events(shoot(TABLE, pos, r[0], r[1], cue=cue, tip=(r[2], r[3])).events, cue)
             for r in rows
         ]
         assert fast.tolist() == slow
-        points += int(fast.sum())
-    assert points >= 5  # the comparison saw points, not only misses
+        kinds += [int(fast.sum()), sum(len(p) for p in picked[1:]), 40]
+    assert kinds[0] >= 20  # the comparison saw points, not only misses
+    assert kinds[1] >= 20  # and carom shots one or two cushions short
 
 
 def _event(time: float, kind: str, i: int, j: int) -> Event:
