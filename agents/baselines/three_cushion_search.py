@@ -15,9 +15,12 @@ budget is spent (anytime: every stage ends with a best shot in hand):
    differ by their shot alone), and ranked by their success rate.
 3. **Refine.** The best few are perturbed (aim, speed, tip a, tip b, with shrinking steps)
    and a neighbour that scores more often under the same draws replaces its parent.
-4. **Final.** The finalists are replayed under fresh draws (:data:`FINAL_DRAWS`), and the
-   leave breaks near-ties: the share of a small grid that scores from where the nominal
-   shot leaves the balls (the inning goes on after a point).
+4. **Final.** The finalists are replayed under fresh draws (:data:`FINAL_DRAWS`) and
+   weighed by their leave (the inning goes on after a point): a small search from where
+   the nominal shot leaves the balls (a coarser grid, its widest points under a few draws)
+   gives the next shot's success rate ``q``, and the finalist of the largest
+   ``p (1 + q)`` is played (``p`` its own success rate): the points expected from this shot
+   and the next.
 
 When nothing scores, the shot that came nearest (both balls met after the most cushions;
 :func:`agents.baselines.carom.near_scores`) is played. Without noise (FastFiz x0) the
@@ -71,17 +74,18 @@ REFINED = 6
 #: Noise draws per finalist in the final stage.
 FINAL_DRAWS = 128
 #: Finalists whose leave is weighed.
-FINALISTS = 4
+FINALISTS = 6
 #: Random shots per call while the grid has no point.
 RANDOM_BATCH = 8192
 #: FastFiz multiple the replays use when the env has less noise (x0).
 FLOOR_MULTIPLE = 0.5
-#: Weight of the leave: a finalist's value is ``success * (1 + LEAVE_WEIGHT * leave)``.
-LEAVE_WEIGHT = 0.3
-#: Aim directions and tips of the leave's grid.
+#: Aim directions, speeds and tips of the leave's grid.
 LEAVE_ANGLES = 360
 LEAVE_TIPS = ((0.0, 0.0), (0.6, 0.0), (-0.6, 0.0), (0.0, 0.5), (0.0, -0.5))
 LEAVE_SPEEDS = (3.0, 4.5)
+#: The leave's points replayed under noise, and their draws.
+LEAVE_CANDIDATES = 16
+LEAVE_DRAWS = 16
 
 
 @dataclass
@@ -95,7 +99,8 @@ class CaromPlan:
         kind: ``"point"`` (it scores without noise), ``"near_miss"`` (nothing scored: the
             shot that came nearest).
         success: Its success rate under the noise draws (0 for a near miss).
-        leave: The share of the leave's grid that scores after it (``nan`` if not weighed).
+        leave: The next shot's success rate from where it leaves the balls, as the leave's
+            small search finds it (``nan`` if not weighed).
         simulated: Shots simulated to plan it.
         seconds: Wall-clock seconds spent.
         stages: The stages that ran, in order.
@@ -232,11 +237,6 @@ class ThreeCushionSearch:
         plan.seconds = time.perf_counter() - start
         return plan
 
-    def leave_value(self, positions: NDArray[np.float64], cue: int) -> float:
-        """The share of the leave's grid that scores from ``positions`` (cue ball ``cue``)."""
-        out = rollout(self.table, positions, self._leave_grid, cue=cue, threads=self.threads)
-        return float(points_of_rows(out, cue).mean())
-
 
 class _Search:
     """One plan's state: the layout, the draws, the best shot so far."""
@@ -259,25 +259,49 @@ class _Search:
         self.draws = player.rng.standard_normal((DRAWS, 4))
         self.best: CaromPlan | None = None
 
-    def roll(self, rows: NDArray[np.float64]) -> Any:
-        """Rollout of ``rows`` from the layout (raises :class:`_BudgetSpentError` when past it)."""
+    def roll(self, rows: NDArray[np.float64], pos: NDArray[np.float64] | None = None) -> Any:
+        """Rollout of ``rows`` from ``pos`` (the layout by default).
+
+        Raises :class:`_BudgetSpentError` past the deadline once a shot is in hand.
+        """
         if time.perf_counter() > self.deadline and self.best is not None:
             raise _BudgetSpentError
         self.simulated += rows.shape[0]
-        return rollout(self.p.table, self.pos, rows, cue=self.cue, threads=self.p.threads)
+        layout = self.pos if pos is None else pos
+        return rollout(self.p.table, layout, rows, cue=self.cue, threads=self.p.threads)
 
-    def points(self, out: Any) -> NDArray[np.bool_]:
-        """Points that also meet the first-ball rule."""
+    def points(self, out: Any, first_ball: int | None) -> NDArray[np.bool_]:
+        """Points that also meet the first-ball rule (``None``: none)."""
         ok = points_of_rows(out, self.cue)
-        if self.first_ball is not None:
-            ok &= np.asarray(out.first_hit)[:, self.cue] == self.first_ball
+        if first_ball is not None:
+            ok &= np.asarray(out.first_hit)[:, self.cue] == first_ball
         return ok
 
-    def success(self, rows: NDArray[np.float64], draws: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``(S,)`` success rates of ``rows`` under ``draws`` (common random numbers)."""
+    def success(
+        self,
+        rows: NDArray[np.float64],
+        draws: NDArray[np.float64],
+        pos: NDArray[np.float64] | None = None,
+    ) -> NDArray[np.float64]:
+        """``(S,)`` success rates of ``rows`` under ``draws`` (common random numbers).
+
+        From the layout by default (its first-ball rule applies), else from ``pos`` (a
+        leave: the next shot, no first-ball rule).
+        """
         played = noisy_rows(rows, draws, self.p.sigmas, self.p.tip_limit)
         self.clip(played)
-        return self.points(self.roll(played)).reshape(rows.shape[0], draws.shape[0]).mean(axis=1)
+        first = self.first_ball if pos is None else None
+        ok = self.points(self.roll(played, pos), first)
+        return ok.reshape(rows.shape[0], draws.shape[0]).mean(axis=1)
+
+    def leave(self, pos: NDArray[np.float64]) -> float:
+        """The next shot's success rate from ``pos``, by a small search (grid, then noise)."""
+        grid = self.p._leave_grid
+        ok = self.points(self.roll(grid, pos), None)
+        if not ok.any():
+            return 0.0
+        picked = grid[_widest(ok, LEAVE_ANGLES)[:LEAVE_CANDIDATES]]
+        return float(self.success(picked, self.draws[:LEAVE_DRAWS], pos).max())
 
     def clip(self, rows: NDArray[np.float64]) -> None:
         """Keep speeds in the range and tips in the circle, in place."""
@@ -318,17 +342,12 @@ class _Search:
         self.stages.append("grid")
         rows = self.p._grid
         out = self.roll(rows)
-        ok = self.points(out)
+        ok = self.points(out, self.first_ball)
         near = near_scores(out, self.cue)
         self.set_best(rows[int(np.argmax(near))], "near_miss", 0.0)
         if not ok.any():
             return self.random_points(near.max())
-        # A point's window: how many of its two neighbours in aim (same speed, tip) score.
-        blocks = ok.reshape(-1, GRID_ANGLES)
-        width = blocks.astype(np.int64) + np.roll(blocks, 1, axis=1) + np.roll(blocks, -1, axis=1)
-        width = np.where(blocks, width, 0).reshape(-1)
-        order = np.argsort(-width, kind="stable")[: int(ok.sum())]
-        picked = rows[order[:CANDIDATES]].copy()
+        picked = rows[_widest(ok, GRID_ANGLES)[:CANDIDATES]].copy()
         self.set_best(picked[0], "point", 0.0)
         return picked
 
@@ -346,7 +365,7 @@ class _Search:
             t = self.p.rng.uniform(0.0, 2.0 * math.pi, n)
             rows[:, 2], rows[:, 3] = r * np.cos(t), r * np.sin(t)
             out = self.roll(rows)
-            ok = self.points(out)
+            ok = self.points(out, self.first_ball)
             if ok.any():
                 picked = rows[ok][:CANDIDATES].copy()
                 self.set_best(picked[0], "point", 0.0)
@@ -403,13 +422,21 @@ class _Search:
         self.set_best(top[k], "point", float(rate[k]))
         self.stages.append("leave")
         nominal = self.roll(top[order])
-        value = []
-        for j, k in enumerate(order):
-            if time.perf_counter() > self.deadline:
-                break
-            leave = self.p.leave_value(nominal.positions[j], self.cue)
-            self.simulated += self.p._leave_grid.shape[0]
-            value.append((rate[k] * (1.0 + LEAVE_WEIGHT * min(1.0, 20.0 * leave)), k, leave))
-        if value:
-            _, k, leave = max(value)
-            self.set_best(top[k], "point", float(rate[k]), leave)
+        best = -1.0
+        for j, k in enumerate(order):  # a deadline inside keeps the best weighed so far
+            leave = self.leave(nominal.positions[j])
+            if rate[k] * (1.0 + leave) > best:
+                best = rate[k] * (1.0 + leave)
+                self.set_best(top[k], "point", float(rate[k]), leave)
+
+
+def _widest(ok: NDArray[np.bool_], n_angles: int) -> NDArray[np.intp]:
+    """The indices of a grid's points, widest window first (angle the fastest axis).
+
+    A point's window: itself and how many of its two neighbours in aim (same speed and
+    tip) also score.
+    """
+    blocks = ok.reshape(-1, n_angles)
+    width = blocks.astype(np.int64) + np.roll(blocks, 1, axis=1) + np.roll(blocks, -1, axis=1)
+    width = np.where(blocks, width, 0).reshape(-1)
+    return np.argsort(-width, kind="stable")[: int(ok.sum())]
