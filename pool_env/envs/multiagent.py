@@ -203,13 +203,14 @@ class PoolDuelEnv(AECEnv):
         for term in self.config.ruleset.reward_terms:  # the practice rewards: not a duel's
             del info[f"reward_{term}"]
         winner = info["winner"]
-        info["winner"] = None if winner < 0 else AGENTS[winner]
+        draw = winner == len(AGENTS)  # a drawn match (three-cushion's): 0 to each
+        info["winner"] = None if winner < 0 or draw else AGENTS[winner]
         self._clear_rewards()
         self._cumulative_rewards[agent] = 0.0
         self.infos = {a: dict(info) for a in self.agents}
         if winner >= 0:
             for k, name in enumerate(AGENTS):
-                self.rewards[name] = 1.0 if k == winner else -1.0
+                self.rewards[name] = 0.0 if draw else 1.0 if k == winner else -1.0
                 self.terminations[name] = True
         elif result.flags[0, TRUNCATED]:
             self.truncations = {name: True for name in self.agents}

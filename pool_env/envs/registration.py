@@ -14,7 +14,13 @@ import sys
 from types import ModuleType
 from typing import Any
 
+from pool_env.sim.presets import PRESETS
+
 ENTRY_POINT = "pool_env.envs.env:PoolEnv"
+
+#: ``Table.preset("carom")``'s arguments, the model left to the id (a spin-only task: a
+#: roll table of them is refused by the game, with its reason, not by the table).
+_CAROM: dict[str, Any] = {k: v for k, v in PRESETS["carom"].items() if k != "model"}
 
 #: ``gymnasium.make_vec(id, num_envs=n)`` builds this batched env (one compiled call per
 #: step for all tables); ``vectorization_mode="sync"`` / ``"async"`` still wrap PoolEnvs.
@@ -55,7 +61,16 @@ TASKS: dict[str, tuple[dict[str, Any], int]] = {
     "NineBallGame": ({"scene": "nine_ball", "game": "nine"}, 100),
     "TenBallGame": ({"scene": "ten_ball", "game": "ten"}, 110),
     "EightBallGame": ({"scene": "eight_ball", "game": "eight"}, 150),
+    # Three-cushion (pool_env.game.games.three_cushion) on the UMB carom table: one
+    # player, an episode is one inning (it ends at the first miss); 100 shots is a run
+    # twice the world record's. Spin level only (SPIN_ONLY).
+    "ThreeCushion": ({"scene": "three_cushion", "game": "three_cushion", "table": _CAROM}, 100),
 }
+
+#: Tasks played on the spin table only: no roll twin (nor a ``-v0`` alias) is registered,
+#: and ``model="roll"`` is refused by the game with its reason (three-cushion is decided
+#: by the cue ball's spin off the cushions).
+SPIN_ONLY: frozenset[str] = frozenset({"ThreeCushion"})
 
 #: task -> its current version, where it is not 1. An id takes a new version when its
 #: spaces or dynamics change (Gymnasium's rule); the earlier versions stay registered and
@@ -101,6 +116,7 @@ SPIN_IDS: dict[str, tuple[dict[str, Any], int]] = {
 ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
     roll_id(task, v): ({**kw, "model": "roll"}, steps)
     for task, (kwargs, steps) in TASKS.items()
+    if task not in SPIN_ONLY
     for v, kw in _versions(task, kwargs).items()
 }
 
@@ -108,11 +124,15 @@ ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
 ENV_IDS: dict[str, tuple[dict[str, Any], int]] = {**SPIN_IDS, **ROLL_IDS}
 
 #: The current version of every task's ids (spin and roll), the ones to use in new work.
-CURRENT_IDS: tuple[str, ...] = tuple(i for task in TASKS for i in (spin_id(task), roll_id(task)))
+CURRENT_IDS: tuple[str, ...] = tuple(
+    i for task in TASKS for i in (spin_id(task), roll_id(task)) if i in ENV_IDS
+)
 
 #: The old names of the roll ids (``pool_env/<task>-v0`` -> ``pool_env/<task>Roll-v1``),
 #: registered with the same arguments; Gymnasium reports them out of date.
-LEGACY_IDS: dict[str, str] = {f"pool_env/{task}-v0": roll_id(task, 1) for task in TASKS}
+LEGACY_IDS: dict[str, str] = {
+    f"pool_env/{task}-v0": roll_id(task, 1) for task in TASKS if task not in SPIN_ONLY
+}
 
 
 def register_envs() -> None:

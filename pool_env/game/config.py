@@ -314,8 +314,10 @@ def make_config(config: PoolConfig | None = None, players: int = 1, **overrides:
             refused here, never at a reset.
     """
     source = resolve(config, overrides)
-    table = checks.parse_table(source.table.table, source.table.model, DEFAULT_MODEL)
     ruleset = ruleset_for(source.rules.game)
+    if ruleset.spin_only and source.table.model == "roll":  # before a roll table is made
+        raise ValueError(f"model='roll' for game={ruleset.name!r}: {ruleset.spin_only}")
+    table = checks.parse_table(source.table.table, source.table.model, DEFAULT_MODEL)
     task = parse_task(source.task, table, ruleset.scenes)
     sigmas = checks.parse_noise(source.noise.sigmas, table)
     speeds = checks.SpeedCeiling(table, task.tip_limit, sigmas[1] if sigmas else 0.0,

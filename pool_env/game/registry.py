@@ -33,6 +33,7 @@ BUILTIN: dict[str, str] = {
     "nine": "pool_env.game.games.wpa",
     "eight": "pool_env.game.games.wpa",
     "ten": "pool_env.game.games.wpa",
+    "three_cushion": "pool_env.game.games.three_cushion",
 }
 
 _games: dict[str, Ruleset] = {}

@@ -90,6 +90,8 @@ class Ruleset:
         scenes: The game's own starting layouts by name, each a fixed ``(N, 2)`` layout or
             a callable ``(table, rng) -> (N, 2)`` (cue ball first), which ``scene=<name>``
             picks on this game's tables (the shared ones are :data:`pool_env.SCENES`).
+        spin_only: Empty, or why the game is played on the spin level only: then
+            ``model="roll"`` is refused with this reason before any table is made.
     """
 
     name: str = ""
@@ -99,6 +101,7 @@ class Ruleset:
     section: type[RulesSection] = RulesSection
     reward_terms: Mapping[str, float] = {}
     scenes: Mapping[str, Any] = {}
+    spin_only: str = ""
 
     def __repr__(self) -> str:
         return f"{type(self).__name__}({self.name!r})"

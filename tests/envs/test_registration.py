@@ -18,6 +18,7 @@ from pool_env.envs.registration import (
     EARLIER_VERSIONS,
     ENV_IDS,
     LEGACY_IDS,
+    SPIN_ONLY,
     TASKS,
     register_envs,
     roll_id,
@@ -52,12 +53,17 @@ def test_registration_is_idempotent() -> None:
 
 
 def test_each_task_has_a_spin_id_and_a_roll_id_and_nothing_else() -> None:
-    current = {spin_id(t) for t in TASKS} | {roll_id(t) for t in TASKS}
+    """Every task but the spin-only ones (three-cushion) has its roll twin."""
+    assert {"ThreeCushion"} == SPIN_ONLY
+    twins = [t for t in TASKS if t not in SPIN_ONLY]
+    current = {spin_id(t) for t in TASKS} | {roll_id(t) for t in twins}
     earlier = {make(t, v) for t, v in EARLIER_VERSIONS for make in (spin_id, roll_id)}
-    assert set(CURRENT_IDS) == current and len(current) == 2 * len(TASKS) == 14
-    assert set(IDS) == current | earlier and len(IDS) == 16  # 9-ball's -v1 and -v2
+    assert set(CURRENT_IDS) == current and len(current) == 2 * len(twins) + 1 == 15
+    assert set(IDS) == current | earlier and len(IDS) == 17  # 9-ball's -v1 and -v2
+    assert not any(roll_id(t) in gym.registry for t in SPIN_ONLY)
     for task in TASKS:
         assert gym.spec(spin_id(task)).kwargs["id_defaults"]["model"] == "spin"
+    for task in twins:
         assert gym.spec(roll_id(task)).kwargs["id_defaults"]["model"] == "roll"
 
 
