@@ -35,6 +35,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -51,8 +52,11 @@ __all__ = ["CaromPlan", "ThreeCushionSearch"]
 
 #: Aim directions of the grid, evenly all round (0.5 degree apart).
 GRID_ANGLES = 720
-#: Cue ball speeds (m/s) of the grid (those inside the speed range are kept).
-GRID_SPEEDS = (2.0, 3.0, 4.0, 5.0, 6.0)
+#: Cue ball speeds of the grid, as fractions of the way from :data:`SLOWEST` (or the range's
+#: low end if higher) to the range's high end.
+GRID_SPEEDS = (0.0, 0.25, 0.5, 0.75, 1.0)
+#: The slowest speed (m/s) the grid tries: slower shots rarely reach three cushions.
+SLOWEST = 1.5
 #: Tips of the grid as fractions of the tip limit ``(a side, b vertical)``.
 GRID_TIPS = (
     (0.0, 0.0),
@@ -82,7 +86,7 @@ FLOOR_MULTIPLE = 0.5
 #: Aim directions, speeds and tips of the leave's grid.
 LEAVE_ANGLES = 360
 LEAVE_TIPS = ((0.0, 0.0), (0.6, 0.0), (-0.6, 0.0), (0.0, 0.5), (0.0, -0.5))
-LEAVE_SPEEDS = (3.0, 4.5)
+LEAVE_SPEEDS = (0.4, 0.8)
 #: The leave's points replayed under noise, and their draws.
 LEAVE_CANDIDATES = 16
 LEAVE_DRAWS = 16
@@ -140,6 +144,8 @@ class ThreeCushionSearch:
         tip_limit: The miscue circle (fraction of R; the env's default for the table by
             default).
         seed: Seed of the noise draws.
+        playable: ``rows -> (S,)`` booleans, the shots the caller's action can express
+            (an env's aim mode; all by default): only those are chosen.
 
     Raises:
         ValueError: On a roll table, a non-positive budget or thread count, a bad speed
@@ -155,6 +161,7 @@ class ThreeCushionSearch:
         speed_range: tuple[float, float] = (0.5, 7.0),
         tip_limit: float | None = None,
         seed: int = 0,
+        playable: Callable[[NDArray[np.float64]], NDArray[np.bool_]] | None = None,
     ) -> None:
         table = Table.preset("carom") if table is None else table
         if not isinstance(table, Table) or not table.has_spin:
@@ -186,18 +193,30 @@ class ThreeCushionSearch:
         self.speed_range = (low, high)
         self.tip_limit = limit
         self.rng = np.random.default_rng(seed)
+        self.playable = playable
         floor = fastfiz_sigmas(table, FLOOR_MULTIPLE)
         self.sigmas = tuple(max(a, b) for a, b in zip(noise or (0.0, 0.0, 0.0), floor, strict=True))
         self._grid = self._grid_rows(GRID_ANGLES, GRID_SPEEDS, GRID_TIPS)
         self._leave_grid = self._grid_rows(LEAVE_ANGLES, LEAVE_SPEEDS, LEAVE_TIPS)
 
     def _grid_rows(
-        self, n_angles: int, speeds: tuple[float, ...], tips: tuple[tuple[float, float], ...]
+        self,
+        n_angles: int,
+        speeds: tuple[float, ...],
+        tips: tuple[tuple[float, float], ...],
+        aim_window: tuple[float, float] | None = None,
     ) -> NDArray[np.float64]:
-        """``(len(speeds) * len(tips) * n_angles, 5)`` rows, angle fastest."""
+        """``(len(speeds) * len(tips) * n_angles, 5)`` rows, angle fastest.
+
+        The angles go all round, or evenly across ``aim_window`` (both ends included).
+        """
         low, high = self.speed_range
-        kept = [v for v in speeds if low <= v <= high] or [0.5 * (low + high)]
-        angles = np.arange(n_angles) * (2.0 * math.pi / n_angles)
+        slowest = min(max(low, SLOWEST), high)
+        kept = [slowest + f * (high - slowest) for f in speeds]
+        if aim_window is None:
+            angles = np.arange(n_angles) * (2.0 * math.pi / n_angles)
+        else:
+            angles = np.linspace(aim_window[0], aim_window[1], n_angles)
         blocks = []
         for v in kept:
             for a, b in tips:
@@ -207,7 +226,13 @@ class ThreeCushionSearch:
                 blocks.append(block)
         return np.concatenate(blocks)
 
-    def plan(self, positions: ArrayLike, cue: int = 0, first_ball: int | None = None) -> CaromPlan:
+    def plan(
+        self,
+        positions: ArrayLike,
+        cue: int = 0,
+        first_ball: int | None = None,
+        aim_window: tuple[float, float] | None = None,
+    ) -> CaromPlan:
         """The shot to play from ``positions`` with cue ball ``cue``.
 
         Args:
@@ -215,12 +240,15 @@ class ThreeCushionSearch:
             cue: The striker's cue ball (0 white or 1 yellow).
             first_ball: A ball the cue ball must meet first (the break's red, 2), or
                 ``None``.
+            aim_window: ``(low, high)`` the directions (radians, ``low < high <= low +
+                2 pi``) the caller's action can aim (a cut aim's cone at the nearest ball):
+                the grid spreads its directions across it. ``None``: all round.
 
         Returns:
             The :class:`CaromPlan`.
 
         Raises:
-            ValueError: On a layout that is not 3 balls, a bad cue or first ball.
+            ValueError: On a layout that is not 3 balls, a bad cue, first ball or window.
         """
         pos = np.array(positions, dtype=np.float64)
         if pos.shape != (3, 2):
@@ -231,8 +259,17 @@ class ThreeCushionSearch:
             raise ValueError(
                 f"first_ball must be an object ball of cue {cue} or None, got {first_ball!r}"
             )
+        grid = self._grid
+        if aim_window is not None:
+            lo, hi = (float(v) for v in aim_window)
+            if not (math.isfinite(lo) and lo < hi <= lo + 2.0 * math.pi):
+                raise ValueError(
+                    f"aim_window must be (low, high) with low < high <= low + 2 pi, got "
+                    f"{aim_window!r}"
+                )
+            grid = self._grid_rows(GRID_ANGLES, GRID_SPEEDS, GRID_TIPS, (lo, hi))
         start = time.perf_counter()
-        search = _Search(self, pos, cue, first_ball, start + self.budget)
+        search = _Search(self, pos, cue, first_ball, start + self.budget, grid)
         plan = search.run()
         plan.seconds = time.perf_counter() - start
         return plan
@@ -248,8 +285,10 @@ class _Search:
         cue: int,
         first_ball: int | None,
         deadline: float,
+        grid: NDArray[np.float64],
     ) -> None:
         self.p = player
+        self.grid_rows = grid
         self.pos = positions
         self.cue = cue
         self.first_ball = first_ball
@@ -277,6 +316,12 @@ class _Search:
             ok &= np.asarray(out.first_hit)[:, self.cue] == first_ball
         return ok
 
+    def choosable(self, rows: NDArray[np.float64]) -> NDArray[np.bool_]:
+        """The rows the caller's action can play (all without a ``playable``)."""
+        if self.p.playable is None:
+            return np.ones(rows.shape[0], dtype=np.bool_)
+        return np.asarray(self.p.playable(rows), dtype=np.bool_)
+
     def success(
         self,
         rows: NDArray[np.float64],
@@ -288,8 +333,8 @@ class _Search:
         From the layout by default (its first-ball rule applies), else from ``pos`` (a
         leave: the next shot, no first-ball rule).
         """
+        # The env adds the noise to the action's shot (in the range): no clipping after it.
         played = noisy_rows(rows, draws, self.p.sigmas, self.p.tip_limit)
-        self.clip(played)
         first = self.first_ball if pos is None else None
         ok = self.points(self.roll(played, pos), first)
         return ok.reshape(rows.shape[0], draws.shape[0]).mean(axis=1)
@@ -340,10 +385,11 @@ class _Search:
     def grid(self) -> NDArray[np.float64] | None:
         """Stage 1: the grid's points, widest window first; ``None`` after a near miss."""
         self.stages.append("grid")
-        rows = self.p._grid
+        rows = self.grid_rows
         out = self.roll(rows)
-        ok = self.points(out, self.first_ball)
-        near = near_scores(out, self.cue)
+        can = self.choosable(rows)
+        ok = self.points(out, self.first_ball) & can
+        near = np.where(can, near_scores(out, self.cue), -np.inf)
         self.set_best(rows[int(np.argmax(near))], "near_miss", 0.0)
         if not ok.any():
             return self.random_points(near.max())
@@ -360,17 +406,18 @@ class _Search:
             n = RANDOM_BATCH
             rows = np.zeros((n, 5))
             rows[:, 0] = self.p.rng.uniform(0.0, 2.0 * math.pi, n)
-            rows[:, 1] = self.p.rng.uniform(max(low, 1.0), high, n)
+            rows[:, 1] = self.p.rng.uniform(min(max(low, 1.0), high), high, n)
             r = self.p.tip_limit * np.sqrt(self.p.rng.uniform(0.0, 0.8, n))
             t = self.p.rng.uniform(0.0, 2.0 * math.pi, n)
             rows[:, 2], rows[:, 3] = r * np.cos(t), r * np.sin(t)
             out = self.roll(rows)
-            ok = self.points(out, self.first_ball)
+            can = self.choosable(rows)
+            ok = self.points(out, self.first_ball) & can
             if ok.any():
                 picked = rows[ok][:CANDIDATES].copy()
                 self.set_best(picked[0], "point", 0.0)
                 return picked
-            near = near_scores(out, self.cue)
+            near = np.where(can, near_scores(out, self.cue), -np.inf)
             if near.max() > nearest:
                 nearest = float(near.max())
                 self.set_best(rows[int(np.argmax(near))], "near_miss", 0.0)
@@ -405,7 +452,8 @@ class _Search:
             moves[2 * axis, axis], moves[2 * axis + 1, axis] = steps[axis], -steps[axis]
         neigh = (top[:, None, :] + moves[None]).reshape(-1, 5)
         self.clip(neigh)
-        neigh_rate = self.success(neigh, self.draws).reshape(n, 8)
+        neigh_rate = self.success(neigh, self.draws)
+        neigh_rate = np.where(self.choosable(neigh), neigh_rate, -1.0).reshape(n, 8)
         best = np.argmax(neigh_rate, axis=1)
         better = neigh_rate[np.arange(n), best] > rate
         new = top.copy()

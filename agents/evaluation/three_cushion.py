@@ -1,17 +1,17 @@
 """Three-cushion innings: the search player's average (points per inning), and a baseline's.
 
-``python -m agents.evaluation.three_cushion`` plays innings on the raw simulator
-(``Table.preset("carom")``, white's cue ball) from fixed seeds: from the UMB break position
-(the cue ball must meet the red first on the break shot) and from random three-ball
-layouts, at FastFiz x0, x1 and x5. An inning goes on while points are made (capped at
-``--max-shots``). Each shot is played as the env plays it: the player's shot plus the
-noise's draws (:func:`agents.baselines.carom.noisy_rows`), then recorded, and the point
-judged from the event log (:func:`agents.baselines.carom.point_of_events`), not from the
-rows the player searched.
+``python -m agents.evaluation.three_cushion`` plays innings of ``pool_env/ThreeCushion-v1``
+(one inning an episode, white's cue ball; the env's own rules, execution noise and its
+100-shot truncation) from fixed seeds: from the UMB starting position (the break, which
+must meet the red first) and from random three-ball layouts (``options["positions"]``), at
+FastFiz x0, x1 and x5. The env's aim is ``"absolute"`` by default (``--aim``: the id's
+own default, ``"cut"``, lets the cue ball go only at the nearest ball, which rules out the
+shots that start off a cushion).
 
 It reports points per inning (the "average" players are ranked by) with its 95% interval,
-the point rate per shot (clustered by inning), seconds per shot, and the same for random
-shots (the trivial baseline), and writes a markdown file with its command.
+the point rate per shot (clustered by inning), the planner's seconds per shot, the innings
+the truncation cut, and the same for uniformly random actions (the trivial baseline), and
+writes a markdown file with its command.
 """
 
 from __future__ import annotations
@@ -23,41 +23,25 @@ import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
+import gymnasium as gym
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.carom import noisy_rows, point_of_events
-from agents.baselines.three_cushion_search import CaromPlan, ThreeCushionSearch
+import pool_env  # noqa: F401  (registers the ids)
+from agents.baselines.random_agent import RandomAgent
+from agents.baselines.three_cushion_agent import ThreeCushionSearchAgent
 from agents.evaluation.metrics import Estimate, mean_ci, ratio_ci
-from pool_env import Table, shoot
-from pool_env.game.checks import default_tip_limit
-from pool_env.game.noise import fastfiz_sigmas
+from pool_env import Table
 
-__all__ = ["InningLog", "break_layout", "play_inning", "random_layout", "summarize"]
+__all__ = ["ENV_ID", "InningLog", "play_innings", "random_layout", "summarize"]
 
-#: The UMB break: the red on the top spot, the yellow on the head spot, the white on the
-#: head string 0.1825 m to the side of it (pooltool 0.6's three-cushion rack).
-BREAK_OFFSET = 0.1825
-#: The red: the ball the cue ball must meet first on the break.
-RED = 2
+ENV_ID = "pool_env/ThreeCushion-v1"
 #: A random layout's balls keep this much clearance (m) from each other and the cushions.
 CLEARANCE = 0.002
-
-#: A player: ``(positions, cue, first_ball) -> (angle, speed, tip a, tip b)``.
-Player = Callable[[NDArray[np.float64], int, int | None], tuple[float, float, float, float]]
-
-
-def break_layout(table: Table) -> NDArray[np.float64]:
-    """``(3, 2)`` white, yellow, red at the UMB break (the long axis is x)."""
-    length, width = table.length, table.width
-    return np.array(
-        [
-            [length / 4.0, width / 2.0 + BREAK_OFFSET],
-            [length / 4.0, width / 2.0],
-            [3.0 * length / 4.0, width / 2.0],
-        ]
-    )
+#: The layouts innings start from.
+LAYOUTS = ("break", "random")
 
 
 def random_layout(table: Table, rng: np.random.Generator) -> NDArray[np.float64]:
@@ -78,59 +62,53 @@ def random_layout(table: Table, rng: np.random.Generator) -> NDArray[np.float64]
 
 @dataclass
 class InningLog:
-    """One inning: its points, shots and the player's seconds per shot."""
+    """One inning: its points, shots, whether the env truncated it, seconds per shot."""
 
     points: int = 0
     shots: int = 0
-    capped: bool = False
+    truncated: bool = False
     seconds: list[float] = field(default_factory=list)
 
 
-def play_inning(
-    table: Table,
-    positions: NDArray[np.float64],
-    player: Player,
-    sigmas: Sequence[float],
-    rng: np.random.Generator,
-    max_shots: int,
-    first_ball: int | None = None,
-) -> InningLog:
-    """Play one inning with white's cue ball: shots while they score, at most ``max_shots``.
+def play_innings(env: gym.Env, agent: Any, layout: str, innings: int, seed: int) -> list[InningLog]:
+    """``innings`` episodes of ``env`` played by ``agent`` from ``layout``.
 
     Args:
-        table: The carom table.
-        positions: ``(3, 2)`` the layout.
-        player: The player.
-        sigmas: The execution noise ``(angle, speed, tip)`` (zeros: none).
-        rng: The noise's generator.
-        max_shots: The cap on an inning's shots.
-        first_ball: The ball the first shot must meet first (the break's red), or ``None``.
+        env: A ``ThreeCushion-v1`` env.
+        agent: A policy (``predict``).
+        layout: ``"break"`` (the env's starting position) or ``"random"``.
+        innings: Episodes to play.
+        seed: Inning ``k`` resets with seed ``seed * 100_003 + k``; its random layout is
+            drawn from ``default_rng([seed, k])``.
+
+    Raises:
+        ValueError: On an unknown layout.
     """
-    log = InningLog()
-    pos = positions.copy()
-    limit = default_tip_limit(table)
-    for _ in range(max_shots):
-        start = time.perf_counter()
-        angle, speed, a, b = player(pos, 0, first_ball)
-        log.seconds.append(time.perf_counter() - start)
-        row = noisy_rows(
-            np.array([[angle, speed, a, b, 0.0]]), rng.standard_normal((1, 4)), sigmas, limit
-        )[0]
-        result = shoot(table, pos, row[0], row[1], cue=0, tip=(row[2], row[3]))
-        log.shots += 1
-        scored = point_of_events(result.events, 0)
-        if first_ball is not None:
-            scored &= int(result.first_hit[0]) == first_ball
-        if not scored:
-            return log
-        log.points += 1
-        pos = result.positions.copy()
-        first_ball = None
-    log.capped = True
-    return log
+    if layout not in LAYOUTS:
+        raise ValueError(f"layout must be one of {LAYOUTS}, got {layout!r}")
+    table = env.unwrapped.config.table
+    logs = []
+    for k in range(innings):
+        options = None
+        if layout == "random":
+            options = {"positions": random_layout(table, np.random.default_rng([seed, k]))}
+        obs, _ = env.reset(seed=seed * 100_003 + k, options=options)
+        log = InningLog()
+        while True:
+            start = time.perf_counter()
+            action, _ = agent.predict(obs)
+            log.seconds.append(time.perf_counter() - start)
+            obs, _, terminated, truncated, info = env.step(action)
+            log.shots += 1
+            log.points += int(bool(info["point"]))
+            if terminated or truncated:
+                log.truncated = bool(truncated) and not terminated
+                break
+        logs.append(log)
+    return logs
 
 
-def summarize(logs: Sequence[InningLog]) -> dict[str, Estimate | float]:
+def summarize(logs: Sequence[InningLog]) -> dict[str, Any]:
     """Points per inning, points per shot (clustered by inning), seconds per shot."""
     points = np.array([g.points for g in logs], dtype=np.float64)
     shots = np.array([g.shots for g in logs], dtype=np.float64)
@@ -140,144 +118,79 @@ def summarize(logs: Sequence[InningLog]) -> dict[str, Estimate | float]:
         "point_rate": ratio_ci(points, shots, bounds=(0.0, 1.0)),
         "seconds_mean": float(seconds.mean()),
         "seconds_max": float(seconds.max()),
-        "capped": float(sum(g.capped for g in logs)),
-        "innings": float(len(logs)),
-        "shots": float(shots.sum()),
+        "truncated": sum(g.truncated for g in logs),
+        "innings": len(logs),
+        "best": int(points.max()),
     }
 
 
-def search_player(
-    table: Table, sigmas: Sequence[float] | None, budget: float, threads: int, seed: int
-) -> Player:
-    """The search as a :data:`Player` (its plans' diagnostics kept on ``player.plans``)."""
-    search = ThreeCushionSearch(
-        table,
-        noise=None if sigmas is None else tuple(sigmas),
-        budget=budget,
-        threads=threads,
-        seed=seed,
-    )
-    plans: list[CaromPlan] = []
-
-    def play(
-        pos: NDArray[np.float64], cue: int, first_ball: int | None
-    ) -> tuple[float, float, float, float]:
-        plan = search.plan(pos, cue, first_ball)
-        plans.append(plan)
-        return plan.angle, plan.speed, plan.tip[0], plan.tip[1]
-
-    play.plans = plans  # type: ignore[attr-defined]
-    return play
-
-
-def random_player(table: Table, seed: int, speed_range: tuple[float, float] = (0.5, 7.0)) -> Player:
-    """Uniform shots: any aim, a speed in the range, a tip uniform in the miscue circle."""
-    rng = np.random.default_rng(seed)
-    limit = default_tip_limit(table)
-
-    def play(
-        pos: NDArray[np.float64], cue: int, first_ball: int | None
-    ) -> tuple[float, float, float, float]:
-        r, t = limit * math.sqrt(rng.uniform()), rng.uniform(0.0, 2.0 * math.pi)
-        return (
-            rng.uniform(0.0, 2.0 * math.pi),
-            rng.uniform(*speed_range),
-            r * math.cos(t),
-            r * math.sin(t),
-        )
-
-    return play
-
-
-def evaluate(
-    table: Table,
-    make_player: Callable[[Sequence[float] | None, int], Player],
-    multiple: float,
-    layout: str,
-    innings: int,
-    seed: int,
-    max_shots: int,
-) -> list[InningLog]:
-    """``innings`` innings from ``layout`` (``"break"`` or ``"random"``) at FastFiz ``multiple``."""
-    sigmas = fastfiz_sigmas(table, multiple)
-    player = make_player(sigmas if multiple > 0 else None, seed)
-    logs = []
-    for k in range(innings):
-        rng = np.random.default_rng([seed, k, round(100 * multiple)])
-        if layout == "break":
-            pos, first = break_layout(table), RED
-        else:
-            pos, first = random_layout(table, np.random.default_rng([seed, k])), None
-        logs.append(play_inning(table, pos, player, sigmas, rng, max_shots, first))
-    return logs
-
-
-def _row(name: str, multiple: float, layout: str, s: dict[str, Estimate | float]) -> str:
+def _row(name: str, multiple: float, layout: str, s: dict[str, Any]) -> str:
     ppi, rate = s["points_per_inning"], s["point_rate"]
     assert isinstance(ppi, Estimate)
     assert isinstance(rate, Estimate)
     return (
-        f"| {name} | x{multiple:g} | {layout} | {int(s['innings'])} | {ppi} | {rate.as_percent()} "
-        f"| {s['seconds_mean']:.3f} | {s['seconds_max']:.3f} | {int(s['capped'])} |"
+        f"| {name} | x{multiple:g} | {layout} | {s['innings']} | {ppi} | {s['best']} "
+        f"| {rate.as_percent()} | {s['seconds_mean']:.3f} | {s['seconds_max']:.3f} "
+        f"| {s['truncated']} |"
     )
+
+
+HEADER = (
+    "| player | noise | layout | innings | points/inning [95%] | best | points/shot [95%] "
+    "| s/shot mean | s/shot max | truncated |",
+    "|---|---|---|---|---|---|---|---|---|---|",
+)
+
+
+def _parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
+    parser.add_argument("--innings", type=int, nargs="+", default=[100], metavar="N",
+                        help="search innings per row: one count, or one per --noise")  # fmt: skip
+    parser.add_argument("--noise", type=float, nargs="+", default=[0.0, 1.0, 5.0],
+                        help="FastFiz multiples")  # fmt: skip
+    parser.add_argument("--layouts", nargs="+", default=list(LAYOUTS), choices=LAYOUTS)
+    parser.add_argument("--aim", default="absolute", choices=("absolute", "cut", "relative"))
+    parser.add_argument("--budget", type=float, default=1.0, help="search seconds per shot")
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--seed", type=int, default=0)
+    parser.add_argument("--baseline-innings", type=int, default=200, help="random-action innings")
+    parser.add_argument("--out", default=None, help="markdown file to write")
+    return parser
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """The command line (``--help``)."""
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--innings", type=int, default=100, help="innings per row")
-    parser.add_argument(
-        "--noise", type=float, nargs="+", default=[0.0, 1.0, 5.0], help="FastFiz multiples"
-    )
-    parser.add_argument(
-        "--layouts", nargs="+", default=["break", "random"], choices=["break", "random"]
-    )
-    parser.add_argument("--budget", type=float, default=1.0, help="search seconds per shot")
-    parser.add_argument("--threads", type=int, default=2)
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--max-shots", type=int, default=25, help="an inning's cap")
-    parser.add_argument(
-        "--baseline-innings", type=int, default=200, help="random-shot innings per row"
-    )
-    parser.add_argument("--out", default=None, help="markdown file to write")
+    parser = _parser()
     args = parser.parse_args(argv)
-    for name in ("innings", "max_shots", "threads"):
-        if getattr(args, name) < 1:
-            parser.error(f"--{name.replace('_', '-')} must be >= 1, got {getattr(args, name)}")
+    if len(args.innings) not in (1, len(args.noise)) or min(args.innings) < 1:
+        parser.error(f"--innings must be one count >= 1 or one per --noise, got {args.innings}")
+    if args.baseline_innings < 0:
+        parser.error(f"--baseline-innings must be >= 0, got {args.baseline_innings}")
     if any(not (math.isfinite(m) and m >= 0) for m in args.noise):
         parser.error(f"--noise multiples must be >= 0, got {args.noise}")
-    table = Table.preset("carom")
+    counts = args.innings * len(args.noise) if len(args.innings) == 1 else args.innings
     load = os.getloadavg()
-    lines = [
-        "| player | noise | layout | innings | points/inning [95%] | points/shot [95%] "
-        "| s/shot mean | s/shot max | capped |",
-        "|---|---|---|---|---|---|---|---|---|",
-    ]
-    for multiple in args.noise:
+    lines = list(HEADER)
+
+    def run(name: str, make: Callable[[gym.Env], Any], multiple: float, n: int) -> None:
         for layout in args.layouts:
-            logs = evaluate(
-                table,
-                lambda sig, seed: search_player(table, sig, args.budget, args.threads, seed),
-                multiple,
-                layout,
-                args.innings,
-                args.seed,
-                args.max_shots,
-            )
-            lines.append(_row("search", multiple, layout, summarize(logs)))
+            env = gym.make(ENV_ID, noise=("fastfiz", multiple), aim=args.aim)
+            logs = play_innings(env, make(env), layout, n, args.seed)
+            lines.append(_row(name, multiple, layout, summarize(logs)))
             print(lines[-1], flush=True)
-            base = evaluate(
-                table,
-                lambda sig, seed: random_player(table, seed),
-                multiple,
-                layout,
-                args.baseline_innings,
-                args.seed,
-                args.max_shots,
-            )
-            lines.append(_row("random shots", multiple, layout, summarize(base)))
-            print(lines[-1], flush=True)
-    end_load = os.getloadavg()
+            env.close()
+
+    for multiple, n in zip(args.noise, counts, strict=True):
+        run(
+            "search",
+            lambda env: ThreeCushionSearchAgent(env, args.budget, args.threads, args.seed),
+            multiple,
+            n,
+        )
+        if args.baseline_innings:
+            run("random actions", lambda env: RandomAgent(env, seed=args.seed), multiple,
+                args.baseline_innings)  # fmt: skip
+    end = os.getloadavg()
     command = "python -m agents.evaluation.three_cushion " + " ".join(
         sys.argv[1:] if argv is None else argv
     )
@@ -285,10 +198,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         [
             "# Three-cushion: the search player's points per inning",
             "",
-            f"Command: `{command}` (under `flock /tmp/pool_cpu.lock`).",
+            f"Command: `{command}`, under `flock /tmp/pool_cpu.lock`; aim `{args.aim}`, "
+            f"budget {args.budget} s a shot on {args.threads} threads.",
             "",
-            f"Load average (1, 5, 15 min) at the start {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}, "
-            f"at the end {end_load[0]:.2f} {end_load[1]:.2f} {end_load[2]:.2f} (2 cores).",
+            f"Load average (1, 5, 15 min) at the start {load[0]:.2f} {load[1]:.2f} "
+            f"{load[2]:.2f}, at the end {end[0]:.2f} {end[1]:.2f} {end[2]:.2f} (2 cores).",
             "",
             *lines,
             "",

@@ -6,19 +6,18 @@ import math
 import time
 from dataclasses import replace
 
+import gymnasium as gym
 import numpy as np
 import pytest
 
 from agents.baselines.carom import near_scores, noisy_rows, point_of_events, points_of_rows
+from agents.baselines.random_agent import RandomAgent
+from agents.baselines.three_cushion_agent import ThreeCushionSearchAgent
 from agents.baselines.three_cushion_search import ThreeCushionSearch
-from agents.evaluation.three_cushion import (
-    break_layout,
-    main,
-    play_inning,
-    random_layout,
-)
+from agents.evaluation.three_cushion import ENV_ID, main, play_innings, random_layout
 from pool_env import Event, Table, shoot
 from pool_env.game.checks import default_tip_limit
+from pool_env.game.games.three_cushion.layout import starting_layout
 from pool_env.game.noise import fastfiz_sigmas
 from pool_env.sim import rollout
 
@@ -89,7 +88,7 @@ def test_the_player_scores_from_the_break_without_noise() -> None:
     Played on the recorded simulator: a point the event log confirms.
     """
     player = ThreeCushionSearch(TABLE, noise=None, budget=2.0, seed=0)
-    pos = break_layout(TABLE)
+    pos = starting_layout(TABLE)
     plan = player.plan(pos, cue=0, first_ball=2)
     assert plan.kind == "point"
     result = shoot(TABLE, pos, plan.angle, plan.speed, cue=0, tip=plan.tip)
@@ -127,23 +126,47 @@ def test_the_budget_is_kept_loosely() -> None:
     assert plan.stages[0] == "grid"
 
 
-def test_an_inning_ends_at_the_first_miss_and_counts_points() -> None:
-    """An inning counts the points and ends at the first miss.
+@pytest.mark.parametrize("aim", ["absolute", "cut"])
+def test_the_agent_scores_through_the_env(aim: str) -> None:
+    """Through the env's action, without noise, the planned point is the env's point.
 
-    A soft shot into the cushion misses at once: 0 points, 1 shot; the search scores.
+    From the break (the red first) under absolute aim, and from an open layout under the
+    id's cut aim (only the cone at the nearest ball can be expressed).
     """
-    miss = play_inning(TABLE, break_layout(TABLE), lambda p, c, f: (math.pi / 2, 0.5, 0.0, 0.0),
-                       (0.0, 0.0, 0.0), np.random.default_rng(0), 5)  # fmt: skip
-    assert (miss.points, miss.shots, miss.capped) == (0, 1, False)
-    search = ThreeCushionSearch(TABLE, budget=1.0, seed=0)
+    env = gym.make(ENV_ID, noise=("fastfiz", 0), aim=aim)
+    options = None
+    if aim == "cut":
+        options = {"positions": [[2.2, 1.0], [0.6, 0.4], [1.5, 0.9]]}
+    obs, _ = env.reset(seed=0, options=options)
+    agent = ThreeCushionSearchAgent(env, budget=1.0, seed=0)
+    action, _ = agent.predict(obs)
+    assert agent.last_plan["kind"] == "point"
+    _, reward, _, _, info = env.step(action)
+    assert info["point"]
+    assert info["foul"] == ""
+    assert reward == 1.0
 
-    def play(pos: np.ndarray, cue: int, first: int | None) -> tuple[float, float, float, float]:
-        plan = search.plan(pos, cue, first)
-        return plan.angle, plan.speed, *plan.tip
 
-    log = play_inning(TABLE, break_layout(TABLE), play, (0.0, 0.0, 0.0),
-                      np.random.default_rng(0), 2, first_ball=2)  # fmt: skip
-    assert log.points >= 1
+def test_an_inning_counts_the_env_points_and_ends() -> None:
+    """Random actions from the break: each inning ends, its points its shots less the last.
+
+    An inning runs until its first miss (the truncation at 100 shots is not reached).
+    """
+    env = gym.make(ENV_ID, noise=("fastfiz", 1), aim="absolute")
+    logs = play_innings(env, RandomAgent(env, seed=0), "break", 5, seed=0)
+    assert len(logs) == 5
+    for log in logs:
+        assert log.shots >= 1
+        assert log.points == log.shots - 1  # an inning runs until its first miss
+        assert not log.truncated
+    with pytest.raises(ValueError, match="layout"):
+        play_innings(env, RandomAgent(env, seed=0), "rack", 1, seed=0)
+
+
+def test_the_agent_refuses_another_game() -> None:
+    env = gym.make("pool_env/OneBall-v1")
+    with pytest.raises(ValueError, match="three_cushion"):
+        ThreeCushionSearchAgent(env)
 
 
 @pytest.mark.parametrize(
@@ -173,16 +196,18 @@ def test_bad_settings_are_refused(kwargs: dict, words: str) -> None:
         ((None, True, None), "cue"),
         ((None, 0, 0), "first_ball"),
         ((None, 0, 5), "first_ball"),
+        ((None, 0, None, (1.0, 0.5)), "aim_window"),
+        ((None, 0, None, (0.0, 7.0)), "aim_window"),
     ],
 )
 def test_bad_plans_are_refused(args: tuple, words: str) -> None:
     player = ThreeCushionSearch(TABLE, budget=0.1)
-    pos = break_layout(TABLE) if args[0] is None else args[0]
+    pos = starting_layout(TABLE) if args[0] is None else args[0]
     with pytest.raises(ValueError, match=words):
-        player.plan(pos, args[1], args[2])
+        player.plan(pos, *args[1:])
 
 
 def test_the_command_refuses_bad_flags(capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit):
         main(["--innings", "0"])
-    assert "--innings must be >= 1" in capsys.readouterr().err
+    assert "--innings must be one count >= 1" in capsys.readouterr().err
