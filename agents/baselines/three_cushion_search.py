@@ -13,8 +13,11 @@ budget is spent (anytime: every stage ends with a best shot in hand):
 2. **Noise.** The kept points are replayed under the env's execution noise with common
    random draws (the same :data:`DRAWS` normal draws for every candidate, so candidates
    differ by their shot alone), and ranked by their success rate.
-3. **Refine.** The best few are perturbed (aim, speed, tip a, tip b, with shrinking steps)
-   and a neighbour that scores more often under the same draws replaces its parent.
+   More candidates are ranked while :data:`RANK_SHARE` of the budget lasts.
+3. **Refine.** The best few are perturbed (aim, speed, tip a, tip b, with shrinking steps,
+   the first at least the noise's sigma) and a neighbour that scores more often under the
+   same draws replaces its parent, round after round until :data:`REFINE_SHARE` of the
+   budget is spent.
 4. **Final.** The finalists are replayed under fresh draws (:data:`FINAL_DRAWS`) and
    weighed by their leave (the inning goes on after a point): a small search from where
    the nominal shot leaves the balls (a coarser grid, its widest points under a few draws)
@@ -69,14 +72,22 @@ GRID_TIPS = (
     (0.6, -0.5),
     (-0.6, -0.5),
 )
-#: Candidates replayed under noise after the grid.
+#: Candidates replayed under noise in one call; more calls while :data:`RANK_SHARE` of the
+#: budget lasts, widest windows first.
 CANDIDATES = 96
+#: The grid points kept for ranking, at most.
+MAX_RANKED = 1536
+#: Share of the budget the ranking may use; refining goes on until :data:`REFINE_SHARE`.
+RANK_SHARE = 0.35
+REFINE_SHARE = 0.7
+#: Refining rounds at most (the steps halve each round, back to coarse after four).
+REFINE_ROUNDS = 12
 #: Noise draws per candidate in the ranking and refining stages.
-DRAWS = 32
+DRAWS = 64
 #: Candidates refined by local perturbation.
-REFINED = 6
+REFINED = 12
 #: Noise draws per finalist in the final stage.
-FINAL_DRAWS = 128
+FINAL_DRAWS = 256
 #: Finalists whose leave is weighed.
 FINALISTS = 6
 #: Random shots per call while the grid has no point.
@@ -393,7 +404,7 @@ class _Search:
         self.set_best(rows[int(np.argmax(near))], "near_miss", 0.0)
         if not ok.any():
             return self.random_points(near.max())
-        picked = rows[_widest(ok, GRID_ANGLES)[:CANDIDATES]].copy()
+        picked = rows[_widest(ok, GRID_ANGLES)[:MAX_RANKED]].copy()
         self.set_best(picked[0], "point", 0.0)
         return picked
 
@@ -426,18 +437,26 @@ class _Search:
     def rank_refine_final(self, candidates: NDArray[np.float64]) -> None:
         """Stages 2-4: rank under noise, refine the best, weigh the finalists' leaves."""
         self.stages.append("noise")
-        rate = self.success(candidates, self.draws)
-        order = np.argsort(-rate, kind="stable")
-        candidates, rate = candidates[order], rate[order]
-        self.set_best(candidates[0], "point", float(rate[0]))
-        top, top_rate = candidates[:REFINED].copy(), rate[:REFINED].copy()
-        self.stages.append("refine")
-        steps = np.array([math.radians(0.25), 0.3, 0.08, 0.08])
-        for _ in range(4):
-            if time.perf_counter() > self.deadline - 0.3 * self.p.budget:
+        start = self.deadline - self.p.budget
+        rate = np.full(candidates.shape[0], -1.0)
+        for lo in range(0, candidates.shape[0], CANDIDATES):
+            if lo and time.perf_counter() > start + RANK_SHARE * self.p.budget:
                 break
-            top, top_rate = self.refine(top, top_rate, steps)
-            steps = steps * 0.5
+            rate[lo : lo + CANDIDATES] = self.success(candidates[lo : lo + CANDIDATES], self.draws)
+            k = int(np.argmax(rate))
+            self.set_best(candidates[k], "point", float(rate[k]))
+        order = np.argsort(-rate, kind="stable")[:REFINED]
+        top, top_rate = candidates[order].copy(), rate[order].copy()
+        self.stages.append("refine")
+        sig_angle, sig_speed, sig_tip = self.p.sigmas
+        first = np.array(
+            [max(math.radians(0.25), sig_angle), max(0.3, 2 * sig_speed)]
+            + [max(0.08, 2 * sig_tip)] * 2
+        )
+        for r in range(REFINE_ROUNDS):
+            if time.perf_counter() > start + REFINE_SHARE * self.p.budget:
+                break
+            top, top_rate = self.refine(top, top_rate, first * 0.5 ** (r % 4))
             k = int(np.argmax(top_rate))
             self.set_best(top[k], "point", float(top_rate[k]))
         self.final(top)

@@ -10,8 +10,9 @@ shots that start off a cushion).
 
 It reports points per inning (the "average" players are ranked by) with its 95% interval,
 the point rate per shot (clustered by inning), the planner's seconds per shot, the innings
-the truncation cut, and the same for uniformly random actions (the trivial baseline), and
-writes a markdown file with its command.
+that reached the match target (50: the env ends the inning there, so a row with such
+innings gives a floor of the average) or the truncation, and the same for uniformly random
+actions (the trivial baseline), and writes a markdown file with its command.
 """
 
 from __future__ import annotations
@@ -62,10 +63,16 @@ def random_layout(table: Table, rng: np.random.Generator) -> NDArray[np.float64]
 
 @dataclass
 class InningLog:
-    """One inning: its points, shots, whether the env truncated it, seconds per shot."""
+    """One inning: its points, shots, how it ended, seconds per shot.
+
+    ``target``: it ended on a point (the match's target reached: the env ends the inning
+    there, so its points are a floor of what the player would have run); ``truncated``: the
+    env's 100-shot limit cut it.
+    """
 
     points: int = 0
     shots: int = 0
+    target: bool = False
     truncated: bool = False
     seconds: list[float] = field(default_factory=list)
 
@@ -103,6 +110,7 @@ def play_innings(env: gym.Env, agent: Any, layout: str, innings: int, seed: int)
             log.points += int(bool(info["point"]))
             if terminated or truncated:
                 log.truncated = bool(truncated) and not terminated
+                log.target = bool(terminated) and bool(info["point"])
                 break
         logs.append(log)
     return logs
@@ -119,6 +127,7 @@ def summarize(logs: Sequence[InningLog]) -> dict[str, Any]:
         "seconds_mean": float(seconds.mean()),
         "seconds_max": float(seconds.max()),
         "truncated": sum(g.truncated for g in logs),
+        "target": sum(g.target for g in logs),
         "innings": len(logs),
         "best": int(points.max()),
     }
@@ -131,14 +140,14 @@ def _row(name: str, multiple: float, layout: str, s: dict[str, Any]) -> str:
     return (
         f"| {name} | x{multiple:g} | {layout} | {s['innings']} | {ppi} | {s['best']} "
         f"| {rate.as_percent()} | {s['seconds_mean']:.3f} | {s['seconds_max']:.3f} "
-        f"| {s['truncated']} |"
+        f"| {s['target']} | {s['truncated']} |"
     )
 
 
 HEADER = (
     "| player | noise | layout | innings | points/inning [95%] | best | points/shot [95%] "
-    "| s/shot mean | s/shot max | truncated |",
-    "|---|---|---|---|---|---|---|---|---|---|",
+    "| s/shot mean | s/shot max | at target | truncated |",
+    "|---|---|---|---|---|---|---|---|---|---|---|",
 )
 
 

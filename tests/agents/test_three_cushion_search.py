@@ -159,6 +159,7 @@ def test_an_inning_counts_the_env_points_and_ends() -> None:
         assert log.shots >= 1
         assert log.points == log.shots - 1  # an inning runs until its first miss
         assert not log.truncated
+        assert not log.target
     with pytest.raises(ValueError, match="layout"):
         play_innings(env, RandomAgent(env, seed=0), "rack", 1, seed=0)
 
