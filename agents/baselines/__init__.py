@@ -8,4 +8,8 @@ under the rules of the game ids); ``base``, ``aiming``, ``geometry`` and ``trace
 they share (the env's spec and observation, the action codec, the table's shots, the cue
 ball's path off the cushions). On the spin ids: ``cue_path`` (the cue ball in closed form:
 strike, slide, roll, contact with throw) and ``spin_play`` (the tip and speed for position).
+Three-cushion (``ThreeCushion-v1``): ``carom`` (the point, from the rollout's rows and from
+an event log; the noise's draws), ``three_cushion_search`` (the anytime search over the
+batched rollout, on the raw simulator) and ``three_cushion_agent`` (the same through the
+env's action).
 """
