@@ -52,7 +52,7 @@ from gymnasium import spaces
 from numpy.typing import NDArray
 
 from pool_env.envs.checks import check_seed
-from pool_env.envs.registration import ENV_IDS, TASKS, spin_id
+from pool_env.envs.registration import ENV_IDS, TASKS, roll_id, spin_id
 from pool_env.envs.seeding import seed_table
 from pool_env.extras import require
 from pool_env.game import step as game_step
@@ -71,6 +71,14 @@ _ONE = np.zeros(1, dtype=np.intp)
 _GAME_IDS: dict[str, tuple[dict[str, Any], int]] = {
     kwargs["game"]: ({k: v for k, v in kwargs.items() if k not in ("game", "model")}, steps)
     for kwargs, steps in (ENV_IDS[spin_id(task)] for task in TASKS)
+    if "game" in kwargs
+}
+#: The same from the roll twins, for ``model="roll"``: a game's own table there is its
+#: roll table (snooker's preset less its spin-only values, as the roll id registers it).
+#: A spin-only game has none, and its own refusal of the roll level speaks.
+_GAME_ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
+    kwargs["game"]: ({k: v for k, v in kwargs.items() if k not in ("game", "model")}, steps)
+    for kwargs, steps in (ENV_IDS[roll_id(task)] for task in TASKS if roll_id(task) in ENV_IDS)
     if "game" in kwargs
 }
 _OPTIONS = ("positions", "on_table", "rules")
@@ -124,7 +132,8 @@ class PoolDuelEnv(AECEnv):
             name = game or _rules_game(overrides.get("rules")) or "nine"
             if name not in _GAME_IDS:
                 raise ValueError(f"game must be one of {sorted(_GAME_IDS)}, got {name!r}")
-            registered, steps = _GAME_IDS[name]
+            ids = _GAME_ROLL_IDS if overrides.get("model") == "roll" else _GAME_IDS
+            registered, steps = ids.get(name, _GAME_IDS[name])
             defaults = {**registered, "game": name, "max_shots": steps}
             source = resolve(None, overrides if game is None else {"game": game, **overrides},
                              defaults)  # fmt: skip

@@ -357,7 +357,9 @@ def default_config(**overrides: Any) -> PoolConfig:
               ``max_shots``;
             * noise: ``noise``;
             * rules: ``game``, then the game's own keys (9-ball, 10-ball and 8-ball:
-              ``end_on_foul``, ``break_speed_range``, ``push_out``);
+              ``end_on_foul``, ``break_speed_range``, ``push_out``; snooker:
+              ``end_on_foul``; three-cushion: ``target``, ``inning_limit``,
+              ``equalizing_inning``);
             * rewards: ``reward_<term>`` per reward term of the game.
 
             A section's name (``table``, ``task``, ``noise``, ``rules``, ``rewards``)

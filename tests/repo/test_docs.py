@@ -38,10 +38,14 @@ from pool_env.game.sections import (
 
 #: Every keyword the specification documents, and its section: the shared sections' keys,
 #: the built-in games' rules keys and their reward terms.
+#: Every built-in game's rules section and reward terms (WPA's first: where games share a
+#: key, the specification quotes the WPA games' default and names the others' in words).
+GAME_SECTIONS = [WpaRules] + [ruleset_for(g).section for g in BUILTIN]
+GAME_REWARDS = [SOLITAIRE_REWARDS, WPA_REWARDS] + [ruleset_for(g).reward_terms for g in BUILTIN]
 DOCUMENTED_KEYS = {
     **KEYS,
-    **{f.name: "rules" for f in dataclasses.fields(WpaRules)},
-    **{f"reward_{t}": "rewards" for terms in (SOLITAIRE_REWARDS, WPA_REWARDS) for t in terms},
+    **{f.name: "rules" for section in GAME_SECTIONS for f in dataclasses.fields(section)},
+    **{f"reward_{t}": "rewards" for terms in GAME_REWARDS for t in terms},
 }
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -83,9 +87,15 @@ def _section_defaults() -> dict[str, object]:
     defaults: dict[str, object] = {}
     for section in (TableSection, TaskSection, WpaRules, RulesSection):  # game: solitaire's
         defaults.update((f.name, f.default) for f in dataclasses.fields(section))
+    for section in GAME_SECTIONS:  # the other games' own keys
+        for f in dataclasses.fields(section):
+            defaults.setdefault(f.name, f.default)
     defaults["noise"] = NoiseSection().sigmas
     for terms in (SOLITAIRE_REWARDS, WPA_REWARDS):
         defaults.update((f"reward_{term}", scale) for term, scale in terms.items())
+    for terms in GAME_REWARDS:
+        for term, scale in terms.items():
+            defaults.setdefault(f"reward_{term}", scale)
     return defaults
 
 
@@ -112,7 +122,10 @@ def test_specification_table_matches_the_config_sections() -> None:
 
 
 #: The games a row of the specification's table names in its section's parentheses.
-ROW_GAMES = {"9": "nine", "10": "ten", "8": "eight", "solitaire": "solitaire", "snooker": "snooker"}
+ROW_GAMES = {
+    "9": "nine", "10": "ten", "8": "eight", "solitaire": "solitaire", "snooker": "snooker",
+    "three-cushion": "three_cushion",
+}  # fmt: skip
 
 
 def _documented_games(section: str) -> set[str]:
