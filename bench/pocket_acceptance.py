@@ -209,7 +209,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__)
     parser.add_argument("--step", type=float, default=0.0005, help="spacing of the paths (m)")
     parser.add_argument("--table", choices=["pool", "snooker"], default="pool")
-    parser.add_argument("--out", type=Path, default=None, help="default results/pocket_...md")
+    parser.add_argument(
+        "--out", type=Path, default=None, help="default: the table's results file (above)"
+    )
     args = parser.parse_args()
     if args.table == "snooker":
         snooker(args.step, args.out or Path("results/pocket_acceptance_snooker.md"))

@@ -2,7 +2,7 @@
 
 Run (pooltool from ``bash bench/setup_pooltool.sh``; over a minute of CPU: under the lock)::
 
-    flock /tmp/pool_cpu.lock python -m bench.verdicts_vs_pooltool  # -> results/verdicts_...md
+    flock /tmp/pool_cpu.lock python -m bench.verdicts_vs_pooltool  # writes the results file
     python -m bench.verdicts_vs_pooltool --shots 20                # smoke run (prints only)
 
 Per game, :func:`bench.verdict_shots.make_cases` draws seeded shots (layouts, rule states,

@@ -62,8 +62,8 @@ which the roll level does not read. Each value and its source:
                             0.85 is unresearched: kept
 ``pockets``                 :data:`SNOOKER_POCKETS` (below)               ``JawSpec``
 ``mu_slide`` (spin)         Mathavan et al. 2010, measured on a snooker   0.212
-                            table (``docs/sources.md``, "Cushions in
-                            detail"); pooltool's ``SNOOKER_GENERIC.u_s``
+                            table (``docs/sources.md``, "Real
+                            tables"); pooltool's ``SNOOKER_GENERIC.u_s``
                             0.5 is, by its own comment, unresearched
 ``cushion_friction`` (spin) Mathavan et al. 2010 (same): 0.14; pooltool   0.14
                             ``SNOOKER_GENERIC.f_c`` 0.5 (unresearched)

@@ -21,6 +21,7 @@ from pool_env.game.config import default_tip_limit, make_config
 from pool_env.game.games.wpa.shots import executed_rule_shots, place_in_hand
 from pool_env.game.kernels.actions import executed_shots
 from pool_env.game.state import generator_addresses
+from pool_env.sim.table import SPIN_ONLY as SPIN_PARAMS
 
 LAYOUT = np.array([[0.8, 0.635], [1.1, 0.635]])  # a straight shot along +x, 0.3 m apart
 R = Table().ball_radius
@@ -247,7 +248,13 @@ def test_every_spin_id_is_its_roll_id_on_the_spin_table() -> None:
             continue
         kwargs, steps = pool_env.ENV_IDS[spin_id(task)]
         roll_kwargs, roll_steps = pool_env.ENV_IDS[roll_id(task)]
+        # A game's own table (snooker's preset): its roll twin keeps what the roll level reads.
+        own = kwargs.get("table")
+        if own is not None:
+            assert roll_kwargs["table"] == {k: v for k, v in own.items() if k not in SPIN_PARAMS}
+            roll_kwargs = {**roll_kwargs, "table": own}
         assert kwargs == {**roll_kwargs, "model": "spin"} and steps == roll_steps
+        roll_kwargs = pool_env.ENV_IDS[roll_id(task)][0]
         spin = gym.make(spin_id(task)).unwrapped
         roll = PoolEnv(**roll_kwargs)
         assert spin.config.table.model == "spin" and roll.config.table.model == "roll"
