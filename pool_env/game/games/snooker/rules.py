@@ -262,6 +262,7 @@ def judge_stroke(params, pockets, row, positions, on_table, potted, first, nomin
             out[R_TIE] = 1
             to_spot[:] = False
             to_spot[BLACK] = True
+            on_table[0] = False  # in hand, off the table: it covers no spot of the black's
             placed = respot_colours(params, pockets, positions, on_table, to_spot, others)
             row[SHOOTER], row[BREAK] = 1 - shooter, 0
             row[PHASE], row[IN_HAND], row[RESPOTTED] = IN_ORDER, 1, 1
