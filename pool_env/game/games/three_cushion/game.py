@@ -321,7 +321,9 @@ class ThreeCushion(Ruleset):
             "winner": int(row[sc.WINNER]),
         }
 
-    def state_row(self, config: GameConfig, given: Any) -> NDArray[np.int64]:
+    def state_row(
+        self, config: GameConfig, given: Any, on_table: NDArray[np.bool_] | None = None
+    ) -> NDArray[np.int64]:
         """The rack row of ``given``: a dict as :meth:`state_dict` gives, a row, or ``None``.
 
         ``None``: white to play its first inning, nothing scored.
