@@ -69,7 +69,7 @@ def _table(
         raise ValueError(f"on_table must have shape ({n},), got {on.shape}")
     state = config.new_state(1)
     state.positions[0], state.on_table[0] = pos, on
-    state.rack[0] = config.ruleset.state_row(config, rack)  # the game parses its own state
+    state.rack[0] = config.ruleset.state_row(config, rack, on)  # the game parses its own state
     return state
 
 

@@ -318,8 +318,14 @@ class Ruleset:
         """
         raise ValueError(f"game={self.name!r} keeps no rack state")
 
-    def state_row(self, config: GameConfig, given: Any) -> NDArray[np.int64]:
-        """A table's game state row from a dict (:meth:`state_dict`'s), a row or ``None``."""
+    def state_row(
+        self, config: GameConfig, given: Any, on_table: NDArray[np.bool_] | None = None
+    ) -> NDArray[np.int64]:
+        """A table's game state row from a dict (:meth:`state_dict`'s), a row or ``None``.
+
+        ``on_table`` (``(N,)``, the layout the row goes with) lets a game whose state
+        follows the balls read them (snooker's phase); the others ignore it.
+        """
         if given is not None:
             raise ValueError(
                 f"rack is for the rules ids (a game with a rack state), not game={self.name!r}"

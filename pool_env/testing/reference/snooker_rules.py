@@ -322,6 +322,7 @@ def referee(table: TableSpec, frame: Frame, before: Balls, after: Balls, first: 
         else:  # S3 R4(b): the black re-spotted, from in hand, the next score or foul ends it
             tie = True
             balls.pop(BLACK, None)  # picked up (if still on the table) and spotted
+            balls.pop(0, None)  # the cue ball is in hand, off the table: it covers no spot
             put_back(table, balls, [BLACK])
             cue_in_hand = True
             new = replace(new, striker=1 - frame.striker, current_break=0, on="in_order",

@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 
 from pool_env.game.games.snooker import rack_state as sk
 from pool_env.game.games.snooker.rules import R_TIE
-from tests.game.snooker.harness import Case, compare, compiled, random_case, spec
+from tests.game.snooker.harness import Case, compare, compiled, random_case, referenced, spec
 from tests.profiles import examples
 
 
@@ -52,4 +52,25 @@ def test_a_tie_respots_the_black_on_its_own_spot_though_it_lay_on_it() -> None:
     assert on_after[21] and on_after[0]
     assert res[R_TIE] == 1 and row_after[sk.RESPOTTED] == 1  # 10 + 7 on the foul: 10 each
     assert np.allclose(pos[21], spec().spot(21))
+    assert compare(case) == []
+
+
+def test_a_tie_respots_the_black_on_its_own_spot_though_the_cue_ball_lay_on_it() -> None:
+    """S3 R4(b): the cue ball goes in hand (off the table) before the black is re-spotted.
+
+    A foul that levels the frame leaves the cue ball resting on the black spot; in hand it
+    covers nothing, so the black goes to its own spot (both judges had sent it elsewhere).
+    """
+    row = np.array([0, 24, 17, 2, 0, 0, 0, 0, -1], dtype=np.int64)  # player 0 on the black
+    on = np.zeros(22, dtype=bool)
+    on[[0, 21]] = True
+    after = np.zeros((22, 2))
+    after[0], after[21] = spec().spot(21), (1.0, 0.5)  # the cue ball on the black spot
+    case = Case(row, on, after, np.zeros(22, dtype=bool), -1, 0, np.zeros(22, dtype=bool))
+    res, row_after, on_after, pos = compiled(case)
+    assert res[R_TIE] == 1 and row_after[sk.IN_HAND] == 1  # 17 + 7 on the miss: 24 each
+    assert on_after[21] and np.allclose(pos[21], spec().spot(21))
+    assert on_after[0] and np.hypot(*(pos[0] - pos[21])) > 1.0  # in the D
+    _, balls, verdict = referenced(case)
+    assert verdict.tie and np.allclose(balls[21], spec().spot(21))
     assert compare(case) == []

@@ -184,10 +184,11 @@ def test_a_level_frame_goes_to_a_respotted_black(env: PoolEnv) -> None:
     cue, angle = behind(black, TOP_LEFT)
     pos, on = layout({}, cue=cue, black=black, yellow=None, green=None, brown=None,
                      blue=None, pink=None)  # fmt: skip
-    rules = {"phase": "in_order", "score_0": 3, "score_1": 10}
+    rules = {"phase": "in_order", "score_0": 3, "score_1": 10, "break": 12}
     out = play(env, pos, on, rules, angle, 1.5)
     rack = out["rack"]
     assert out["points"] == 7 and rack["winner"] is None and not out["terminated"]
+    assert out["break"] == 19 and rack["break"] == 0  # the striker's break; the next's
     assert rack["respotted_black"] and rack["ball_in_hand"]
     assert out["on"][21] and np.allclose(out["positions"][21], SPOT[21])
     # ahead by more than the black, potting it ends the frame: the striker wins it

@@ -22,6 +22,7 @@ import pytest
 import pool_env  # noqa: F401  (registers the ids)
 from pool_env import Table
 from pool_env.envs.multiagent import PoolDuelEnv
+from pool_env.game import step as step_module
 from pool_env.game.games.three_cushion.layout import starting_layout
 
 ID = "pool_env/ThreeCushion-v1"
@@ -234,3 +235,32 @@ def test_only_the_strikers_cue_ball_is_respotted_at_reset() -> None:
     layout = frozen_layout(1, 2)
     env = duel({"shooter": 0}, layout)
     np.testing.assert_array_equal(env.positions, layout)
+
+
+def test_a_frozen_cue_ball_after_the_last_shot_stays_where_it_stopped(
+    found: dict[str, np.ndarray], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """The match ends on the yellow's miss at the inning limit, the yellow against the red.
+
+    No inning follows, so nothing is re-spotted: the final observation shows the balls
+    where they stopped, and ``info`` says so. (Where the yellow stops is set in the
+    simulator's answer: a real shot ending exactly against a ball is not to be found.)
+    """
+    real = step_module._simulate
+
+    def stopped_against_the_red(*args: Any, **kwargs: Any) -> Any:
+        out = real(*args, **kwargs)
+        final = out.final.copy()
+        final[0, 1] = final[0, 2] + (0.0, 2.0 * R)  # the yellow at rest against the red
+        return out._replace(final=final)
+
+    monkeypatch.setattr(step_module, "_simulate", stopped_against_the_red)
+    rules = {**YELLOW, "score": (1, 3), "innings": (4, 4)}
+    env = duel(rules, SWAPPED, inning_limit=4)
+    env.step(found["no_ball"])
+    info = env.infos["player_0"]
+    assert info["first_contact"] == -1 and not info["respotted"]
+    assert set(env.terminations.values()) == {True} and env.rack["shooter"] == 1
+    np.testing.assert_array_equal(env.positions[2], SWAPPED[2])  # not struck
+    np.testing.assert_allclose(env.positions[1], SWAPPED[2] + (0.0, 2.0 * R))
+    np.testing.assert_array_equal(env.positions[0], SWAPPED[0])

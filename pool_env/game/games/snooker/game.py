@@ -131,11 +131,7 @@ class Snooker(Ruleset):
         From given positions: the cue ball where it lies (unless ``ball_in_hand``), a red
         on (the colours in order when no red is on the table).
         """
-        reds = bool(on_table[:, 1:16].any(axis=1).all())
-        none = not on_table[:, 1:16].any()
-        if not (reds or none):
-            raise ValueError("options['on_table'] must give every table reds, or none")
-        row = row_of(given, reds, in_hand=rack_scene)
+        row = row_of(given, _has_reds(on_table), in_hand=rack_scene)
         turn.state.rack[turn.tables] = row
 
     # -- one step -------------------------------------------------------------------------
@@ -338,8 +334,17 @@ class Snooker(Ruleset):
         """A frame-state row as a dict (:func:`.rack.state_dict`)."""
         return state_dict(row)
 
-    def state_row(self, config: GameConfig, given: Any) -> NDArray[np.int64]:
-        """The frame-state row of ``given`` (a dict, a row or ``None``)."""
+    def state_row(
+        self, config: GameConfig, given: Any, on_table: NDArray[np.bool_] | None = None
+    ) -> NDArray[np.int64]:
+        """The frame-state row of ``given`` (a dict, a row or ``None``).
+
+        With ``on_table`` (``(N,)``, the codec's layout) the phase follows the balls as
+        :meth:`start`'s does (the colours in order without reds; a red on refused there);
+        without it, from the given phase (a red on by default).
+        """
+        if on_table is not None:
+            return row_of(given, _has_reds(np.asarray(on_table)[None, :]), False)
         return (
             row_of(given, True, False)
             if given is None or not isinstance(given, dict)
@@ -349,6 +354,14 @@ class Snooker(Ruleset):
     def shooters(self, state: GameState) -> NDArray[np.int64]:
         """``(B,)`` the player to shoot on each table (a copy)."""
         return state.rack[:, sk.SHOOTER].copy()
+
+
+def _has_reds(on_table: NDArray[np.bool_]) -> bool:
+    """Whether the ``(K, N)`` tables have reds: every one of them, or none (refused)."""
+    reds = bool(on_table[:, 1:16].any(axis=1).all())
+    if not (reds or not on_table[:, 1:16].any()):
+        raise ValueError("options['on_table'] must give every table reds, or none")
+    return reds
 
 
 #: The one snooker ruleset.

@@ -26,7 +26,6 @@ import numpy as np
 from pool_env.game.games.snooker.geometry import d_point, place_in_d
 from pool_env.game.games.snooker.params import END_ON_FOUL, W_PENALTY, W_POINTS, W_WIN
 from pool_env.game.games.snooker.rack_state import (
-    BREAK,
     FIRST_COLOUR,
     IN_HAND,
     SCORE_0,
@@ -37,6 +36,7 @@ from pool_env.game.games.snooker.rack_state import (
 )
 from pool_env.game.games.snooker.rules import (
     R_BALL_ON,
+    R_BREAK,
     R_FOUL,
     R_FREE,
     R_NOMINATED,
@@ -191,6 +191,6 @@ def judge_snooker(params, pockets, tables, balls, positions, on_table, shots, ra
         )
         hits[k, BALL_ON], hits[k, NOMINATED] = res[R_BALL_ON], res[R_NOMINATED]
         hits[k, FREE], hits[k, TURN_OVER] = res[R_FREE], res[R_TURN_OVER]
-        hits[k, BREAK_AFTER], hits[k, WINNER_AFTER] = row[BREAK], winner
+        hits[k, BREAK_AFTER], hits[k, WINNER_AFTER] = res[R_BREAK], winner
         hits[k, SCORE_A], hits[k, SCORE_B] = row[SCORE_0], row[SCORE_1]
     return values, flags, hits

@@ -40,11 +40,32 @@ def default_row(reds: bool, in_hand: bool) -> NDArray[np.int64]:
     return row
 
 
+#: A raw row's columns other than the phase: each one's key and its least and most value
+#: (``None``: no most).
+ROW_RANGES = (
+    ("shooter", sk.SHOOTER, 0, 1), ("score_0", sk.SCORE_0, 0, None),
+    ("score_1", sk.SCORE_1, 0, None), ("ball_in_hand", sk.IN_HAND, 0, 1),
+    ("free_ball", sk.FREE_BALL, 0, 1), ("break", sk.BREAK, 0, None),
+    ("respotted_black", sk.RESPOTTED, 0, 1), ("winner", sk.WINNER, -1, 1),
+)  # fmt: skip
+
+
 def _count(name: str, value: Any, high: int | None = None) -> int:
     if not is_integer(value) or value < 0 or (high is not None and value > high):
-        top = "" if high is None else f"..{high}"
-        raise ValueError(f"options['rules'][{name!r}] must be an integer in 0{top}, got {value!r}")
+        valid = ">= 0" if high is None else f"in 0..{high}"
+        raise ValueError(f"options['rules'][{name!r}] must be an integer {valid}, got {value!r}")
     return int(value)
+
+
+def _check_row(row: NDArray[np.int64]) -> None:
+    """Refuse a raw row's value out of its column's range, naming the column's key."""
+    for key, column, low, high in ROW_RANGES:
+        value = int(row[column])
+        if value < low or (high is not None and value > high):
+            valid = f">= {low}" if high is None else f"in {low}..{high}"
+            raise ValueError(
+                f"options['rules'] row column {column} ({key!r}) must be {valid}, got {value}"
+            )
 
 
 def row_of(given: Any, reds: bool, in_hand: bool) -> NDArray[np.int64]:
@@ -87,6 +108,7 @@ def row_of(given: Any, reds: bool, in_hand: bool) -> NDArray[np.int64]:
                 f"options['rules'] must be a dict of {list(KEYS)} or {sk.N_RACK} integers, "
                 f"got {given!r}"
             ) from None
+        _check_row(row)
     phase = int(row[sk.PHASE])
     if phase not in (sk.RED_ON, sk.COLOUR_ON, sk.IN_ORDER):
         raise ValueError(f"options['rules'] phase must be 0, 1 or 2, got {phase}")

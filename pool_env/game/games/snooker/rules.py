@@ -96,8 +96,8 @@ TOUCH = 1e-6
 #: The results of :func:`judge_stroke`, in order (an int64 row).
 (
     R_FOUL, R_PENALTY, R_POINTS, R_BALL_ON, R_NOMINATED, R_FREE, R_TURN_OVER, R_FRAME_OVER,
-    R_TIE, R_PLACED, N_RESULTS,
-) = range(11)  # fmt: skip
+    R_TIE, R_PLACED, R_BREAK, N_RESULTS,
+) = range(12)  # fmt: skip
 
 
 @kernel
@@ -136,7 +136,9 @@ def judge_stroke(params, pockets, row, positions, on_table, potted, first, nomin
         ``(N_RESULTS,)`` int64: the foul code, the penalty, the points scored, the ball on
         (1 for a red, a colour's number, 0 for an unnamed colour), the nominated ball
         that counted (-1: none), a free ball was played, the turn passes, the frame is
-        over, it ended level (the re-spotted black follows), every ball was placed.
+        over, it ended level (the re-spotted black follows), every ball was placed, the
+        striker's break after the stroke (0 when the turn passes; a tie's reset leaves
+        the row's break 0 for the next player, this keeps the striker's).
     """
     n = on_table.shape[0]
     out = np.zeros(N_RESULTS, dtype=np.int64)
@@ -250,11 +252,12 @@ def judge_stroke(params, pockets, row, positions, on_table, potted, first, nomin
     frame_over = only_black and (foul != NO_FOUL or points > 0)
     out[R_TURN_OVER] = 1 if turn_over else 0
     out[R_FRAME_OVER] = 1 if frame_over else 0
+    out[R_BREAK] = 0 if turn_over else row[BREAK] + points
     row[FREE_BALL] = 0
     row[IN_HAND] = 1 if potted[0] else 0
     placed = True
     if frame_over:  # the balls stay as they lie, but a tie's re-spotted black
-        row[BREAK] = 0 if turn_over else row[BREAK] + points
+        row[BREAK] = out[R_BREAK]
         mine, theirs = row[SCORE_0 + shooter], row[SCORE_0 + 1 - shooter]
         if mine != theirs:
             row[WINNER] = shooter if mine > theirs else 1 - shooter
@@ -262,6 +265,7 @@ def judge_stroke(params, pockets, row, positions, on_table, potted, first, nomin
             out[R_TIE] = 1
             to_spot[:] = False
             to_spot[BLACK] = True
+            on_table[0] = False  # in hand, off the table: it covers no spot of the black's
             placed = respot_colours(params, pockets, positions, on_table, to_spot, others)
             row[SHOOTER], row[BREAK] = 1 - shooter, 0
             row[PHASE], row[IN_HAND], row[RESPOTTED] = IN_ORDER, 1, 1
@@ -276,7 +280,7 @@ def judge_stroke(params, pockets, row, positions, on_table, potted, first, nomin
         return out
     reds = reds_left(on_table)
     if not turn_over:
-        row[BREAK] += points
+        row[BREAK] = out[R_BREAK]
         if phase == RED_ON:
             row[PHASE] = COLOUR_ON
         elif phase == COLOUR_ON:

@@ -201,7 +201,10 @@ class ThreeCushion(Ruleset):
             rules.equalizing_inning, config.players,
         )  # fmt: skip
         state.rack[tables] = rack
-        respotted = self._respot_frozen(config, state, tables) & ~verdict.terminated
+        # a finished match's balls stay where they stopped: its final observation shows them
+        playing = ~verdict.terminated
+        respotted = np.zeros(k, dtype=np.bool_)
+        respotted[playing] = self._respot_frozen(config, state, tables[playing])
         scales = config.rewards
         point = verdict.point * scales["point"]
         foul = verdict.foul * scales["foul"]
@@ -318,7 +321,9 @@ class ThreeCushion(Ruleset):
             "winner": int(row[sc.WINNER]),
         }
 
-    def state_row(self, config: GameConfig, given: Any) -> NDArray[np.int64]:
+    def state_row(
+        self, config: GameConfig, given: Any, on_table: NDArray[np.bool_] | None = None
+    ) -> NDArray[np.int64]:
         """The rack row of ``given``: a dict as :meth:`state_dict` gives, a row, or ``None``.
 
         ``None``: white to play its first inning, nothing scored.

@@ -425,7 +425,9 @@ class WpaGame(Ruleset):
         """A rack-state row as the keys of ``options["rules"]`` and ``winner``."""
         return rack_dict(row)
 
-    def state_row(self, config: GameConfig, given: Any) -> NDArray[np.int64]:
+    def state_row(
+        self, config: GameConfig, given: Any, on_table: NDArray[np.bool_] | None = None
+    ) -> NDArray[np.int64]:
         """The rack row of ``given``: a row, a dict as ``PoolEnv.rack`` gives, or ``None``."""
         return rack_of(config, given)
 
