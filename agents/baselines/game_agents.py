@@ -33,6 +33,7 @@ from agents.baselines.search import SearchAgent, Shot
 from agents.baselines.spin_play import pot_chance
 from pool_env import ShotConstraints, ShotResult, obs_layout, shot_constraints
 from pool_env.game.codec import encode_placement
+from pool_env.game.config import GameConfig
 from pool_env.game.geometry import points_free
 
 #: Distances (m) behind the ghost-ball point where a cue ball in hand is tried: a
@@ -40,7 +41,50 @@ from pool_env.game.geometry import points_free
 PLACE_DISTANCES = (0.12, 0.25, 0.45)
 
 
-class GameGhostBallAgent(BaselineAgent):
+class RulesGhostBase(BaselineAgent):
+    """The ghost-ball planner restricted to the balls the rules allow.
+
+    What every game's ghost-ball agent shares (the WPA games' here, snooker's in
+    :mod:`agents.baselines.snooker_play`).
+    A subclass sets ``self._targets`` (the legal first balls) before it asks ``self.ghost``
+    for a shot, and plans one table in :meth:`_plan`.
+    """
+
+    def _start(self, env: Any, config: GameConfig, arrival_speed: float, spin: bool) -> None:
+        self.config: GameConfig = config
+        self.ghost = GhostBallAgent(
+            env, arrival_speed, self._legal, spin=spin, next_targets=self._next_legal
+        )
+        self._targets: list[int] = []
+        self.last_plan: dict[str, Any] = {}
+
+    def _legal(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> list[int]:
+        return [j for j in self._targets if on_table[j]]
+
+    def _next_legal(
+        self, positions: NDArray[np.float64], after: NDArray[np.bool_], potted: int
+    ) -> list[int]:
+        """The legal balls once ``potted`` drops (``after``: the balls left).
+
+        The game's :meth:`~pool_env.game.ruleset.Ruleset.first_balls_after`.
+        """
+        return list(self.config.ruleset.first_balls_after(after, potted))
+
+    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
+        """The planned actions: ``(B, config.action_size)`` (the tip last on a spin env)."""
+        balls = obs_layout(self.config)["balls"]
+        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, balls]))
+        pairs = zip(observations, layouts, strict=True)
+        out = [self._plan(obs, pos, on) for obs, (pos, on) in pairs]
+        return np.stack(out).astype(np.float32)
+
+    def _plan(
+        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> NDArray[np.float64]:
+        raise NotImplementedError
+
+
+class GameGhostBallAgent(RulesGhostBase):
     """The ghost-ball heuristic under the rules of the game ids (9-ball, 10-ball, 8-ball).
 
     It reads the rules from the observation (the balls it may hit first, ball in hand,
@@ -80,36 +124,11 @@ class GameGhostBallAgent(BaselineAgent):
         config = env.unwrapped.config
         if not config.ruleset.has_rack:
             raise ValueError("GameGhostBallAgent plays the game ids (game='nine', 'ten', 'eight')")
-        self.config = config
         self.players = config.players if players is None else int(players)
         if self.players not in (1, 2):
             raise ValueError(f"players must be 1 or 2, got {players!r}")
-        self.ghost = GhostBallAgent(
-            env, arrival_speed, self._legal, spin=spin, next_targets=self._next_legal
-        )
-        self._targets: list[int] = []
+        self._start(env, config, arrival_speed, spin)
         self._chosen: Any = None
-        self.last_plan: dict[str, Any] = {}
-
-    def _legal(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> list[int]:
-        return [j for j in self._targets if on_table[j]]
-
-    def _next_legal(
-        self, positions: NDArray[np.float64], after: NDArray[np.bool_], potted: int
-    ) -> list[int]:
-        """The legal balls once ``potted`` drops (``after``: the balls left).
-
-        The game's :meth:`~pool_env.game.ruleset.Ruleset.first_balls_after`.
-        """
-        return list(self.config.ruleset.first_balls_after(after, potted))
-
-    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
-        """The planned actions: ``(B, config.action_size)`` (the tip last on a spin env)."""
-        balls = obs_layout(self.config)["balls"]
-        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, balls]))
-        pairs = zip(observations, layouts, strict=True)
-        out = [self._plan(obs, pos, on) for obs, (pos, on) in pairs]
-        return np.stack(out).astype(np.float32)
 
     def _plan(
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]

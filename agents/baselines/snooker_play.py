@@ -38,8 +38,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from agents.baselines.base import BaselineAgent
-from agents.baselines.ghost_ball import ARRIVAL_SPEED, MIN_SIGMA, GhostBallAgent
+from agents.baselines.game_agents import RulesGhostBase
+from agents.baselines.ghost_ball import ARRIVAL_SPEED, MIN_SIGMA
 from agents.baselines.spin_play import pot_chance
 from pool_env import ShotConstraints, obs_layout, shot_constraints
 from pool_env.game.codec import encode_ball, encode_placement
@@ -189,7 +189,7 @@ def phase_of(config: GameConfig, obs: NDArray[np.floating]) -> str:
     return "in_order" if obs[layout["in_order"]][0] > 0.5 else "red"
 
 
-class SnookerGhostBallAgent(BaselineAgent):
+class SnookerGhostBallAgent(RulesGhostBase):
     """The ghost-ball heuristic under snooker's rules, nominating by value (module doc).
 
     Args:
@@ -204,37 +204,19 @@ class SnookerGhostBallAgent(BaselineAgent):
     def __init__(self, env: Any, arrival_speed: float = ARRIVAL_SPEED, spin: bool = True) -> None:
         config = env.unwrapped.config
         check_snooker(config, "SnookerGhostBallAgent")
-        self.config: GameConfig = config
-        self.ghost = GhostBallAgent(
-            env, arrival_speed, self._legal, spin=spin, next_targets=self._next_legal
-        )
+        self._start(env, config, arrival_speed, spin)
         noise = config.noise
         #: The aim noise (rad) pot chances are taken at: the env's, at least MIN_SIGMA.
         self.sigma = max(float(noise[0]) if noise else 0.0, MIN_SIGMA)
-        self._targets: list[int] = []
         #: The points of the D tried at the last placement, with their worth, best first.
         self.last_places: list[tuple[float, NDArray[np.float64]]] = []
-        self.last_plan: dict[str, Any] = {}
-
-    # -- what the ghost-ball planner may aim at ------------------------------------------
-
-    def _legal(self, positions: NDArray[np.float64], on_table: NDArray[np.bool_]) -> list[int]:
-        return [j for j in self._targets if on_table[j]]
-
-    def _next_legal(
-        self, positions: NDArray[np.float64], after: NDArray[np.bool_], potted: int
-    ) -> list[int]:
-        """The balls on once ``potted`` drops (the game's ``first_balls_after``)."""
-        return list(self.config.ruleset.first_balls_after(after, potted))
 
     # -- the plan --------------------------------------------------------------------------
 
-    def act(self, observations: NDArray[np.floating]) -> NDArray[np.float32]:
-        """The planned actions: ``(B, config.action_size)``."""
-        balls = obs_layout(self.config)["balls"]
-        layouts = self.ghost.source.layouts(np.ascontiguousarray(observations[:, balls]))
-        pairs = zip(observations, layouts, strict=True)
-        return np.stack([self.plan(obs, pos, on) for obs, (pos, on) in pairs]).astype(np.float32)
+    def _plan(
+        self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
+    ) -> NDArray[np.float64]:
+        return self.plan(obs, positions, on)
 
     def plan(
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]

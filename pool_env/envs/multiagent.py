@@ -1,10 +1,11 @@
 """Two players at one table under the rules (PettingZoo AEC), and one against a fixed policy.
 
 Both are thin fronts over the decision process (:func:`pool_env.game.step.step` with
-``GameConfig.players == 2``): the rules, ball in hand, the break and the turns are
-:mod:`pool_env.game.games.wpa`'s, the action and observation those of the game ids
-(:class:`pool_env.PoolEnv` with ``game="nine"``, ``"ten"`` or ``"eight"``), seen from each
-agent's seat.
+``GameConfig.players == 2``): the rules, ball in hand, the break and the turns are the
+game's (:mod:`pool_env.game.games`: ``"nine"``, ``"ten"``, ``"eight"``, ``"snooker"`` (a
+frame) or ``"three_cushion"`` (a match)), the action and observation those of the game ids
+(:class:`pool_env.PoolEnv` with that ``game``), seen from each agent's seat. What follows
+describes the WPA games; snooker's and three-cushion's turns are on their docs pages.
 
 ``PoolDuelEnv(game="nine" | "ten" | "eight")``: ``player_0`` breaks (the cue ball in hand
 behind the head string); the players alternate as the rules decide (a player keeps the
@@ -66,21 +67,27 @@ from pool_env.game.state import GameState
 AECEnv = require("pettingzoo", "multiagent", "pool_env.envs.multiagent").AECEnv
 AGENTS = ("player_0", "player_1")
 _ONE = np.zeros(1, dtype=np.intp)
-#: game -> the registered arguments of its current id (less ``game``, and less ``model``:
-#: the table is every front's default, ``make_config``'s) and its ``max_episode_steps``.
-_GAME_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    kwargs["game"]: ({k: v for k, v in kwargs.items() if k not in ("game", "model")}, steps)
-    for kwargs, steps in (ENV_IDS[spin_id(task)] for task in TASKS)
-    if "game" in kwargs
-}
+
+
+def _game_ids(id_of: Callable[[str], str]) -> dict[str, tuple[dict[str, Any], int]]:
+    """Each game's registered id ``id_of(task)``: its arguments and ``max_episode_steps``.
+
+    The arguments less ``game`` and ``model``; a game's last task wins (SnookerFrame over
+    SnookerBreak), and a task without that id (a spin-only one's roll twin) is skipped.
+    """
+    return {
+        kwargs["game"]: ({k: v for k, v in kwargs.items() if k not in ("game", "model")}, steps)
+        for kwargs, steps in (ENV_IDS[id_of(t)] for t in TASKS if id_of(t) in ENV_IDS)
+        if "game" in kwargs
+    }
+
+
+#: The game ids' defaults: the table is every front's default, ``make_config``'s.
+_GAME_IDS = _game_ids(spin_id)
 #: The same from the roll twins, for ``model="roll"``: a game's own table there is its
 #: roll table (snooker's preset less its spin-only values, as the roll id registers it).
 #: A spin-only game has none, and its own refusal of the roll level speaks.
-_GAME_ROLL_IDS: dict[str, tuple[dict[str, Any], int]] = {
-    kwargs["game"]: ({k: v for k, v in kwargs.items() if k not in ("game", "model")}, steps)
-    for kwargs, steps in (ENV_IDS[roll_id(task)] for task in TASKS if roll_id(task) in ENV_IDS)
-    if "game" in kwargs
-}
+_GAME_ROLL_IDS = _game_ids(roll_id)
 _OPTIONS = ("positions", "on_table", "rules")
 
 
@@ -92,11 +99,12 @@ def _rules_game(rules: Any) -> str | None:
 
 
 class PoolDuelEnv(AECEnv):
-    """Two agents play one rack of 9-ball, 10-ball or 8-ball (see the module docstring).
+    """Two agents play one rack, frame or match of a two-player game (module docstring).
 
     Args:
-        game: ``"nine"``, ``"ten"`` or ``"eight"``; ``None``: the ``config``'s game, or
-            ``"nine"`` without one. Beside a ``config``, a keyword override of its game.
+        game: ``"nine"``, ``"ten"``, ``"eight"``, ``"snooker"`` or ``"three_cushion"``;
+            ``None``: the ``config``'s game, or ``"nine"`` without one. Beside a
+            ``config``, a keyword override of its game.
         config: The sectioned config (:class:`pool_env.PoolConfig`), played as it is;
             ``None``: the game id's defaults (its scene, the spin table), truncated after
             the id's ``max_episode_steps`` shots of both players.

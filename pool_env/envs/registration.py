@@ -15,7 +15,7 @@ from types import ModuleType
 from typing import Any
 
 from pool_env.sim.presets import PRESETS
-from pool_env.sim.table import SPIN_ONLY as TABLE_SPIN_ONLY
+from pool_env.sim.table import roll_keywords
 
 ENTRY_POINT = "pool_env.envs.env:PoolEnv"
 
@@ -141,7 +141,7 @@ def _on_roll(kwargs: dict[str, Any]) -> dict[str, Any]:
     """
     table = kwargs.get("table")
     if isinstance(table, dict):
-        kwargs = {**kwargs, "table": {k: v for k, v in table.items() if k not in TABLE_SPIN_ONLY}}
+        kwargs = {**kwargs, "table": roll_keywords(table)}
     return {**kwargs, "model": "roll"}
 
 

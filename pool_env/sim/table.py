@@ -85,6 +85,16 @@ SPIN_FRICTION_RATIO = 0.444
 NOSE_HEIGHT_FRACTION = 0.635
 
 
+def roll_keywords(keywords: dict[str, object]) -> dict[str, object]:
+    """``Table`` keywords less those only the spin level reads (:data:`SPIN_ONLY`).
+
+    What a table of these keywords keeps on the roll level, which refuses spin-only values
+    set away from their defaults (``Table.preset("snooker", model="roll")``, and the roll
+    twin of an id registered with a preset's table).
+    """
+    return {k: v for k, v in keywords.items() if k not in SPIN_ONLY}
+
+
 def _non_negative(name: str, value: object) -> float:
     value = real_number(name, value)
     if value < 0.0:
@@ -400,7 +410,7 @@ class Table:
             )
         values = dict(PRESETS[name])
         if name in ROLL_ALLOWED and overrides.get("model") == "roll":
-            values = {k: v for k, v in values.items() if k not in SPIN_ONLY}
+            values = roll_keywords(values)
         return cls(**{**values, **overrides})  # type: ignore[arg-type]
 
     @property

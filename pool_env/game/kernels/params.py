@@ -10,6 +10,8 @@ reward scales), with indices named in its own package. Kernels read it by these 
 
 from __future__ import annotations
 
+import numpy as np
+
 (
     RADIUS,  # ball radius R (m)
     AIM_MODE,  # code of the aim mode: 0 absolute, 1 relative, 2 cut
@@ -48,3 +50,11 @@ TAIL_SIZE = 16
 
 #: Entries of the whole array.
 N_PARAMS = TAIL + TAIL_SIZE
+
+
+def game_tail(values: dict[int, float]) -> np.ndarray:
+    """A game's tail (``(TAIL_SIZE,)`` float64) from its entries by their full index."""
+    tail = np.zeros(TAIL_SIZE)
+    for index, value in values.items():
+        tail[index - TAIL] = value
+    return tail

@@ -107,22 +107,20 @@ class Snooker(Ruleset):
                 "players a foul passes the table to the opponent; leave end_on_foul=False"
             )
         mark = markings(table)
-        tail = np.zeros(kp.TAIL_SIZE)
-        values = {
-            sp.END_ON_FOUL: float(rules.end_on_foul),
-            sp.BAULK_X: mark.baulk_x,
-            sp.D_RADIUS: mark.d_radius,
-            sp.CENTRE_Y: mark.centre_y,
-            sp.BLUE_X: mark.spots[3, 0],
-            sp.PINK_X: mark.spots[4, 0],
-            sp.BLACK_X: mark.spots[5, 0],
-            sp.W_POINTS: setup.rewards["pot"],
-            sp.W_PENALTY: setup.rewards["foul"],
-            sp.W_WIN: setup.rewards["win"],
-        }
-        for index, value in values.items():
-            tail[index - kp.TAIL] = value
-        return tail
+        return kp.game_tail(
+            {
+                sp.END_ON_FOUL: float(rules.end_on_foul),
+                sp.BAULK_X: mark.baulk_x,
+                sp.D_RADIUS: mark.d_radius,
+                sp.CENTRE_Y: mark.centre_y,
+                sp.BLUE_X: mark.spots[3, 0],
+                sp.PINK_X: mark.spots[4, 0],
+                sp.BLACK_X: mark.spots[5, 0],
+                sp.W_POINTS: setup.rewards["pot"],
+                sp.W_PENALTY: setup.rewards["foul"],
+                sp.W_WIN: setup.rewards["win"],
+            }
+        )
 
     def start(self, turn: Turn, given: Any, rack_scene: bool, on_table: NDArray[np.bool_]) -> None:
         """The frame state from ``options["rules"]`` (:func:`.rack.row_of`), checked.

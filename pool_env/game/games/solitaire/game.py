@@ -13,7 +13,7 @@ from numpy.typing import NDArray
 
 from pool_env.game.games.solitaire import params as sp
 from pool_env.game.games.solitaire.rules import judge
-from pool_env.game.kernels.params import TAIL, TAIL_SIZE
+from pool_env.game.kernels.params import game_tail
 from pool_env.game.ruleset import (
     Executed,
     Judged,
@@ -40,12 +40,10 @@ class Solitaire(Ruleset):
         """Refuse two players; the tail: ``end_on_miss`` and the reward scales."""
         if setup.players != 1:
             raise ValueError("players need a rules game: 'nine', 'ten' or 'eight'")
-        tail = np.zeros(TAIL_SIZE)
-        tail[sp.END_ON_MISS - TAIL] = float(setup.end_on_miss)
-        for term, index in zip(REWARD_TERMS, (sp.W_POT, sp.W_SCRATCH, sp.W_NO_CONTACT,
-                                             sp.W_SHAPING), strict=True):  # fmt: skip
-            tail[index - TAIL] = setup.rewards[term]
-        return tail
+        scales = zip((sp.W_POT, sp.W_SCRATCH, sp.W_NO_CONTACT, sp.W_SHAPING), REWARD_TERMS,
+                     strict=True)  # fmt: skip
+        values = {index: setup.rewards[term] for index, term in scales}
+        return game_tail({sp.END_ON_MISS: float(setup.end_on_miss), **values})
 
     def judge(self, turn: Turn, out: Outcome, executed: Executed) -> Judged:
         """:func:`pool_env.game.games.solitaire.rules.judge`, then a covered head spot."""

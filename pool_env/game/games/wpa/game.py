@@ -166,24 +166,22 @@ class WpaGame(Ruleset):
         setup.speeds.check(
             "break_speed_range", setup.rules.break_speed_range, rules.break_speed_range[1]
         )
-        tail = np.zeros(kp.TAIL_SIZE)
-        values = {
-            wp.VARIANT: self.code,
-            wp.END_ON_FOUL: float(rules.end_on_foul),
-            wp.BREAK_LOW: rules.break_speed_range[0],
-            wp.BREAK_HIGH: rules.break_speed_range[1],
-            wp.HEAD_X: table.length / 4.0,
-            wp.FOOT_X: foot_spot(table)[0],
-            wp.FOOT_Y: foot_spot(table)[1],
-            wp.BALL_COLUMN: self.ball_column,
-            wp.OPTION_COLUMN: self.option_column,
-            wp.W_POT: setup.rewards["pot"],
-            wp.W_FOUL: setup.rewards["foul"],
-            wp.W_WIN: setup.rewards["win"],
-        }
-        for index, value in values.items():
-            tail[index - kp.TAIL] = value
-        return tail
+        return kp.game_tail(
+            {
+                wp.VARIANT: self.code,
+                wp.END_ON_FOUL: float(rules.end_on_foul),
+                wp.BREAK_LOW: rules.break_speed_range[0],
+                wp.BREAK_HIGH: rules.break_speed_range[1],
+                wp.HEAD_X: table.length / 4.0,
+                wp.FOOT_X: foot_spot(table)[0],
+                wp.FOOT_Y: foot_spot(table)[1],
+                wp.BALL_COLUMN: self.ball_column,
+                wp.OPTION_COLUMN: self.option_column,
+                wp.W_POT: setup.rewards["pot"],
+                wp.W_FOUL: setup.rewards["foul"],
+                wp.W_WIN: setup.rewards["win"],
+            }
+        )
 
     def start(self, turn: Turn, given: Any, rack_scene: bool, on_table: NDArray[np.bool_]) -> None:
         """The rack state from ``options["rules"]`` (:func:`.rack.rack_option`), checked."""
