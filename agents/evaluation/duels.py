@@ -105,17 +105,22 @@ def play_duels(
     seed: int,
     noise: NoiseSpec | None = NOISE,
     env_id: str = ENV_ID,
+    build: Callable[[Any], Policy] | None = None,
 ) -> dict[str, Any]:
     """Play ``racks`` racks of ``agent`` against ``opponent`` (names or model paths).
 
     The game and the table are ``env_id``'s (a rule game's id: 9-ball, 10-ball, 8-ball).
+    ``build`` (``env -> agent``, called with the agent's single-player env) makes an agent
+    that is no player name (the scoreboard's models and factories); ``agent`` then only
+    labels it.
 
     Returns:
         ``wins``, ``losses``, ``draws``, ``win_rate`` (an
         :class:`~agents.evaluation.metrics.Estimate`) and per side (``"agent"``,
         ``"opponent"``) a :class:`~collections.Counter` of shots, pots, fouls, scratches,
         break scratches and breaks that kept the table, and ``"plan <kind>: <outcome>"``
-        counts (:func:`plan_kind`, :func:`shot_outcome`).
+        counts (:func:`plan_kind`, :func:`shot_outcome`); ``per_rack``: each rack's
+        winner (``"agent"``, ``"opponent"`` or ``None``: a draw).
 
     Raises:
         ValueError: If ``racks < 1``.
@@ -127,11 +132,12 @@ def play_duels(
     model = "spin" if config.spin else "roll"
     duel = PoolDuelEnv(game=config.game, model=model, noise=noise)
     players = {
-        side: make_agent(name, env, players=2)
-        for side, name, env in (("agent", agent, envs[0]), ("opponent", opponent, envs[1]))
+        "agent": build(envs[0]) if build is not None else make_agent(agent, envs[0], players=2),
+        "opponent": make_agent(opponent, envs[1], players=2),
     }
     counts = {side: Counter() for side in players}
     wins = losses = draws = 0
+    per_rack: list[str | None] = []
     shot_of_rack = [0]
 
     def count(side: str, info: dict[str, Any]) -> None:
@@ -150,6 +156,7 @@ def play_duels(
     for k in range(racks):
         shot_of_rack[0] = 0
         winner = play_rack(duel, players, seed + k, k % 2 == 0, count)
+        per_rack.append(winner)
         if winner is None:
             draws += 1
         elif winner == "agent":
@@ -163,6 +170,7 @@ def play_duels(
         "losses": losses,
         "draws": draws,
         "win_rate": wilson(float(wins), racks),
+        "per_rack": per_rack,
         **counts,
     }
 

@@ -21,6 +21,7 @@ import json
 import math
 import time
 from collections import Counter
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -30,25 +31,36 @@ from agents.evaluation.metrics import Z95, Estimate, wilson
 from agents.evaluation.noise_flag import parse_noise
 from agents.evaluation.players import check_agents, check_game_id, make_agent
 from agents.learned.envs import make_env
+from agents.policy import Policy
 
 #: How a rack can end, in the order of the table's columns.
 ENDINGS = ("run-out", "break scratch", "dry break", "missed pot", "foul", "shot limit")
 
 
 def play_racks(
-    agent_name: str, env_id: str, racks: int, seed: int, env_kwargs: dict[str, Any]
+    agent_name: str,
+    env_id: str,
+    racks: int,
+    seed: int,
+    env_kwargs: dict[str, Any],
+    build: Callable[[Any], Policy] | None = None,
 ) -> dict[str, Any]:
     """Play ``racks`` run-out racks with one agent and count how they end.
 
+    ``build`` (``env -> agent``) makes an agent that is no player name (the scoreboard's
+    models and factories); ``agent_name`` then only labels it.
+
     Returns:
         ``endings`` (a count per :data:`ENDINGS`), ``racks``, ``break_made`` (breaks that
-        made a ball), ``shots`` (decisions after the break), ``seconds`` (their wall times)
-        and ``per_rack`` (each rack's ending).
+        made a ball), ``shots`` (decisions after the break), ``seconds`` (their wall times),
+        ``per_rack`` (each rack's ending) and ``break_per_rack`` (whether each break made
+        a ball).
     """
     env = make_env(env_id, {**env_kwargs, "end_on_foul": True}, None)
-    agent = make_agent(agent_name, env, seed)
+    agent = build(env) if build is not None else make_agent(agent_name, env, seed)
     endings: Counter[str] = Counter()
     per_rack: list[str] = []
+    break_per_rack: list[bool] = []
     seconds: list[float] = []
     break_made = 0
     try:
@@ -64,6 +76,7 @@ def play_racks(
                 done = terminated or truncated
                 if shot == 0:
                     break_made += int(bool(info["potted"]))
+                    break_per_rack.append(bool(info["potted"]))
                 if info["winner"] == 0:
                     ending = "run-out"
                 elif info["foul"] is not None and terminated:
@@ -78,6 +91,7 @@ def play_racks(
     return {
         "agent": agent_name, "racks": racks, "endings": dict(endings), "break_made": break_made,
         "shots": len(seconds), "seconds": seconds, "per_rack": per_rack,
+        "break_per_rack": break_per_rack,
     }  # fmt: skip
 
 
