@@ -166,13 +166,14 @@ def copy_reports() -> None:
         nav = []
         for pattern in patterns:
             for path in sorted((ROOT / folder).glob(pattern)):
+                name = path.relative_to(ROOT / folder).as_posix()
                 with (
                     path.open("rb") as src,
-                    mkdocs_gen_files.open(f"{folder}/{path.name}", "wb") as dst,
+                    mkdocs_gen_files.open(f"{folder}/{name}", "wb") as dst,
                 ):
                     shutil.copyfileobj(src, dst)
                 if path.suffix == ".md":
-                    nav.append(f"* [{page_title(path)}]({path.name})\n")
+                    nav.append(f"* [{page_title(path)}]({name})\n")
         with mkdocs_gen_files.open(f"{folder}/SUMMARY.md", "w") as out:
             out.writelines(nav)
     with mkdocs_gen_files.open("changelog.md", "w") as out:

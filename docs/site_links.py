@@ -21,8 +21,13 @@ from typing import Any
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCS = ROOT / "docs"
-#: Folders gen_pages copies into the site as they stand, with the files it copies.
-COPIED = {"results": ("*.md", "*.png"), "models": ("*.md", "*.yaml")}
+#: Folders gen_pages copies into the site as they stand, with the files it copies (a
+#: pattern with a folder keeps it: the scoreboard's results files, which the leaderboard
+#: page links to).
+COPIED = {
+    "results": ("*.md", "*.png", "scoreboard/*.json"),
+    "models": ("*.md", "*.yaml"),
+}
 PACKAGES = ("pool_env", "agents")
 LINK = re.compile(r"(!?\[[^\]]*\])\(([^)\s]+)\)")
 

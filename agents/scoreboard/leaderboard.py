@@ -115,10 +115,11 @@ def leaderboard_page(files: dict[str, dict[str, Any]], page: Path) -> str:
     head = [
         "# Leaderboard",
         "",
-        f"Written by `{COMMAND}` from the results files of `results/scoreboard/` (one per",
-        "scored player, each with its command, date, load and git revision); do not edit it",
-        "by hand. How to score a policy, the suites and the normalized score:",
-        "[the scoreboard](#the-scoreboard) below.",
+        f"Written by `{COMMAND}` from the results files of",
+        "`results/scoreboard/` (one per scored player, each task with its command, date, load",
+        "and git revision); do not edit it by hand. How to score a policy, the suites and the",
+        "normalized score: [the scoreboard](#the-scoreboard) below; what the committed runs",
+        "cost: [results/scoreboard.md](../results/scoreboard.md).",
         "",
         "## Overall",
         "",
@@ -134,4 +135,92 @@ def leaderboard_page(files: dict[str, dict[str, Any]], page: Path) -> str:
             f"| {rank} | {who} | {files[path]['suite']} | {count} | "
             f"{_score(None if math.isnan(mean) else mean)} |"
         )
-    return "\n".join(head) + "\n\n" + "\n\n".join(sections) + "\n"
+    return "\n".join(head) + "\n\n" + "\n\n".join(sections) + "\n\n" + about() + "\n"
+
+
+#: How to use the scoreboard: the page's last section (the suite's table is added to it).
+ABOUT = """## The scoreboard
+
+`python -m agents.scoreboard` (`agents/scoreboard/`) plays a policy on every task below
+and prints each task's id, noise, seeds, episodes, figure with its 95% interval (Wilson)
+and normalized score. Score a model, save its results file, rewrite this page:
+
+<!-- run: python -m agents.scoreboard random --suite smoke --tasks oneball -->
+```bash
+python -m agents.scoreboard models/sac_oneball_spin.zip
+```
+
+<!-- run: python -m agents.scoreboard const --suite smoke --tasks oneball \
+--save $DOCS_TMP/r.json -->
+```bash
+python -m agents.scoreboard RUN/model.zip --suite full --save
+```
+
+<!-- run: python -m agents.scoreboard --leaderboard $DOCS_TMP/leaderboard.md -->
+```bash
+python -m agents.scoreboard --leaderboard
+```
+
+`--suite` is `short` by default (a first look; `smoke` is CI's), `full` for the results
+files; `--save` writes `results/scoreboard/<player>.json` (`<player>.<suite>.json` off
+the full suite); `--tasks` plays some tasks only (with `--save`, into the player's file
+beside its other tasks). The time each takes:
+[results/scoreboard.md](../results/scoreboard.md).
+
+**A policy** is one of: a player as `python -m agents.evaluate --agent` takes it
+(`random`, `ghost`, `models/search_player.yaml`, `models/runout_value.npz`, ...); an SB3
+model `.zip` with its saved config beside it (`<stem>_config.yaml` or `config.yaml`),
+loaded as `agents.load` loads it, its saved `env_kwargs` under the task's (the task's noise
+and rules stand); or `module:attr`, a factory called with each task's env that returns an
+agent with SB3's `predict`. A factory refuses a task by raising `ValueError`; an agent
+with `observation_space` and `action_space` is refused where their shapes are not the
+env's. A function of the observation is wrapped in two lines:
+
+```python
+import numpy as np
+
+
+class Straight:
+    \"\"\"Full hit, medium pace, centre ball: SB3's predict.\"\"\"
+
+    def predict(self, obs, state=None, episode_start=None, deterministic=True):
+        return np.array([0.0, 0.5, 0.0, 0.0], dtype=np.float32), state
+
+
+# In my_agents/pool.py: python -m agents.scoreboard my_agents.pool:make_agent
+def make_agent(env):
+    if env.action_space.shape != (4,):
+        raise ValueError("plays the solitaire ids' action (4 numbers) only")
+    return Straight()
+```
+
+A task that a policy cannot play (the spaces differ, the player refuses the game) reads
+"n/a" with the reason.
+
+**The normalized score** of a figure is (figure - random's) / (best's - random's): random
+play's results file scores 0 and the best results file on the task 1, each measured on the
+same seeds. Episode `k` of a task is reset with seed `seed + k` in every suite, and a results
+file keeps each episode's outcome, so the figures of any first episodes are known: a
+player scored on the short suite is compared with the others' first episodes. Where a
+reference is missing, or the best file is no better than random on those episodes, the
+score is `-`. The overall score is the mean over the tasks a player can play.
+
+**The suite** (seeds 700000 and up: no training run, model selection or other results file
+uses them):
+"""
+
+
+def about() -> str:
+    """The page's last section: :data:`ABOUT` and the suite's tasks as a table."""
+    lines = [
+        "| task | env | noise | seeds from | smoke | short | full | runner | figure |",
+        "|---|---|---|---|---|---|---|---|---|",
+    ]
+    for task in TASKS:
+        runner = task.runner + (f" against {task.opponent}" if task.opponent else "")
+        counts = " | ".join(str(task.episodes[suite]) for suite in ("smoke", "short", "full"))
+        lines.append(
+            f"| {task.name} | {_env(task)} | {task.noise} | {task.seed} | {counts} | {runner} "
+            f"| {label(task.figure)} |"
+        )
+    return ABOUT + "\n" + "\n".join(lines)
