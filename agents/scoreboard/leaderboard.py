@@ -153,7 +153,7 @@ python -m agents.scoreboard models/sac_oneball_spin.zip
 <!-- run: python -m agents.scoreboard const --suite smoke --tasks oneball \
 --save $DOCS_TMP/r.json -->
 ```bash
-python -m agents.scoreboard RUN/model.zip --suite full --save
+python -m agents.scoreboard runs/RUN/model.zip --suite full --save
 ```
 
 <!-- run: python -m agents.scoreboard --leaderboard $DOCS_TMP/leaderboard.md -->
@@ -187,7 +187,8 @@ class Straight:
         return np.array([0.0, 0.5, 0.0, 0.0], dtype=np.float32), state
 
 
-# In my_agents/pool.py: python -m agents.scoreboard my_agents.pool:make_agent
+# In a module of yours, my_agents.pool; scored by
+# python -m agents.scoreboard my_agents.pool:make_agent
 def make_agent(env):
     if env.action_space.shape != (4,):
         raise ValueError("plays the solitaire ids' action (4 numbers) only")

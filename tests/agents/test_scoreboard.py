@@ -179,7 +179,7 @@ def test_a_model_is_loaded_with_its_config() -> None:
         (["no_such_module_xyz:make"], ["cannot import module 'no_such_module_xyz'"]),
         (["os:no_such_attr"], ["module 'os' has no attribute 'no_such_attr'"]),
         (["os:sep"], ["'sep' is a str, not a factory"]),
-        (["models/nope.zip"], ["policy 'models/nope.zip'", "not found"]),
+        (["no_such_model.zip"], ["policy 'no_such_model.zip'", "an SB3 model not found"]),
         ([f"{THIS}:not_an_agent", "--suite", "smoke"], ["returned int", "predict"]),
         (["random", "--tasks", "oneball", "nine"], ["unknown task 'nine'", "nine-runout"]),
         ([], ["give a policy to score, or --leaderboard"]),

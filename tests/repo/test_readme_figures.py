@@ -128,9 +128,7 @@ def test_the_link_check_finds_a_broken_link() -> None:
     assert broken_links("[a](results/agents.md#no-such-heading)", page) == [
         "results/agents.md#no-such-heading: no such heading"
     ]
-    assert broken_links("[a](results/no_such_file.md)", page) == [
-        "results/no_such_file.md: no such file"
-    ]
+    assert broken_links("[a](no_such_file.md)", page) == ["no_such_file.md: no such file"]
     anchor = "learners-on-the-envs-own-action-oneball-v1-and-oneballroll-v1"
     assert broken_links(f"[a](results/agents.md#{anchor})", page) == []
     assert _missing("12345.678 of 1,000 episodes", [ROOT / "results" / "agents.md"]) == [
