@@ -9,3 +9,7 @@ figure with its 95% interval and a normalized score (:mod:`agents.scoreboard.fig
 ``--leaderboard`` writes ``docs/leaderboard.md`` from the committed results files
 (:mod:`agents.scoreboard.leaderboard`).
 """
+
+from agents.scoreboard.command import main
+
+__all__ = ["main"]

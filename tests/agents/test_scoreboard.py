@@ -11,6 +11,7 @@ from __future__ import annotations
 import contextlib
 import io
 import json
+import re
 from pathlib import Path
 from typing import Any
 
@@ -261,7 +262,7 @@ def test_the_leaderboard_page_is_what_the_command_writes(committed, tmp_path: Pa
     out = tmp_path / "leaderboard.md"
     assert main(["--leaderboard", str(out), "--results", str(RESULTS)]) == 0
     oneball = out.read_text().split("\n## oneball")[1].split("\n## ")[0]
-    rows = [line for line in oneball.splitlines() if line.startswith("| ") and "[" in line]
-    values = [float(line.split("|")[5].split("%")[0].split()[-1]) for line in rows]
+    rows = [line for line in oneball.splitlines() if re.match(r"\| \d+ \| ", line)]
+    values = [float(line.split("|")[5].split("%")[0]) for line in rows]
     assert len(rows) >= 2 and values == sorted(values, reverse=True)  # ranked by the figure
     assert "[random](" in oneball and "[ghost](" in oneball
