@@ -34,7 +34,7 @@ from agents.scoreboard.results import (
     results_path,
     score_policy,
 )
-from agents.scoreboard.suite import SUITES
+from agents.scoreboard.suite import SUITES, suite_tasks
 
 __all__ = ["PAGE", "main"]
 
@@ -43,6 +43,7 @@ PAGE = Path("docs/leaderboard.md")
 
 
 def _parser() -> argparse.ArgumentParser:
+    """The command's arguments: a policy to score, or ``--leaderboard``."""
     parser = argparse.ArgumentParser(
         prog="python -m agents.scoreboard", description=__doc__.split("\n")[0]
     )
@@ -98,8 +99,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"wrote {page} from {len(files)} results files of {folder}")
         return 0
     try:
-        if args.suite not in SUITES:
-            raise ValueError(f"--suite {args.suite!r}: the suites are {', '.join(SUITES)}")
+        suite_tasks(args.suite)  # an unknown suite, before a policy is loaded
         policy = resolve_policy(args.policy)
     except ValueError as err:
         parser.error(str(err))

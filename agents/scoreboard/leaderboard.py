@@ -32,15 +32,18 @@ def _score(value: float | None) -> str:
 
 
 def _seeds(task: Task, n: int) -> str:
+    """The seeds of a task's first ``n`` episodes, ``first..last``."""
     return f"{task.seed}..{task.seed + n - 1}"
 
 
 def _env(task: Task) -> str:
+    """The task's id and keywords (besides the noise), as code."""
     kwargs = ", ".join(f"{k}: {json.dumps(v)}" for k, v in task.env_kwargs.items())
     return f"`{task.env_id}`" + (f" `{{{kwargs}}}`" if kwargs else "")
 
 
 def _beside(entry: dict[str, Any], task: Task) -> str:
+    """The figures shown beside the scored one, as the results file states them."""
     return "; ".join(f"{label(key)} {entry['figures'][key]}" for key in task.beside)
 
 

@@ -36,12 +36,14 @@ __all__ = [
     "RANDOM",
     "RESULTS",
     "dump_results",
+    "label",
     "load_results",
     "merge_results",
     "references",
     "results_path",
     "row_figures",
     "score_policy",
+    "task_by_name",
 ]
 
 #: The folder of the committed results files.

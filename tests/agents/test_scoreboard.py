@@ -174,7 +174,7 @@ def test_a_model_is_loaded_with_its_config() -> None:
 @pytest.mark.parametrize(
     ("argv", "words"),
     [
-        (["random", "--suite", "tiny"], ["--suite 'tiny'", "smoke, short, full"]),
+        (["random", "--suite", "tiny"], ["unknown suite 'tiny'", "smoke, short, full"]),
         (["ghosty"], ["unknown policy 'ghosty'", "module:attr"]),
         (["os.path:"], ["policy 'os.path:'", "module:attr takes"]),
         (["no_such_module_xyz:make"], ["cannot import module 'no_such_module_xyz'"]),
