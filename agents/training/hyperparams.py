@@ -28,6 +28,7 @@ RUN_KEYS = (
     "vec",
     "policy",
     "env_kwargs",
+    "train_rewards",
     "wrapper",
     "eval_freq",
     "eval_episodes",

@@ -48,7 +48,7 @@ from agents.learned.candidates import FirstRowAgent
 from agents.learned.envs import EnvFactory, make_env
 from agents.training import hyperparams, runs
 from agents.training.hyperparams import VEC_KINDS
-from agents.training.run_config import ALGOS, TrainConfig
+from agents.training.run_config import ALGOS, TrainConfig, training_env_kwargs
 from agents.training.run_config import FINAL_BASELINES as FINAL_BASELINES  # re-exported
 from agents.training.run_config import resolve_config as resolve_config  # re-exported
 from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
@@ -142,6 +142,10 @@ def progress(bar: bool, what: str, total: int, unit: str) -> Iterator[Callable[[
 def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = None) -> VecEnv:
     """The training ``VecEnv`` of ``config`` (episode statistics monitored).
 
+    Its envs take :func:`~agents.training.run_config.training_env_kwargs` (the recipe's
+    training-time reward terms included); the evaluations build theirs from
+    ``config.env_kwargs`` alone.
+
     Raises:
         ValueError: On an unknown kind, or a wrapper the native kind cannot apply.
         ImportError: For ``native`` when ``agents.vec.native_vec`` is not installed.
@@ -161,11 +165,12 @@ def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = 
                 "--vec native needs agents/vec/native_vec.py (make_native_vec_env), which is not "
                 f"available here ({exc}); use --vec dummy or --vec subproc"
             ) from exc
-        venv = VecMonitor(make_native_vec_env(config.env_id, n, seed, config.env_kwargs or None))
+        kwargs = training_env_kwargs(config)
+        venv = VecMonitor(make_native_vec_env(config.env_id, n, seed, kwargs or None))
         return NATIVE_WRAPPERS[config.wrapper](venv) if config.wrapper else venv
     if config.vec not in VEC_KINDS:
         raise ValueError(f"--vec must be one of {VEC_KINDS}, got {config.vec!r}")
-    factory = EnvFactory(config.env_id, config.env_kwargs, config.wrapper)
+    factory = EnvFactory(config.env_id, training_env_kwargs(config), config.wrapper)
     cls = SubprocVecEnv if config.vec == "subproc" else DummyVecEnv
     return make_vec_env(factory, n_envs=n, seed=seed, vec_env_cls=cls)
 
