@@ -38,7 +38,7 @@ from typing import Any
 # Light imports only: the trainer (stable-baselines3, torch, Ray) loads after the first line
 # printed, which says what the command waits for.
 from agents.learned.pretrained import ALGO_CLASSES
-from agents.training.hyperparams import VEC_KINDS
+from agents.training.hyperparams import VEC_KINDS, WARM_STARTS
 from pool_env.extras import require
 
 #: What ``python train.py`` trains on with no ``--env``.
@@ -105,6 +105,12 @@ def build_parser() -> argparse.ArgumentParser:
         "--train-rewards",
         help='reward scales of the training envs only, as YAML, e.g. "{scratch: -3.0}" '
         "(reward_scratch -3 while training; every evaluation plays the env's own reward)",
+    )
+    p.add_argument(
+        "--warm-start",
+        choices=WARM_STARTS,
+        help="before RL, fit the policy's action to this baseline's (first-row: row 0 of "
+        'the "shots" observation, played exactly)',
     )
     p.add_argument(
         "--wrapper",
@@ -178,6 +184,7 @@ def main(argv: list[str] | None = None) -> int:
         "baselines": not args.no_baselines,
         "progress_bar": not args.no_progress,
         "train_rewards": train_rewards,
+        "warm_start": args.warm_start,
         "algo_kwargs": algo_kwargs,
     }
     from agents.training import hyperparams
@@ -243,10 +250,10 @@ def _train_rllib(
     """``--backend rllib``: PPO on Ray RLlib with the same hyperparameter file."""
     if args.algo != "ppo":
         parser.error("--backend rllib trains PPO only")
-    if args.vec or args.wrapper or args.recipe or args.train_rewards:
+    if args.vec or args.wrapper or args.recipe or args.train_rewards or args.warm_start:
         parser.error(
             "--backend rllib always samples the native vector env with its own entry: no "
-            "--vec/--wrapper/--recipe/--train-rewards"
+            "--vec/--wrapper/--recipe/--train-rewards/--warm-start"
         )
     overrides: dict[str, Any] = {
         "seed": args.seed,

@@ -40,6 +40,7 @@ RUN_FLAGS = {
     "n_timesteps": "--timesteps", "n_envs": "--n-envs", "vec": "--vec", "seed": "--seed",
     "eval_freq": "--eval-freq", "eval_episodes": "--eval-episodes", "wrapper": "--wrapper",
     "env_kwargs": "--env-kwargs", "train_rewards": "--train-rewards",
+    "warm_start": "--warm-start",
     "tensorboard_log": "--runs (tb/ in the run folder)",
 }  # fmt: skip
 
@@ -73,6 +74,8 @@ class TrainConfig:
             (``{scratch: -3.0}`` trains on ``reward_scratch=-3.0``): a training-time reward
             term. The periodic and final evaluations play ``env_kwargs`` alone, so they
             score the env's own reward (:func:`training_env_kwargs`).
+        warm_start: Before RL, fit the policy's deterministic action to a baseline's
+            (:data:`agents.training.hyperparams.WARM_STARTS`: ``"first-row"``), or ``None``.
         wrapper: Observation wrapper name (see :mod:`agents.learned.envs`), or ``None``.
         algo_kwargs: Algorithm keyword arguments in their data form (``hyperparams.yml``).
     """
@@ -94,6 +97,7 @@ class TrainConfig:
     policy: str = "MlpPolicy"
     env_kwargs: dict[str, Any] = field(default_factory=dict)
     train_rewards: dict[str, float] = field(default_factory=dict)
+    warm_start: str | None = None
     wrapper: str | None = None
     algo_kwargs: dict[str, Any] = field(default_factory=dict)
 
@@ -113,8 +117,8 @@ def resolve_config(
     baselines gets :data:`GAME_BASELINES`.
 
     Raises:
-        ValueError: On an unknown algorithm, or an algorithm argument its class does not
-            take (:func:`check_algo_kwargs`; ``--set`` names the command line's).
+        ValueError: On an unknown algorithm or warm start, or an algorithm argument its
+            class does not take (:func:`check_algo_kwargs`; ``--set`` names the command line's).
         KeyError: As :func:`agents.training.hyperparams.load`.
     """
     if algo not in ALGOS:
@@ -127,6 +131,9 @@ def resolve_config(
     check_algo_kwargs(algo, given, "--set")
     algo_kwargs.update(given)
     fields = {**run, **{k: v for k, v in overrides.items() if v is not None}}
+    warm = fields.get("warm_start")
+    if warm is not None and warm not in hyperparams.WARM_STARTS:
+        raise ValueError(f"warm_start {warm!r}: use one of {list(hyperparams.WARM_STARTS)}")
     if "final_baselines" not in fields and _is_game(env_id):
         fields["final_baselines"] = list(GAME_BASELINES)
     return TrainConfig(env_id=env_id, algo=algo, recipe=recipe, algo_kwargs=algo_kwargs, **fields)

@@ -52,6 +52,8 @@ from agents.training.run_config import ALGOS, TrainConfig, training_env_kwargs
 from agents.training.run_config import FINAL_BASELINES as FINAL_BASELINES  # re-exported
 from agents.training.run_config import resolve_config as resolve_config  # re-exported
 from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
+from agents.training.warm_start import LAYOUTS as WARM_LAYOUTS
+from agents.training.warm_start import warm_start
 
 #: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
 #: features as the ``gym.Env`` wrapper of that name (:data:`agents.learned.envs.WRAPPERS`),
@@ -290,6 +292,16 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     steps = trained_steps(model, config.n_timesteps)
     if not quiet:
         print(f"Ready in {compile_seconds:.1f} s; {steps_line(model, config, steps)}", flush=True)
+    if config.warm_start:
+        t_warm = time.perf_counter()
+        loss = warm_start(model, config.warm_start, config.env_id, config.env_kwargs)
+        if not quiet:
+            print(
+                f"Warm start {config.warm_start!r}: the policy's action fitted to it on "
+                f"{WARM_LAYOUTS:,} layouts in {time.perf_counter() - t_warm:.0f} s (mean "
+                f"squared error {loss:.2g})",
+                flush=True,
+            )
     history: list[tuple[int, float, dict]] = []
     callback = PeriodicEval(config, history) if config.eval_freq > 0 else None
     callbacks: list[BaseCallback] = [c for c in (callback,) if c is not None]
