@@ -108,9 +108,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     p.add_argument(
         "--warm-start",
-        choices=WARM_STARTS,
+        choices=(*WARM_STARTS, "none"),
         help="before RL, fit the policy's action to this baseline's (first-row: row 0 of "
-        'the "shots" observation, played exactly)',
+        'the "shots" observation, played exactly; none: no warm start, over the recipe\'s)',
     )
     p.add_argument(
         "--wrapper",
@@ -184,11 +184,15 @@ def main(argv: list[str] | None = None) -> int:
         "baselines": not args.no_baselines,
         "progress_bar": not args.no_progress,
         "train_rewards": train_rewards,
-        "warm_start": args.warm_start,
+        "warm_start": None if args.warm_start == "none" else args.warm_start,
         "algo_kwargs": algo_kwargs,
     }
     from agents.training import hyperparams
-    from agents.training.run_config import resolve_config, training_env_kwargs
+    from agents.training.run_config import (
+        check_warm_start,
+        resolve_config,
+        training_env_kwargs,
+    )
     from agents.training.train_lib import NATIVE_WRAPPERS, train
 
     try:
@@ -199,6 +203,8 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         parser.error(str(exc))
     config.env_kwargs = {**config.env_kwargs, **extra}
+    if args.warm_start == "none":
+        config.warm_start = None
     if args.wrapper:
         config.wrapper = wrapper
         native_ok = config.wrapper is None or config.wrapper in NATIVE_WRAPPERS
@@ -207,6 +213,7 @@ def main(argv: list[str] | None = None) -> int:
     _check_env(parser, config.env_id, config.env_kwargs, config.wrapper)  # with the entry's
     try:  # the training envs' keywords too: a reward term the env has not is named
         train_kwargs = training_env_kwargs(config)
+        check_warm_start(config.warm_start, config.wrapper)  # after --wrapper's override
     except ValueError as exc:
         parser.error(str(exc))
     _check_env(parser, config.env_id, train_kwargs, config.wrapper)

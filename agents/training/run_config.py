@@ -131,12 +131,27 @@ def resolve_config(
     check_algo_kwargs(algo, given, "--set")
     algo_kwargs.update(given)
     fields = {**run, **{k: v for k, v in overrides.items() if v is not None}}
-    warm = fields.get("warm_start")
-    if warm is not None and warm not in hyperparams.WARM_STARTS:
-        raise ValueError(f"warm_start {warm!r}: use one of {list(hyperparams.WARM_STARTS)}")
+    check_warm_start(fields.get("warm_start"), fields.get("wrapper"))
     if "final_baselines" not in fields and _is_game(env_id):
         fields["final_baselines"] = list(GAME_BASELINES)
     return TrainConfig(env_id=env_id, algo=algo, recipe=recipe, algo_kwargs=algo_kwargs, **fields)
+
+
+def check_warm_start(name: str | None, wrapper: str | None) -> None:
+    """Refuse an unknown warm start, or one on a wrapped env (it fits the env's own action).
+
+    Raises:
+        ValueError: Naming the warm start and the valid choices, or the wrapper.
+    """
+    if name is None:
+        return
+    if name not in hyperparams.WARM_STARTS:
+        raise ValueError(f"warm_start {name!r}: use one of {list(hyperparams.WARM_STARTS)}")
+    if wrapper:
+        raise ValueError(
+            f"warm_start {name!r} fits the env's own action; the wrapper {wrapper!r} changes "
+            "it: use one or the other"
+        )
 
 
 def training_env_kwargs(config: TrainConfig) -> dict[str, Any]:

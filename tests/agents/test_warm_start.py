@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 from stable_baselines3 import PPO
 
+import train
 from agents.evaluation.episodes import run_episodes
 from agents.learned.envs import make_env
 from agents.training.run_config import TrainConfig, resolve_config
@@ -48,3 +49,22 @@ def test_an_unknown_warm_start_is_named() -> None:
         warm_start(_ppo(config), "last-row", ROLL, config.env_kwargs)
     with pytest.raises(ValueError, match="observation='shots'"):
         first_row_targets(ROLL, {}, 4)  # the positions only: no row to fit
+    with pytest.raises(ValueError, match="the wrapper 'ghost_candidates' changes it"):
+        resolve_config(ROLL, "ppo", {"warm_start": "first-row"}, recipe="candidates")
+
+
+def test_the_command_line_refuses_a_warm_start_on_a_wrapper(
+    capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        train.main(["--env", ROLL, "--wrapper", "ghost_candidates", "--no-baselines"])
+    assert exit_info.value.code == 2  # the roll recipe warm-starts: not on another action
+    assert "fits the env's own action" in capsys.readouterr().err
+    # --warm-start none lifts the recipe's: the same command gets past every check.
+    checked = []
+    monkeypatch.setattr(
+        "agents.training.train_lib.train", lambda config, root: checked.append(config)
+    )
+    argv = ["--env", ROLL, "--wrapper", "ghost_candidates", "--warm-start", "none"]
+    assert train.main(argv) == 0
+    assert checked[0].warm_start is None and checked[0].wrapper == "ghost_candidates"
