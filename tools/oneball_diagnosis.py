@@ -16,7 +16,7 @@ Three diagnoses, each small (under a minute of CPU):
 
     python -m tools.oneball_diagnosis scratches models/sac_oneball_spin.zip
     python -m tools.oneball_diagnosis windows
-    python -m tools.oneball_diagnosis aims RUN/model.zip
+    python -m tools.oneball_diagnosis aims runs/OneBallRoll-v1/<run>/model.zip
 """
 
 from __future__ import annotations
