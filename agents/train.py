@@ -38,7 +38,7 @@ from typing import Any
 # Light imports only: the trainer (stable-baselines3, torch, Ray) loads after the first line
 # printed, which says what the command waits for.
 from agents.learned.pretrained import ALGO_CLASSES
-from agents.training.hyperparams import VEC_KINDS
+from agents.training.hyperparams import VEC_KINDS, WARM_STARTS
 from pool_env.extras import require
 
 #: What ``python train.py`` trains on with no ``--env``.
@@ -102,6 +102,17 @@ def build_parser() -> argparse.ArgumentParser:
         "--env-kwargs", help='gymnasium.make kwargs as YAML, e.g. "{noise: [0.003, 0.05]}"'
     )
     p.add_argument(
+        "--train-rewards",
+        help='reward scales of the training envs only, as YAML, e.g. "{scratch: -3.0}" '
+        "(reward_scratch -3 while training; every evaluation plays the env's own reward)",
+    )
+    p.add_argument(
+        "--warm-start",
+        choices=(*WARM_STARTS, "none"),
+        help="before RL, fit the policy's action to this baseline's (first-row: row 0 of "
+        'the "shots" observation, played exactly; none: no warm start, over the recipe\'s)',
+    )
+    p.add_argument(
         "--wrapper",
         help="wrapper: ghost_candidates (the candidates recipe: features and candidate-shot "
         "actions), ghost_features (SAC's), pocket_features, none",
@@ -152,12 +163,8 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         parser.error(str(exc))
     yaml = require("yaml", "train", "python train.py")
-    try:
-        extra = yaml.safe_load(args.env_kwargs) if args.env_kwargs else {}
-    except yaml.YAMLError as exc:
-        parser.error(f"--env-kwargs {args.env_kwargs!r} is not YAML: {' '.join(str(exc).split())}")
-    if not isinstance(extra, dict):
-        parser.error("--env-kwargs must be a YAML mapping")
+    extra = _yaml_mapping(parser, yaml, "--env-kwargs", args.env_kwargs or None) or {}
+    train_rewards = _yaml_mapping(parser, yaml, "--train-rewards", args.train_rewards)
     if args.aim:
         extra["aim"] = args.aim
     wrapper = None if args.wrapper in (None, "none") else args.wrapper
@@ -176,10 +183,16 @@ def main(argv: list[str] | None = None) -> int:
         "final_episodes": args.final_episodes,
         "baselines": not args.no_baselines,
         "progress_bar": not args.no_progress,
+        "train_rewards": train_rewards,
+        "warm_start": None if args.warm_start == "none" else args.warm_start,
         "algo_kwargs": algo_kwargs,
     }
     from agents.training import hyperparams
-    from agents.training.run_config import resolve_config
+    from agents.training.run_config import (
+        check_warm_start,
+        resolve_config,
+        training_env_kwargs,
+    )
     from agents.training.train_lib import NATIVE_WRAPPERS, train
 
     try:
@@ -190,14 +203,37 @@ def main(argv: list[str] | None = None) -> int:
     except ValueError as exc:
         parser.error(str(exc))
     config.env_kwargs = {**config.env_kwargs, **extra}
+    if args.warm_start == "none":
+        config.warm_start = None
     if args.wrapper:
         config.wrapper = wrapper
         native_ok = config.wrapper is None or config.wrapper in NATIVE_WRAPPERS
         if config.vec == "native" and not native_ok and not args.vec:
             config.vec = "dummy"  # the native vector env cannot apply this Python wrapper
     _check_env(parser, config.env_id, config.env_kwargs, config.wrapper)  # with the entry's
+    try:  # the training envs' keywords too: a reward term the env has not is named
+        train_kwargs = training_env_kwargs(config)
+        check_warm_start(config.warm_start, config.wrapper)  # after --wrapper's override
+    except ValueError as exc:
+        parser.error(str(exc))
+    _check_env(parser, config.env_id, train_kwargs, config.wrapper)
     train(config, root=args.runs)
     return 0
+
+
+def _yaml_mapping(
+    parser: argparse.ArgumentParser, yaml: Any, flag: str, text: str | None
+) -> dict[str, Any] | None:
+    """The YAML mapping ``text`` of option ``flag`` (``None`` when not given); else exit 2."""
+    if text is None:
+        return None
+    try:
+        value = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        parser.error(f"{flag} {text!r} is not YAML: {' '.join(str(exc).split())}")
+    if not isinstance(value, dict):
+        parser.error(f"{flag} must be a YAML mapping, got {text!r}")
+    return value
 
 
 def _check_env(
@@ -221,10 +257,10 @@ def _train_rllib(
     """``--backend rllib``: PPO on Ray RLlib with the same hyperparameter file."""
     if args.algo != "ppo":
         parser.error("--backend rllib trains PPO only")
-    if args.vec or args.wrapper or args.recipe:
+    if args.vec or args.wrapper or args.recipe or args.train_rewards or args.warm_start:
         parser.error(
             "--backend rllib always samples the native vector env with its own entry: no "
-            "--vec/--wrapper/--recipe"
+            "--vec/--wrapper/--recipe/--train-rewards/--warm-start"
         )
     overrides: dict[str, Any] = {
         "seed": args.seed,

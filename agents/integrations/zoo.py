@@ -9,7 +9,9 @@ that the shipped files are what it writes.
 
 Dropped on the way, since zoo has its own: ``vec`` (zoo builds a ``DummyVecEnv``, or
 ``SubprocVecEnv`` with ``--vec-env subproc``), ``eval_freq`` and ``eval_episodes`` (zoo's
-``--eval-freq`` / ``--eval-episodes``).
+``--eval-freq`` / ``--eval-episodes``). Dropped with no zoo counterpart: ``train_rewards``
+(zoo evaluates on its training env's keywords) and ``warm_start`` (zoo trains from a fresh
+policy), so a recipe with either trains as ``train.py`` does only under ``train.py``.
 """
 
 from __future__ import annotations

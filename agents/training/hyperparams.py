@@ -28,11 +28,17 @@ RUN_KEYS = (
     "vec",
     "policy",
     "env_kwargs",
+    "train_rewards",
+    "warm_start",
     "wrapper",
     "eval_freq",
     "eval_episodes",
     "final_baselines",
 )
+
+#: The warm starts by name (the run key ``warm_start``, :mod:`agents.training.warm_start`):
+#: ``"first-row"`` fits the policy's action to row 0 of the ``"shots"`` observation.
+WARM_STARTS = ("first-row",)
 
 #: Activation functions by name (``policy_kwargs.activation_fn``) and their ``torch.nn`` class.
 ACTIVATION_CLASSES = {

@@ -39,7 +39,9 @@ TRAINER_ARGS = ("self", "policy", "env", "seed", "device", "verbose", "tensorboa
 RUN_FLAGS = {
     "n_timesteps": "--timesteps", "n_envs": "--n-envs", "vec": "--vec", "seed": "--seed",
     "eval_freq": "--eval-freq", "eval_episodes": "--eval-episodes", "wrapper": "--wrapper",
-    "env_kwargs": "--env-kwargs", "tensorboard_log": "--runs (tb/ in the run folder)",
+    "env_kwargs": "--env-kwargs", "train_rewards": "--train-rewards",
+    "warm_start": "--warm-start",
+    "tensorboard_log": "--runs (tb/ in the run folder)",
 }  # fmt: skip
 
 
@@ -68,6 +70,12 @@ class TrainConfig:
         progress_bar: Show SB3's progress bar.
         policy: SB3 policy name.
         env_kwargs: ``gymnasium.make`` keyword arguments.
+        train_rewards: Reward scales of the training envs only, by the env's term name
+            (``{scratch: -3.0}`` trains on ``reward_scratch=-3.0``): a training-time reward
+            term. The periodic and final evaluations play ``env_kwargs`` alone, so they
+            score the env's own reward (:func:`training_env_kwargs`).
+        warm_start: Before RL, fit the policy's deterministic action to a baseline's
+            (:data:`agents.training.hyperparams.WARM_STARTS`: ``"first-row"``), or ``None``.
         wrapper: Observation wrapper name (see :mod:`agents.learned.envs`), or ``None``.
         algo_kwargs: Algorithm keyword arguments in their data form (``hyperparams.yml``).
     """
@@ -88,6 +96,8 @@ class TrainConfig:
     progress_bar: bool = True
     policy: str = "MlpPolicy"
     env_kwargs: dict[str, Any] = field(default_factory=dict)
+    train_rewards: dict[str, float] = field(default_factory=dict)
+    warm_start: str | None = None
     wrapper: str | None = None
     algo_kwargs: dict[str, Any] = field(default_factory=dict)
 
@@ -107,8 +117,8 @@ def resolve_config(
     baselines gets :data:`GAME_BASELINES`.
 
     Raises:
-        ValueError: On an unknown algorithm, or an algorithm argument its class does not
-            take (:func:`check_algo_kwargs`; ``--set`` names the command line's).
+        ValueError: On an unknown algorithm or warm start, or an algorithm argument its
+            class does not take (:func:`check_algo_kwargs`; ``--set`` names the command line's).
         KeyError: As :func:`agents.training.hyperparams.load`.
     """
     if algo not in ALGOS:
@@ -121,9 +131,59 @@ def resolve_config(
     check_algo_kwargs(algo, given, "--set")
     algo_kwargs.update(given)
     fields = {**run, **{k: v for k, v in overrides.items() if v is not None}}
+    check_warm_start(fields.get("warm_start"), fields.get("wrapper"))
     if "final_baselines" not in fields and _is_game(env_id):
         fields["final_baselines"] = list(GAME_BASELINES)
     return TrainConfig(env_id=env_id, algo=algo, recipe=recipe, algo_kwargs=algo_kwargs, **fields)
+
+
+def check_warm_start(name: str | None, wrapper: str | None) -> None:
+    """Refuse an unknown warm start, or one on a wrapped env (it fits the env's own action).
+
+    Raises:
+        ValueError: Naming the warm start and the valid choices, or the wrapper.
+    """
+    if name is None:
+        return
+    if name not in hyperparams.WARM_STARTS:
+        raise ValueError(f"warm_start {name!r}: use one of {list(hyperparams.WARM_STARTS)}")
+    if wrapper:
+        raise ValueError(
+            f"warm_start {name!r} fits the env's own action; the wrapper {wrapper!r} changes "
+            "it: use one or the other"
+        )
+
+
+def training_env_kwargs(config: TrainConfig) -> dict[str, Any]:
+    """The ``gymnasium.make`` keywords of the training envs (the evaluations take env_kwargs).
+
+    ``env_kwargs`` and :attr:`~TrainConfig.train_rewards` as ``reward_<term>`` keys (over
+    the env_kwargs' own). The env checks the terms' names and values (a ``ValueError``
+    naming the key).
+
+    Raises:
+        ValueError: When ``train_rewards`` is not a mapping of term names to numbers.
+
+    Examples:
+        >>> config = TrainConfig(env_kwargs={"observation": "shots"},
+        ...                      train_rewards={"scratch": -3.0})
+        >>> training_env_kwargs(config)
+        {'observation': 'shots', 'reward_scratch': -3.0}
+        >>> config.env_kwargs  # the evaluations' keywords, untouched
+        {'observation': 'shots'}
+    """
+    rewards = config.train_rewards
+    if not isinstance(rewards, dict):
+        raise ValueError(
+            f"train_rewards must map reward terms to scales (e.g. {{scratch: -3.0}}), "
+            f"got {rewards!r}"
+        )
+    for term, scale in rewards.items():
+        if not isinstance(term, str) or isinstance(scale, bool):
+            raise ValueError(f"train_rewards {term!r}: {scale!r}: want a term name and a number")
+        if not isinstance(scale, (int, float)):
+            raise ValueError(f"train_rewards {term}: {scale!r} is not a number")
+    return {**config.env_kwargs, **{f"reward_{t}": float(s) for t, s in rewards.items()}}
 
 
 def algo_args(algo: str) -> list[str]:

@@ -48,10 +48,12 @@ from agents.learned.candidates import FirstRowAgent
 from agents.learned.envs import EnvFactory, make_env
 from agents.training import hyperparams, runs
 from agents.training.hyperparams import VEC_KINDS
-from agents.training.run_config import ALGOS, TrainConfig
+from agents.training.run_config import ALGOS, TrainConfig, training_env_kwargs
 from agents.training.run_config import FINAL_BASELINES as FINAL_BASELINES  # re-exported
 from agents.training.run_config import resolve_config as resolve_config  # re-exported
 from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
+from agents.training.warm_start import LAYOUTS as WARM_LAYOUTS
+from agents.training.warm_start import warm_start
 
 #: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
 #: features as the ``gym.Env`` wrapper of that name (:data:`agents.learned.envs.WRAPPERS`),
@@ -142,6 +144,10 @@ def progress(bar: bool, what: str, total: int, unit: str) -> Iterator[Callable[[
 def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = None) -> VecEnv:
     """The training ``VecEnv`` of ``config`` (episode statistics monitored).
 
+    Its envs take :func:`~agents.training.run_config.training_env_kwargs` (the recipe's
+    training-time reward terms included); the evaluations build theirs from
+    ``config.env_kwargs`` alone.
+
     Raises:
         ValueError: On an unknown kind, or a wrapper the native kind cannot apply.
         ImportError: For ``native`` when ``agents.vec.native_vec`` is not installed.
@@ -161,11 +167,12 @@ def make_vec(config: TrainConfig, n_envs: int | None = None, seed: int | None = 
                 "--vec native needs agents/vec/native_vec.py (make_native_vec_env), which is not "
                 f"available here ({exc}); use --vec dummy or --vec subproc"
             ) from exc
-        venv = VecMonitor(make_native_vec_env(config.env_id, n, seed, config.env_kwargs or None))
+        kwargs = training_env_kwargs(config)
+        venv = VecMonitor(make_native_vec_env(config.env_id, n, seed, kwargs or None))
         return NATIVE_WRAPPERS[config.wrapper](venv) if config.wrapper else venv
     if config.vec not in VEC_KINDS:
         raise ValueError(f"--vec must be one of {VEC_KINDS}, got {config.vec!r}")
-    factory = EnvFactory(config.env_id, config.env_kwargs, config.wrapper)
+    factory = EnvFactory(config.env_id, training_env_kwargs(config), config.wrapper)
     cls = SubprocVecEnv if config.vec == "subproc" else DummyVecEnv
     return make_vec_env(factory, n_envs=n, seed=seed, vec_env_cls=cls)
 
@@ -285,6 +292,16 @@ def train(config: TrainConfig, root: str | Path = "runs", quiet: bool = False) -
     steps = trained_steps(model, config.n_timesteps)
     if not quiet:
         print(f"Ready in {compile_seconds:.1f} s; {steps_line(model, config, steps)}", flush=True)
+    if config.warm_start:
+        t_warm = time.perf_counter()
+        loss = warm_start(model, config.warm_start, config.env_id, config.env_kwargs)
+        if not quiet:
+            print(
+                f"Warm start {config.warm_start!r}: the policy's action fitted to it on "
+                f"{WARM_LAYOUTS:,} layouts in {time.perf_counter() - t_warm:.0f} s (mean "
+                f"squared error {loss:.2g})",
+                flush=True,
+            )
     history: list[tuple[int, float, dict]] = []
     callback = PeriodicEval(config, history) if config.eval_freq > 0 else None
     callbacks: list[BaseCallback] = [c for c in (callback,) if c is not None]
