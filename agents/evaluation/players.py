@@ -1,10 +1,10 @@
 """The players ``--agent`` names, built on an env, and checked before anything is played.
 
 A player is a baseline by name (:data:`BASELINES`, ``const:a0,a1[,...]``) or a file
-(:data:`FILE_KINDS`: an SB3 ``.zip``, a rack or lookahead ``.npz``, a search player
-``.yaml``). :func:`make_agent` builds one; :func:`check_agents` builds every one a command
-names on its env first, so that a name, a file or a game the player cannot play is a usage
-error (status 2, one line) and not a traceback after minutes of play.
+(:data:`FILE_KINDS`: an SB3 ``.zip``, a rack, lookahead or rack-network ``.npz``, a search
+player ``.yaml``). :func:`make_agent` builds one; :func:`check_agents` builds every one a
+command names on its env first, so that a name, a file or a game the player cannot play is
+a usage error (status 2, one line) and not a traceback after minutes of play.
 """
 
 from __future__ import annotations

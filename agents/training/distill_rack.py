@@ -62,7 +62,9 @@ def collect(
         ``values`` ``(total,)`` their teacher values, ``starts`` ``(D + 1,)`` where each
         decision's rows begin, ``rack`` ``(D,)`` its rack seed, ``driver_action`` ``(D, A)``
         the driver's action, ``driver_value`` ``(D,)`` its teacher value (on the same
-        noise as the candidates'), ``seconds`` ``(D,)`` the driver's decision time.
+        noise as the candidates'), ``seconds`` ``(D,)`` the driver's decision time, and
+        the layouts: ``positions`` ``(D, N, 2)``, ``on_table`` ``(D, N)``, ``fouls``
+        ``(D, 2)`` (the features can be recomputed from them).
     """
     kwargs: dict[str, Any] = {"end_on_foul": not practice}
     sigmas = parse_noise(noise)
@@ -74,6 +76,7 @@ def collect(
     feats: list[NDArray[np.float64]] = []
     values: list[NDArray[np.float64]] = []
     starts, rack_ids, actions, driver_values, seconds = [0], [], [], [], []
+    layouts: list[tuple[NDArray[np.float64], NDArray[np.bool_], tuple[int, int]]] = []
     started = time.perf_counter()
     try:
         for k in range(racks):
@@ -97,6 +100,7 @@ def collect(
                         actions.append(action)
                         driver_values.append(v[-1])
                         seconds.append(spent)
+                        layouts.append((positions, on, labeler._fouls))
                 obs, _, terminated, truncated, _ = env.step(action.astype(np.float32))
                 done = terminated or truncated
             if log_every and (k + 1) % log_every == 0:
@@ -113,17 +117,29 @@ def collect(
         "driver_action": np.asarray(actions).reshape(-1, width),
         "driver_value": np.asarray(driver_values, dtype=np.float64),
         "seconds": np.asarray(seconds, dtype=np.float64),
+        "positions": np.asarray([p for p, _, _ in layouts]).reshape(-1, *env_balls(env), 2),
+        "on_table": np.asarray([o for _, o, _ in layouts]).reshape(-1, *env_balls(env)),
+        "fouls": np.asarray([f for _, _, f in layouts], dtype=np.int64).reshape(-1, 2),
     }
 
 
+def env_balls(env: Any) -> tuple[int]:
+    """``(N,)``: the balls of the env's layouts, cue ball first."""
+    return (int(env.unwrapped.config.n_balls),)
+
+
 def load_decisions(paths: list[str]) -> dict[str, NDArray[Any]]:
-    """The collected files joined (their decisions in order, ``starts`` re-based)."""
+    """The collected files joined (their decisions in order, ``starts`` re-based).
+
+    Only the arrays every file holds are kept.
+    """
     parts = [dict(np.load(p)) for p in paths]
+    common = set.intersection(*(set(p) for p in parts))
     starts, offset = [np.zeros(1, dtype=np.int64)], 0
     for part in parts:
         starts.append(part["starts"][1:] + offset)
         offset += int(part["starts"][-1])
-    out = {k: np.concatenate([p[k] for p in parts]) for k in parts[0] if k != "starts"}
+    out = {k: np.concatenate([p[k] for p in parts]) for k in common if k != "starts"}
     out["starts"] = np.concatenate(starts)
     return out
 
