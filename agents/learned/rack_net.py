@@ -13,11 +13,14 @@ milliseconds a shot. On every shot it:
    model): whether it keeps the table, fouls or wins, and the layout it leaves, valued by
    the search player's leaf value (the set network) and described by the logistic's
    layout features; and counts how many aims of its fan (the same pocket, speed and tip)
-   also keep the table: a cheap robustness to the aim error;
+   also keep the table, and whether the pot still keeps it with the aim tilted by
+   :data:`TILTS` sigmas of the aim noise either way (two more exact plays): a cheap
+   robustness to the aim error;
 3. describes each candidate by :data:`FEATURES` (its geometry: the pot chance under the
    aim noise, the cut, distances, speed, tip; the outcome above; the rack) and scores them
    with a small MLP in numpy (:class:`agents.learned.rack_play.ValueNet`); it plays the
-   argmax.
+   argmax among the candidates whose exact play keeps the table (:func:`eligible`; all
+   of them when none does).
 
 The network is distilled from the search player (:mod:`agents.training.distill_rack`):
 fitted by cross-entropy to the search's first-ply values of the same candidates (each
@@ -54,10 +57,11 @@ from agents.learned.player_file import read_player_file
 from agents.learned.rack_play import ValueNet, rack_model_config
 from agents.learned.search_player import SearchPlayer
 from pool_env import obs_layout, shot_constraints
+from pool_env.game.codec import encode_shots
 from pool_env.game.config import make_config
 from pool_env.game.games.wpa import rack_row
 from pool_env.game.games.wpa.judge import FOUL, KEEPS, WINNER
-from pool_env.game.geometry import APPROACH, BALL_DIST, CUE_DIST, CUT, TOLERANCE
+from pool_env.game.geometry import ANGLE, APPROACH, BALL_DIST, CUE_DIST, CUT, TOLERANCE
 
 #: A candidate's feature columns (:meth:`RackNetPlayer.candidate_table`); the outcome
 #: columns are the candidate's one play without noise.
@@ -82,6 +86,9 @@ FEATURES = (
     "fan_keeps",  # share of the fan's five aims whose exact play keeps the table
     "fan_left",  # the next aim on either side keeps it
     "fan_right",
+    "tilt_keeps",  # share of the aims tilted by TILTS sigmas whose exact play keeps the table
+    "tilt_inner",  # both aims tilted by the smaller TILTS keep it
+    "tilt_outer",  # both aims tilted by the larger TILTS keep it
     "leave_value",  # the leaf value of the layout left (1 if won, 0 if the table is lost)
     "leave_p_best",  # the logistic's features of the layout left (0 if the table is lost)
     "leave_p_second",
@@ -90,6 +97,9 @@ FEATURES = (
     "balls_left_over_9",  # the rack now
     "last_ball_now",
 )
+#: Aim errors, in the aim noise's sigmas, at which each pot is also played without noise:
+#: how far the aim may stray at the scale of the noise (the fan's aims are wider apart).
+TILTS = (-2.0, -1.0, 1.0, 2.0)
 #: The layout features of the leave kept (:data:`agents.learned.layout_value.LAYOUT_FEATURES`).
 _LEAVE_COLUMNS = (1, 2, 3, 4)
 #: The next shots' largest vertical tip, the scale of ``tip_vertical``.
@@ -108,6 +118,18 @@ class Candidates(NamedTuple):
     actions: NDArray[np.float64]
     features: NDArray[np.float64]
     kinds: NDArray[np.str_]
+
+
+def eligible(features: NDArray[np.float64]) -> NDArray[np.bool_]:
+    """``(C,)`` the candidates the player may choose: those whose exact play keeps the table.
+
+    In run-out mode a shot that loses the table ends the rack, so when any candidate keeps
+    it (or wins) only those may be chosen; otherwise all may. The network was fitted
+    on the same choice (:mod:`agents.training.distill_rack`): without it, a grid hit the
+    network had few examples of was played where it fouls even without noise.
+    """
+    keeps = features[:, FEATURES.index("keeps")] > 0.5
+    return keeps if keeps.any() else np.ones_like(keeps)
 
 
 class RackNetPlayer(SearchPlayer):
@@ -202,10 +224,30 @@ class RackNetPlayer(SearchPlayer):
         f[:n_pot, col["speed_over_top"]] = shots.speeds[0, pots] / top
         f[n_pot:, col["speed_over_top"]] = grid_speeds / top
         f[n_pot:, col["grid_offset"]] = grid_offsets
-        # The exact plays: one batch, no noise.
+        # The exact plays, the pots' tilted aims after them: one batch, no noise.
+        tilted, tilt_ok = [], []
+        for k in TILTS:
+            parts, playable = encode_shots(
+                config, positions[None], reference[None], rows[None, :, ANGLE] + k * self.sigma,
+                shots.speeds[:, pots], shots.tips[:, pots],
+            )  # fmt: skip
+            acts = actions[:n_pot].copy()
+            acts[:, 0:2] = parts[0, :, 0:2]
+            acts[:, list(config.tip_columns)] = parts[0, :, 2:4]  # type: ignore[arg-type]
+            tilted.append(acts)
+            tilt_ok.append(playable[0])
         rack = rack_row({"fouls": tuple(min(int(x), 2) for x in self._fouls)})
-        result, after, left = self.exact.play(positions, on, rack, actions, 1)
-        hits = result.hits
+        result, after_all, left_all = self.exact.play(
+            positions, on, rack, np.concatenate([actions, *tilted]), 1
+        )
+        after, left = after_all[:n], left_all[:n]
+        all_keeps = (result.hits[:, FOUL] == 0) & (
+            (result.hits[:, KEEPS] != 0) | (result.hits[:, WINNER] == 0)
+        )
+        tilt_keeps = np.stack(
+            [all_keeps[n + j * n_pot : n + (j + 1) * n_pot] & tilt_ok[j] for j in range(len(TILTS))]
+        )  # (len(TILTS), n_pot)
+        hits = result.hits[:n]
         foul = hits[:, FOUL] != 0
         wins = hits[:, WINNER] == 0
         keeps = ~foul & (hits[:, KEEPS] != 0) & ~wins
@@ -221,6 +263,11 @@ class RackNetPlayer(SearchPlayer):
         f[:n_pot, col["fan_keeps"]] = np.broadcast_to(fan.mean(axis=0), fan.shape).ravel()[pots]
         f[:n_pot, col["fan_left"]] = left_keep
         f[:n_pot, col["fan_right"]] = right_keep
+        f[:n_pot, col["tilt_keeps"]] = tilt_keeps.mean(axis=0)
+        f[:n_pot, col["tilt_inner"]] = tilt_keeps[[1, 2]].all(axis=0)
+        f[:n_pot, col["tilt_outer"]] = tilt_keeps[[0, 3]].all(axis=0)
+        for name in ("tilt_keeps", "tilt_inner", "tilt_outer"):  # a grid hit is not tilted
+            f[n_pot:, col[name]] = f[n_pot:, col["keeps"]]
         f[:, col["leave_value"]] = wins.astype(np.float64)
         kept = np.flatnonzero(keeps)
         if kept.size:
@@ -237,14 +284,19 @@ class RackNetPlayer(SearchPlayer):
         return Candidates(actions, f, kinds)
 
     def scores(self, features: NDArray[np.float64]) -> NDArray[np.float64]:
-        """``(C,)`` the network's score of each candidate (the trivial rule without one)."""
+        """``(C,)`` each candidate's score: the network's (the trivial rule without one).
+
+        ``-inf`` for the candidates that are not :func:`eligible`.
+        """
         if self.net is None:
             col = {name: k for k, name in enumerate(FEATURES)}
-            return (
+            out = (
                 features[:, col["p_aim"]] * features[:, col["leave_value"]]
                 + features[:, col["wins"]]
             )
-        return self.net(features)
+        else:
+            out = self.net(features)
+        return np.where(eligible(features), out, -np.inf)
 
     def teacher_values(
         self, positions: NDArray[np.float64], on: NDArray[np.bool_], actions: NDArray[np.float64]

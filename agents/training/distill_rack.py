@@ -37,7 +37,7 @@ from numpy.typing import NDArray
 from agents.evaluation.noise_flag import parse_noise
 from agents.evaluation.players import make_agent
 from agents.learned.envs import make_env
-from agents.learned.rack_net import FEATURES, RackNetPlayer
+from agents.learned.rack_net import FEATURES, RackNetPlayer, eligible
 from agents.learned.rack_play import ValueNet
 
 ENV_ID = "pool_env/NineBallGame-v2"
@@ -123,6 +123,41 @@ def collect(
     }
 
 
+def refeature(
+    data: dict[str, NDArray[Any]], noise: str = "fastfiz", player: str = PLAYER
+) -> dict[str, NDArray[Any]]:
+    """``data`` with every decision's features recomputed from its layout (new columns).
+
+    The candidates are listed again from each decision's layout (``positions``,
+    ``on_table``, ``fouls``); they must be the ones the teacher valued, in the same order
+    (the listing is deterministic), so that the values still belong to them.
+
+    Raises:
+        ValueError: If the data holds no layouts or a decision's candidates differ in number.
+    """
+    if "positions" not in data:
+        raise ValueError("these decisions hold no layouts (collected before they were kept)")
+    sigmas = parse_noise(noise)
+    env = make_env(ENV_ID, {"noise": sigmas} if sigmas is not None else {}, None)
+    labeler = RackNetPlayer(env, player)
+    starts = data["starts"]
+    rows = []
+    for d in range(starts.size - 1):
+        positions, on = data["positions"][d], data["on_table"][d]
+        labeler._targets = [int(np.flatnonzero(on[1:])[0]) + 1]  # 9-ball: the lowest ball
+        labeler._fouls = tuple(int(x) for x in data["fouls"][d])
+        reference = np.zeros_like(on)
+        reference[0] = True
+        reference[labeler._targets] = True
+        found = labeler.candidate_table(positions, on, reference)
+        if len(found.actions) != starts[d + 1] - starts[d]:
+            raise ValueError(f"decision {d}: {len(found.actions)} candidates, the teacher "
+                             f"valued {starts[d + 1] - starts[d]}")  # fmt: skip
+        rows.append(found.features)
+    env.close()
+    return {**data, "features": np.concatenate(rows)}
+
+
 def env_balls(env: Any) -> tuple[int]:
     """``(N,)``: the balls of the env's layouts, cue ball first."""
     return (int(env.unwrapped.config.n_balls),)
@@ -166,8 +201,12 @@ def fit(
     seed: int = 0,
     held_out: float = 0.2,
     lr: float = 3e-3,
+    loss_kind: str = "ce",
 ) -> tuple[ValueNet, dict[str, Any]]:
     """Fit the candidate scorer by cross-entropy to the soft targets (module doc).
+
+    Each decision's targets and picks are over its :func:`~agents.learned.rack_net.eligible`
+    candidates, as the player chooses.
 
     The decisions are split by rack (a seeded ``held_out`` share of the racks held out);
     the epoch whose held-out decisions' picks are worth the most to the teacher is kept.
@@ -198,16 +237,18 @@ def fit(
         mask = np.zeros((idx.size, width), dtype=bool)
         for row, d in enumerate(idx):
             a, b = starts[d], starts[d + 1]
+            ok = eligible(x_all[a:b])  # the candidates the player chooses among
             x[row, : b - a] = (x_all[a:b] - mean) / scale
-            q[row, : b - a] = soft_targets(data["values"][a:b], tau)
+            q[row, : b - a][ok] = soft_targets(data["values"][a:b][ok], tau)
             v[row, : b - a] = data["values"][a:b]
-            mask[row, : b - a] = True
+            mask[row, : b - a] = ok
         return torch.tensor(x, dtype=torch.float32), torch.tensor(q, dtype=torch.float32), \
             torch.tensor(mask), v  # fmt: skip
 
     train_idx = np.flatnonzero(~is_test)
     test_idx = np.flatnonzero(is_test)
-    x_tr, q_tr, m_tr, _ = padded(train_idx)
+    x_tr, q_tr, m_tr, v_tr = padded(train_idx)
+    value_tr = torch.tensor(np.where(np.isfinite(v_tr), v_tr, 0.0), dtype=torch.float32)
     x_te, _, m_te, v_te = padded(test_idx)
     sizes = (x_all.shape[1], *hidden, 1)
     layers: list[Any] = []
@@ -230,7 +271,11 @@ def fit(
         for b in range(0, order.numel(), batch):
             i = order[b : b + batch]
             logits = model(x_tr[i])[..., 0].masked_fill(~m_tr[i], -1e9)
-            loss = -(q_tr[i] * torch.log_softmax(logits, dim=1)).sum(dim=1).mean()
+            if loss_kind == "ce":
+                loss = -(q_tr[i] * torch.log_softmax(logits, dim=1)).sum(dim=1).mean()
+            else:  # the teacher's value itself, on the eligible candidates
+                error = (model(x_tr[i])[..., 0] - value_tr[i]) ** 2 * m_tr[i]
+                loss = error.sum() / m_tr[i].sum()
             opt.zero_grad()
             loss.backward()
             opt.step()
@@ -253,8 +298,10 @@ def fit(
         a, b = starts[d], starts[d + 1]
         v = data["values"][a:b]
         f = x_all[a:b]
-        p = int(np.argmax(net(f)))
+        ok = eligible(f)
+        p = int(np.argmax(np.where(ok, net(f), -np.inf)))
         rule = f[:, col["p_aim"]] * f[:, col["leave_value"]] + f[:, col["wins"]]
+        rule = np.where(ok, rule, -np.inf)
         picked.append(v[p])
         trivial.append(v[int(np.argmax(rule))])
         best.append(v.max())
@@ -262,7 +309,7 @@ def fit(
     report = {
         "decisions": {"fit": int(train_idx.size), "held_out": int(test_idx.size)},
         "racks": {"fit": int(racks.size - len(test_racks)), "held_out": len(test_racks)},
-        "tau": tau, "hidden": list(hidden), "epochs": {"run": epochs, "kept": best_epoch + 1},
+        "loss": loss_kind, "tau": tau, "hidden": list(hidden), "epochs": {"run": epochs, "kept": best_epoch + 1},
         "seed": seed,
         "held_out": {
             "net_pick_value": float(np.mean(picked)),
@@ -312,10 +359,19 @@ def main(argv: list[str] | None = None) -> int:
         help="first write --driver as the search player at BUDGET s a shot",
     )
     c.add_argument("--out", required=True)
+    r = sub.add_parser("refeature", help="recompute a collected file's features")
+    r.add_argument("data")
+    r.add_argument("--out", required=True)
     f = sub.add_parser("fit", help="fit the network on collected files")
     f.add_argument("data", nargs="+")
     f.add_argument("--out", required=True)
     f.add_argument("--tau", type=float, default=0.02)
+    f.add_argument(
+        "--loss",
+        choices=("ce", "mse"),
+        default="ce",
+        help="cross-entropy to the soft targets, or the squared error to the values",
+    )
     f.add_argument("--epochs", type=int, default=60)
     f.add_argument("--hidden", default="64,32")
     f.add_argument("--seed", type=int, default=0)
@@ -338,12 +394,17 @@ def main(argv: list[str] | None = None) -> int:
             print(f"teacher value: driver's action {out['driver_value'].mean():.4f}, "
                   f"best candidate {best.mean():.4f}")  # fmt: skip
         return 0
+    if args.command == "refeature":
+        out = refeature(dict(np.load(args.data)))
+        np.savez_compressed(args.out, **out)
+        print(f"{out['rack'].size} decisions -> {args.out}")
+        return 0
     import yaml
 
     hidden = tuple(int(h) for h in args.hidden.split(","))
     data = load_decisions(args.data)
     start = time.perf_counter()
-    net, report = fit(data, hidden, args.tau, args.epochs, args.seed)
+    net, report = fit(data, hidden, args.tau, args.epochs, args.seed, loss_kind=args.loss)
     report["seconds"] = round(time.perf_counter() - start, 1)
     out = Path(args.out)
     out.parent.mkdir(parents=True, exist_ok=True)

@@ -11,9 +11,13 @@ import yaml
 
 from agents.evaluation.players import make_agent
 from agents.learned.next_shots import OFFSETS, next_shot_actions, next_shot_table
-from agents.learned.rack_net import FEATURES, RackNetPlayer, load_rack_net
+from agents.learned.rack_net import FEATURES, TILTS, RackNetPlayer, eligible, load_rack_net
 from agents.learned.rack_play import ValueNet
 from agents.training import distill_rack
+from pool_env.game.codec import encode_shots
+from pool_env.game.games.wpa import rack_row
+from pool_env.game.games.wpa.judge import FOUL, KEEPS, WINNER
+from pool_env.game.geometry import ANGLE
 
 ENV_ID = "pool_env/NineBallGame-v2"
 ROOT = Path(__file__).resolve().parents[2]
@@ -83,8 +87,13 @@ def test_the_player_plays_in_space_actions_and_the_argmax_of_its_net() -> None:
             assert env.action_space.contains(action), action
             if shot and player.last_plan.get("kind") == "rack_net":
                 found, pick = player.last_candidates
-                scores = player.net(found.features)
+                scores = player.scores(found.features)
                 assert pick == int(np.argmax(scores))
+                # Among the candidates whose exact play keeps the table when there is one.
+                keeps = found.features[:, COL["keeps"]] > 0.5
+                assert keeps[pick] or not keeps.any()
+                net = player.net(found.features)
+                np.testing.assert_array_equal(scores[keeps], net[keeps])
                 # The strike played is the picked candidate's (aim, speed, tip).
                 strike = found.actions[pick, [0, 1, *player.config.tip_columns]]
                 np.testing.assert_allclose(
@@ -180,3 +189,52 @@ def test_soft_targets_sum_to_one_and_sharpen_with_tau() -> None:
         assert distill_rack.soft_targets(v, tau).sum() == pytest.approx(1.0)
     np.testing.assert_array_equal(distill_rack.soft_targets(v, 0.0), [0, 1, 0])
     assert distill_rack.soft_targets(v, 0.01)[1] > distill_rack.soft_targets(v, 1.0)[1]
+
+
+def test_only_candidates_that_keep_the_table_are_eligible_unless_none_does() -> None:
+    f = np.zeros((3, len(FEATURES)))
+    f[1, COL["keeps"]] = 1.0
+    np.testing.assert_array_equal(eligible(f), [False, True, False])
+    np.testing.assert_array_equal(eligible(np.zeros((2, len(FEATURES)))), [True, True])
+
+
+def test_the_tilted_aims_are_exact_plays_of_the_pot_turned_by_the_noise() -> None:
+    env = gym.make(ENV_ID, noise="fastfiz")
+    player = RackNetPlayer(env, PLAYER)
+    obs = _mid_rack(env)
+    positions, on, reference = player.observe(obs)
+    found = player.candidate_table(positions, on, reference)
+    pots = np.flatnonzero(found.kinds == "pot")
+    assert pots.size
+    f = found.features
+    tilt = f[pots, COL["tilt_keeps"]]
+    assert set(np.round(tilt * len(TILTS))) <= set(range(len(TILTS) + 1))
+    # Both inner (or outer) tilts keeping the table count in the share.
+    assert (tilt[f[pots, COL["tilt_inner"]] > 0.5] >= 2 / len(TILTS)).all()
+    # A grid hit is not tilted: its tilt columns are its own outcome.
+    grid = np.flatnonzero(found.kinds == "grid")
+    np.testing.assert_array_equal(f[grid, COL["tilt_keeps"]], f[grid, COL["keeps"]])
+    # Replay one pot with its aim turned by +2 sigma: the column says what the step does.
+    table = next_shot_table(player.config, player.mouths, positions[None], on[None])
+    ok = np.flatnonzero(table.ok[0])
+    k = ok[0]
+    parts, playable = encode_shots(
+        player.config, positions[None], reference[None],
+        table.rows[0, [k], ANGLE][None] + TILTS[-1] * player.sigma,
+        table.speeds[:, [k]], table.tips[:, [k]],
+    )  # fmt: skip
+    action = table.actions[0, k].copy()
+    action[0:2] = parts[0, 0, 0:2]
+    action[list(player.config.tip_columns)] = parts[0, 0, 2:4]
+    result, _, _ = player.exact.play(positions, on, rack_row({}), action[None], 1)
+    h = result.hits[0]
+    kept = playable[0, 0] and h[FOUL] == 0 and (h[KEEPS] != 0 or h[WINNER] == 0)
+    inner = f[pots[0], COL["tilt_inner"]]
+    outer = f[pots[0], COL["tilt_outer"]]
+    share = f[pots[0], COL["tilt_keeps"]]
+    # kept at +2 sigma: the outer pair may keep; not kept: it cannot, and the share is < 1.
+    if not kept:
+        assert outer == 0 and share < 1
+    else:
+        assert share >= 1 / len(TILTS)
+    assert inner in (0.0, 1.0)
