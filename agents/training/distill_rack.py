@@ -1,20 +1,25 @@
 """Distil the 9-ball search player into the rack network (:mod:`agents.learned.rack_net`).
 
-Two steps, a command each::
+The commands that made ``models/rack_net.npz`` (``results/rack_net.md``)::
 
     # collect: a driver plays racks; on every shot from a layout (no break, no ball in
-    # hand), the rack network's candidates and the search's first-ply value of each
-    # (16 noisy plays at FastFiz x1, valued by the search's leaf), and the driver's own
-    # action valued the same way, are recorded. Round 0: the search player at 0.1 s a
-    # shot, practice mode (the rack goes on after a miss: more layouts per rack).
+    # hand), the rack network's candidates, the search's first-ply value of each (16
+    # noisy plays at FastFiz x1, valued by the search's leaf) and the driver's own action
+    # valued the same way are recorded. Round 0: the search player at 0.1 s a shot, in
+    # practice mode (the rack goes on after a miss: more layouts per rack).
     python -m agents.training.distill_rack collect --driver runs/rack_net/search_fast.yaml \
-        --racks 150 --seed 800000 --out runs/rack_net/r0.npz
-    # fit: cross-entropy to the teacher's values as soft targets (softmax at --tau).
-    python -m agents.training.distill_rack fit runs/rack_net/r0.npz --out models/rack_net.npz
-    # round 1 (expert iteration): the network's own racks, labelled the same way, then a
-    # fit on both; kept only if it runs out more of held-out racks (paired).
-    python -m agents.training.distill_rack collect --driver models/rack_net.npz \
-        --racks 600 --seed 810000 --out runs/rack_net/r1.npz
+        --write-fast-player 0.1 --racks 200 --seed 800000 --out runs/rack_net/r0.npz
+    # fit: cross-entropy to softmax(values / tau) (--loss ce), or the squared error to the
+    # values (--loss mse)
+    python -m agents.training.distill_rack fit runs/rack_net/r0.npz --out runs/rack_net/net_r0.npz
+    # round 1 (expert iteration): the network's own racks, labelled the same way
+    python -m agents.training.distill_rack collect --driver runs/rack_net/net_r0.npz \
+        --racks 500 --seed 810000 --out runs/rack_net/r1.npz
+    # the features recomputed from the kept layouts (after a column was added)
+    python -m agents.training.distill_rack refeature runs/rack_net/r1.npz \
+        --out runs/rack_net/r1g.npz
+    python -m agents.training.distill_rack fit runs/rack_net/r1g.npz \
+        --out runs/rack_net/net_r1g.npz --loss mse
 
 ``runs/rack_net/search_fast.yaml`` is ``models/search_player_net.yaml`` with ``budget: 0.1``
 and its models' paths made relative to ``runs/rack_net/`` (the collect command writes it
@@ -309,7 +314,8 @@ def fit(
     report = {
         "decisions": {"fit": int(train_idx.size), "held_out": int(test_idx.size)},
         "racks": {"fit": int(racks.size - len(test_racks)), "held_out": len(test_racks)},
-        "loss": loss_kind, "tau": tau, "hidden": list(hidden), "epochs": {"run": epochs, "kept": best_epoch + 1},
+        "loss": loss_kind, "tau": tau, "hidden": list(hidden),
+        "epochs": {"run": epochs, "kept": best_epoch + 1},
         "seed": seed,
         "held_out": {
             "net_pick_value": float(np.mean(picked)),
