@@ -378,7 +378,8 @@ def load_rack_net(path: str | Path, env: Any, players: int | None = None) -> Rac
 
     Raises:
         FileNotFoundError: If the model or its config is missing.
-        ValueError: If the config names no player file, or as :class:`RackNetPlayer`.
+        ValueError: If the config names no player file, names features other than
+            :data:`FEATURES` (their order too), or as :class:`RackNetPlayer`.
     """
     path = Path(path)
     config = rack_model_config(path)
@@ -386,6 +387,12 @@ def load_rack_net(path: str | Path, env: Any, players: int | None = None) -> Rac
         raise FileNotFoundError(f"no model {path} with its config {path.stem}_config.yaml")
     if not isinstance(config.get("player"), str):
         raise ValueError(f"{path.stem}_config.yaml must name the search player file (player:)")
+    named = config.get("features")
+    if named is not None and list(named) != list(FEATURES):
+        raise ValueError(
+            f"{path.stem}_config.yaml: the network was fitted on other features "
+            f"({len(named)} named) than agents.learned.rack_net.FEATURES ({len(FEATURES)})"
+        )
     with np.load(path) as data:
         net = ValueNet({k: data[k] for k in data.files}, n_features=len(FEATURES))
     return RackNetPlayer(env, path.parent / config["player"], net, players=players)

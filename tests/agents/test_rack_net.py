@@ -150,6 +150,12 @@ def test_a_saved_network_loads_and_scores_the_same(tmp_path) -> None:
     (tmp_path / "net_config.yaml").write_text(yaml.safe_dump({"kind": "rack_net"}))
     with pytest.raises(ValueError, match="player"):
         load_rack_net(path, env)
+    swapped = [FEATURES[1], FEATURES[0], *FEATURES[2:]]  # same width, another order
+    (tmp_path / "net_config.yaml").write_text(yaml.safe_dump(
+        {"kind": "rack_net", "player": str(player_rel), "features": swapped}
+    ))  # fmt: skip
+    with pytest.raises(ValueError, match="other features"):
+        load_rack_net(path, env)
 
 
 def test_collect_records_the_drivers_own_action(monkeypatch) -> None:
