@@ -20,6 +20,12 @@ The commands that made ``models/rack_net.npz`` (``results/rack_net.md``)::
         --out runs/rack_net/r1g.npz
     python -m agents.training.distill_rack fit runs/rack_net/r1g.npz \
         --out runs/rack_net/net_r1g.npz --loss mse
+    # round 2, kept as it ran out more of the held-out racks 955000.. than round 1:
+    # models/rack_net.npz is fit_C.npz (its config's player: search_player_net.yaml)
+    python -m agents.training.distill_rack collect --driver runs/rack_net/net_r1g.npz \
+        --racks 300 --seed 820000 --out runs/rack_net/r2.npz
+    python -m agents.training.distill_rack fit runs/rack_net/r1g.npz runs/rack_net/r2.npz \
+        --out runs/rack_net/fit_C.npz --loss mse
 
 ``runs/rack_net/search_fast.yaml`` is ``models/search_player_net.yaml`` with ``budget: 0.1``
 and its models' paths made relative to ``runs/rack_net/`` (the collect command writes it
