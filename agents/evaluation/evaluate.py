@@ -139,7 +139,8 @@ PLAYERS_HELP = (
     "agents by name (module doc): random, const (the full hit) or const:a0,a1[,...] (one "
     "action), best-const (a grid scan's best), ghost, ghost-centre, search, rack-planner (the "
     "game ids), first-row (observation=shots); or a file: an SB3 model .zip (e.g. "
-    "models/ppo_oneball.zip), a rack or lookahead model .npz (models/runout_value.npz), or a "
+    "models/ppo_oneball.zip), a rack, lookahead or rack-network model .npz "
+    "(models/runout_value.npz, models/rack_net.npz), or a "
     "search player file .yaml/.yml (models/search_player.yaml: 9-ball only)"
 )
 

@@ -1,10 +1,10 @@
 """The players ``--agent`` names, built on an env, and checked before anything is played.
 
 A player is a baseline by name (:data:`BASELINES`, ``const:a0,a1[,...]``) or a file
-(:data:`FILE_KINDS`: an SB3 ``.zip``, a rack or lookahead ``.npz``, a search player
-``.yaml``). :func:`make_agent` builds one; :func:`check_agents` builds every one a command
-names on its env first, so that a name, a file or a game the player cannot play is a usage
-error (status 2, one line) and not a traceback after minutes of play.
+(:data:`FILE_KINDS`: an SB3 ``.zip``, a rack, lookahead or rack-network ``.npz``, a search
+player ``.yaml``). :func:`make_agent` builds one; :func:`check_agents` builds every one a
+command names on its env first, so that a name, a file or a game the player cannot play is
+a usage error (status 2, one line) and not a traceback after minutes of play.
 """
 
 from __future__ import annotations
@@ -25,6 +25,7 @@ from agents.learned.envs import make_env
 from agents.learned.lookahead import load_lookahead_agent
 from agents.learned.player_file import load_search_player
 from agents.learned.pretrained import load_model, model_config
+from agents.learned.rack_net import load_rack_net
 from agents.learned.rack_play import RackAgent, load_rack_agent, rack_model_config
 from agents.policy import Policy
 
@@ -48,7 +49,7 @@ BASELINES = (
 #: The files an agent may be, by suffix (any case): what each holds.
 FILE_KINDS = {
     ".zip": "an SB3 model",
-    ".npz": "a rack or lookahead model",
+    ".npz": "a rack, lookahead or rack-network model",
     ".yaml": "a search player file",
     ".yml": "a search player file",
 }
@@ -72,9 +73,10 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
     The names are :data:`BASELINES` (``"const:a0,a1"`` too); a ``.yaml`` is a search
     player's config (``models/search_player.yaml``).
 
-    A ``.npz`` is a :class:`~agents.learned.rack_play.RackAgent` value, or a
+    A ``.npz`` is a :class:`~agents.learned.rack_play.RackAgent` value, a
     :class:`~agents.learned.lookahead.LookaheadAgent` layout value when its config says
-    ``kind: lookahead``. ``players``: the rules agents' (2: they play against an opponent,
+    ``kind: lookahead``, or a :class:`~agents.learned.rack_net.RackNetPlayer` network when
+    it says ``kind: rack_net``. ``players``: the rules agents' (2: they play against an opponent,
     built on the one-player id by the duels; ``None``: the env's).
     """
     if name == "random":
@@ -115,10 +117,12 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
         return load_model(name)
     if kind in (".yaml", ".yml"):  # a search player's config (learned.search_player)
         return load_search_player(name, env, players=players)
-    if kind == ".npz":  # a learned rack value (learned.rack_play, learned.lookahead)
+    if kind == ".npz":  # a rack value (learned.rack_play, .lookahead) or network (.rack_net)
         config = rack_model_config(name)
         if config.get("kind") == "lookahead":
             return load_lookahead_agent(name, env, config, players=players)
+        if config.get("kind") == "rack_net":
+            return load_rack_net(name, env, players=players)
         return load_rack_agent(name, env, players=players)
     raise _unknown_agent(name)
 

@@ -180,19 +180,33 @@ class LookaheadAgent(RackAgent):
         self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
     ) -> list[NDArray[np.float64]]:
         """Centre-ball strikes at the ball on across its face (:data:`GRID_OFFSETS`)."""
+        return list(self.grid_shots(positions, on, reference)[0])
+
+    def grid_shots(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+        """The grid's playable strikes ``(G, 4)``, with each one's face offset and speed ``(G,)``.
+
+        The offsets are :data:`GRID_OFFSETS` (ball diameters from a full hit), the speeds
+        :data:`GRID_SPEEDS` (m/s); none when no legal ball is on or the cue ball touches it.
+        """
+        none = np.zeros((0, 4)), np.zeros(0), np.zeros(0)
         targets = self._legal(positions, on)
         if not targets:
-            return []
+            return none
         r = self.config.table.ball_radius
         angles = face_angles(positions, targets[0], r, GRID_OFFSETS)
         if not angles:
-            return []
-        grid = [(a, s) for a in angles for s in GRID_SPEEDS]
+            return none
+        grid = [(a, f, s) for a, f in zip(angles, GRID_OFFSETS, strict=True) for s in GRID_SPEEDS]
         acts, ok = encode_shots(
-            self.config, positions[None], reference[None], [[a for a, _ in grid]],
-            [[s for _, s in grid]], np.zeros((1, len(grid), 2)),
+            self.config, positions[None], reference[None], [[a for a, _, _ in grid]],
+            [[s for _, _, s in grid]], np.zeros((1, len(grid), 2)),
         )  # fmt: skip
-        return [acts[0, k] for k in range(len(grid)) if ok[0, k]]
+        keep = np.flatnonzero(ok[0])
+        offsets = np.array([f for _, f, _ in grid])[keep]
+        speeds = np.array([s for _, _, s in grid])[keep]
+        return np.asarray(acts[0, keep], dtype=np.float64).reshape(-1, 4), offsets, speeds
 
     def _values(
         self,

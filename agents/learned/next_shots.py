@@ -16,6 +16,8 @@ candidate's mean: what the shooter can expect from the layout with one more shot
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -46,6 +48,35 @@ TIPS = ((0.0, 0.0), (0.0, 0.4), (0.0, -0.4))
 POCKETS_KEPT = 2
 
 
+class NextShots(NamedTuple):
+    """The candidates of ``L`` layouts (:func:`next_shot_table`), ``M`` per layout.
+
+    Candidate ``m`` runs over :data:`OFFSETS` x the kept pockets x :data:`ARRIVALS` x
+    :data:`TIPS`, in that order (C order over ``(O, P, S, T)``).
+
+    Attributes:
+        actions: ``(L, M, A)`` full env actions.
+        ok: ``(L, M)`` which are playable (a clear, valid ghost-ball shot the aim mode can
+            play within the speed range).
+        rows: ``(L, M, NG)`` each candidate's ghost-ball row
+            (:func:`~pool_env.game.geometry.ghost_shots`: cut, distances, tolerance, ...).
+        speeds: ``(L, M)`` the cue ball's speed (m/s).
+        tips: ``(L, M, 2)`` the tip ``(side, vertical)`` in fractions of R.
+        offsets: ``(M,)`` the aim's place across the mouth (:data:`OFFSETS`).
+        arrivals: ``(M,)`` the object ball's speed at the pocket (:data:`ARRIVALS`).
+        ranks: ``(M,)`` the pocket's rank among the kept ones (0: the most forgiving).
+    """
+
+    actions: NDArray[np.float64]
+    ok: NDArray[np.bool_]
+    rows: NDArray[np.float64]
+    speeds: NDArray[np.float64]
+    tips: NDArray[np.float64]
+    offsets: NDArray[np.float64]
+    arrivals: NDArray[np.float64]
+    ranks: NDArray[np.int64]
+
+
 def next_shot_actions(
     config: GameConfig,
     mouths: PocketMouths,
@@ -64,6 +95,17 @@ def next_shot_actions(
         ``(actions, ok)``: ``(L, M, A)`` full env actions and ``(L, M)`` which are playable
         (a clear, valid ghost-ball shot the aim mode can play within the speed range).
     """
+    shots = next_shot_table(config, mouths, positions, on_table)
+    return shots.actions, shots.ok
+
+
+def next_shot_table(
+    config: GameConfig,
+    mouths: PocketMouths,
+    positions: NDArray[np.float64],
+    on_table: NDArray[np.bool_],
+) -> NextShots:
+    """:func:`next_shot_actions` with what describes each candidate (:class:`NextShots`)."""
     table = config.table
     pos = np.ascontiguousarray(positions, dtype=np.float64)
     on = np.ascontiguousarray(on_table, dtype=np.bool_)
@@ -101,7 +143,21 @@ def next_shot_actions(
     actions = np.broadcast_to(template, (n_layouts, m, template.shape[0])).copy()
     actions[..., 0:2] = parts[..., 0:2]
     actions[..., list(config.tip_columns)] = parts[..., 2:4]  # type: ignore[arg-type]
-    return actions, ok.reshape(n_layouts, m) & playable & in_range
+    grid = np.meshgrid(
+        np.asarray(OFFSETS), np.arange(POCKETS_KEPT), np.asarray(ARRIVALS),
+        np.arange(len(TIPS)), indexing="ij",
+    )  # fmt: skip
+    full_rows = np.broadcast_to(picked[:, :, :, None, None], (*shape, picked.shape[-1]))
+    return NextShots(
+        actions=actions,
+        ok=ok.reshape(n_layouts, m) & playable & in_range,
+        rows=full_rows.reshape(n_layouts, m, -1),
+        speeds=flat_speed,
+        tips=tips.reshape(n_layouts, m, 2),
+        offsets=grid[0].ravel(),
+        arrivals=grid[2].ravel(),
+        ranks=grid[1].ravel(),
+    )
 
 
 def best_next_values(

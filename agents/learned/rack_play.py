@@ -90,9 +90,16 @@ class ValueNet:
     Args:
         weights: ``W0, b0, W1, b1, ...`` (``W_k`` of shape ``(in, out)``), the last layer
             of width 1, plus ``mean`` and ``scale`` of the inputs.
+        n_features: The inputs' width (the rack agent's :data:`FEATURES`; the rack
+            network's :data:`agents.learned.rack_net.FEATURES`).
+
+    Raises:
+        ValueError: If the weights do not take ``n_features`` inputs.
     """
 
-    def __init__(self, weights: dict[str, NDArray[np.float64]]) -> None:
+    def __init__(
+        self, weights: dict[str, NDArray[np.float64]], n_features: int = len(FEATURES)
+    ) -> None:
         self.mean = np.asarray(weights["mean"], dtype=np.float64)
         self.scale = np.asarray(weights["scale"], dtype=np.float64)
         n = sum(1 for k in weights if k.startswith("W"))
@@ -100,8 +107,8 @@ class ValueNet:
             (np.asarray(weights[f"W{k}"], np.float64), np.asarray(weights[f"b{k}"], np.float64))
             for k in range(n)
         ]
-        if self.mean.shape != (len(FEATURES),) or self.layers[0][0].shape[0] != len(FEATURES):
-            raise ValueError(f"the net does not take the {len(FEATURES)} candidate features")
+        if self.mean.shape != (n_features,) or self.layers[0][0].shape[0] != n_features:
+            raise ValueError(f"the net does not take the {n_features} candidate features")
 
     def __call__(self, features: NDArray[np.floating]) -> NDArray[np.float64]:
         """The values of ``(B, F)`` candidate features."""

@@ -326,12 +326,12 @@ BAD_AGENTS = [
     ("a missing .yml", "gone.yml", "a search player file not found"),
     ("a missing .YAML", "GONE.YAML", "a search player file not found"),
     ("a missing .zip", "gone.zip", "an SB3 model not found"),
-    ("a missing .npz", "gone.npz", "a rack or lookahead model not found"),
+    ("a missing .npz", "gone.npz", "a rack, lookahead or rack-network model not found"),
     ("a directory", "{folder}", "is a directory, not a file"),
     ("a directory with a model's suffix", "{folder}/folder.npz", "is a directory, not a file"),
     ("a misspelt name", "gohst", "(did you mean ghost?): an agent is one of random, const,"),
-    ("an unknown suffix", "model.pt", "or a file (any case): an SB3 model .zip, a rack or "
-     "lookahead model .npz, a search player file .yaml/.yml"),
+    ("an unknown suffix", "model.pt", "or a file (any case): an SB3 model .zip, a rack, "
+     "lookahead or rack-network model .npz, a search player file .yaml/.yml"),
     ("a const of letters", "const:a,b", "takes the env's 8 action numbers, each in [-1, 1]"),
     ("a const out of range", "const:0,2,0,0,0,0,0,0", "takes the env's 8 action numbers"),
 ]  # fmt: skip
