@@ -51,7 +51,11 @@ from agents.training.hyperparams import VEC_KINDS
 from agents.training.run_config import ALGOS, TrainConfig
 from agents.training.run_config import FINAL_BASELINES as FINAL_BASELINES  # re-exported
 from agents.training.run_config import resolve_config as resolve_config  # re-exported
-from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
+from agents.training.vec_features import (
+    GhostCandidatesVecEnv,
+    GhostFeaturesVecEnv,
+    PositionCandidatesVecEnv,
+)
 
 #: Observation wrappers the native vector env can apply (by ``wrapper`` name): the same
 #: features as the ``gym.Env`` wrapper of that name (:data:`agents.learned.envs.WRAPPERS`),
@@ -59,6 +63,7 @@ from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVec
 NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {
     "ghost_features": GhostFeaturesVecEnv,
     "ghost_candidates": GhostCandidatesVecEnv,
+    "position_candidates": PositionCandidatesVecEnv,
 }
 
 #: Seeds of the periodic evaluation and of the final one: apart from each other, so that
@@ -450,7 +455,8 @@ def _as_dict(stats: dict[str, Estimate]) -> dict[str, list[float]]:
 
 
 def _write_curve(out: Path, history: list[tuple[int, float, dict]]) -> None:
-    keys = ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward")
+    # clear_rate last: the readers of the first columns by position stay as they were.
+    keys = ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward", "clear_rate")
     lines = ["timesteps,seconds," + ",".join(keys)]
     for steps, seconds, summary in history:
         values = ",".join(f"{summary[k].value:.4f}" for k in keys)
