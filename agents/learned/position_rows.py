@@ -39,7 +39,9 @@ from numpy.typing import NDArray
 
 from agents.baselines.base import decode_observation, env_spec
 from agents.baselines.ghost_ball import MIN_SIGMA, GhostBallAgent, PositionOption
-from agents.baselines.spin_play import PositionScore, pot_chance
+from agents.baselines.spin_play import Contact, PositionScore, pot_chance
+from agents.baselines.trace import Trace
+from pool_env import onto_tip_circle, shoot
 
 __all__ = [
     "N_ROWS",
@@ -59,15 +61,25 @@ PER_SHOT_ROWS = 6
 #: top rows' scores are often a few hundredths apart, and ``|w . f| <~ 3``).
 PICK_SCALE = 0.1
 
+#: Noisy replays of each row's strike on the simulator (the same draws for every row of a
+#: layout, from :data:`REPLAY_SEED`, so that rows are compared on common noise and the
+#: rows are a function of the observation alone).
+REPLAYS = 8
+REPLAY_SEED = 4747
+
 #: Row columns. ``ACTION`` holds the env action (aim, speed, tip side, tip height).
 VALID, KIND, ACTION, SCORE, P_NOW, P_NEXT, COS_CUT, CUE_DIST, OBJ_DIST = 0, 1, 2, 6, 7, 8, 9, 10, 11
 ARRIVAL, STRIKE, REST_X, REST_Y, TRAVEL, RAIL, BALL, POCKET, LAST, RANK, SIDE, HEIGHT = range(
     12, 24
 )
-PER_ROW = 24
+#: The replays: the share that pot the ball cleanly, the share that scratch, and the next
+#: shot's chance from where the noiseless replay leaves the cue ball (-1 if it misses).
+SIM_POT, SIM_SCRATCH, SIM_NEXT = 24, 25, 26
+PER_ROW = 27
 #: The features the policy's preference weighs (one weight each, shared by every row).
 PREFERENCE_COLUMNS = (
     P_NOW, P_NEXT, COS_CUT, CUE_DIST, OBJ_DIST, ARRIVAL, STRIKE, TRAVEL, RAIL, SIDE, HEIGHT,
+    SIM_POT, SIM_SCRATCH, SIM_NEXT,
 )  # fmt: skip
 
 
@@ -174,9 +186,62 @@ class PositionRowFeatures:
             rows[0, VALID], rows[0, KIND], rows[0, SCORE] = 1.0, -1.0, 0.0
             rows[0, ACTION : ACTION + 4] = self.ghost.plan(positions, on_table)
             return rows
+        draws = np.random.default_rng(REPLAY_SEED).standard_normal((REPLAYS, 4))
         for k, option in enumerate(options):
             rows[k] = self._row(option, k, positions, on_table)
+            rows[k, SIM_POT : SIM_NEXT + 1] = self._replays(option, positions, on_table, draws)
         return np.clip(rows, -1.0, 1.0)
+
+    def _replays(
+        self,
+        option: PositionOption,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        draws: NDArray[np.float64],
+    ) -> tuple[float, float, float]:
+        """``(SIM_POT, SIM_SCRATCH, SIM_NEXT)`` of a strike, from replays on the simulator.
+
+        The replays add the env's noise sigmas times ``draws`` to the strike's angle,
+        speed and tip (the tip put back on the miscue circle), as an execution error.
+        """
+        spec, contact = self.spec, option.contact
+        sigmas = tuple(spec.noise or ()) + (0.0, 0.0, 0.0)
+        limit = spec.tip_limit or 0.0
+        live = on_table.nonzero()[0]
+        sub = np.ascontiguousarray(positions[live])
+        target = int(np.searchsorted(live, option.shot.ball))
+        pots = scratches = 0
+        for d in draws:
+            tip = onto_tip_circle(
+                contact.tip[0] + sigmas[2] * d[2], contact.tip[1] + sigmas[2] * d[3], limit
+            )
+            result = shoot(
+                spec.table,
+                sub,
+                contact.aim + sigmas[0] * d[0],
+                max(contact.speed + sigmas[1] * d[1], 0.0),
+                record=False,
+                tip=tip,
+            )
+            scratch = bool(result.pocketed[0] >= 0)
+            scratches += scratch
+            pots += bool(result.pocketed[target] >= 0) and not scratch
+        plain = shoot(spec.table, sub, contact.aim, contact.speed, record=False, tip=contact.tip)
+        next_chance = -1.0
+        if plain.pocketed[target] >= 0 and plain.pocketed[0] < 0:
+            after = on_table.copy()
+            after[live] = plain.pocketed < 0
+            moved = positions.copy()
+            moved[live] = plain.positions
+            targets = self.ghost.next_targets(moved, after, option.shot.ball)
+            rest = Contact(
+                contact.aim, contact.speed, contact.tip, contact.ghost, 0.0,
+                Trace(-1, moved[0], ()),
+            )  # fmt: skip
+            chance = self.scorer.next_chance(rest, moved, after, targets) if targets else 1.0
+            next_chance = 2.0 * chance - 1.0
+        n = len(draws)
+        return 2.0 * pots / n - 1.0, 2.0 * scratches / n - 1.0, next_chance
 
     def _row(
         self,

@@ -196,3 +196,53 @@ def test_the_vector_wrapper_sees_and_plays_as_the_gym_wrapper() -> None:
     finally:
         vec.close()
         ref.close()
+
+
+def test_a_loaded_model_decodes_raw_observations_as_the_wrapper(tmp_path) -> None:
+    pytest.importorskip("stable_baselines3")
+    import torch
+    import yaml
+    from stable_baselines3 import PPO
+
+    import agents
+
+    wrapped = PositionCandidates(gym.make(POOL, **KWARGS))
+    model = PPO("MlpPolicy", wrapped, n_steps=8, batch_size=8, seed=0, device="cpu")
+    with torch.no_grad():  # a policy whose mean is not zero: not the ghost agent's choice
+        model.policy.action_net.bias.fill_(0.7)
+    model.save(tmp_path / "ppo_position.zip")
+    config = {"env_id": POOL, "env_kwargs": KWARGS, "wrapper": "position_candidates"}
+    (tmp_path / "ppo_position_config.yaml").write_text(yaml.safe_dump({**config, "algo": "ppo"}))
+    policy = agents.load(tmp_path / "ppo_position.zip")
+    env = policy.make_env()
+    raw = np.stack([env.reset(seed=s)[0] for s in range(3)])
+    obs = np.stack([wrapped.reset(seed=s)[0] for s in range(3)])
+    preference, _ = model.predict(obs, deterministic=True)
+    expected, _ = decode_position(obs, preference, wrapped.n_rows)
+    got, _ = policy.predict(raw)
+    np.testing.assert_array_equal(got, expected)
+    assert got.shape == (3, 4)
+    wrapped.reset(seed=2)
+    np.testing.assert_array_equal(wrapped.step(preference[2])[4]["env_action"], expected[2])
+
+
+def test_without_noise_the_replays_say_what_the_env_does_with_the_row() -> None:
+    """Noiseless replays all agree: a row pots (SIM_POT +1) exactly when the env pots it."""
+    from agents.learned.position_rows import SIM_NEXT, SIM_POT, SIM_SCRATCH
+
+    env = PositionCandidates(gym.make(POOL, n_balls=3, end_on_miss=True))
+    checked = 0
+    for seed in range(20000, 20004):
+        obs, _ = env.reset(seed=seed)
+        rows = obs[-env.n_rows * PER_ROW :].reshape(env.n_rows, PER_ROW)
+        for k in np.flatnonzero(rows[:, VALID] > 0.5):
+            if rows[k, 1] < 0:
+                continue
+            assert rows[k, SIM_POT] in (-1.0, 1.0) and rows[k, SIM_SCRATCH] in (-1.0, 1.0)
+            assert (rows[k, SIM_NEXT] > -1.0) <= (rows[k, SIM_POT] == 1.0)
+            env.reset(seed=seed)
+            played = env.env.step(rows[k, ACTION : ACTION + 4])[4]
+            target_potted = len(played["potted"]) > 0 and not played["scratch"]
+            assert target_potted == (rows[k, SIM_POT] == 1.0), (seed, k)
+            checked += 1
+    assert checked > 5
