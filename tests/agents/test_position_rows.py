@@ -246,3 +246,24 @@ def test_without_noise_the_replays_say_what_the_env_does_with_the_row() -> None:
             assert target_potted == (rows[k, SIM_POT] == 1.0), (seed, k)
             checked += 1
     assert checked > 5
+
+
+def test_the_committed_model_loads_behind_its_wrapper() -> None:
+    """models/ppo_position.zip: its config applies the wrapper; raw observations decode."""
+    pytest.importorskip("stable_baselines3")
+    from pathlib import Path
+
+    import agents
+    from agents.evaluation.evaluate import load_model
+
+    path = Path(__file__).resolve().parents[2] / "models" / "ppo_position.zip"
+    policy = agents.load(path)
+    assert (policy.env_id, policy.wrapper) == (POOL, "position_candidates")
+    assert policy.env_kwargs == KWARGS
+    env, wrapped = policy.make_env(), PositionCandidates(policy.make_env())
+    raw = np.stack([env.reset(seed=s)[0] for s in range(60000, 60003)])
+    obs = np.stack([wrapped.reset(seed=s)[0] for s in range(60000, 60003)])
+    preference, _ = load_model(path).predict(obs, deterministic=True)
+    expected, _ = decode_position(obs, preference, wrapped.n_rows)
+    got, _ = policy.predict(raw)
+    np.testing.assert_array_equal(got, expected)
