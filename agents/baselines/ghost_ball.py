@@ -29,6 +29,7 @@ candidate shots on the simulator (the oracle upper bound).
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -67,6 +68,40 @@ POSITION_SHOTS = 6
 #: The least aim error (rad) the position score assumes (a noiseless env still rewards
 #: shots that forgive more).
 MIN_SIGMA = 1e-3
+
+
+@dataclass(frozen=True)
+class PositionOption:
+    """One strike the spin ghost-ball agent weighs (:meth:`GhostBallAgent.position_options`).
+
+    Attributes:
+        shot: The ghost-ball shot (object ball and pocket).
+        contact: The strike that pots it and what the cue ball does after.
+        arrival: The object ball's planned speed at the pocket (m/s).
+        action: The env action that plays it.
+        score: Its :class:`~agents.baselines.spin_play.PositionScore` less the small
+            preference for soft and centre-ball strikes; ``None`` when the cue ball
+            follows it into a pocket.
+    """
+
+    shot: GhostShot
+    contact: Contact
+    arrival: float
+    action: NDArray[np.float32]
+    score: float | None
+
+
+def best_option(options: list[PositionOption]) -> PositionOption | None:
+    """The option the agent plays: the first best score, else the first most forgiving scratch."""
+    best: PositionOption | None = None
+    scratch: PositionOption | None = None
+    for option in options:
+        if option.score is None:
+            if scratch is None or option.shot.tolerance > scratch.shot.tolerance:
+                scratch = option
+        elif best is None or option.score > best.score:  # type: ignore[operator]
+            best = option
+    return best or scratch
 
 
 class GhostBallAgent(BaselineAgent):
@@ -208,33 +243,35 @@ class GhostBallAgent(BaselineAgent):
         sigma = max(spec.noise[0] if spec.noise else 0.0, MIN_SIGMA)
         return shots, sigma, PositionScore(table, self.mouths, sigma, self.next_targets)
 
-    def position_shot(
+    def position_options(
         self,
         positions: NDArray[np.float64],
         on_table: NDArray[np.bool_],
         reference: NDArray[np.bool_] | None = None,
-    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
-        """The spin env's choice: shot, tip and speed for the best position (module doc).
+    ) -> tuple[list[PositionOption], list[GhostShot], NDArray[np.bool_]]:
+        """Every strike :meth:`position_shot` weighs, in the order it weighs them.
 
         Among the :data:`POSITION_SHOTS` most forgiving clear shots, every tip of
         ``self.tips`` and arrival speed of :data:`~agents.baselines.spin_play.ARRIVAL_SPEEDS`
-        whose strike is in the speed range and whose cue ball stays out of the pockets;
-        ties go to the softer and the less spin. If every one scratches, the most
-        forgiving of them.
+        whose strike is in the speed range and that the aim mode can play. A shot is left
+        out once its own pot chance is at most the best score so far (a score is at most
+        the shot's own chance; the rest forgive less).
+
+        Returns:
+            The options, the shots they came from (most forgiving first) and the balls
+            the aim refers to.
         """
         aim_on = on_table if reference is None else reference
         table, spec = self.spec.table, self.spec
-        self.last_traced = None
         lo, top = spec.speed_range
         targets = self.legal_targets(positions, on_table)
         shots, sigma, scorer = self.forgiving_shots(positions, on_table, targets, POSITION_SHOTS)
         limit = spec.tip_limit or 1.0
-        best: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
-        scratch: tuple[float, GhostShot, float, NDArray[np.float32]] | None = None
-        best_contact: Contact | None = None
+        options: list[PositionOption] = []
+        best = -math.inf
         for shot in shots:
-            if best is not None and pot_chance(shot.tolerance, sigma) <= best[0]:
-                break  # a score is at most the shot's own chance; the rest forgive less
+            if options and pot_chance(shot.tolerance, sigma) <= best:
+                break
             for tip in self.tips:
                 for arrival in ARRIVAL_SPEEDS:
                     contact = plan_contact(table, self.mouths, shot, positions, tip, arrival)
@@ -245,21 +282,34 @@ class GhostBallAgent(BaselineAgent):
                     )
                     if action is None:
                         continue
-                    played = (shot, contact.speed, action)
                     if contact.path.pocket >= 0:
-                        if scratch is None or shot.tolerance > scratch[0]:
-                            scratch = (shot.tolerance, *played)
+                        options.append(PositionOption(shot, contact, arrival, action, None))
                         continue
                     score = scorer.score(shot, contact, positions, on_table)
                     score -= 0.002 * arrival + 0.001 * math.hypot(*tip) / limit
-                    if best is None or score > best[0]:
-                        best = (score, *played)
-                        best_contact = contact
-        self.last_contact = best_contact if best is not None else None
-        chosen = best or scratch
+                    options.append(PositionOption(shot, contact, arrival, action, score))
+                    best = max(best, score)
+        return options, shots, aim_on
+
+    def position_shot(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        reference: NDArray[np.bool_] | None = None,
+    ) -> tuple[GhostShot | None, float, NDArray[np.float32] | None]:
+        """The spin env's choice: shot, tip and speed for the best position (module doc).
+
+        The best-scoring option of :meth:`position_options` whose cue ball stays out of
+        the pockets; ties go to the first weighed (the softer and the less spin). If every
+        one scratches, the most forgiving of them.
+        """
+        self.last_traced = None
+        options, shots, aim_on = self.position_options(positions, on_table, reference)
+        chosen = best_option(options)
+        self.last_contact = chosen.contact if chosen and chosen.score is not None else None
         if chosen is None:
             return self._last_resort(shots, positions, on_table, aim_on)
-        return chosen[1], chosen[2], chosen[3]
+        return chosen.shot, chosen.contact.speed, chosen.action
 
     def _last_resort(
         self,

@@ -16,14 +16,18 @@ import gymnasium as gym
 import pool_env  # registers the ids
 from agents.learned.candidates import GhostCandidates
 from agents.learned.features import GhostBallFeatures, PocketFeatures
+from agents.learned.position_rows import PositionCandidates
 
 #: Wrappers by name (``wrapper:`` in ``hyperparams.yml``): observation features, and
 #: ``ghost_candidates``, which also makes the action a candidate shot
-#: (:mod:`agents.learned.candidates`).
+#: (:mod:`agents.learned.candidates`), and ``position_candidates``, whose action picks one
+#: of the spin ghost-ball agent's strikes (:mod:`agents.learned.position_rows`).
 WRAPPERS: dict[str, Callable[[gym.Env], gym.Env]] = {
     "pocket_features": PocketFeatures,
     "ghost_features": GhostBallFeatures,
     "ghost_candidates": GhostCandidates,  # the features, and candidate shots as the action
+    # the spin ghost agent's strikes as rows, the action a preference among them
+    "position_candidates": PositionCandidates,
 }
 
 

@@ -39,6 +39,7 @@ from numpy.typing import NDArray
 from agents.baselines.base import batch_obs, decode_observation
 from agents.learned.candidates import decode_candidates
 from agents.learned.envs import make_env
+from agents.learned.position_rows import decode_position
 from pool_env.extras import require
 
 __all__ = ["ALGO_CLASSES", "PretrainedPolicy", "algo_class", "load", "load_model", "model_config"]
@@ -149,6 +150,8 @@ class PretrainedPolicy:
         env = self._features_env
         if self.wrapper in ("ghost_features", "ghost_candidates"):
             extra = env.ghost_features.of_observations(obs)
+        elif self.wrapper == "position_candidates":  # the spin ghost agent's strikes as rows
+            extra = env.position_rows.of_observations(obs)
         else:  # pocket_features reads a layout: decode it from each observation
             table = env.unwrapped.config.table
             extra = np.stack([env.features(*decode_observation(row, table)) for row in obs])
@@ -170,8 +173,9 @@ class PretrainedPolicy:
             deterministic: The policy's mean action (True, the default here) or a sample.
 
         Returns:
-            ``(actions, state)``: ``(2,)`` or ``(B, 2)`` env actions (a candidate-action
-            model's decoded, :mod:`agents.learned.candidates`).
+            ``(actions, state)``: the env's actions, ``(A,)`` or ``(B, A)`` (a candidate-action
+            model's decoded, :mod:`agents.learned.candidates`; a position-candidates
+            model's, :mod:`agents.learned.position_rows`).
         """
         obs, single = batch_obs(observation)
         inputs = self.features(obs)
@@ -180,6 +184,8 @@ class PretrainedPolicy:
         )
         if self.wrapper == "ghost_candidates":  # a candidate action: the env's action of it
             actions = decode_candidates(inputs, actions, self._features_env.n_rows)
+        elif self.wrapper == "position_candidates":  # a preference: the strike it picks
+            actions = decode_position(inputs, actions, self._features_env.n_rows)[0]
         return (actions[0] if single else actions), state
 
 

@@ -74,34 +74,40 @@ BASELINE_LINES = (
 
 def seeds_curve(
     path: str | Path,
-    curves: dict[str, list[tuple[int, list[tuple[int, float, float]]]]],
+    curves: dict[str, list[tuple[int, list[tuple[int, float, float | None]]]]],
     baselines: dict[str, float],
     title: str,
+    words: str = "pots/shot",
+    unit: str = "pots",
 ) -> None:
     """Write a PNG: every seed's learning curve of every configuration, baselines as lines.
 
     Args:
         path: Output PNG.
-        curves: By configuration label, ``(seed, [(timesteps, pots/shot, clean/shot), ...])``
-            of each run.
-        baselines: Pots per shot of the baselines by name (:data:`BASELINE_LINES`).
+        curves: By configuration label, ``(seed, [(timesteps, rate, clean/shot), ...])``
+            of each run (the rate is pots/shot, or what ``words`` names; clean/shot
+            ``None`` when not drawn).
+        baselines: The baselines' rates by name (:data:`BASELINE_LINES`).
         title: The plot's title (the task).
+        words: The rate's name in the legend (``"pots/shot"``, ``"clear rate"``).
+        unit: The baselines' unit in the legend (``"pots"``, ``"clears"``).
     """
     fig, ax = plt.subplots(figsize=(7.5, 4.5), dpi=110)
     colors = ("tab:blue", "tab:orange", "tab:green", "tab:red", "tab:cyan", "tab:olive")
     for (label, runs), color in zip(curves.items(), colors, strict=False):
-        for k, (_, points) in enumerate(sorted(runs)):
+        for k, (_, points) in enumerate(sorted(runs, key=lambda run: run[0])):
             steps = [p[0] for p in points]
             ax.plot(steps, [p[1] for p in points], color=color, lw=1.2, marker="o", ms=2,
-                    label=f"{label}: pots/shot" if k == 0 else None)  # fmt: skip
-            ax.plot(steps, [p[2] for p in points], color=color, lw=0.8, ls="--", alpha=0.7,
-                    label=f"{label}: clean pots/shot" if k == 0 else None)  # fmt: skip
+                    label=f"{label}: {words}" if k == 0 else None)  # fmt: skip
+            if points and points[0][2] is not None:
+                ax.plot(steps, [p[2] for p in points], color=color, lw=0.8, ls="--", alpha=0.7,
+                        label=f"{label}: clean pots/shot" if k == 0 else None)  # fmt: skip
     for name, label, style, color in BASELINE_LINES:
         if name in baselines:
             value = baselines[name]
-            ax.axhline(value, color=color, ls=style, lw=1, label=f"{label}: {value:.0%} pots")
+            ax.axhline(value, color=color, ls=style, lw=1, label=f"{label}: {value:.1%} {unit}")
     ax.set_xlabel("environment steps")
-    ax.set_ylabel("rate (periodic evaluation, 500 episodes)")
+    ax.set_ylabel("rate (periodic evaluation)")
     ax.set_ylim(0.0, 1.05)
     ax.set_title(title)
     ax.grid(alpha=0.3)

@@ -5,6 +5,8 @@ Usage::
     python -m agents.training.summarize runs            # every run under runs/
     python -m agents.training.summarize runs/OneBallRoll-v1 --env pool_env/OneBallRoll-v1
     python -m agents.training.summarize runs --plot results/oneball_cut_learning.png --title "..."
+    python -m agents.training.summarize runs/position3 --plot clears.png --metric clears \
+        --baseline ghost=0.408
 
 The means over seeds carry a 95% interval (Student's t over the seeds' values: it says how
 much the *training* varies, the per-run brackets how much the evaluation does).
@@ -160,7 +162,13 @@ def main(argv: list[str] | None = None) -> int:
         nargs="*",
         default=[],
         metavar="NAME=RATE",
-        help="baseline pot rates for --plot when no run evaluated them (random=0.082 ...)",
+        help="baseline rates for --plot when no run evaluated them (random=0.082 ...)",
+    )
+    parser.add_argument(
+        "--metric",
+        choices=sorted(METRICS),
+        default="pots",
+        help="what --plot draws: pots (and clean pots) per shot, or the clear rate",
     )
     parser.add_argument(
         "--skill",
@@ -184,8 +192,15 @@ def main(argv: list[str] | None = None) -> int:
             if not sep:
                 parser.error(f"--baseline expects NAME=RATE, got {item!r}")
             given[name] = float(value)
-        plot(runs, args.plot, args.title, given)
+        plot(runs, args.plot, args.title, given, args.metric)
     return 0
+
+
+#: What ``--metric`` plots: the ``curve.csv`` / result columns and the plot's words.
+METRICS = {
+    "pots": ("pots_per_shot", "clean_pot_rate", "pots/shot", "pots"),
+    "clears": ("clear_rate", None, "clear rate", "clears"),
+}
 
 
 def plot(
@@ -193,24 +208,49 @@ def plot(
     path: str | Path,
     title: str,
     given: dict[str, float] | None = None,
+    metric: str = "pots",
 ) -> None:
     """Every run's ``curve.csv`` in one PNG, by algorithm and steps.
 
-    The baselines are the first run's that evaluated them, else ``given`` (name: pot rate).
+    The baselines are the first run's that evaluated them, else ``given`` (name: rate).
+
+    Args:
+        runs: The runs (:func:`load_runs`).
+        path: Output PNG.
+        title: The plot's title.
+        given: Baseline rates by name, for those no run evaluated.
+        metric: A key of :data:`METRICS`: pots and clean pots per shot, or the clear rate
+            (the share of episodes that pot every ball; runs whose ``curve.csv`` has a
+            ``clear_rate`` column).
+
+    Raises:
+        ValueError: On an unknown metric, or a run whose curve lacks its column.
     """
     from agents.training.plots import seeds_curve  # matplotlib only now
 
+    if metric not in METRICS:
+        raise ValueError(f"unknown metric {metric!r}: use one of {sorted(METRICS)}")
+    key, second, words, unit = METRICS[metric]
     curves: dict[str, list] = defaultdict(list)
     baselines: dict[str, float] = dict(given or {})
     for run in runs:
         label = f"{run['algo'].upper()} {run['n_timesteps']:,}"
-        lines = (Path(run["folder"]) / "curve.csv").read_text().splitlines()[1:]
-        points = [(int(c[0]), float(c[2]), float(c[3])) for c in (x.split(",") for x in lines)]
+        head, *lines = (Path(run["folder"]) / "curve.csv").read_text().splitlines()
+        columns = head.split(",")
+        if key not in columns:
+            raise ValueError(f"{run['folder']}/curve.csv has no {key} column (for --metric)")
+        a = columns.index(key)
+        b = columns.index(second) if second else None
+        points = []
+        for cells in (x.split(",") for x in lines):
+            points.append(
+                (int(cells[0]), float(cells[a]), float(cells[b]) if b is not None else None)
+            )
         curves[label].append((run["seed"], points))
         for name, res in run["results"].items():
-            if not name.endswith("(this run)"):
-                baselines.setdefault(name, res["pots_per_shot"][0])
-    seeds_curve(path, dict(curves), baselines, title)
+            if not name.endswith("(this run)") and key in res:
+                baselines.setdefault(name, res[key][0])
+    seeds_curve(path, dict(curves), baselines, title, words, unit)
 
 
 if __name__ == "__main__":

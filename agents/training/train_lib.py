@@ -51,7 +51,11 @@ from agents.training.hyperparams import VEC_KINDS
 from agents.training.run_config import ALGOS, TrainConfig, training_env_kwargs
 from agents.training.run_config import FINAL_BASELINES as FINAL_BASELINES  # re-exported
 from agents.training.run_config import resolve_config as resolve_config  # re-exported
-from agents.training.vec_features import GhostCandidatesVecEnv, GhostFeaturesVecEnv
+from agents.training.vec_features import (
+    GhostCandidatesVecEnv,
+    GhostFeaturesVecEnv,
+    PositionCandidatesVecEnv,
+)
 from agents.training.warm_start import LAYOUTS as WARM_LAYOUTS
 from agents.training.warm_start import warm_start
 
@@ -61,6 +65,7 @@ from agents.training.warm_start import warm_start
 NATIVE_WRAPPERS: dict[str, type[VecEnvWrapper]] = {
     "ghost_features": GhostFeaturesVecEnv,
     "ghost_candidates": GhostCandidatesVecEnv,
+    "position_candidates": PositionCandidatesVecEnv,
 }
 
 #: Seeds of the periodic evaluation and of the final one: apart from each other, so that
@@ -467,7 +472,8 @@ def _as_dict(stats: dict[str, Estimate]) -> dict[str, list[float]]:
 
 
 def _write_curve(out: Path, history: list[tuple[int, float, dict]]) -> None:
-    keys = ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward")
+    # clear_rate last: the readers of the first columns by position stay as they were.
+    keys = ("pots_per_shot", "clean_pot_rate", "scratch_rate", "episode_reward", "clear_rate")
     lines = ["timesteps,seconds," + ",".join(keys)]
     for steps, seconds, summary in history:
         values = ",".join(f"{summary[k].value:.4f}" for k in keys)
