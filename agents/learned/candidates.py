@@ -1,8 +1,9 @@
 """An action space of candidate shots: pick a ghost-ball feature row and refine it.
 
-PPO on the env's own action (aim, speed) must find an aim precise to ~0.01 of the action
-range by Gaussian exploration, and its aim's standard deviation collapses before the mean
-gets there (results/agents.md). The ghost-ball features (:mod:`agents.learned.features`) already
+PPO on the env's own action (aim, speed) must put one Gaussian's mean on one pocket's aim,
+and on the roll table it settles between two pockets' aims that both pot, where neither
+does (results/oneball_scratches.md: the pot window is 0.09 of the action wide, the misses
+between two rows). The ghost-ball features (:mod:`agents.learned.features`) already
 hold, per pocket, the env action that plays the geometric shot. :class:`GhostCandidates`
 makes the policy's action a choice among those rows plus a small residual:
 
@@ -32,7 +33,7 @@ from agents.learned.features import GhostBallFeatures, GhostShotFeatures
 #: Scale of the aim residual, in action units (the aim action's range is 2). Row 0 played
 #: exactly pots 93%; the misses a residual can fix (collision throw, the deceleration
 #: model's error over long shots) move the aim by a few hundredths, and a scale of 0.05
-#: keeps the initial exploration (std 0.37 x 0.05 = 0.018) near the 0.01 a pot tolerates.
+#: keeps the initial exploration (std 0.37 x 0.05 = 0.018) well inside a pot's window.
 AIM_RESIDUAL = 0.05
 
 #: Scale of the speed residual, in action units: speed noise of sd 0.1 alone costs 22
