@@ -52,7 +52,6 @@ import json
 import signal
 import sys
 import traceback
-from typing import Any
 
 import pooltool as pt
 from pooltool.events.datatypes import EventType
@@ -63,20 +62,16 @@ from pooltool.ruleset.snooker import _Snooker
 from pooltool.ruleset.three_cushion import _ThreeCushion, is_point
 from pooltool.ruleset.utils import get_id_of_first_ball_hit
 
+# A script beside pooltool_worker.py (its folder is on sys.path): the job's reading and
+# the shot's timeout are that worker's.
+from pooltool_worker import _TimeoutError, read_job
+
 _KEPT = {
     EventType.BALL_BALL: "ball",
     EventType.BALL_LINEAR_CUSHION: "cushion",
     EventType.BALL_CIRCULAR_CUSHION: "jaw",
     EventType.BALL_POCKET: "pocket",
 }
-
-
-class _TimeoutError(Exception):
-    pass
-
-
-def _on_alarm(signum: int, frame: Any) -> None:
-    raise _TimeoutError
 
 
 def _table(spec: dict) -> pt.Table:
@@ -198,10 +193,7 @@ def _run(job: dict, shot: dict, engine: PhysicsEngine, timeout: float) -> dict:
 
 def main() -> None:
     """Read the job from stdin, play and judge its shots, print the results as JSON."""
-    signal.signal(signal.SIGALRM, _on_alarm)
-    job = json.load(sys.stdin)
-    if job.get("min_dist") is not None:
-        pt.constants.MIN_DIST = float(job["min_dist"])
+    job = read_job()
     engine = PhysicsEngine(resolver=default_resolver())
     timeout = float(job.get("timeout", 60.0))
     results = [_run(job, shot, engine, timeout) for shot in job["shots"]]

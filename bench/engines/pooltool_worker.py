@@ -66,6 +66,17 @@ def _on_alarm(signum: int, frame: Any) -> None:
     raise _TimeoutError
 
 
+def read_job() -> dict:
+    """The job on stdin, with the alarm that times a shot out armed and MIN_DIST applied."""
+    signal.signal(signal.SIGALRM, _on_alarm)
+    job = json.load(sys.stdin)
+    if job.get("min_dist") is not None:
+        # pooltool moves colliding balls apart to a gap of MIN_DIST (1e-6 m) before it
+        # resolves an impact ("make_kiss"); a smaller gap shows what that spacer costs.
+        pt.constants.MIN_DIST = float(job["min_dist"])
+    return job
+
+
 def _to_pt(x: float, y: float, width: float) -> tuple[float, float]:
     return width - y, x
 
@@ -320,12 +331,7 @@ def _run(scene: dict, repeats: int, max_events: int, timeout: float) -> dict:
 
 def main() -> None:
     """Read the job from stdin, run it, print the results as JSON."""
-    signal.signal(signal.SIGALRM, _on_alarm)
-    job = json.load(sys.stdin)
-    if job.get("min_dist") is not None:
-        # pooltool moves colliding balls apart to a gap of MIN_DIST (1e-6 m) before it
-        # resolves an impact ("make_kiss"); a smaller gap shows what that spacer costs.
-        pt.constants.MIN_DIST = float(job["min_dist"])
+    job = read_job()
     scenes = job["scenes"]
     t0 = time.perf_counter()
     if scenes:  # first use compiles pooltool's numba kernels (or loads them from its cache)
