@@ -218,6 +218,11 @@ class LookaheadAgent(RackAgent):
         """``(C,)`` each action's mean outcome value over ``samples`` noisy plays."""
         return self._sample_values(positions, on, actions, samples).reshape(-1, samples).mean(1)
 
+    def _model_rack(self) -> NDArray[np.int64]:
+        """The rack state the model shoots from: the cue ball placed, the fouls observed."""
+        mine, theirs = self._fouls
+        return rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
+
     def _sample_values(
         self,
         positions: NDArray[np.float64],
@@ -232,8 +237,7 @@ class LookaheadAgent(RackAgent):
         ``leaf``: what the outcomes' layouts are worth (the agent's own by default);
         ``parallel``: as :meth:`GameModel.play`.
         """
-        mine, theirs = self._fouls
-        rack = rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
+        rack = self._model_rack()
         result, after, left = self.model.play(positions, on, rack, actions, samples, parallel)
         runout = self.objective == "runout"
         return outcome_values(leaf or self.leaf, runout, result, after, left, self._fouls)

@@ -49,6 +49,7 @@ from agents.learned.layout_value import LayoutValue, ball_on
 from agents.learned.leaf_value import LeafValue
 from agents.learned.lookahead import LookaheadAgent
 from agents.learned.next_shots import best_next_values
+from agents.learned.shot_fans import AimWindows
 from pool_env.game.checks import is_integer, parse_float
 from pool_env.game.geometry import points_free
 from pool_env.sim import Table
@@ -81,6 +82,12 @@ class SearchSettings:
         break_cut: The break's aim off a full hit on the 1 (radians, counter-clockwise).
         break_speed: The break's speed action in ``[-1, 1]`` (the break speed range).
         break_tip: The break's tip ``(side, vertical)`` in fractions of the tip limit.
+        fans: Aims tried either side of every planned pot on the noiseless model, to aim
+            it at the middle of its pot window (:mod:`agents.learned.shot_fans`; 0: the
+            planned aims as they are).
+        safeties: Keep the grid of centre-ball hits across the ball on (safeties,
+            combinations, kisses) among the candidates; ``False`` plays pots only (the
+            ablation of the safeties).
 
     Raises:
         ValueError: Naming the first setting that is not of its type or out of its range.
@@ -99,6 +106,8 @@ class SearchSettings:
     break_cut: float = 0.0
     break_speed: float = 1.0
     break_tip: tuple[float, float] = (0.0, 0.0)
+    fans: int = 0
+    safeties: bool = True
 
     def __post_init__(self) -> None:
         for name in SETTINGS:  # frozen: the checked values (a tuple for the tip) set back
@@ -124,6 +133,11 @@ COUNTS: dict[str, tuple[int, int, str]] = {
     "min_rounds": (0, 100, "rounds played whatever the budget: a bound on time"),
     "hand_spots": (0, 200, _HAND),
     "hand_samples": (1, 16, _HAND),
+    "fans": (
+        0,
+        32,
+        "aims either side of each pot, one noiseless play each: ~10 pots x (2 fans + 1) tables",
+    ),
 }
 #: The numbers among the settings: whether a finite value is in range, and the range said.
 #: The break's spot and aim are bounded by the table (:func:`check_break`).
@@ -136,7 +150,7 @@ NUMBERS: dict[str, tuple[Callable[[float], bool], str]] = {
 }
 
 
-def check_setting(name: str, value: object, label: str) -> int | float | tuple[float, float]:
+def check_setting(name: str, value: object, label: str) -> int | float | bool | tuple[float, float]:
     """A setting's value of its type (an ``int``, a ``float`` or the tip's pair), checked.
 
     Args:
@@ -159,6 +173,10 @@ def check_setting(name: str, value: object, label: str) -> int | float | tuple[f
                 f"{label} must be an integer in [{least}, {most}] ({why}{memory}), got {value!r}"
             )
         return int(value)  # type: ignore[arg-type]
+    if name == "safeties":
+        if not isinstance(value, bool):
+            raise ValueError(f"{label} must be true or false, got {value!r}")
+        return value
     if name == "break_tip":
         what = f"{label} must be two finite numbers (side, vertical) in [-1, 1], got {value!r}"
         if isinstance(value, str | bytes) or not isinstance(value, Sequence) or len(value) != 2:
@@ -262,6 +280,8 @@ class SearchPlayer(LookaheadAgent):
         if leaf is not None:
             self.leaf = leaf
         self.spot_rng = np.random.default_rng(seed)
+        #: The pot windows' fans (``None``: ``settings.fans`` is 0).
+        self.windows = AimWindows(self.config, s.fans) if s.fans else None
         self._start = 0.0
         #: What the last decision did: candidates, rounds, plays, seconds.
         self.last_search: dict[str, Any] = {}
@@ -365,10 +385,15 @@ class SearchPlayer(LookaheadAgent):
         """The finalist of the best two-ply mean (module doc, items 1-3)."""
         s = self.settings
         actions, pockets, kinds = self._candidates(positions, on, reference)
+        if not s.safeties:
+            keep = [k for k, kind in enumerate(kinds) if kind != "grid"]
+            actions, pockets, kinds = ([x[k] for k in keep] for x in (actions, pockets, kinds))
         if not actions:
             self.last_values = None
             return -1, None
         acts = np.stack(actions)
+        if self.windows is not None:
+            acts = self._centred(positions, on, reference, acts, kinds)
         first = self._values(positions, on, acts, s.samples)
         finalists = np.argsort(-first, kind="stable")[: s.finalists]
         total = np.zeros(len(finalists))
@@ -407,6 +432,26 @@ class SearchPlayer(LookaheadAgent):
         self._chosen = kinds[pick]
         strike = acts[pick, [0, 1, *self.config.tip_columns]]  # type: ignore[misc]
         return pockets[pick], strike.astype(np.float32)
+
+    def _centred(
+        self,
+        positions: NDArray[np.float64],
+        on: NDArray[np.bool_],
+        reference: NDArray[np.bool_],
+        acts: NDArray[np.float64],
+        kinds: list[str],
+    ) -> NDArray[np.float64]:
+        """The planned pots (the planner's and the ghost-ball agent's) aimed at their windows."""
+        assert self.windows is not None
+        pots = np.flatnonzero([kind in ("pot", "ghost") for kind in kinds])
+        if not pots.size:
+            return acts
+        out = acts.copy()
+        out[pots], shifts = self.windows.centre(
+            positions, on, reference, self._model_rack(), acts[pots]
+        )
+        self.last_search["re_aimed"] = int(np.count_nonzero(shifts))
+        return out
 
     def _searched_leaf(
         self,
