@@ -8,9 +8,10 @@ Usage::
 Rack ``k`` is the run-out mode of the id (``end_on_foul``: the player breaks, and the first
 miss or foul ends the rack) reset with ``seed + k``, so every agent plays the same racks.
 Each rack ends one way (:data:`ENDINGS`): a break scratch (a foul on the break), a dry break
-(nothing made: the turn is over), a missed pot, a foul after the break, a run-out (the 9
-made legally), or the shot limit. Beside them: balls made on the break, and the wall time
-of each decision (the break apart). Rates carry their 95% Wilson intervals; the table is
+(nothing made: the turn is over), a missed pot, a foul after the break, a run-out (the
+money ball made legally), or the shot limit. Beside them: balls made on the break, the wall
+time of each decision (the break apart) and the shot-making rate after the break
+(:func:`made_after_break`). Rates carry their 95% Wilson intervals; the table is
 printed in Markdown and, with ``--out``, written as JSON.
 """
 
@@ -108,7 +109,18 @@ def summary_row(result: dict[str, Any]) -> dict[str, Any]:
         "s/shot median": f"{np.median(secs):.3f}",
         "s/shot p95": f"{np.quantile(secs, 0.95):.3f}",
         "shots/rack": f"{result['shots'] / n:.2f}",
+        "made after break": made_after_break(result).as_percent(),
     }
+
+
+def made_after_break(result: dict[str, Any]) -> Estimate:
+    """The share of the shots after the break that made a ball and kept the table (or won).
+
+    In run-out mode every shot after the break goes on, wins, or ends the rack by a miss
+    or a foul: the shots that ended a rack are the misses.
+    """
+    ended = sum(result["endings"].get(e, 0) for e in ("missed pot", "foul"))
+    return wilson(result["shots"] - ended, result["shots"])
 
 
 def paired_difference(first: list[str], second: list[str]) -> tuple[float, float, float]:

@@ -45,6 +45,7 @@ from numpy.typing import NDArray
 
 from agents.baselines.aiming import shot_to_action
 from agents.baselines.rule_play import rule_action
+from agents.baselines.spin_play import traced_pots
 from agents.learned.layout_value import LayoutValue, ball_on
 from agents.learned.leaf_value import LeafValue
 from agents.learned.lookahead import LookaheadAgent
@@ -85,6 +86,9 @@ class SearchSettings:
         fans: Aims tried either side of every planned pot on the noiseless model, to aim
             it at the middle of its pot window (:mod:`agents.learned.shot_fans`; 0: the
             planned aims as they are).
+        banks: Bank and kick pots kept among the candidates (the most forgiving first,
+            one per pocket: :func:`~agents.baselines.spin_play.traced_pots`); 0: none
+            beyond the ghost-ball agent's own choice.
         safeties: Keep the grid of centre-ball hits across the ball on (safeties,
             combinations, kisses) among the candidates; ``False`` plays pots only (the
             ablation of the safeties).
@@ -107,6 +111,7 @@ class SearchSettings:
     break_speed: float = 1.0
     break_tip: tuple[float, float] = (0.0, 0.0)
     fans: int = 0
+    banks: int = 0
     safeties: bool = True
 
     def __post_init__(self) -> None:
@@ -133,6 +138,7 @@ COUNTS: dict[str, tuple[int, int, str]] = {
     "min_rounds": (0, 100, "rounds played whatever the budget: a bound on time"),
     "hand_spots": (0, 200, _HAND),
     "hand_samples": (1, 16, _HAND),
+    "banks": (0, 16, "first ply: ~45 candidates + banks, x samples tables"),
     "fans": (
         0,
         32,
@@ -385,6 +391,10 @@ class SearchPlayer(LookaheadAgent):
         """The finalist of the best two-ply mean (module doc, items 1-3)."""
         s = self.settings
         actions, pockets, kinds = self._candidates(positions, on, reference)
+        for action, pocket in self._banks(positions, on, reference):
+            actions.append(action)
+            pockets.append(pocket)
+            kinds.append("bank")
         if not s.safeties:
             keep = [k for k, kind in enumerate(kinds) if kind != "grid"]
             actions, pockets, kinds = ([x[k] for k in keep] for x in (actions, pockets, kinds))
@@ -433,6 +443,31 @@ class SearchPlayer(LookaheadAgent):
         strike = acts[pick, [0, 1, *self.config.tip_columns]]  # type: ignore[misc]
         return pockets[pick], strike.astype(np.float32)
 
+    def _banks(
+        self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
+    ) -> list[tuple[NDArray[np.float64], int]]:
+        """Up to ``settings.banks`` bank and kick pots, one per pocket, most forgiving first."""
+        if not self.settings.banks:
+            return []
+        spec = self.ghost.spec
+        lo, top = spec.speed_range
+        targets = self._legal(positions, on)
+        found: list[tuple[NDArray[np.float64], int]] = []
+        pockets: set[int] = set()
+        for pot in traced_pots(spec.table, self.ghost.mouths, positions, on, targets, top):
+            if len(found) == self.settings.banks:
+                break
+            if pot.pocket in pockets or pot.speed < lo:
+                continue
+            strike = shot_to_action(pot.aim, pot.speed, positions, reference, spec)
+            if strike is None:
+                continue
+            pockets.add(pot.pocket)
+            call = rule_action(self.config, strike, pocket=pot.pocket, ball=self._ball_on())
+            found.append((call, pot.pocket))
+        self.last_search["banks"] = len(found)
+        return found
+
     def _centred(
         self,
         positions: NDArray[np.float64],
@@ -441,9 +476,9 @@ class SearchPlayer(LookaheadAgent):
         acts: NDArray[np.float64],
         kinds: list[str],
     ) -> NDArray[np.float64]:
-        """The planned pots (the planner's and the ghost-ball agent's) aimed at their windows."""
+        """The planned pots (the planner's, the ghost-ball agent's, the banks) re-aimed."""
         assert self.windows is not None
-        pots = np.flatnonzero([kind in ("pot", "ghost") for kind in kinds])
+        pots = np.flatnonzero([kind in ("pot", "ghost", "bank") for kind in kinds])
         if not pots.size:
             return acts
         out = acts.copy()

@@ -264,3 +264,10 @@ def test_the_paired_difference_counts_only_discordant_racks() -> None:
     assert paired_difference(a, a) == (0.0, 0.0, 0.0)
     with pytest.raises(ValueError, match="paired racks"):
         paired_difference(a, b[:2])
+
+
+def test_shots_made_after_the_break_exclude_the_shots_that_ended_a_rack() -> None:
+    from agents.evaluation.runouts import made_after_break
+
+    result = {"shots": 10, "endings": {"run-out": 1, "missed pot": 1, "foul": 1, "dry break": 2}}
+    assert made_after_break(result).value == pytest.approx(0.8)  # 2 of 10 ended a rack

@@ -132,3 +132,30 @@ def test_without_safeties_the_search_plays_among_pots_only() -> None:
 def test_bad_fan_and_safety_settings_are_refused(kwargs, message) -> None:
     with pytest.raises(ValueError, match=message):
         replace(SearchSettings(), **kwargs)
+
+
+def test_bank_pots_join_the_candidates_when_asked_for() -> None:
+    env = gym.make(ENV_ID)
+    positions = np.tile([0.1, 0.05], (10, 1))
+    on = np.zeros(10, dtype=bool)
+    # The 1 off the middle of a long rail, the cue ball on the head spot: pots off the rails.
+    positions[0], positions[1], positions[9] = (0.6, 0.635), (1.27, 0.3), (0.3, 1.1)
+    on[[0, 1, 9]] = True
+    found = {}
+    for banks in (0, 4):
+        settings = SearchSettings(budget=0.01, samples=2, finalists=2, round_samples=2,
+                                  banks=banks)  # fmt: skip
+        agent = SearchPlayer(env, _value(), settings=settings)
+        agent._targets = [1]  # the rules' legal balls, as the observation gives them
+        reference = np.zeros_like(on)
+        reference[[0, 1]] = True  # the aim refers to the cue ball and the ball on
+        found[banks] = agent._banks(positions, on, reference)
+    assert found[0] == [] and 1 <= len(found[4]) <= 4
+    pockets = [pocket for _, pocket in found[4]]
+    assert len(set(pockets)) == len(pockets)  # one per pocket
+    # Traced in closed form (no spin, no throw): on the model, played without noise, at
+    # least one drops the 1 legally.
+    model = GameModel(env.unwrapped.config)
+    acts = np.stack([a for a, _ in found[4]])
+    result, _, left = model.play(positions, on, rack_row({}), acts, 1)
+    assert (~left[:, 1] & (result.hits[:, FOUL] == 0)).any()
