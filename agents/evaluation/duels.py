@@ -16,15 +16,18 @@ The win rate is won racks over all racks with its Wilson interval; a rack that r
 shot limit is a draw. Per side it also counts shots, pots, fouls and scratches, and how the
 breaks went; ``--shots`` prints each side's shots by the plan its player chose
 (``last_plan``: a pot, a safety or grid shot, a break, a push-out, a hand-back, ...) and the
-outcome by the rules.
+outcome by the rules. ``--out`` writes every opponent's counts and each rack's winner as
+JSON (what a paired comparison of two players on the same racks reads).
 """
 
 from __future__ import annotations
 
 import argparse
+import json
 import time
 from collections import Counter
 from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -191,6 +194,7 @@ def main(argv: list[str] | None = None) -> int:
         "or none",
     )
     parser.add_argument("--shots", action="store_true", help="shots by plan and outcome")
+    parser.add_argument("--out", default=None, help="write the results as JSON here")
     args = parser.parse_args(argv)
     if args.racks < 1:
         parser.error("--racks must be >= 1")
@@ -204,9 +208,19 @@ def main(argv: list[str] | None = None) -> int:
     print("| opponent | won | lost | drawn | win rate [95%] | side: shots, pots/shot, fouls/shot, "
           "scratch/shot, break scratches, breaks kept |")  # fmt: skip
     print("|---|---|---|---|---|---|")
+    record: dict[str, Any] = {
+        "env": args.env, "agent": args.agent, "seed": args.seed, "racks": args.racks,
+        "noise": args.noise, "opponents": {},
+    }  # fmt: skip
     for opponent in args.opponent:
         start = time.perf_counter()
         out = play_duels(args.agent, opponent, args.racks, args.seed, noise, args.env)
+        record["opponents"][opponent] = {
+            **{k: out[k] for k in ("wins", "losses", "draws", "per_rack")},
+            "win_rate": out["win_rate"].as_percent(),
+            "sides": {side: dict(out[side]) for side in ("agent", "opponent")},
+            "seconds": time.perf_counter() - start,
+        }
         sides = []
         for side in ("agent", "opponent"):
             c = out[side]
@@ -225,4 +239,8 @@ def main(argv: list[str] | None = None) -> int:
                 plans = sorted((k[5:], v) for k, v in out[side].items() if k.startswith("plan "))
                 listed = ", ".join(f"{k} {v}" for k, v in plans)
                 print(f"  {side} shots by plan: outcome: {listed}")
+    if args.out:
+        Path(args.out).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.out).write_text(json.dumps(record, indent=1) + "\n")
+        print(f"wrote {args.out}")
     return 0

@@ -123,17 +123,22 @@ def made_after_break(result: dict[str, Any]) -> Estimate:
     return wilson(result["shots"] - ended, result["shots"])
 
 
-def paired_difference(first: list[str], second: list[str]) -> tuple[float, float, float]:
-    """Run-out rate of ``first`` minus ``second`` on the same racks, with a 95% interval.
+def paired_difference(
+    first: list[str | None], second: list[str | None], success: str = "run-out"
+) -> tuple[float, float, float]:
+    """Success rate of ``first`` minus ``second`` on the same racks, with a 95% interval.
 
-    From the discordant racks (one ran out, the other did not): the paired difference's
+    A rack is a success when its entry is ``success``: a run-out's ending, or a duel's
+    winner (``success="agent"`` on :func:`agents.evaluation.duels.play_duels`' ``per_rack``).
+    From the discordant racks (one succeeded, the other did not): the paired difference's
     normal interval, much tighter than two independent intervals when the racks matter.
     """
     if len(first) != len(second) or not first:
         raise ValueError("paired racks: two equally long, non-empty lists of endings")
     n = len(first)
-    wins = sum(a == "run-out" and b != "run-out" for a, b in zip(first, second, strict=True))
-    losses = sum(a != "run-out" and b == "run-out" for a, b in zip(first, second, strict=True))
+    pairs = list(zip(first, second, strict=True))
+    wins = sum(a == success and b != success for a, b in pairs)
+    losses = sum(a != success and b == success for a, b in pairs)
     diff = (wins - losses) / n
     half = Z95 * math.sqrt(max(wins + losses - (wins - losses) ** 2 / n, 0.0)) / n
     return diff, diff - half, diff + half

@@ -9,7 +9,9 @@ Usage (from the repository root)::
         --noise 0.0021817,0.075,0.0175 --out runs/layout/ff0.npz
 
 ``collect`` plays two-player racks on :class:`pool_env.envs.multiagent.PoolDuelEnv` (9-ball, spin
-table, the duels' execution noise) through :func:`agents.evaluation.duels.play_rack`, rack ``k``
+table, the duels' execution noise) through :func:`agents.evaluation.duels.play_rack` (both
+sides built as the duels build them, ``players=2``: a search player plays for the rack,
+not for a run-out), rack ``k``
 seeded ``seed + k`` (keep it away from the duels' evaluation racks, 20000..), the two
 sides alternating breaks, and records every shot but the breaks: the layout's features
 from the shooter's side (:func:`agents.learned.layout_value.layout_features`, read from the
@@ -188,7 +190,7 @@ def collect(
         config = envs[0].unwrapped.config
         rows_k: list[tuple[str, Layout]] = []
         players = {
-            side: _Recorder(make_agent(name, env, seed=seed), side, config, rows_k)
+            side: _Recorder(make_agent(name, env, seed=seed, players=2), side, config, rows_k)
             for side, name, env in (("agent", agent, envs[0]), ("opponent", opponent, envs[1]))
         }
         for k in range(racks):

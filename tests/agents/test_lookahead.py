@@ -339,3 +339,18 @@ def test_bad_settings_are_refused(kwargs, message) -> None:
 def test_the_agent_refuses_a_roll_table_id() -> None:
     with pytest.raises(ValueError, match="spin rotation"):
         LookaheadAgent(gym.make("pool_env/NineBallGameRoll-v2"), _flat_value())
+
+
+def test_duel_collection_builds_both_sides_as_the_duels_do(monkeypatch) -> None:
+    """Both sides know they play an opponent (players=2): a search player's duel objective."""
+    import agents.training.fit_layout_value as fit
+
+    seen = []
+
+    def recording(name, env, seed=0, players=None):
+        seen.append((name, players))
+        return make_agent(name, env, seed=seed, players=players)
+
+    monkeypatch.setattr(fit, "make_agent", recording)
+    fit.collect("ghost", "ghost", racks=1, seed=70000)
+    assert seen == [("ghost", 2), ("ghost", 2)]

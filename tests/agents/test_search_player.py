@@ -264,6 +264,10 @@ def test_the_paired_difference_counts_only_discordant_racks() -> None:
     assert paired_difference(a, a) == (0.0, 0.0, 0.0)
     with pytest.raises(ValueError, match="paired racks"):
         paired_difference(a, b[:2])
+    # A duel's racks: the winner of each (None: a draw); the agent's wins are the successes.
+    won = ["agent", "opponent", None, "agent"]
+    other = ["opponent", "opponent", "agent", "agent"]
+    assert paired_difference(won, other, success="agent")[0] == pytest.approx(0.0)  # 1 - 1
 
 
 def test_shots_made_after_the_break_exclude_the_shots_that_ended_a_rack() -> None:
