@@ -149,6 +149,8 @@ class RackAgent(GameGhostBallAgent):
     """
 
     KIND = "learned"
+    #: The games it plays (a subclass that follows the legal balls may play more).
+    GAMES: tuple[str, ...] = ROTATION
 
     def __init__(
         self,
@@ -161,7 +163,7 @@ class RackAgent(GameGhostBallAgent):
         players: int | None = None,
     ) -> None:
         super().__init__(env, spin=True, players=players)
-        if self.config.game not in ROTATION or self.ghost.spec.tip_limit is None:
+        if self.config.game not in self.GAMES or self.ghost.spec.tip_limit is None:
             raise ValueError(
                 "RackAgent plays the spin rotation ids (pool_env/NineBallGame-v2, TenBallGame-v1)"
             )
