@@ -88,4 +88,3 @@ def observed_row(obs: NDArray[np.floating], config: GameConfig | Any) -> NDArray
             mine = int(group_of_targets(on[None], first)[0])
             row[GROUP_0], row[GROUP_1] = mine, SOLIDS + STRIPES - mine
     return row
-

@@ -59,7 +59,7 @@ from numpy.typing import NDArray
 from agents.baselines.aiming import shot_to_action
 from agents.baselines.rule_play import rule_action
 from agents.learned.layout_value import LayoutValue
-from agents.learned.leaf_value import LeafValue
+from agents.learned.leaf_value import LeafValue, SetLeaf
 from agents.learned.legal_sets import shooter_racks
 from agents.learned.lookahead import LookaheadAgent
 from agents.learned.next_shots import best_next_values
@@ -255,8 +255,8 @@ class SearchPlayer(LookaheadAgent):
         players: As :class:`~agents.baselines.game_agents.GameGhostBallAgent`.
 
     Raises:
-        ValueError: On a game other than these, or a break that leaves the table or
-            misses the apex ball (:func:`check_break`).
+        ValueError: On a game other than these, a set-network leaf off 9-ball, or a break
+            that leaves the table or misses the apex ball (:func:`check_break`).
     """
 
     KIND = "search"
@@ -285,6 +285,11 @@ class SearchPlayer(LookaheadAgent):
         )  # fmt: skip
         check_break(s, self.config.table)
         self.settings = s
+        if isinstance(leaf, SetLeaf) and config.game != "nine":
+            raise ValueError(
+                f"the set network (SetLeaf) values 9-ball layouts only, not game="
+                f"{config.game!r}: give the logistic layout value fitted for the game"
+            )
         if leaf is not None:
             self.leaf = leaf
         self.spot_rng = np.random.default_rng(seed)
