@@ -14,8 +14,8 @@ Usage (from the repository root)::
 ``collect`` plays two-player racks on :class:`pool_env.envs.multiagent.PoolDuelEnv` (the game
 of ``--env``, 9-ball by default; spin table, the duels' execution noise) through
 :func:`agents.evaluation.duels.play_rack`, rack ``k`` seeded ``seed + k`` (keep it away from
-the duels' evaluation racks, 20000..), the two sides alternating breaks, and records every shot but the breaks: the layout's features
-from the shooter's side (:func:`agents.learned.layout_value.layout_features`, read from the
+the duels' evaluation racks, 20000..), the two sides alternating breaks, and records every
+shot but the breaks: the layout's features from the shooter's side (:func:`agents.learned.layout_value.layout_features`, read from the
 shooter's observation alone) and whether that shooter went on to win the rack (a draw at
 the shot limit counts as not won). With ``--runout`` it plays run-out mode on the
 single-player id instead (``end_on_foul``: the first miss or foul ends the rack) and the
