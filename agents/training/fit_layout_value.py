@@ -11,19 +11,20 @@ Usage (from the repository root)::
         --runout --racks 2500 --seed 910000 --noise 0.0021817,0.075,0.0175 \
         --out runs/layout/eight_runout.npz
 
-``collect`` plays two-player racks on :class:`pool_env.envs.multiagent.PoolDuelEnv` (the game
-of ``--env``, 9-ball by default; spin table, the duels' execution noise) through
-:func:`agents.evaluation.duels.play_rack`, rack ``k`` seeded ``seed + k`` (keep it away from
-the duels' evaluation racks, 20000..), the two sides alternating breaks, and records every
-shot but the breaks: the layout's features from the shooter's side (:func:`agents.learned.layout_value.layout_features`, read from the
-shooter's observation alone) and whether that shooter went on to win the rack (a draw at
-the shot limit counts as not won). With ``--runout`` it plays run-out mode on the
-single-player id instead (``end_on_foul``: the first miss or foul ends the rack) and the
-label is whether the rack was run out. ``--noise`` sets the execution noise (default the
-duels'); the features' pot chances are taken at its aim error. Off 9-ball each layout also
-records the shooter's legal first balls as its observation says them (``targets``, ``(M, T)``
-padded with -1: 8-ball's group, the 8), and the features are taken over them
-(:func:`agents.learned.layout_value.layout_features`' ``targets``); 9-ball's stay on the ball on.
+``collect`` plays two-player racks on :class:`pool_env.envs.multiagent.PoolDuelEnv` (the game of
+``--env``, 9-ball by default; spin table, the duels' execution noise) through
+:func:`agents.evaluation.duels.play_rack`, rack ``k`` seeded ``seed + k`` (keep it away from the
+duels' evaluation racks, 20000..), the two sides alternating breaks, and records every shot but
+the breaks: the layout's features from the shooter's side
+(:func:`agents.learned.layout_value.layout_features`, read from the shooter's observation alone)
+and whether that shooter went on to win the rack (a draw at the shot limit counts as not won).
+With ``--runout`` it plays run-out mode on the single-player id instead (``end_on_foul``: the
+first miss or foul ends the rack) and the label is whether the rack was run out. ``--noise``
+sets the execution noise (default the duels'); the features' pot chances are taken at its aim
+error. Off 9-ball each layout also records the shooter's legal first balls as its observation
+says them (``targets``, ``(M, T)`` padded with -1: 8-ball's group, the 8), and the features are
+taken over them (:func:`agents.learned.layout_value.layout_features`' ``targets``); 9-ball's
+stay on the ball on.
 
 Beside the features, ``collect`` saves every recorded layout raw, from the shooter's side, so
 that other layout values (:mod:`agents.training.fit_set_value`) are fitted from the same files:
