@@ -165,7 +165,9 @@ class RackAgent(GameGhostBallAgent):
         super().__init__(env, spin=True, players=players)
         if self.config.game not in self.GAMES or self.ghost.spec.tip_limit is None:
             raise ValueError(
-                "RackAgent plays the spin rotation ids (pool_env/NineBallGame-v2, TenBallGame-v1)"
+                f"{type(self).__name__} plays the spin game ids of {', '.join(self.GAMES)} "
+                f"(pool_env/NineBallGame-v2, ...), got game={self.config.game!r} on a "
+                f"{'roll' if self.ghost.spec.tip_limit is None else 'spin'} table"
             )
         if break_arm is not None and not 0 <= break_arm < len(BREAK_ARMS):
             raise ValueError(f"break_arm must index BREAK_ARMS (0..{len(BREAK_ARMS) - 1})")
