@@ -39,6 +39,7 @@ from typing import Any, TypeVar
 from agents.learned.layout_value import LayoutValue
 from agents.learned.leaf_value import SetLeaf
 from agents.learned.search_player import (
+    GAME_IDS,
     SETTINGS,
     SearchPlayer,
     SearchSettings,
@@ -60,11 +61,7 @@ KEYS = {
 }
 
 #: The games a player file may name (the rulesets' names), and the env ids that play them.
-GAMES = {
-    "nine": "pool_env/NineBallGame-v2",
-    "ten": "pool_env/TenBallGame-v1",
-    "eight": "pool_env/EightBallGame-v1",
-}
+GAMES = GAME_IDS
 
 Model = TypeVar("Model", LayoutValue, SetValue)
 

@@ -235,6 +235,12 @@ def check_break(settings: SearchSettings, table: Table, prefix: str = "") -> Non
         )
 
 
+#: The spin game ids of the games a search player plays.
+GAME_IDS = {
+    "nine": "pool_env/NineBallGame-v2",
+    "ten": "pool_env/TenBallGame-v1",
+    "eight": "pool_env/EightBallGame-v1",
+}
 #: Straight-in ball-in-hand spots kept with several legal balls: 9-ball's count (six
 #: pockets x three distances behind the ball on).
 STRAIGHT = 18
@@ -275,9 +281,10 @@ class SearchPlayer(LookaheadAgent):
         s = settings or SearchSettings()
         config = env.unwrapped.config
         if config.game not in self.GAMES:
+            ids = ", ".join(GAME_IDS[g] for g in self.GAMES)
             raise ValueError(
-                "SearchPlayer plays the spin WPA game ids (pool_env/NineBallGame-v2, "
-                f"TenBallGame-v1, EightBallGame-v1), got game={config.game!r}"
+                f"{type(self).__name__} plays the spin WPA game ids ({ids}), got "
+                f"game={config.game!r}"
             )
         super().__init__(
             env, value, objective, samples=s.samples, finalists=s.finalists, final_samples=0,

@@ -355,3 +355,14 @@ def test_a_player_file_refuses_an_unknown_game(tmp_path) -> None:
     bad.write_text(f"kind: search\ngame: snooker\nlayout_value: {ROOT}/models/runout_value.npz\n")
     with pytest.raises(ValueError, match="game must be one of nine, ten, eight, got 'snooker'"):
         load_search_player(bad, gym.make("pool_env/NineBallGame-v2"))
+
+
+def test_the_rack_network_player_stays_on_nine_ball() -> None:
+    from agents.learned.rack_net import RackNetPlayer
+
+    with pytest.raises(
+        ValueError, match=r"RackNetPlayer plays .*NineBallGame-v2\), got game='ten'"
+    ):
+        RackNetPlayer(
+            gym.make("pool_env/TenBallGame-v1"), ROOT / "models" / "search_player_net.yaml"
+        )
