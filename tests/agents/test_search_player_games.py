@@ -366,3 +366,21 @@ def test_the_rack_network_player_stays_on_nine_ball() -> None:
         RackNetPlayer(
             gym.make("pool_env/TenBallGame-v1"), ROOT / "models" / "search_player_net.yaml"
         )
+
+
+def test_collect_records_eight_ball_layouts_over_the_legal_balls() -> None:
+    from agents.training.fit_layout_value import collect
+
+    data = collect("ghost", "ghost", 6, 910000, True, FASTFIZ, "pool_env/EightBallGame-v1")
+    assert str(data["env"]) == "pool_env/EightBallGame-v1" and data["won"].size > 0
+    config = gym.make("pool_env/EightBallGame-v1").unwrapped.config
+    targets, on = data["targets"], data["on_table"]
+    legal = targets >= 0
+    assert on[np.arange(len(on))[:, None], np.maximum(targets, 0)][legal].all()
+    eight = (targets == 8).any(axis=1)
+    assert (legal.sum(axis=1)[eight] == 1).all()  # the 8 is legal alone, never with a group
+    features = layout_features(
+        config.table, pocket_mouths(config.table), data["positions"], on, data["in_hand"],
+        data["fouls"], float(data["sigma"]), targets, "eight",
+    )  # fmt: skip
+    assert np.array_equal(features, data["features"])
