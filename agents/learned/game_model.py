@@ -139,7 +139,7 @@ class GameModel:
             N_RACK)`` rack rows after the step.
 
         Raises:
-            As :meth:`play_layouts`.
+            ValueError: As :meth:`play_layouts`.
         """
         acts = np.asarray(actions, dtype=np.float64)
         if acts.ndim != 2 or acts.shape[1] != self.config.action_size:
