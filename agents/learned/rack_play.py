@@ -164,9 +164,10 @@ class RackAgent(GameGhostBallAgent):
     ) -> None:
         super().__init__(env, spin=True, players=players)
         if self.config.game not in self.GAMES or self.ghost.spec.tip_limit is None:
+            kind = "rotation" if self.GAMES == ROTATION else "game"
             raise ValueError(
-                f"{type(self).__name__} plays the spin game ids of {', '.join(self.GAMES)} "
-                f"(pool_env/NineBallGame-v2, ...), got game={self.config.game!r} on a "
+                f"{type(self).__name__} plays the spin {kind} ids ({', '.join(self.GAMES)}: "
+                f"pool_env/NineBallGame-v2, ...), got game={self.config.game!r} on a "
                 f"{'roll' if self.ghost.spec.tip_limit is None else 'spin'} table"
             )
         if break_arm is not None and not 0 <= break_arm < len(BREAK_ARMS):
