@@ -120,10 +120,11 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
     duel = (players if players is not None else config.players) == 2
     file = read_player_file(path, config.table, duel=duel)
     if config.game != file.game:
+        fitted = {"nine": "9-ball", "ten": "10-ball (9-ball's values)", "eight": "8-ball"}
         raise ValueError(
-            f"player file {str(path)!r}: game {file.game!r} (its values are {file.game}-ball "
-            f"layouts') cannot play game={config.game!r}; use a file with game: "
-            f"{config.game} ({GAMES.get(config.game, 'a WPA game id')})"
+            f"player file {str(path)!r}: game {file.game!r} (values for {fitted[file.game]} "
+            f"layouts) cannot play game={config.game!r}: use a file with game: "
+            f"{config.game} for {GAMES.get(config.game, 'a WPA game id')}"
         )
     value = file.duel_value if duel else file.layout_value
     assert value is not None  # read_player_file requires it for a duel
