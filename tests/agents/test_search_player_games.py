@@ -164,6 +164,13 @@ def test_the_batched_view_refuses_bad_shapes_and_seats() -> None:
         EIGHT.legal_first_balls(np.stack([rack_row({})] * 2), on, np.array([0, 2]))
 
 
+def test_the_default_view_is_every_object_ball_on() -> None:
+    ruleset = gym.make("pool_env/Pool-v1").unwrapped.config.ruleset
+    on = np.array([[True, False, True, True]])
+    legal = ruleset.legal_first_balls(np.zeros((1, 0), np.int64), on)
+    assert legal.tolist() == [[False, False, True, True]] and on[0, 0]  # a copy, cue off
+
+
 def _eight_layout(balls: dict[int, tuple[float, float]]) -> tuple[np.ndarray, np.ndarray]:
     positions = np.tile([0.1, 0.05], (16, 1))
     on = np.zeros(16, dtype=bool)
