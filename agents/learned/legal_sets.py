@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from agents.learned.layout_value import observed_rack
 from pool_env import GameConfig, obs_layout, shot_constraints
 from pool_env.game.games.wpa import rack_row
 from pool_env.game.games.wpa.rack_state import GROUP_0, GROUP_1, OPEN, SOLIDS, STRIPES
@@ -78,7 +79,7 @@ def observed_row(obs: NDArray[np.floating], config: GameConfig | Any) -> NDArray
     the table is open). No ball in hand: the player places the cue ball first.
     """
     layout = obs_layout(config)
-    own, other = (round(2 * float(obs[layout[k]][0])) for k in ("fouls", "opponent_fouls"))
+    own, other = observed_rack(obs, config)[2]
     row = rack_row({"fouls": (min(own, 2), min(other, 2))})
     if config.game == "eight" and float(obs[layout["open_table"]][0]) < 0.5:
         rules = shot_constraints(config, obs)

@@ -22,7 +22,7 @@ from agents.learned.layout_value import (
     layout_features,
 )
 from agents.learned.leaf_value import SetLeaf, next_targets
-from agents.learned.legal_sets import shooter_racks, target_sets
+from agents.learned.legal_sets import observed_row, shooter_racks, target_sets
 from agents.learned.next_shots import next_shot_table
 from agents.learned.player_file import load_search_player
 from agents.learned.search_player import SearchPlayer, SearchSettings
@@ -31,7 +31,7 @@ from pool_env import shot_constraints
 from pool_env.game.codec import encode_ball, encode_pocket
 from pool_env.game.games.wpa import EIGHT, rack_row
 from pool_env.game.games.wpa.judge import KEEPS
-from pool_env.game.games.wpa.rack_state import GROUP_0, GROUP_1, SOLIDS, STRIPES
+from pool_env.game.games.wpa.rack_state import FOULS_0, FOULS_1, GROUP_0, GROUP_1, SOLIDS, STRIPES
 from pool_env.game.geometry import pocket_mouths
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -154,6 +154,24 @@ def test_eight_ball_legal_balls_batched_are_the_observations_and_follow_the_grou
         assert (config.ruleset.legal_first_balls(again, on[k : k + 1], np.zeros(1, int))
                 == legal[k]).all()  # fmt: skip
     assert legal[:, 8].any() and (legal[:, 1:8].any(1) & legal[:, 9:].any(1)).any()
+
+
+@pytest.mark.parametrize(
+    ("groups", "cleared", "mine"),
+    [(("open", "open"), False, 0), (("stripes", "solids"), False, STRIPES),
+     (("solids", "stripes"), True, SOLIDS), (("stripes", "solids"), True, STRIPES)],
+)  # fmt: skip
+def test_the_model_shoots_from_the_observed_group(groups, cleared, mine) -> None:
+    env = gym.make("pool_env/EightBallGame-v1")
+    balls = {0: (0.6, 0.5), 8: (1.9, 0.64), 3: (2.0, 0.3), 12: (1.0, 1.0), 9: (1.5, 0.4)}
+    if cleared:  # the shooter's group is gone: the 8 is its only legal ball
+        balls = {j: p for j, p in balls.items() if j in (0, 8) or (j < 8) != (mine == SOLIDS)}
+    positions, on = _eight_layout(balls)
+    rules = {"break": False, "ball_in_hand": False, "groups": list(groups), "fouls": [1, 2]}
+    obs, _ = env.reset(options={"positions": positions, "on_table": on, "rules": rules})
+    row = observed_row(obs, env.unwrapped.config)
+    assert (row[GROUP_0], row[GROUP_1]) == (mine, 0 if mine == 0 else SOLIDS + STRIPES - mine)
+    assert (row[FOULS_0], row[FOULS_1]) == (1, 2)
 
 
 def test_the_batched_view_refuses_bad_shapes_and_seats() -> None:
