@@ -141,7 +141,7 @@ PLAYERS_HELP = (
     "game ids), first-row (observation=shots); or a file: an SB3 model .zip (e.g. "
     "models/ppo_oneball.zip), a rack, lookahead or rack-network model .npz "
     "(models/runout_value.npz, models/rack_net.npz), or a "
-    "search player file .yaml/.yml (models/search_player.yaml: 9-ball only)"
+    "search player file .yaml/.yml (models/search_player.yaml: 9-ball; _ten, _eight)"
 )
 
 

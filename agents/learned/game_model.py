@@ -113,6 +113,34 @@ class GameModel:
             ValueError: On shapes that do not fit, a rack state with ball in hand or
                 actions of the wrong width.
         """
+        return self.play_racks(
+            positions, on_table, racks, actions, samples, parallel, common_noise
+        )[:3]
+
+    def play_racks(
+        self,
+        positions: NDArray[np.float64],
+        on_table: NDArray[np.bool_],
+        racks: NDArray[np.int64],
+        actions: NDArray[np.float64],
+        samples: int,
+        parallel: bool | None = None,
+        common_noise: bool = True,
+    ) -> tuple[StepResult, NDArray[np.float64], NDArray[np.bool_], NDArray[np.int64]]:
+        """:meth:`play_layouts`, with a copy of the rack rows after the step too.
+
+        The rows say what the rules made of each outcome beyond the balls: who shoots
+        next, ball in hand, the fouls and 8-ball's groups (a shot on an open table decides
+        them), from which the next shooter's legal balls are read
+        (:meth:`pool_env.game.ruleset.Ruleset.legal_first_balls`).
+
+        Returns:
+            ``(result, positions, on_table, racks)``: as :meth:`play`, and ``(C * samples,
+            N_RACK)`` rack rows after the step.
+
+        Raises:
+            ValueError: As :meth:`play_layouts`.
+        """
         acts = np.asarray(actions, dtype=np.float64)
         if acts.ndim != 2 or acts.shape[1] != self.config.action_size:
             raise ValueError(f"actions must be (C, {self.config.action_size}), got {acts.shape}")
@@ -141,4 +169,5 @@ class GameModel:
         result = step(
             self.config, state, tables, np.repeat(acts, samples, axis=0), parallel=parallel
         )
-        return result, state.positions[:n].copy(), state.on_table[:n].copy()
+        after = state.positions[:n].copy(), state.on_table[:n].copy(), state.rack[:n].copy()
+        return result, *after

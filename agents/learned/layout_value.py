@@ -1,4 +1,4 @@
-"""What a 9-ball layout is worth to the player about to shoot: features and a learned win chance.
+"""What a WPA layout is worth to the player about to shoot: features and a learned win chance.
 
 :func:`layout_features` describes B layouts from the shooter's side in a few numbers that
 the rules and the aim noise make matter: the ball on (the lowest ball) and its best pot
@@ -6,7 +6,9 @@ chances from where the cue ball lies, or from a straight-in placement when the s
 the cue ball in hand, whether the ball on is the 9, how many balls are left, and each
 player's successive fouls (the third loses the rack). All of it is computed in one batched
 call of the game's own geometry (:func:`pool_env.game.geometry.ghost_shots`), so that a
-planner can value hundreds of simulated outcomes per shot.
+planner can value hundreds of simulated outcomes per shot. Given the shooter's legal first
+balls (``targets``: 8-ball's groups, the 8), the features read over those balls instead
+(:func:`layout_features`).
 
 :class:`LayoutValue` maps them to the chance that the shooter wins the rack: a logistic
 model on :func:`design` (the features and the products that matter: a pot chance counts
@@ -108,6 +110,10 @@ def _chances(rows: NDArray[np.float64], sigma: float) -> NDArray[np.float64]:
     return aim_chances(clear_tolerances(rows), sigma)
 
 
+#: The money ball of each game :func:`layout_features` describes.
+MONEY_BALLS = {"nine": 9, "ten": 10, "eight": 8}
+
+
 def layout_features(
     table: Table,
     mouths: PocketMouths,
@@ -116,8 +122,19 @@ def layout_features(
     in_hand: NDArray[np.bool_],
     fouls: NDArray[np.int64],
     sigma: float,
+    targets: NDArray[np.int64] | None = None,
+    game: str = "nine",
 ) -> NDArray[np.float64]:
-    """:data:`LAYOUT_FEATURES` of ``B`` 9-ball layouts, from the side of the player to shoot.
+    """:data:`LAYOUT_FEATURES` of ``B`` layouts, from the side of the player to shoot.
+
+    Without ``targets``, 9-ball's (and 10-ball's) features on the ball on (the lowest
+    ball). With ``targets``, the shooter's legal first balls: ``p_best`` and ``p_second``
+    are the two best pot chances over every legal ball x pocket, ``last_ball`` says that
+    the only legal ball is the money ball (:data:`MONEY_BALLS`), and ``balls_left`` counts
+    the shooter's balls: in 8-ball its group's balls left and the 8 (one: the 8 alone);
+    on an open table the smaller group's and the 8, the fewest the shooter can run out
+    with (it chooses its group by its first legal pot); in 9-ball and 10-ball every
+    object ball left.
 
     Args:
         table: The table.
@@ -127,12 +144,17 @@ def layout_features(
         in_hand: ``(B,)`` the shooter has the cue ball in hand (anywhere).
         fouls: ``(B, 2)`` successive fouls of the shooter and of the opponent (0..2).
         sigma: The aim error (rad) the pot chances are taken at.
+        targets: ``(B, T)`` the shooter's legal first balls, padded with -1
+            (:func:`agents.learned.legal_sets.target_sets`); ``None``: the ball on
+            (9-ball's features, as fitted).
+        game: ``"nine"``, ``"ten"`` or ``"eight"`` (8-ball needs ``targets``).
 
     Returns:
         ``(B, F)`` float64.
 
     Raises:
-        ValueError: On shapes that do not fit or a table with no object ball.
+        ValueError: On shapes that do not fit, a layout with no object ball (no legal
+            ball), an unknown game, or 8-ball without targets.
     """
     pos = np.ascontiguousarray(positions, dtype=np.float64)
     on = np.ascontiguousarray(on_table, dtype=np.bool_)
@@ -141,24 +163,52 @@ def layout_features(
     fouls = np.asarray(fouls).reshape(b, 2)
     if pos.shape != (b, n, 2):
         raise ValueError(f"positions must be {(b, n, 2)}, got {pos.shape}")
-    target = ball_on(on)
-    if (target < 0).any():
-        raise ValueError("a layout has no object ball: nothing is left to shoot at")
-    rows = ghost_shots(table, mouths, pos, on, target[:, None])[:, 0]  # (B, K, NG)
-    chances = _chances(rows, sigma)
+    if game not in MONEY_BALLS:
+        raise ValueError(f"game must be one of {tuple(MONEY_BALLS)}, got {game!r}")
+    if targets is None:
+        if game == "eight":
+            raise ValueError("8-ball layouts need targets: the shooter's legal balls")
+        target = ball_on(on)
+        if (target < 0).any():
+            raise ValueError("a layout has no object ball: nothing is left to shoot at")
+        chosen = target[:, None]
+    else:
+        chosen = np.asarray(targets, dtype=np.int64).reshape(b, -1)
+        if (chosen[:, 0] < 0).any():
+            raise ValueError("a layout has no legal ball: nothing is left to shoot at")
+    t = chosen.shape[1]
+    rows = ghost_shots(table, mouths, pos, on, chosen)  # (B, T, K, NG)
+    chances = _chances(rows, sigma)  # (B, T, K)
     if hand.any():
-        chances[hand] = _placed_chances(
-            table, mouths, pos[hand], on[hand], target[hand], rows[hand], sigma
-        )
-    ranked = -np.sort(-chances, axis=1)
+        for slot in range(t):
+            chances[hand, slot] = _placed_chances(
+                table, mouths, pos[hand], on[hand], chosen[hand, slot], rows[hand, slot], sigma
+            )
+    ranked = -np.sort(-chances.reshape(b, -1), axis=1)
+    legal = (chosen >= 0).sum(axis=1)
     out = np.empty((b, len(LAYOUT_FEATURES)))
     out[:, 0] = hand
     out[:, 1] = ranked[:, 0]
     out[:, 2] = ranked[:, 1]
-    out[:, 3] = target == n - 1
-    out[:, 4] = on[:, 1:].sum(axis=1) / 9.0
+    out[:, 3] = (legal == 1) & (chosen[:, 0] == MONEY_BALLS[game])
+    out[:, 4] = _balls_left(on, chosen, game) / 9.0
     out[:, 5:7] = np.minimum(fouls, 2) / 2.0
     return out
+
+
+def _balls_left(on: NDArray[np.bool_], chosen: NDArray[np.int64], game: str) -> NDArray[np.int64]:
+    """``(B,)`` the shooter's balls left (:func:`layout_features`)."""
+    if game != "eight":
+        return on[:, 1:].sum(axis=1)
+    solids, stripes = on[:, 1:8].sum(axis=1), on[:, 9:16].sum(axis=1)
+    legal = chosen >= 0
+    has_solid = (legal & (chosen < 8)).any(axis=1)
+    has_stripe = (legal & (chosen > 8)).any(axis=1)
+    group = np.where(
+        has_solid & has_stripe, np.minimum(solids, stripes), np.where(has_solid, solids, stripes)
+    )
+    eight_only = ~has_solid & ~has_stripe
+    return np.where(eight_only, 1, group + 1)
 
 
 def _placed_chances(

@@ -2,9 +2,11 @@
 
 A *leaf value* maps ``B`` layouts, from the side of the player about to shoot, to that
 player's chance to win the rack (or, in run-out mode, to run it out):
-``leaf(positions, on_table, in_hand, fouls) -> (B,)``. :class:`LogisticLeaf` wraps the
-12-column logistic (:class:`agents.learned.layout_value.LayoutValue`), :class:`SetLeaf` the
-permutation-invariant network of :mod:`agents.learned.set_value`.
+``leaf(positions, on_table, in_hand, fouls[, targets]) -> (B,)``; ``targets`` are the
+shooter's legal first balls, given off 9-ball (8-ball's groups and the 8: the rack rows after
+the step say them, :func:`next_targets`). :class:`LogisticLeaf` wraps the 12-column logistic
+(:class:`agents.learned.layout_value.LayoutValue`), :class:`SetLeaf` the
+permutation-invariant network of :mod:`agents.learned.set_value` (9-ball only).
 
 :func:`outcome_values` turns a batch of simulated shots (the rules' results and the layouts
 they leave) into values for the shooter, by the rules: a won rack is 1 and a lost one 0; a
@@ -22,9 +24,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from agents.learned.layout_value import LayoutValue, layout_features
+from agents.learned.legal_sets import target_sets
 from agents.learned.set_value import SetValue
 from pool_env.game.games.wpa.judge import FOUL, KEEPS, WINNER
 from pool_env.game.geometry import PocketMouths
+from pool_env.game.ruleset import Ruleset
 from pool_env.game.step import StepResult
 from pool_env.sim import Table
 
@@ -38,8 +42,13 @@ class LeafValue(Protocol):
         on_table: NDArray[np.bool_],
         in_hand: NDArray[np.bool_],
         fouls: NDArray[np.int64],
+        targets: NDArray[np.int64] | None = None,
     ) -> NDArray[np.float64]:
-        """``(B,)`` chances of ``(B, N, 2)`` layouts, ``(B, N)`` flags, ``(B,)``, ``(B, 2)``."""
+        """``(B,)`` chances of ``(B, N, 2)`` layouts, ``(B, N)`` flags, ``(B,)``, ``(B, 2)``.
+
+        ``targets``: ``(B, T)`` the shooter's legal first balls padded with -1
+        (:func:`~agents.learned.legal_sets.target_sets`); ``None``: the ball on (9-ball).
+        """
         ...
 
 
@@ -51,12 +60,19 @@ class LogisticLeaf:
         table: The table.
         mouths: Its pockets.
         sigma: The aim error (rad) the features' pot chances are taken at.
+        game: The game the layouts are of (:func:`layout_features`' ``game``).
     """
 
     def __init__(
-        self, value: LayoutValue, table: Table, mouths: PocketMouths, sigma: float
+        self,
+        value: LayoutValue,
+        table: Table,
+        mouths: PocketMouths,
+        sigma: float,
+        game: str = "nine",
     ) -> None:
         self.value, self.table, self.mouths, self.sigma = value, table, mouths, sigma
+        self.game = game
 
     def __call__(
         self,
@@ -64,16 +80,21 @@ class LogisticLeaf:
         on_table: NDArray[np.bool_],
         in_hand: NDArray[np.bool_],
         fouls: NDArray[np.int64],
+        targets: NDArray[np.int64] | None = None,
     ) -> NDArray[np.float64]:
         """As :class:`LeafValue`."""
         feats = layout_features(
-            self.table, self.mouths, positions, on_table, in_hand, fouls, self.sigma
-        )
+            self.table, self.mouths, positions, on_table, in_hand, fouls, self.sigma,
+            targets, self.game,
+        )  # fmt: skip
         return self.value(feats)
 
 
 class SetLeaf:
-    """The set network as a leaf value.
+    """The set network as a leaf value: 9-ball's (fitted on 9-ball layouts, the ball on).
+
+    Called with ``targets`` (another game's legal balls) it refuses: its inputs have no
+    place for them.
 
     Args:
         net: The fitted :class:`SetValue`.
@@ -91,11 +112,35 @@ class SetLeaf:
         on_table: NDArray[np.bool_],
         in_hand: NDArray[np.bool_],
         fouls: NDArray[np.int64],
+        targets: NDArray[np.int64] | None = None,
     ) -> NDArray[np.float64]:
-        """As :class:`LeafValue`."""
+        """As :class:`LeafValue`.
+
+        Raises:
+            ValueError: Given ``targets``: the set network values 9-ball layouts only.
+        """
+        if targets is not None:
+            raise ValueError(
+                "the set network (SetLeaf) values 9-ball layouts only (the ball on); "
+                "10-ball and 8-ball use the logistic layout value"
+            )
         return self.net.value(
             self.table, self.mouths, positions, on_table, in_hand, fouls, self.sigma
         )
+
+
+def next_targets(
+    ruleset: Ruleset, racks: NDArray[np.int64], left: NDArray[np.bool_], kept: NDArray[np.bool_]
+) -> NDArray[np.int64]:
+    """``(S, T)`` the legal balls of whoever shoots next after ``S`` simulated shots.
+
+    The shooter (seat 0, as the players' model racks are built) when it kept the table,
+    else the opponent (seat 1), read from the rack rows after the step by the rules' own
+    view (:meth:`~pool_env.game.ruleset.Ruleset.legal_first_balls`: 8-ball's groups as the
+    shot decided them), padded with -1 (:func:`~agents.learned.legal_sets.target_sets`).
+    """
+    viewers = np.where(kept, 0, 1).astype(np.int64)
+    return target_sets(ruleset.legal_first_balls(racks, left, viewers))
 
 
 def outcome_values(
@@ -105,6 +150,8 @@ def outcome_values(
     after: NDArray[np.float64],
     left: NDArray[np.bool_],
     fouls: tuple[int, int],
+    racks: NDArray[np.int64] | None = None,
+    ruleset: Ruleset | None = None,
 ) -> NDArray[np.float64]:
     """``(S,)`` each simulated shot's value to its shooter (module doc).
 
@@ -115,6 +162,10 @@ def outcome_values(
         after: ``(S, N, 2)`` the layouts they leave.
         left: ``(S, N)`` the balls left.
         fouls: The shooter's and the opponent's successive fouls before the shot (0..2).
+        racks: ``(S, N_RACK)`` the rack rows after the shots (:meth:`GameModel.play_racks`),
+            with ``ruleset``: the leaf is then given the next shooter's legal balls
+            (:func:`next_targets`). ``None``: the leaf reads the ball on (9-ball).
+        ruleset: The game's ruleset (``config.ruleset``), with ``racks``.
     """
     hits = result.hits
     foul = hits[:, FOUL] != 0
@@ -133,6 +184,10 @@ def outcome_values(
     opponent_fouls = np.stack([np.full_like(mine_after, theirs), mine_after], 1)
     next_fouls = np.where(kept[:, None], shooter_fouls, opponent_fouls)
     hand = ~kept & foul[rows]
-    chance = leaf(after[rows], left[rows], hand, next_fouls)
+    if racks is None or ruleset is None:
+        chance = leaf(after[rows], left[rows], hand, next_fouls)
+    else:
+        targets = next_targets(ruleset, racks[rows], left[rows], kept)
+        chance = leaf(after[rows], left[rows], hand, next_fouls, targets)
     value[rows] = np.where(kept, chance, 1.0 - chance)
     return value

@@ -47,6 +47,7 @@ from agents.baselines.rule_play import PUSH_OFFSETS, face_angles, rule_action
 from agents.learned.game_model import GameModel
 from agents.learned.layout_value import LayoutValue, observed_rack
 from agents.learned.leaf_value import LeafValue, LogisticLeaf, outcome_values
+from agents.learned.legal_sets import observed_row
 from agents.learned.rack_play import FEATURES, RackAgent
 from pool_env.game.codec import encode_shots
 from pool_env.game.games.wpa import rack_row
@@ -112,8 +113,12 @@ class LookaheadAgent(RackAgent):
         noise = self.config.noise
         self.sigma = max(float(noise[0]) if noise else 0.0, MIN_SIGMA)  # as the planner's
         #: What an outcome's layout is worth (:mod:`agents.learned.leaf_value`).
-        self.leaf: LeafValue = LogisticLeaf(value, self.config.table, self.mouths, self.sigma)
+        self.leaf: LeafValue = LogisticLeaf(
+            value, self.config.table, self.mouths, self.sigma, self.config.game
+        )
         self._fouls = (0, 0)
+        #: The rack row the model shoots from (the viewer in seat 0: its fouls, its group).
+        self._rack = rack_row({})
         #: The last shot's candidates' mean values (``-inf``: not among the finalists).
         self.last_values: NDArray[np.float64] | None = None
 
@@ -121,6 +126,7 @@ class LookaheadAgent(RackAgent):
         self, obs: NDArray[np.floating], positions: NDArray[np.float64], on: NDArray[np.bool_]
     ) -> NDArray[np.float32]:
         self._fouls = observed_rack(obs, self.config)[2]
+        self._rack = observed_row(obs, self.config)
         return super()._plan(obs, positions, on)
 
     def _choose(
@@ -189,13 +195,17 @@ class LookaheadAgent(RackAgent):
 
         The offsets are :data:`GRID_OFFSETS` (ball diameters from a full hit), the speeds
         :data:`GRID_SPEEDS` (m/s); none when no legal ball is on or the cue ball touches it.
+        The grid's ball is the legal ball nearest the cue ball: the ball on in 9-ball and
+        10-ball; in 8-ball the nearest of the group (or the 8), the ball a soft safety or
+        a kiss most surely reaches first (one ball keeps the grid's cost 9-ball's).
         """
         none = np.zeros((0, 4)), np.zeros(0), np.zeros(0)
         targets = self._legal(positions, on)
         if not targets:
             return none
         r = self.config.table.ball_radius
-        angles = face_angles(positions, targets[0], r, GRID_OFFSETS)
+        gaps = [float(np.hypot(*(positions[j] - positions[0]))) for j in targets]
+        angles = face_angles(positions, targets[int(np.argmin(gaps))], r, GRID_OFFSETS)
         if not angles:
             return none
         grid = [(a, f, s) for a, f in zip(angles, GRID_OFFSETS, strict=True) for s in GRID_SPEEDS]
@@ -218,11 +228,6 @@ class LookaheadAgent(RackAgent):
         """``(C,)`` each action's mean outcome value over ``samples`` noisy plays."""
         return self._sample_values(positions, on, actions, samples).reshape(-1, samples).mean(1)
 
-    def _model_rack(self) -> NDArray[np.int64]:
-        """The rack state the model shoots from: the cue ball placed, the fouls observed."""
-        mine, theirs = self._fouls
-        return rack_row({"fouls": (min(mine, 2), min(theirs, 2))})
-
     def _sample_values(
         self,
         positions: NDArray[np.float64],
@@ -237,10 +242,20 @@ class LookaheadAgent(RackAgent):
         ``leaf``: what the outcomes' layouts are worth (the agent's own by default);
         ``parallel``: as :meth:`GameModel.play`.
         """
-        rack = self._model_rack()
-        result, after, left = self.model.play(positions, on, rack, actions, samples, parallel)
+        acts = np.asarray(actions, dtype=np.float64)
+        c = acts.shape[0]
+        result, after, left, racks = self.model.play_racks(
+            np.broadcast_to(positions, (c, *positions.shape)),
+            np.broadcast_to(on, (c, *on.shape)),
+            np.broadcast_to(self._rack, (c, self._rack.size)),
+            acts, samples, parallel,
+        )  # fmt: skip
         runout = self.objective == "runout"
-        return outcome_values(leaf or self.leaf, runout, result, after, left, self._fouls)
+        # 9-ball's leaves read the ball on, as fitted; off 9-ball they are told the legal balls.
+        ruleset = None if self.config.game == "nine" else self.config.ruleset
+        return outcome_values(
+            leaf or self.leaf, runout, result, after, left, self._fouls, racks, ruleset
+        )
 
 
 def load_lookahead_agent(

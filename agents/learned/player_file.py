@@ -1,7 +1,8 @@
 """The search player's file (``models/search_player.yaml``): its schema, checked at load.
 
-A player file is a YAML mapping of :data:`KEYS`: ``kind: search``, the ``.npz`` models the
-player values its outcomes with, and its ``settings`` (:class:`SearchSettings`, each key
+A player file is a YAML mapping of :data:`KEYS`: ``kind: search``, the game its values were
+fitted for (``game``: ``nine`` when left out), the ``.npz`` models the player values its
+outcomes with, and its ``settings`` (:class:`SearchSettings`, each key
 one of :data:`~agents.learned.search_player.SETTINGS`). :func:`read_player_file` refuses,
 with one ``ValueError`` that names the file and the key (dotted below the top level,
 ``settings.samples``) or the model path as written, and the valid type, range or choices:
@@ -14,7 +15,10 @@ with one ``ValueError`` that names the file and the key (dotted below the top le
   <= 0, a break off the table for the player's table, :func:`check_break`);
 - a model path that is not a string, is missing or a directory, or is not a readable
   ``.npz`` of the real-number arrays the model needs
-  (:func:`~agents.learned.layout_value.load_arrays`).
+  (:func:`~agents.learned.layout_value.load_arrays`);
+- a ``game`` that is not one of :data:`GAMES`, a ``set_value`` off 9-ball (the set network
+  reads the ball on), and, when a player is made (:func:`load_search_player`), an env of
+  another game than the file's (its values would be another game's).
 
 **Paths**: a relative model path is read from the player file's folder
 (``layout_value: runout_value.npz`` beside ``models/search_player.yaml`` is
@@ -35,6 +39,7 @@ from typing import Any, TypeVar
 from agents.learned.layout_value import LayoutValue
 from agents.learned.leaf_value import SetLeaf
 from agents.learned.search_player import (
+    GAME_IDS,
     SETTINGS,
     SearchPlayer,
     SearchSettings,
@@ -48,11 +53,15 @@ from pool_env.sim import Table
 #: The keys of a player file and what each holds.
 KEYS = {
     "kind": "search (the only kind)",
+    "game": "the game the values are for: nine (the default), ten or eight",
     "layout_value": "the path of the run-out layout value (a LayoutValue .npz)",
     "duel_value": "the path of the duel layout value (a LayoutValue .npz)",
     "set_value": "the path of the set network (a SetValue .npz), the run-out leaf value",
     "settings": "the search's settings (a mapping; defaults for those left out)",
 }
+
+#: The games a player file may name (the rulesets' names), and the env ids that play them.
+GAMES = GAME_IDS
 
 Model = TypeVar("Model", LayoutValue, SetValue)
 
@@ -67,6 +76,7 @@ class PlayerFile:
         duel_value: The duel layout value (``None`` if the file names none).
         set_value: The set network (``None`` if the file names none).
         settings: The search's settings.
+        game: The game the values are for (:data:`GAMES`).
     """
 
     path: Path
@@ -74,6 +84,7 @@ class PlayerFile:
     duel_value: LayoutValue | None
     set_value: SetValue | None
     settings: SearchSettings
+    game: str = "nine"
 
 
 def read_player_file(path: str | Path, table: Table, duel: bool = False) -> PlayerFile:
@@ -102,11 +113,19 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
     (``players=2``, as the duels build it; ``duel_value``'s leaves).
 
     Raises:
-        ValueError: As :func:`read_player_file`, or from :class:`SearchPlayer` (an env
-            that is not 9-ball).
+        ValueError: As :func:`read_player_file`; an env of another game than the file's
+            ``game``; or from :class:`SearchPlayer` (an env that is not a WPA game).
     """
-    duel = (players if players is not None else env.unwrapped.config.players) == 2
-    file = read_player_file(path, env.unwrapped.config.table, duel=duel)
+    config = env.unwrapped.config
+    duel = (players if players is not None else config.players) == 2
+    file = read_player_file(path, config.table, duel=duel)
+    if config.game != file.game:
+        fitted = {"nine": "9-ball", "ten": "10-ball (9-ball's values)", "eight": "8-ball"}
+        raise ValueError(
+            f"player file {str(path)!r}: game {file.game!r} (values for {fitted[file.game]} "
+            f"layouts) cannot play game={config.game!r}: use a file with game: "
+            f"{config.game} for {GAMES.get(config.game, 'a WPA game id')}"
+        )
     value = file.duel_value if duel else file.layout_value
     assert value is not None  # read_player_file requires it for a duel
     player = SearchPlayer(env, value, "duel" if duel else "runout", file.settings,
@@ -127,6 +146,9 @@ def _read(path: Path, table: Table, duel: bool) -> PlayerFile:
     _check_keys(config, KEYS, "", "the file")
     if config.get("kind") != "search":
         raise ValueError(f"kind must be 'search', got {config.get('kind')!r}")
+    game = config.get("game", "nine")
+    if not isinstance(game, str) or game not in GAMES:
+        raise ValueError(f"game must be one of {', '.join(GAMES)}, got {game!r}")
     raw = config.get("settings", {})
     _check_keys(raw, SETTINGS, "settings.", "settings")
     values = {name: check_setting(name, v, f"settings.{name}") for name, v in raw.items()}
@@ -136,8 +158,13 @@ def _read(path: Path, table: Table, duel: bool) -> PlayerFile:
     layout_value = _model(config, "layout_value", base, LayoutValue.load, required="")
     against = " to play an opponent (players=2)" if duel else None
     duel_value = _model(config, "duel_value", base, LayoutValue.load, required=against)
+    if game != "nine" and config.get("set_value") is not None:
+        raise ValueError(
+            f"set_value is 9-ball's (the set network reads the ball on): game {game!r} "
+            "values its leaves with layout_value and duel_value only"
+        )
     set_value = _model(config, "set_value", base, SetValue.load, required=None)
-    return PlayerFile(path, layout_value, duel_value, set_value, settings)
+    return PlayerFile(path, layout_value, duel_value, set_value, settings, game)
 
 
 def _check_file(path: Path, what: str, why: str = "") -> None:

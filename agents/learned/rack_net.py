@@ -152,6 +152,8 @@ class RackNetPlayer(SearchPlayer):
     """
 
     KIND = "rack_net"
+    #: 9-ball only: its leaf is the set network (9-ball's) and its candidates the ball on's.
+    GAMES = ("nine",)
 
     def __init__(
         self,

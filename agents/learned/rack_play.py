@@ -149,6 +149,8 @@ class RackAgent(GameGhostBallAgent):
     """
 
     KIND = "learned"
+    #: The games it plays (a subclass that follows the legal balls may play more).
+    GAMES: tuple[str, ...] = ROTATION
 
     def __init__(
         self,
@@ -161,9 +163,12 @@ class RackAgent(GameGhostBallAgent):
         players: int | None = None,
     ) -> None:
         super().__init__(env, spin=True, players=players)
-        if self.config.game not in ROTATION or self.ghost.spec.tip_limit is None:
+        if self.config.game not in self.GAMES or self.ghost.spec.tip_limit is None:
+            kind = "rotation" if self.GAMES == ROTATION else "game"
             raise ValueError(
-                "RackAgent plays the spin rotation ids (pool_env/NineBallGame-v2, TenBallGame-v1)"
+                f"{type(self).__name__} plays the spin {kind} ids ({', '.join(self.GAMES)}: "
+                f"pool_env/NineBallGame-v2, ...), got game={self.config.game!r} on a "
+                f"{'roll' if self.ghost.spec.tip_limit is None else 'spin'} table"
             )
         if break_arm is not None and not 0 <= break_arm < len(BREAK_ARMS):
             raise ValueError(f"break_arm must index BREAK_ARMS (0..{len(BREAK_ARMS) - 1})")

@@ -1,4 +1,4 @@
-"""A rotation player (9-ball) that searches its shots within a time budget, two shots deep.
+"""A WPA player (9-ball, 10-ball, 8-ball) that searches its shots within a time budget, two deep.
 
 :class:`SearchPlayer` is :class:`agents.learned.lookahead.LookaheadAgent` given a clock and
 a second ply. On every shot, within ``budget`` seconds of wall time:
@@ -23,8 +23,21 @@ a second ply. On every shot, within ``budget`` seconds of wall time:
    (:func:`best_next_values`); the cue ball goes on the best, and the search above
    plays from there.
 5. **The break**: a fixed, searched break (:mod:`agents.training.break_search`): where on
-   the head string to place the cue ball, its aim off a full hit on the 1, the speed and
+   the head string to place the cue ball, its aim off a full hit on the apex ball (on the
+   foot spot: the 1 in 9-ball and 10-ball, any ball but the 8 in 8-ball), the speed and
    the tip; saved in the player's config (``models/search_player.yaml``).
+
+**The games**: every step above follows the rules' legal balls, not "the lowest ball": the
+candidates, the second ply's next shots and the ball-in-hand spots go on the shooter's legal
+balls (8-ball: its group, every ball but the 8 on an open table, the 8 once the group is
+cleared), and each simulated outcome is valued with the legal balls of whoever shoots next,
+read from the rack row the rules leave (:mod:`agents.learned.legal_sets`: a shot on an open
+table decides the groups). The calls are the rules': 10-ball calls the ball on and its
+pocket on every shot, 8-ball the pocket (the 8's call: the 8 in another pocket loses). The
+push-out and the option are the ghost-ball agent's (:mod:`agents.baselines.rule_play`).
+The leaf values are per game (``models/search_player_ten.yaml``: 9-ball's, whose features
+read the same in 10-ball; ``models/search_player_eight.yaml``: values fitted on 8-ball
+layouts); the set network is 9-ball's only.
 
 The leaf value is the logistic layout value or the set network
 (:mod:`agents.learned.set_value`), named in the player file
@@ -46,8 +59,9 @@ from numpy.typing import NDArray
 from agents.baselines.aiming import shot_to_action
 from agents.baselines.rule_play import rule_action
 from agents.baselines.spin_play import traced_pots
-from agents.learned.layout_value import LayoutValue, ball_on
-from agents.learned.leaf_value import LeafValue
+from agents.learned.layout_value import LayoutValue
+from agents.learned.leaf_value import LeafValue, SetLeaf
+from agents.learned.legal_sets import shooter_racks
 from agents.learned.lookahead import LookaheadAgent
 from agents.learned.next_shots import best_next_values
 from agents.learned.shot_fans import AimWindows
@@ -208,7 +222,8 @@ def break_bounds(table: Table, break_y: float) -> tuple[float, float]:
     """How far off the head spot the break may place the cue ball, and aim off a full hit.
 
     The cue ball's centre stays a radius off the side rails; from that spot the aim keeps
-    the 1 (on the foot spot) in the cue ball's path: its centre within two radii of the line.
+    the apex ball (on the foot spot) in the cue ball's path: its centre within two radii of
+    the line.
 
     Returns:
         ``(y_max, cut_max)``: ``|break_y| <= y_max`` (m), ``|break_cut| <= cut_max`` (rad).
@@ -220,7 +235,7 @@ def break_bounds(table: Table, break_y: float) -> tuple[float, float]:
 
 
 def check_break(settings: SearchSettings, table: Table, prefix: str = "") -> None:
-    """Refuse a break that leaves the table or misses the 1 (:func:`break_bounds`).
+    """Refuse a break that leaves the table or misses the apex ball (:func:`break_bounds`).
 
     Args:
         settings: The settings.
@@ -239,16 +254,28 @@ def check_break(settings: SearchSettings, table: Table, prefix: str = "") -> Non
     if abs(settings.break_cut) > cut_max:
         raise ValueError(
             f"{prefix}break_cut must lie in [{-cut_max:.4f}, {cut_max:.4f}] rad with break_y "
-            f"{settings.break_y!r} on this table (the cue ball must meet the 1), got "
+            f"{settings.break_y!r} on this table (the cue ball must meet the apex ball), got "
             f"{settings.break_cut!r}"
         )
+
+
+#: The spin game ids of the games a search player plays.
+GAME_IDS = {
+    "nine": "pool_env/NineBallGame-v2",
+    "ten": "pool_env/TenBallGame-v1",
+    "eight": "pool_env/EightBallGame-v1",
+}
+#: Straight-in ball-in-hand spots kept with several legal balls: 9-ball's count (six
+#: pockets x three distances behind the ball on).
+STRAIGHT = 18
 
 
 class SearchPlayer(LookaheadAgent):
     """The anytime two-ply search player (module doc).
 
     Args:
-        env: A spin 9-ball id (``pool_env/NineBallGame-v2``), wrapped or not.
+        env: A spin WPA game id (``pool_env/NineBallGame-v2``, ``TenBallGame-v1``,
+            ``EightBallGame-v1``), wrapped or not.
         value: The logistic layout value (the first ply's leaves; and the second's unless
             ``leaf`` is given).
         objective: ``"runout"`` or ``"duel"``.
@@ -258,11 +285,12 @@ class SearchPlayer(LookaheadAgent):
         players: As :class:`~agents.baselines.game_agents.GameGhostBallAgent`.
 
     Raises:
-        ValueError: On a game other than 9-ball, or a break that leaves the table or
-            misses the 1 (:func:`check_break`).
+        ValueError: On a game other than these, a set-network leaf off 9-ball, or a break
+            that leaves the table or misses the apex ball (:func:`check_break`).
     """
 
     KIND = "search"
+    GAMES = ("nine", "ten", "eight")
 
     def __init__(
         self,
@@ -275,14 +303,24 @@ class SearchPlayer(LookaheadAgent):
         players: int | None = None,
     ) -> None:
         s = settings or SearchSettings()
+        config = env.unwrapped.config
+        if config.game not in self.GAMES:
+            ids = ", ".join(GAME_IDS[g] for g in self.GAMES)
+            raise ValueError(
+                f"{type(self).__name__} plays the spin WPA game ids ({ids}), got "
+                f"game={config.game!r}"
+            )
         super().__init__(
             env, value, objective, samples=s.samples, finalists=s.finalists, final_samples=0,
             break_arm=None, seed=seed, players=players,
         )  # fmt: skip
-        if self.config.game != "nine":
-            raise ValueError("SearchPlayer plays 9-ball (pool_env/NineBallGame-v2)")
         check_break(s, self.config.table)
         self.settings = s
+        if isinstance(leaf, SetLeaf) and config.game != "nine":
+            raise ValueError(
+                f"the set network (SetLeaf) values 9-ball layouts only, not game="
+                f"{config.game!r}: give the logistic layout value fitted for the game"
+            )
         if leaf is not None:
             self.leaf = leaf
         self.spot_rng = np.random.default_rng(seed)
@@ -314,12 +352,18 @@ class SearchPlayer(LookaheadAgent):
     def break_action(
         self, positions: NDArray[np.float64], on: NDArray[np.bool_]
     ) -> NDArray[np.float64]:
-        """The settings' break: the cue ball on the head string, aimed at the 1, speed, tip."""
+        """The settings' break: the cue ball on the head string, aimed at the apex, speed, tip.
+
+        The apex is the object ball nearest the foot spot (the 1 of a 9-ball or 10-ball
+        rack; in 8-ball whichever ball the rack put there).
+        """
         s, table = self.settings, self.config.table
         spot = np.array([table.length / 4.0, table.width / 2.0 + s.break_y])
         placed = positions.copy()
         placed[0] = spot
-        apex = int(ball_on(on[None])[0])
+        balls = np.flatnonzero(on[1:]) + 1
+        gaps = np.hypot(*(positions[balls] - foot_spot(table)).T)
+        apex = int(balls[int(np.argmin(gaps))])
         d = placed[apex] - spot
         reference = np.zeros_like(on)
         reference[[0, apex]] = True
@@ -352,6 +396,7 @@ class SearchPlayer(LookaheadAgent):
         values = best_next_values(
             self.model, self.mouths, self.leaf, self.objective == "runout", layouts, flags,
             self._fouls, self.settings.hand_samples,
+            np.broadcast_to(self._rack, (len(spots), self._rack.size)),
         )  # fmt: skip
         best = spots[int(np.argmax(values))]
         placed = positions.copy()
@@ -362,17 +407,26 @@ class SearchPlayer(LookaheadAgent):
     def _spots(
         self, positions: NDArray[np.float64], on: NDArray[np.bool_], behind: bool
     ) -> NDArray[np.float64]:
-        """Free spots for the cue ball: straight-in behind each pocket of the ball on, random."""
+        """Free spots for the cue ball: straight-in behind each pocket of the legal balls, random.
+
+        With several legal balls (8-ball) the straight-in spots of the :data:`STRAIGHT`
+        closest ball-to-pocket pairs that are free are kept (the easier pots; and the
+        batch stays 9-ball's size, :data:`COUNTS`).
+        """
         table = self.config.table
         r = table.ball_radius
         others = positions[[j for j in range(1, on.shape[0]) if on[j]]]
-        target = positions[int(ball_on(on[None])[0])]
-        away = target[None] - table.pockets[:, :2]
-        away /= np.maximum(np.hypot(away[:, 0], away[:, 1]), 1e-12)[:, None]
         dists = np.array([0.15, 0.3, 0.5])
-        straight = (target[None, None] + (2.0 * r + dists[None, :, None]) * away[:, None]).reshape(
-            -1, 2
-        )
+        straight_sets, reach = [], []
+        for ball in self._legal(positions, on):
+            target = positions[ball]
+            away = target[None] - table.pockets[:, :2]
+            length = np.maximum(np.hypot(away[:, 0], away[:, 1]), 1e-12)
+            away /= length[:, None]
+            spots = target[None, None] + (2.0 * r + dists[None, :, None]) * away[:, None]
+            straight_sets.append(spots.reshape(-1, 2))
+            reach.append(np.repeat(length, len(dists)))
+        straight = np.vstack(straight_sets) if straight_sets else np.zeros((0, 2))
         x_high = table.length / 4.0 if behind else table.length
         low = np.array([r, r])
         high = np.array([x_high - r, table.width - r])
@@ -381,7 +435,13 @@ class SearchPlayer(LookaheadAgent):
         free = points_free(table, spots, others, behind)
         # The agent's own margin, wider than the rule's: no cue ball frozen to a ball.
         gaps = np.hypot(*(spots[:, None] - others[None]).transpose(2, 0, 1))
-        return spots[free & (gaps.min(axis=1) >= 2.2 * r)]
+        free &= gaps.min(axis=1) >= 2.2 * r
+        if len(straight_sets) > 1:  # several legal balls: the closest pairs' free spots
+            lengths = np.concatenate(reach)
+            usable = np.flatnonzero(free[: len(straight)])
+            drop = usable[np.argsort(lengths[usable], kind="stable")[STRAIGHT:]]
+            free[drop] = False
+        return spots[free]
 
     # -- the shot --------------------------------------------------------------------------
 
@@ -483,7 +543,7 @@ class SearchPlayer(LookaheadAgent):
             return acts
         out = acts.copy()
         out[pots], shifts = self.windows.centre(
-            positions, on, reference, self._model_rack(), acts[pots]
+            positions, on, reference, self._rack, acts[pots]
         )
         self.last_search["re_aimed"] = int(np.count_nonzero(shifts))
         return out
@@ -494,16 +554,27 @@ class SearchPlayer(LookaheadAgent):
         on_table: NDArray[np.bool_],
         in_hand: NDArray[np.bool_],
         fouls: NDArray[np.int64],
+        targets: NDArray[np.int64] | None = None,
     ) -> NDArray[np.float64]:
-        """A leaf value one shot deeper: the best next shot searched (ball in hand: the leaf)."""
-        out = self.leaf(positions, on_table, in_hand, fouls)
+        """A leaf value one shot deeper: the best next shot searched (ball in hand: the leaf).
+
+        ``targets``: the shooter's legal balls (off 9-ball); its rack row is rebuilt from
+        them (:func:`~agents.learned.legal_sets.shooter_racks`: 8-ball's groups).
+        """
+        if targets is None:
+            out = self.leaf(positions, on_table, in_hand, fouls)
+        else:
+            out = self.leaf(positions, on_table, in_hand, fouls, targets)
         searched = ~np.asarray(in_hand, dtype=np.bool_)
         groups = {tuple(int(f) for f in row) for row in np.asarray(fouls)[searched]}
         runout = self.objective == "runout"
         for group in groups:
             rows = np.flatnonzero(searched & (np.asarray(fouls) == group).all(axis=1))
+            racks = None
+            if targets is not None:
+                racks = shooter_racks(self.config.game, on_table[rows], targets[rows], group)
             out[rows] = best_next_values(
                 self.model, self.mouths, self.leaf, runout, positions[rows], on_table[rows],
-                group, self.settings.next_samples,
+                group, self.settings.next_samples, racks,
             )  # fmt: skip
         return out

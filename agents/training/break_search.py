@@ -1,22 +1,26 @@
-"""Search the 9-ball break: where to place the cue ball, the aim, the speed and the tip.
+"""Search the WPA break: where to place the cue ball, the aim, the speed and the tip.
 
 Usage (from the repository root)::
 
     python -m agents.training.break_search --racks 96 --seed 960000 --noise fastfiz \
         --out results/break_search.json
+    python -m agents.training.break_search --env pool_env/EightBallGame-v1 --racks 200 \
+        --out results/break_search_eight.json
 
 Every arm of a grid (:data:`GRID`: the cue ball's offset from the head spot along the head
-string, the aim off a full hit on the 1, the speed action over the break speed range, the
-vertical tip) breaks the same ``--racks`` racks (random WPA racks, reset with ``seed + k``)
-on the batched game (``gym.make_vec``, the execution noise of ``--noise``), as
-:meth:`agents.learned.search_player.SearchPlayer.break_action` plays it. Each arm is scored
-by what a run-out needs from a break: no foul, a ball made, and a layout with a shot; its
-*value* is the mean over racks of ``legal, made and not won yet x the run-out value of the
-layout left`` (the logistic run-out value, :data:`VALUE`) plus the racks the break wins
-outright. The table prints scratches (fouls), balls made and the value of every arm, best
-first. The :data:`FINALISTS` best are then scored again on ``--check-racks`` fresh racks
+string, the aim off a full hit on the apex ball, the speed action over the break speed
+range, the vertical tip) breaks the same ``--racks`` racks (random WPA racks of ``--env``,
+reset with ``seed + k``) on the batched game (``gym.make_vec``, the execution noise of
+``--noise``), as :meth:`agents.learned.search_player.SearchPlayer.break_action` plays it.
+Each arm is scored by what a run-out needs from a break: no foul, a ball made, and a layout
+with a shot; its *value* is the mean over racks of ``legal, made and not won yet x the
+run-out value of the layout left`` (the logistic run-out value of the game,
+:data:`VALUES`, valued over the breaker's legal balls off 9-ball) plus the racks the break
+wins outright. The table prints scratches (fouls), balls made and the value of every arm,
+best first. The :data:`FINALISTS` best are then scored again on ``--check-racks`` fresh racks
 (seeds from ``--check-seed``), which pick the break: its settings go into
-``models/search_player.yaml`` by hand, with the figures.
+the game's player file (``models/search_player.yaml``, ``_ten``, ``_eight``) by hand, with
+the figures.
 """
 
 from __future__ import annotations
@@ -36,12 +40,20 @@ from agents.evaluation.metrics import wilson
 from agents.evaluation.noise_flag import parse_noise
 from agents.learned.layout_value import LayoutValue
 from agents.learned.leaf_value import LogisticLeaf
+from agents.learned.legal_sets import target_sets
 from agents.learned.search_player import SearchPlayer, SearchSettings
 from pool_env.game.codec import decode_observations, obs_layout
 from pool_env.game.geometry import pocket_mouths
 
-#: The run-out value that scores the layout a break leaves.
-VALUE = "models/runout_value.npz"
+#: The run-out value that scores the layout a break leaves, by game (10-ball: 9-ball's,
+#: as its player file values its leaves).
+VALUES = {
+    "nine": "models/runout_value.npz",
+    "ten": "models/runout_value.npz",
+    "eight": "models/eight_runout_value.npz",
+}
+#: 9-ball's (the default game's).
+VALUE = VALUES["nine"]
 #: The grid: head-string offset (m), aim off a full hit (rad), speed action, vertical tip.
 GRID = {
     "break_y": (-0.45, -0.3, -0.15, 0.0, 0.15, 0.3, 0.45),
@@ -71,7 +83,13 @@ def score_arm(
     value = won.astype(np.float64)
     if go.any():
         hand = np.zeros(int(go.sum()), dtype=np.bool_)
-        value[go] = leaf(after[go], left[go], hand, np.zeros((int(go.sum()), 2), np.int64))
+        fouls = np.zeros((int(go.sum()), 2), np.int64)
+        if config.game == "nine":  # the ball on, as 9-ball's value was fitted
+            value[go] = leaf(after[go], left[go], hand, fouls)
+        else:  # the breaker's legal balls, as its observation says them
+            legal = np.zeros_like(left)
+            legal[:, 1:] = obs[:, obs_layout(config)["legal"]] > 0.5
+            value[go] = leaf(after[go], left[go], hand, fouls, target_sets(legal[go]))
     n = len(obs)
     return {
         "foul": int(foul.sum()), "made": int(made.sum()), "won": int(won.sum()),
@@ -102,16 +120,19 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--check-racks", type=int, default=1000)
     parser.add_argument("--check-seed", type=int, default=970000)
     parser.add_argument("--out", default=None, help="write every arm's counts as JSON here")
+    parser.add_argument("--value", default=None, help="the run-out value (default: VALUES)")
     args = parser.parse_args(argv)
     kwargs: dict[str, Any] = {"end_on_foul": True, "noise": parse_noise(args.noise)}
     vec = gym.make_vec(args.env, num_envs=args.racks, vectorization_mode="vector_entry_point",
                        **kwargs)  # fmt: skip
     env = gym.make(args.env, **kwargs)
-    player = SearchPlayer(env, LayoutValue.load(VALUE))
+    game = env.unwrapped.config.game
+    path = args.value or VALUES.get(game, VALUE)
+    player = SearchPlayer(env, LayoutValue.load(path))
     config = player.config
     sigma = float(config.noise[0]) if config.noise else 0.0
-    leaf = LogisticLeaf(LayoutValue.load(VALUE), config.table, pocket_mouths(config.table),
-                        max(sigma, player.sigma))  # fmt: skip
+    leaf = LogisticLeaf(LayoutValue.load(path), config.table, pocket_mouths(config.table),
+                        max(sigma, player.sigma), game)  # fmt: skip
     start = time.perf_counter()
     rows = []
     for values in itertools.product(*GRID.values()):
@@ -134,7 +155,7 @@ def main(argv: list[str] | None = None) -> int:
     check.close()
     if args.out:
         out = {
-            "env": args.env, "seed": args.seed, "noise": args.noise, "arms": rows,
+            "env": args.env, "value": path, "seed": args.seed, "noise": args.noise, "arms": rows,
             "check_seed": args.check_seed, "checked": checked,
         }  # fmt: skip
         Path(args.out).write_text(json.dumps(out, indent=1) + "\n")

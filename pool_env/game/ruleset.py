@@ -22,6 +22,7 @@ only chooses which of them run and with which arrays. A game decides, in this or
 
 The rest serves players and the codec, read-only: :meth:`Ruleset.obs_layout`,
 :meth:`Ruleset.constraints`, :meth:`Ruleset.first_balls_after`,
+:meth:`Ruleset.legal_first_balls`,
 :meth:`Ruleset.aim_references`, :meth:`Ruleset.cue_columns`, :meth:`Ruleset.encode` and
 the game state as a dict
 (:meth:`Ruleset.state_dict`, :meth:`Ruleset.state_row`, :meth:`Ruleset.shooters`).
@@ -247,6 +248,29 @@ class Ruleset:
         ``potted`` dropped and ``on_after`` are the balls left: here every object ball left.
         """
         return tuple(int(j) for j in np.flatnonzero(on_after[1:]) + 1)
+
+    def legal_first_balls(
+        self,
+        rack: NDArray[np.int64],
+        on_table: NDArray[np.bool_],
+        viewers: NDArray[np.int64] | None = None,
+    ) -> NDArray[np.bool_]:
+        """``(B, N)``: the object balls each viewer may hit first, from rack rows, batched.
+
+        The batched twin of :meth:`constraints`' ``first_balls`` for players that search
+        simulated outcomes (their rack rows after a step): here every object ball on.
+
+        Args:
+            rack: ``(B, rack_width)`` rack-state rows (none here: ``(B, 0)``).
+            on_table: ``(B, N)`` which balls are on the table.
+            viewers: ``(B,)`` whose legal balls (``None``: each row's shooter).
+
+        Returns:
+            A fresh ``(B, N)`` bool array; the cue ball's column is False.
+        """
+        out = np.array(on_table, dtype=np.bool_, ndmin=2)
+        out[:, 0] = False
+        return out
 
     def aim_references(
         self, state: GameState, viewers: NDArray[np.int64] | None = None

@@ -213,8 +213,10 @@ def test_a_break_off_the_table_or_past_the_1_is_refused_by_the_player(kwargs, me
 
 
 def test_the_player_refuses_other_games_and_bad_configs(tmp_path) -> None:
-    with pytest.raises(ValueError, match="9-ball"):
-        SearchPlayer(gym.make("pool_env/TenBallGame-v1"), _value())
+    with pytest.raises(ValueError, match="plays the spin WPA game ids"):
+        SearchPlayer(gym.make("pool_env/SnookerFrame-v1"), _value())
+    with pytest.raises(ValueError, match="got game='eight' on a roll table"):
+        SearchPlayer(gym.make("pool_env/EightBallGameRoll-v1"), _value())
     bad = tmp_path / "bad.yaml"
     bad.write_text("kind: lookahead\n")
     with pytest.raises(ValueError, match="kind must be 'search'"):

@@ -333,6 +333,40 @@ class WpaGame(Ruleset):
         group = [j for j in left if (j < 8) == (potted < 8) and j != 8]
         return tuple(group or [j for j in left if j == 8])
 
+    def legal_first_balls(
+        self,
+        rack: NDArray[np.int64],
+        on_table: NDArray[np.bool_],
+        viewers: NDArray[np.int64] | None = None,
+    ) -> NDArray[np.bool_]:
+        """``(B, N)``: the balls each viewer may hit first, by the rules' own kernel.
+
+        :func:`~pool_env.game.games.wpa.observe.legal_balls` over rack rows (the rule
+        observation's legal-ball flags, batched): the ball on in 9-ball and 10-ball; in
+        8-ball the viewer's group, every ball but the 8 on an open table, the 8 once the
+        group is cleared, any ball on the break.
+
+        Args:
+            rack: ``(B, N_RACK)`` rack-state rows (after a simulated step, say).
+            on_table: ``(B, N)`` which balls are on the table.
+            viewers: ``(B,)`` whose legal balls, 0 or 1 (``None``: each row's shooter).
+
+        Raises:
+            ValueError: On shapes that do not fit or a viewer that is not 0 or 1.
+        """
+        rows = np.ascontiguousarray(rack, dtype=np.int64)
+        on = np.ascontiguousarray(on_table, dtype=np.bool_)
+        if rows.ndim != 2 or on.ndim != 2 or rows.shape != (on.shape[0], wpa.N_RACK):
+            raise ValueError(
+                f"rack must be (B, {wpa.N_RACK}) and on_table (B, N), got {rows.shape} and "
+                f"{on.shape}"
+            )
+        seats = rows[:, wpa.SHOOTER] if viewers is None else viewers
+        seats = np.ascontiguousarray(np.broadcast_to(seats, (on.shape[0],)), dtype=np.int64)
+        if ((seats != 0) & (seats != 1)).any():
+            raise ValueError(f"viewers must be 0 or 1, got {np.unique(seats).tolist()}")
+        return legal_balls(self.code, on, rows, seats)
+
     def placed_cue(self, state: GameState) -> tuple[float, float] | None:
         """Where table 0's cue ball stands if it was in hand, else ``None``."""
         if not state.rack[0, wpa.IN_HAND]:
