@@ -42,6 +42,11 @@ __all__ = ["Playback", "ShotRecord", "describe_shot", "main", "play_rack", "watc
 GIF_MAX_FPS = 50
 
 
+def _is_number(value: object) -> bool:
+    """A real number, not a bool (``True`` is no speed)."""
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
 @dataclass(frozen=True)
 class Playback:
     """How the rack is drawn and played back; checked when made.
@@ -68,9 +73,9 @@ class Playback:
         if isinstance(self.fps, bool) or not isinstance(self.fps, int) or self.fps < 1:
             raise ValueError(f"--fps must be an integer >= 1, got {self.fps!r}")
         for flag, value in (("--speed", self.speed), ("--max-seconds-per-shot", self.max_seconds)):
-            if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+            if not (_is_number(value) and math.isfinite(value) and value > 0):
                 raise ValueError(f"{flag} must be a finite number > 0, got {value!r}")
-        if not (isinstance(self.hold, int | float) and math.isfinite(self.hold) and self.hold >= 0):
+        if not (_is_number(self.hold) and math.isfinite(self.hold) and self.hold >= 0):
             raise ValueError(f"--hold must be a finite number of seconds >= 0, got {self.hold!r}")
 
     def check_file(self, path: str | Path) -> str:
@@ -101,7 +106,7 @@ class ShotRecord:
     """One shot of the rack as played.
 
     Attributes:
-        number: 1 for the break.
+        number: 1 for the first (the break of a rack game).
         info: The step's ``info``, as the env returned it.
         frames: How many frames the shot was drawn in.
         line: What :func:`describe_shot` printed for it.
@@ -136,7 +141,7 @@ def describe_shot(number: int, info: dict[str, Any]) -> str:
         words.append(f"rack lost: {info['loss']}" if info.get("loss") else "rack lost")
     elif info.get("turn_over"):
         words.append("turn over")
-    return f"shot {number}{' (break)' if number == 1 else ''}: " + "; ".join(words)
+    return f"shot {number}: " + "; ".join(words)
 
 
 def play_rack(

@@ -92,7 +92,7 @@ def test_each_shot_is_told_as_the_env_reports_it(
     shot_lines = [line for line in lines if line.startswith("shot ")]
     assert len(shot_lines) == len(infos) == 2
     for k, (line, info) in enumerate(zip(shot_lines, infos, strict=True), start=1):
-        assert line.startswith(f"shot {k}{' (break)' if k == 1 else ''}: ")
+        assert line.startswith(f"shot {k}: ")
         potted = ", ".join(str(b) for b in info["potted"])
         assert (f"potted {potted}" if potted else "nothing potted") in line
         assert (f"foul: {info['foul']}" in line) == (info["foul"] is not None)
@@ -106,7 +106,7 @@ def test_each_shot_is_told_as_the_env_reports_it(
 @pytest.mark.parametrize(
     ("info", "line"),
     [
-        ({"potted": (1, 9), "foul": None, "winner": 0}, "shot 1 (break): potted 1, 9; rack won"),
+        ({"potted": (1, 9), "foul": None, "winner": 0}, "shot 1: potted 1, 9; rack won"),
         (
             {"potted": (), "foul": "scratch", "turn_over": True, "winner": -1},
             "shot 2: nothing potted; foul: scratch; turn over",
@@ -123,8 +123,7 @@ def test_each_shot_is_told_as_the_env_reports_it(
     ],
 )  # fmt: skip
 def test_a_shot_in_words(info: dict, line: str) -> None:
-    number = 1 if "break" in line else 2
-    assert describe_shot(number, info) == line
+    assert describe_shot(int(line.split()[1].rstrip(":")), info) == line
 
 
 @pytest.mark.parametrize(
@@ -143,6 +142,7 @@ def test_a_shot_in_words(info: dict, line: str) -> None:
         (["--width", "10"], ["render_width", "10"]),
         (["--env-kwargs", "[1, 2]"], ["--env-kwargs", "mapping", "[1, 2]"]),
         (["--env-kwargs", "{max_shot: 3}"], ["max_shot"]),
+        (["--env", "pool_env/OneBall-v1", "--run-out"], ["end_on_foul", "solitaire"]),
     ],
 )
 def test_bad_input_is_a_usage_error_naming_it(
@@ -177,6 +177,7 @@ def test_a_directory_is_no_file_to_write(
         ({"fps": 0}, "--fps must be an integer >= 1, got 0"),
         ({"fps": 2.5}, "--fps must be an integer >= 1, got 2.5"),
         ({"speed": float("inf")}, "--speed must be a finite number > 0, got inf"),
+        ({"speed": True}, "--speed must be a finite number > 0, got True"),
         ({"max_seconds": 0.0}, "--max-seconds-per-shot must be a finite number > 0, got 0.0"),
         ({"hold": -1.0}, "--hold must be a finite number of seconds >= 0, got -1.0"),
     ],
