@@ -3,7 +3,7 @@
 Usage::
 
     python -m agents.evaluation.watch --agent models/search_player.yaml \
-        --env pool_env/NineBallGame-v2 --seed 949000 --run-out --out docs/search_rack.gif
+        --env pool_env/NineBallGame-v2 --seed 0 --run-out --out rack.gif
 
 The player is any ``--agent`` the other commands take (a baseline by name or a file,
 :func:`~agents.evaluation.players.make_agent`) on any id; it plays one episode from
