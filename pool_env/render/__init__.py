@@ -17,7 +17,12 @@ balls), :mod:`.paths` (trails and frame times, curved paths sampled as they are)
 :mod:`.window` (the pygame window).
 """
 
-from pool_env.render.animation import save_animation, shot_frames
+from pool_env.render.animation import (
+    ANIMATION_SUFFIXES,
+    animation_suffix,
+    save_animation,
+    shot_frames,
+)
 from pool_env.render.canvas import Renderer
 from pool_env.render.cue import Strike, draw_cue, draw_tip_marker, strike_frames
 from pool_env.render.palette import (
@@ -42,6 +47,7 @@ RENDER_FPS = {"rgb_array": 2, "rgb_array_list": 30, "human": 30}
 LIST_PLAYBACK = {"speed": 2.0, "max_seconds": 4.0, "min_frames": 20}
 
 __all__ = [
+    "ANIMATION_SUFFIXES",
     "BALL_COLOURS",
     "CLOTH",
     "CUSHION",
@@ -55,6 +61,7 @@ __all__ = [
     "Renderer",
     "Strike",
     "Window",
+    "animation_suffix",
     "draw_cue",
     "draw_tip_marker",
     "has_display",

@@ -67,19 +67,38 @@ def shot_frames(
     return frames
 
 
+#: The files :func:`save_animation` writes, by suffix (any case).
+ANIMATION_SUFFIXES = (".gif", ".mp4")
+
+
+def animation_suffix(path: str | os.PathLike[str]) -> str:
+    """The suffix of an animation file, lower case: ``".gif"`` or ``".mp4"``.
+
+    A command that writes one checks its path with this before it plays anything.
+
+    Raises:
+        ValueError: On another suffix, naming the path as given.
+    """
+    suffix = Path(path).suffix.lower()
+    if suffix not in ANIMATION_SUFFIXES:
+        raise ValueError(f"save an animation as .gif or .mp4, got {str(path)!r}")
+    return suffix
+
+
 def save_animation(frames: list[Frame], path: str | os.PathLike[str], fps: int = 30) -> None:
     """Write frames as an animated GIF (``.gif``) or an MP4 video (``.mp4``).
 
+    A GIF keeps a run of identical frames as one frame shown as long (Pillow merges them),
+    so its frame count can be below ``len(frames)``; its playing time is theirs.
+
     Raises:
-        ValueError: On another file suffix or no frames.
+        ValueError: On another file suffix (:func:`animation_suffix`) or no frames.
         gymnasium.error.DependencyNotInstalled: Without imageio (the ``render`` extra), or
             without ``imageio-ffmpeg`` (which the extra's moviepy brings) for MP4.
     """
     from gymnasium.error import DependencyNotInstalled
 
-    suffix = Path(path).suffix.lower()
-    if suffix not in (".gif", ".mp4"):
-        raise ValueError(f"save an animation as .gif or .mp4, got {str(path)!r}")
+    suffix = animation_suffix(path)
     if not frames:
         raise ValueError("no frames to save")
     iio = require("imageio.v3", "render", "saving animations", DependencyNotInstalled)
