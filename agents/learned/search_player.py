@@ -542,9 +542,7 @@ class SearchPlayer(LookaheadAgent):
         if not pots.size:
             return acts
         out = acts.copy()
-        out[pots], shifts = self.windows.centre(
-            positions, on, reference, self._rack, acts[pots]
-        )
+        out[pots], shifts = self.windows.centre(positions, on, reference, self._rack, acts[pots])
         self.last_search["re_aimed"] = int(np.count_nonzero(shifts))
         return out
 
