@@ -324,8 +324,8 @@ class SearchPlayer(LookaheadAgent):
         if leaf is not None:
             self.leaf = leaf
         self.spot_rng = np.random.default_rng(seed)
-        #: The pot windows' fans (``None``: ``settings.fans`` is 0).
-        self.windows = AimWindows(self.config, s.fans) if s.fans else None
+        #: The pot windows' fans, built for ``settings.fans`` when first needed.
+        self.windows: AimWindows | None = None
         self._start = 0.0
         #: What the last decision did: candidates, rounds, plays, seconds.
         self.last_search: dict[str, Any] = {}
@@ -462,7 +462,7 @@ class SearchPlayer(LookaheadAgent):
             self.last_values = None
             return -1, None
         acts = np.stack(actions)
-        if self.windows is not None:
+        if s.fans:
             acts = self._centred(positions, on, reference, acts, kinds)
         first = self._values(positions, on, acts, s.samples)
         finalists = np.argsort(-first, kind="stable")[: s.finalists]
@@ -537,7 +537,8 @@ class SearchPlayer(LookaheadAgent):
         kinds: list[str],
     ) -> NDArray[np.float64]:
         """The planned pots (the planner's, the ghost-ball agent's, the banks) re-aimed."""
-        assert self.windows is not None
+        if self.windows is None or self.windows.steps != self.settings.fans:
+            self.windows = AimWindows(self.config, self.settings.fans)
         pots = np.flatnonzero([kind in ("pot", "ghost", "bank") for kind in kinds])
         if not pots.size:
             return acts
