@@ -30,6 +30,7 @@ written and where it was looked for.
 from __future__ import annotations
 
 import difflib
+import inspect
 import reprlib
 from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass
@@ -38,6 +39,7 @@ from typing import Any, TypeVar
 
 from agents.learned.layout_value import LayoutValue
 from agents.learned.leaf_value import SetLeaf
+from agents.learned.lookahead import PLAY_SETTINGS, LookaheadAgent
 from agents.learned.search_player import (
     GAME_IDS,
     SETTINGS,
@@ -133,6 +135,25 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
     if file.set_value is not None and not duel:  # the set network predicts run-outs
         player.leaf = SetLeaf(file.set_value, player.config.table, player.mouths, player.sigma)
     return player
+
+
+def load_lookahead_agent(
+    path: str | Path, env: Any, config: dict[str, Any], players: int | None = None
+) -> SearchPlayer:
+    """The lookahead of a layout value saved at ``path``: the search player at depth 1.
+
+    ``config`` is the value's ``<stem>_config.yaml`` (``kind: lookahead``): its objective
+    and :data:`~agents.learned.lookahead.PLAY_SETTINGS` (the planner's pots kept, the plays
+    of every candidate and of the finalists, the break arm) become the player's settings
+    (:class:`SearchSettings` ``depth=1``), so that a lookahead file and a player file make
+    the same player, at two settings. ``players``: as :class:`SearchPlayer`.
+    """
+    # The config's settings over the lookahead's own defaults (a config may leave any out).
+    own = inspect.signature(LookaheadAgent.__init__).parameters
+    given = {k: config.get(k, own[k].default) for k in PLAY_SETTINGS}
+    objective, arm = given.pop("objective"), given.pop("break_arm")
+    settings = SearchSettings(depth=1, break_arm=-1 if arm is None else arm, **given)
+    return SearchPlayer(env, LayoutValue.load(path), objective, settings, players=players)
 
 
 def _read(path: Path, table: Table, duel: bool) -> PlayerFile:
