@@ -121,12 +121,18 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
     config = env.unwrapped.config
     duel = (players if players is not None else config.players) == 2
     file = read_player_file(path, config.table, duel=duel)
+    if config.game not in GAMES:  # not a WPA game at all: no file of ours plays it
+        ids = ", ".join(GAMES.values())
+        raise ValueError(
+            f"player file {str(path)!r}: the search player plays the WPA game ids ({ids}), "
+            f"not game={config.game!r}"
+        )
     if config.game != file.game:
         fitted = {"nine": "9-ball", "ten": "10-ball (9-ball's values)", "eight": "8-ball"}
         raise ValueError(
             f"player file {str(path)!r}: game {file.game!r} (values for {fitted[file.game]} "
             f"layouts) cannot play game={config.game!r}: use a file with game: "
-            f"{config.game} for {GAMES.get(config.game, 'a WPA game id')}"
+            f"{config.game} for {GAMES[config.game]}"
         )
     value = file.duel_value if duel else file.layout_value
     assert value is not None  # read_player_file requires it for a duel
