@@ -153,7 +153,16 @@ def load_lookahead_agent(
     of every candidate and of the finalists, the break arm) become the player's settings
     (:class:`SearchSettings` ``depth=1``), so that a lookahead file and a player file make
     the same player, at two settings. ``players``: as :class:`SearchPlayer`.
+
+    Raises:
+        ValueError: On a game other than 9-ball and 10-ball (the values are 9-ball's).
     """
+    game = env.unwrapped.config.game
+    if game not in ("nine", "ten"):  # as the lookahead class: 9-ball's values, rotation
+        raise ValueError(
+            f"lookahead file {str(path)!r} holds 9-ball layout values (10-ball reads them the "
+            f"same way), not game={game!r}: 8-ball's player is models/search_player_eight.yaml"
+        )
     # The config's settings over the lookahead's own defaults (a config may leave any out).
     own = inspect.signature(LookaheadAgent.__init__).parameters
     given = {k: config.get(k, own[k].default) for k in PLAY_SETTINGS}

@@ -383,3 +383,5 @@ def test_a_lookahead_file_is_the_search_player_at_depth_1_shot_for_shot(name, pl
             if steps[0][2] or steps[0][3]:
                 break
     assert shots >= 4
+    with pytest.raises(ValueError, match=r"holds 9-ball layout values.*not game='eight'"):
+        make_agent(str(path), gym.make("pool_env/EightBallGame-v1"), players=players)
