@@ -102,19 +102,33 @@ def env_spec(env: Any) -> EnvSpec:
 def decode_observation(obs: NDArray[np.floating], table: Table) -> Layout:
     """Invert :func:`pool_env.encode_observations` for one observation (float32 precision).
 
-    The env's inverse (:func:`pool_env.game.codec.decode_observations`); balls that decode
-    closer than ``2R`` (touching in the real layout) are then pushed apart along their line
-    of centres, so that the simulator accepts the layout.
+    The env's inverse (:func:`pool_env.game.codec.decode_observations`, which keeps every
+    centre within ``R`` of the rails); balls that decode closer than ``2R`` (touching in
+    the real layout, or a ball resting in a pocket's throat brought back onto the rail line
+    next to one frozen to it) are then pushed apart along their line of centres, each kept
+    within the rails too, so that the simulator accepts the layout.
     """
     decoded, on = decode_observations(table, np.asarray(obs, dtype=np.float64)[None])
     positions, on_table = decoded[0], on[0]
     r = table.ball_radius
-    _separate(positions, on_table, 2.0 * r * (1.0 + 1e-9))
+    box = (np.array([r, r]), np.array([table.length - r, table.width - r]))
+    _separate(positions, on_table, 2.0 * r * (1.0 + 1e-9), box)
     return positions, on_table
 
 
-def _separate(positions: NDArray[np.float64], on_table: NDArray[np.bool_], reach: float) -> None:
-    """Push overlapping balls apart in place, a few sweeps (rounding-sized overlaps only)."""
+def _separate(
+    positions: NDArray[np.float64],
+    on_table: NDArray[np.bool_],
+    reach: float,
+    box: tuple[NDArray[np.float64], NDArray[np.float64]],
+) -> None:
+    """Push overlapping balls apart in place, a few sweeps, keeping centres inside ``box``.
+
+    A ball the box stops (on a rail line) leaves the rest of the push to the other one:
+    pushed past a rail line, a centre could land in a pocket's jaw, which the simulator
+    refuses.
+    """
+    low, high = box
     rows = on_table.nonzero()[0]
     for _ in range(8):
         moved = False
@@ -124,8 +138,11 @@ def _separate(positions: NDArray[np.float64], on_table: NDArray[np.bool_], reach
                 dist = float(np.hypot(d[0], d[1]))
                 if 0.0 < dist < reach:
                     push = (reach - dist) / 2.0 * d / dist
-                    positions[a] -= push
-                    positions[b] += push
+                    want_a, want_b = positions[a] - push, positions[b] + push
+                    got_a, got_b = np.clip(want_a, low, high), np.clip(want_b, low, high)
+                    # Each also moves whatever part of the other's push the box stopped.
+                    positions[a] = np.clip(got_a - (want_b - got_b), low, high)
+                    positions[b] = np.clip(got_b - (want_a - got_a), low, high)
                     moved = True
         if not moved:
             return

@@ -22,8 +22,7 @@ from agents.baselines.search import SearchAgent
 from agents.baselines.shot_row import ShotRowAgent
 from agents.evaluation.constant_scan import best_constant_agent
 from agents.learned.envs import make_env
-from agents.learned.lookahead import load_lookahead_agent
-from agents.learned.player_file import load_search_player
+from agents.learned.player_file import load_lookahead_agent, load_search_player
 from agents.learned.pretrained import load_model, model_config
 from agents.learned.rack_net import load_rack_net
 from agents.learned.rack_play import RackAgent, load_rack_agent, rack_model_config

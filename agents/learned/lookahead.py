@@ -36,7 +36,6 @@ that pots a ball is valued as any miss (the opponent's option to hand it back is
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -59,7 +58,8 @@ GRID_OFFSETS = PUSH_OFFSETS
 GRID_SPEEDS = (0.9, 1.5, 2.3, 3.3)
 #: What the agent optimises: the two-player rack, or a run-out.
 OBJECTIVES = ("duel", "runout")
-#: The settings a saved model's config carries (:func:`load_lookahead_agent`).
+#: The settings a saved model's config carries
+#: (:func:`agents.learned.player_file.load_lookahead_agent`).
 PLAY_SETTINGS = ("objective", "pots", "samples", "finalists", "final_samples", "break_arm")
 
 
@@ -256,14 +256,3 @@ class LookaheadAgent(RackAgent):
         return outcome_values(
             leaf or self.leaf, runout, result, after, left, self._fouls, racks, ruleset
         )
-
-
-def load_lookahead_agent(
-    path: str | Path, env: Any, config: dict[str, Any], players: int | None = None
-) -> LookaheadAgent:
-    """The :class:`LookaheadAgent` of a layout value saved at ``path`` with its config.
-
-    ``players``: as :class:`LookaheadAgent`.
-    """
-    settings = {k: config[k] for k in PLAY_SETTINGS if k in config}
-    return LookaheadAgent(env, LayoutValue.load(path), players=players, **settings)

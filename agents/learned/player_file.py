@@ -30,6 +30,7 @@ written and where it was looked for.
 from __future__ import annotations
 
 import difflib
+import inspect
 import reprlib
 from collections.abc import Callable, Hashable, Iterable, Mapping
 from dataclasses import dataclass
@@ -38,6 +39,7 @@ from typing import Any, TypeVar
 
 from agents.learned.layout_value import LayoutValue
 from agents.learned.leaf_value import SetLeaf
+from agents.learned.lookahead import PLAY_SETTINGS, LookaheadAgent
 from agents.learned.search_player import (
     GAME_IDS,
     SETTINGS,
@@ -119,12 +121,18 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
     config = env.unwrapped.config
     duel = (players if players is not None else config.players) == 2
     file = read_player_file(path, config.table, duel=duel)
+    if config.game not in GAMES:  # not a WPA game at all: no file of ours plays it
+        ids = ", ".join(GAMES.values())
+        raise ValueError(
+            f"player file {str(path)!r}: the search player plays the WPA game ids ({ids}), "
+            f"not game={config.game!r}"
+        )
     if config.game != file.game:
         fitted = {"nine": "9-ball", "ten": "10-ball (9-ball's values)", "eight": "8-ball"}
         raise ValueError(
             f"player file {str(path)!r}: game {file.game!r} (values for {fitted[file.game]} "
             f"layouts) cannot play game={config.game!r}: use a file with game: "
-            f"{config.game} for {GAMES.get(config.game, 'a WPA game id')}"
+            f"{config.game} for {GAMES[config.game]}"
         )
     value = file.duel_value if duel else file.layout_value
     assert value is not None  # read_player_file requires it for a duel
@@ -133,6 +141,34 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
     if file.set_value is not None and not duel:  # the set network predicts run-outs
         player.leaf = SetLeaf(file.set_value, player.config.table, player.mouths, player.sigma)
     return player
+
+
+def load_lookahead_agent(
+    path: str | Path, env: Any, config: dict[str, Any], players: int | None = None
+) -> SearchPlayer:
+    """The lookahead of a layout value saved at ``path``: the search player at depth 1.
+
+    ``config`` is the value's ``<stem>_config.yaml`` (``kind: lookahead``): its objective
+    and :data:`~agents.learned.lookahead.PLAY_SETTINGS` (the planner's pots kept, the plays
+    of every candidate and of the finalists, the break arm) become the player's settings
+    (:class:`SearchSettings` ``depth=1``), so that a lookahead file and a player file make
+    the same player, at two settings. ``players``: as :class:`SearchPlayer`.
+
+    Raises:
+        ValueError: On a game other than 9-ball and 10-ball (the values are 9-ball's).
+    """
+    game = env.unwrapped.config.game
+    if game not in ("nine", "ten"):  # as the lookahead class: 9-ball's values, rotation
+        raise ValueError(
+            f"lookahead file {str(path)!r} holds 9-ball layout values (10-ball reads them the "
+            f"same way), not game={game!r}: 8-ball's player is models/search_player_eight.yaml"
+        )
+    # The config's settings over the lookahead's own defaults (a config may leave any out).
+    own = inspect.signature(LookaheadAgent.__init__).parameters
+    given = {k: config.get(k, own[k].default) for k in PLAY_SETTINGS}
+    objective, arm = given.pop("objective"), given.pop("break_arm")
+    settings = SearchSettings(depth=1, break_arm=-1 if arm is None else arm, **given)
+    return SearchPlayer(env, LayoutValue.load(path), objective, settings, players=players)
 
 
 def _read(path: Path, table: Table, duel: bool) -> PlayerFile:

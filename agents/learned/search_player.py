@@ -39,6 +39,11 @@ The leaf values are per game (``models/search_player_ten.yaml``: 9-ball's, whose
 read the same in 10-ball; ``models/search_player_eight.yaml``: values fitted on 8-ball
 layouts); the set network is 9-ball's only.
 
+**The lookahead is its cheap setting** (``depth=1``): one ply, no clock, the
+finalists played ``final_samples`` times more, the planner's ball-in-hand spot and break
+arm; a lookahead file (``kind: lookahead``) loads as this player at depth 1
+(:func:`agents.learned.player_file.load_lookahead_agent`).
+
 The leaf value is the logistic layout value or the set network
 (:mod:`agents.learned.set_value`), named in the player file
 (:mod:`agents.learned.player_file`, which checks it). The numba kernels split large
@@ -64,6 +69,7 @@ from agents.learned.leaf_value import LeafValue, SetLeaf
 from agents.learned.legal_sets import shooter_racks
 from agents.learned.lookahead import LookaheadAgent
 from agents.learned.next_shots import best_next_values
+from agents.learned.rack_play import BREAK_ARMS
 from agents.learned.shot_fans import AimWindows
 from pool_env.game.checks import is_integer, parse_float
 from pool_env.game.geometry import points_free
@@ -103,6 +109,15 @@ class SearchSettings:
         banks: Bank and kick pots kept among the candidates (the most forgiving first,
             one per pocket: :func:`~agents.baselines.spin_play.traced_pots`); 0: none
             beyond the ghost-ball agent's own choice.
+        depth: 2, the search (the settings above); 1, the lookahead, its cheap setting:
+            one ply, no clock, ``samples`` plays of every candidate and ``final_samples``
+            more of the ``finalists`` best, the planner's ball-in-hand spot (``fans``,
+            ``banks`` and ``safeties`` apply to the search only).
+        pots: The spin planner's pots kept among the candidates, best by its score first.
+        final_samples: Depth 1: the finalists' extra plays.
+        break_arm: -1 breaks as ``break_y`` .. ``break_tip`` say (the searched break);
+            ``k >= 0`` as the rack planner's arm ``k``
+            (:data:`agents.learned.rack_play.BREAK_ARMS`: the head spot, a full hit).
         safeties: Keep the grid of centre-ball hits across the ball on (safeties,
             combinations, kisses) among the candidates; ``False`` plays pots only (the
             ablation of the safeties).
@@ -127,6 +142,10 @@ class SearchSettings:
     fans: int = 0
     banks: int = 0
     safeties: bool = True
+    depth: int = 2
+    pots: int = 8
+    final_samples: int = 24
+    break_arm: int = -1
 
     def __post_init__(self) -> None:
         for name in SETTINGS:  # frozen: the checked values (a tuple for the tip) set back
@@ -153,6 +172,10 @@ COUNTS: dict[str, tuple[int, int, str]] = {
     "hand_spots": (0, 200, _HAND),
     "hand_samples": (1, 16, _HAND),
     "banks": (0, 16, "first ply: ~45 candidates + banks, x samples tables"),
+    "depth": (1, 2, "1: the lookahead, 2: the search"),
+    "pots": (1, 32, "first ply: the planner's pots among ~45 candidates x samples tables"),
+    "final_samples": (0, 512, "depth 1: finalists x final_samples tables"),
+    "break_arm": (-1, len(BREAK_ARMS) - 1, "-1: the searched break; k: the planner's arm k"),
     "fans": (
         0,
         32,
@@ -187,7 +210,8 @@ def check_setting(name: str, value: object, label: str) -> int | float | bool | 
     """
     if name in COUNTS:
         least, most, why = COUNTS[name]
-        memory = "" if name == "min_rounds" else ", ~5 KB each: a shot well under 1 GB"
+        plain = name in ("min_rounds", "depth", "break_arm")  # no batch of tables
+        memory = "" if plain else ", ~5 KB each: a shot well under 1 GB"
         if not is_integer(value) or not least <= value <= most:  # type: ignore[operator]
             raise ValueError(
                 f"{label} must be an integer in [{least}, {most}] ({why}{memory}), got {value!r}"
@@ -310,10 +334,14 @@ class SearchPlayer(LookaheadAgent):
                 f"{type(self).__name__} plays the spin WPA game ids ({ids}), got "
                 f"game={config.game!r}"
             )
+        lookahead = s.depth == 1
         super().__init__(
-            env, value, objective, samples=s.samples, finalists=s.finalists, final_samples=0,
-            break_arm=None, seed=seed, players=players,
+            env, value, objective, pots=s.pots, samples=s.samples, finalists=s.finalists,
+            final_samples=s.final_samples if lookahead else 0,
+            break_arm=s.break_arm if s.break_arm >= 0 else None, seed=seed, players=players,
         )  # fmt: skip
+        if lookahead:  # what last_plan["kind"] says of a shot: the plies that chose it
+            self.KIND = LookaheadAgent.KIND
         check_break(s, self.config.table)
         self.settings = s
         if isinstance(leaf, SetLeaf) and config.game != "nine":
@@ -338,7 +366,7 @@ class SearchPlayer(LookaheadAgent):
         self._start = time.perf_counter()
         self.last_search = {}
         action = super()._plan(obs, positions, on)
-        if self.last_plan.get("kind") == "break":
+        if self.last_plan.get("kind") == "break" and self.settings.break_arm < 0:
             action = self.break_action(positions, on)
         self.last_search["seconds"] = time.perf_counter() - self._start
         return action
@@ -386,8 +414,11 @@ class SearchPlayer(LookaheadAgent):
         reference: NDArray[np.bool_],
         behind: bool,
     ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-        """The spot whose best searched shot is worth the most (module doc, item 4)."""
-        spots = self._spots(positions, on, behind)
+        """The spot whose best searched shot is worth the most (module doc, item 4).
+
+        At depth 1 (the lookahead), the planner's straight-in spot.
+        """
+        spots = self._spots(positions, on, behind) if self.settings.depth == 2 else []
         if not len(spots):
             return super()._place(positions, on, reference, behind)
         layouts = np.repeat(positions[None], len(spots), axis=0)
@@ -448,8 +479,13 @@ class SearchPlayer(LookaheadAgent):
     def _choose(
         self, positions: NDArray[np.float64], on: NDArray[np.bool_], reference: NDArray[np.bool_]
     ) -> tuple[int, NDArray[np.float32] | None]:
-        """The finalist of the best two-ply mean (module doc, items 1-3)."""
+        """The finalist of the best two-ply mean (module doc, items 1-3).
+
+        At depth 1 (the lookahead), the candidate of the best one-ply mean.
+        """
         s = self.settings
+        if s.depth == 1:
+            return super()._choose(positions, on, reference)
         actions, pockets, kinds = self._candidates(positions, on, reference)
         for action, pocket in self._banks(positions, on, reference):
             actions.append(action)

@@ -354,3 +354,34 @@ def test_duel_collection_builds_both_sides_as_the_duels_do(monkeypatch) -> None:
     monkeypatch.setattr(fit, "make_agent", recording)
     fit.collect("ghost", "ghost", racks=1, seed=70000)
     assert seen == [("ghost", 2), ("ghost", 2)]
+
+
+@pytest.mark.parametrize(("name", "players"), [("duel_value.npz", 2), ("runout_value.npz", None)])
+def test_a_lookahead_file_is_the_search_player_at_depth_1_shot_for_shot(name, players) -> None:
+    """The lookahead is the search's cheap setting: the same shots as the lookahead class."""
+    from agents.learned.lookahead import PLAY_SETTINGS
+    from agents.learned.rack_play import rack_model_config
+    from agents.learned.search_player import SearchPlayer
+
+    path = Path(__file__).resolve().parents[2] / "models" / name
+    config = rack_model_config(path)
+    envs = [gym.make(ENV_ID, noise="fastfiz") for _ in range(2)]
+    settings = {k: config[k] for k in PLAY_SETTINGS if k in config}
+    own = LookaheadAgent(envs[0], LayoutValue.load(path), players=players, **settings)
+    player = make_agent(str(path), envs[1], players=players)
+    assert isinstance(player, SearchPlayer) and player.settings.depth == 1
+    shots = 0
+    for seed in (11, 12):
+        obs = [env.reset(seed=seed)[0] for env in envs]
+        for _ in range(4):
+            actions = [agent.predict(o)[0] for agent, o in zip((own, player), obs, strict=True)]
+            np.testing.assert_array_equal(actions[0], actions[1])
+            assert player.last_plan["kind"] == own.last_plan["kind"]  # "lookahead", a break
+            steps = [env.step(a) for env, a in zip(envs, actions, strict=True)]
+            obs = [s[0] for s in steps]
+            shots += 1
+            if steps[0][2] or steps[0][3]:
+                break
+    assert shots >= 4
+    with pytest.raises(ValueError, match=r"holds 9-ball layout values.*not game='eight'"):
+        make_agent(str(path), gym.make("pool_env/EightBallGame-v1"), players=players)

@@ -192,6 +192,9 @@ def test_the_break_places_the_cue_ball_on_the_head_string_and_hits_the_1() -> No
         ({"break_speed": 1.5}, "break_speed must be a finite number in"),
         ({"break_tip": (0.0, 2.0)}, "break_tip must be two finite numbers"),
         ({"break_tip": "ab"}, "break_tip must be two finite numbers"),
+        ({"depth": 3}, r"depth must be an integer in \[1, 2\] \(1: the lookahead, 2: the search\)"),
+        ({"break_arm": 20}, r"break_arm must be an integer in \[-1, 19\]"),
+        ({"final_samples": -1}, r"final_samples must be an integer in \[0, 512\]"),
     ],
 )
 def test_bad_settings_are_refused(kwargs, message) -> None:
