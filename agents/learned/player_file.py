@@ -159,9 +159,10 @@ def load_lookahead_agent(
     """
     game = env.unwrapped.config.game
     if game not in ("nine", "ten"):  # as the lookahead class: 9-ball's values, rotation
+        hint = ": 8-ball's player is models/search_player_eight.yaml" if game == "eight" else ""
         raise ValueError(
             f"lookahead file {str(path)!r} holds 9-ball layout values (10-ball reads them the "
-            f"same way), not game={game!r}: 8-ball's player is models/search_player_eight.yaml"
+            f"same way), not game={game!r}{hint}"
         )
     # The config's settings over the lookahead's own defaults (a config may leave any out).
     own = inspect.signature(LookaheadAgent.__init__).parameters
