@@ -8,11 +8,14 @@ noise in force in a command's header.
 
 from __future__ import annotations
 
+import argparse
+from typing import Any
+
 from pool_env import Table
 from pool_env.game.checks import parse_noise as parse_env_noise
 from pool_env.game.noise import NOISE_MODELS, NoiseSpec
 
-__all__ = ["FIELD_NOISE", "NO_NOISE", "noise_label", "parse_noise"]
+__all__ = ["FIELD_NOISE", "NO_NOISE", "noise_kwargs", "noise_label", "parse_noise"]
 
 #: ``--noise`` spellings of no noise at all (exact shots).
 NO_NOISE = ("none", "0")
@@ -64,3 +67,16 @@ def noise_label(noise: object) -> str:
     if isinstance(noise, tuple | list) and noise and noise[0] in NOISE_MODELS:
         return f"{noise[0]}:{noise[1]:g} (FastFiz x{noise[1]:g})"
     return "sigmas " + ", ".join(f"{float(v):g}" for v in noise)  # type: ignore[union-attr]
+
+
+def noise_kwargs(parser: argparse.ArgumentParser, text: str) -> dict[str, Any]:
+    """The env's keywords for a command's ``--noise`` text: ``{"noise": ...}``, or none.
+
+    A value :func:`parse_noise` refuses is the command's usage error (``parser.error``:
+    one line, status 2).
+    """
+    try:
+        noise = parse_noise(text)
+    except ValueError as err:
+        parser.error(str(err))
+    return {} if noise is None else {"noise": noise}

@@ -29,7 +29,7 @@ from typing import Any
 import numpy as np
 
 from agents.evaluation.metrics import Z95, Estimate, wilson
-from agents.evaluation.noise_flag import parse_noise
+from agents.evaluation.noise_flag import noise_kwargs
 from agents.evaluation.players import check_agents, check_game_id, make_agent
 from agents.learned.envs import make_env
 from agents.policy import Policy
@@ -167,13 +167,7 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     if args.racks < 1:
         parser.error("--racks must be >= 1")
-    kwargs: dict[str, Any] = {}
-    try:
-        noise = parse_noise(args.noise)
-    except ValueError as err:
-        parser.error(str(err))
-    if noise is not None:
-        kwargs["noise"] = noise
+    kwargs: dict[str, Any] = noise_kwargs(parser, args.noise)
     if args.rack_order is not None:
         kwargs["rack_order"] = args.rack_order
     check_game_id(parser, args.env, "agents.evaluation.runouts")

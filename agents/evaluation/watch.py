@@ -29,7 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from agents.evaluation.evaluate import _yaml_mapping
-from agents.evaluation.noise_flag import parse_noise
+from agents.evaluation.noise_flag import noise_kwargs
 from agents.evaluation.players import check_agents, make_agent
 from agents.learned.envs import make_env
 from agents.policy import Policy
@@ -275,12 +275,7 @@ def main(argv: list[str] | None = None) -> int:
             parser.error(f"--env-kwargs {args.env_kwargs!r} is not YAML: {err}")
         if not isinstance(kwargs, dict):
             parser.error(f"--env-kwargs must be a YAML mapping, got {args.env_kwargs!r}")
-    try:
-        noise = parse_noise(args.noise)
-    except ValueError as err:
-        parser.error(str(err))
-    if noise is not None:
-        kwargs["noise"] = noise
+    kwargs.update(noise_kwargs(parser, args.noise))
     if args.run_out:
         kwargs["end_on_foul"] = True
     render = {"render_mode": "rgb_array", "render_width": args.width}
