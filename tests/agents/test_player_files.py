@@ -62,7 +62,7 @@ def _swap(key: str, value: str) -> str:
 #: (id, file text, what the message must name). The message is always prefixed by the file.
 BAD = [
     ("misspelt top-level key", GOOD + "setvalue: set_value.npz\n", "unknown key setvalue"),
-    ("unknown setting", _settings("depth: 3"), "unknown key settings.depth"),
+    ("unknown setting", _settings("plies: 3"), "unknown key settings.plies"),
     ("a list, not a mapping", "- kind: search\n- layout_value: runout_value.npz\n",
      "the file must be a mapping"),
     ("an empty file", "", "the file must be a mapping"),

@@ -224,8 +224,8 @@ def test_the_player_refuses_other_games_and_bad_configs(tmp_path) -> None:
     bad.write_text("kind: lookahead\n")
     with pytest.raises(ValueError, match="kind must be 'search'"):
         load_search_player(bad, _env())
-    bad.write_text("kind: search\nlayout_value: x.npz\nsettings: {depth: 3}\n")
-    with pytest.raises(ValueError, match=r"unknown key settings\.depth"):
+    bad.write_text("kind: search\nlayout_value: x.npz\nsettings: {plies: 3}\n")
+    with pytest.raises(ValueError, match=r"unknown key settings\.plies"):
         load_search_player(bad, _env())
     with pytest.raises(ValueError, match="not found"):  # tests/agents/test_player_files.py
         load_search_player(tmp_path / "missing.yaml", _env())
