@@ -123,9 +123,11 @@ def load_search_player(path: str | Path, env: Any, players: int | None = None) -
     file = read_player_file(path, config.table, duel=duel)
     if config.game not in GAMES:  # not a WPA game at all: no file of ours plays it
         ids = ", ".join(GAMES.values())
+        spec = getattr(env, "spec", None)
+        given = spec.id if spec is not None else f"game={config.game!r}"
         raise ValueError(
-            f"player file {str(path)!r}: the search player plays the WPA game ids ({ids}), "
-            f"not game={config.game!r}"
+            f"player file {str(path)!r} cannot play {given}: the search player plays the WPA "
+            f"game ids ({ids})"
         )
     if config.game != file.game:
         fitted = {"nine": "9-ball", "ten": "10-ball (9-ball's values)", "eight": "8-ball"}

@@ -154,7 +154,7 @@ def test_a_refusing_factory_and_player_read_na() -> None:
     search = resolve_policy(str(ROOT / "models" / "search_player.yaml"))
     reason = search.refusal(TASKS[0])  # OneBall-v1: the player's own words, its name first
     assert "search_player.yaml' cannot play pool_env/OneBall-v1" in reason
-    assert "plays the game ids" in reason
+    assert "the search player plays the WPA game ids (pool_env/NineBallGame-v2" in reason
     assert search.refusal(next(t for t in TASKS if t.name == "nine-runout")) is None
 
 
