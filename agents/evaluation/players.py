@@ -72,11 +72,12 @@ def make_agent(name: str, env: Any, seed: int = 0, players: int | None = None) -
     The names are :data:`BASELINES` (``"const:a0,a1"`` too); a ``.yaml`` is a search
     player's config (``models/search_player.yaml``).
 
-    A ``.npz`` is a :class:`~agents.learned.rack_play.RackAgent` value, a
-    :class:`~agents.learned.lookahead.LookaheadAgent` layout value when its config says
-    ``kind: lookahead``, or a :class:`~agents.learned.rack_net.RackNetPlayer` network when
-    it says ``kind: rack_net``. ``players``: the rules agents' (2: they play against an opponent,
-    built on the one-player id by the duels; ``None``: the env's).
+    A ``.npz`` is a :class:`~agents.learned.rack_play.RackAgent` value, a lookahead's
+    layout value when its config says ``kind: lookahead`` (the search player at depth 1:
+    :func:`~agents.learned.player_file.load_lookahead_agent`), or a
+    :class:`~agents.learned.rack_net.RackNetPlayer` network when it says
+    ``kind: rack_net``. ``players``: the rules agents' (2: they play against an
+    opponent, built on the one-player id by the duels; ``None``: the env's).
     """
     if name == "random":
         return RandomAgent(env, seed=seed)
